@@ -1,0 +1,260 @@
+//! The CAN frame the core consumes and produces (CHECKLIST CAN-01, CAN-06, COB-11).
+//!
+//! CANopen's pre-defined connection set uses 11-bit identifiers only, so [`CanFrame`] carries an 11-bit
+//! identifier, 0–8 data bytes, and the RTR flag. It implements [`embedded_can::Frame`], so any
+//! `embedded-can` driver's frames convert with [`CanFrame::from_frame`] / [`CanFrame::to_frame`]; a 29-bit
+//! frame from the bus does not convert (the stack ignores it, CAN-01).
+
+use embedded_can::{Frame, Id, StandardId};
+
+/// Largest 11-bit identifier.
+pub const MAX_STANDARD_ID: u16 = 0x7FF;
+
+/// A classic CAN frame with an 11-bit identifier.
+///
+/// ```
+/// use canopen_core::CanFrame;
+/// let f = CanFrame::new(0x705, &[0x7F]).unwrap();
+/// assert_eq!(f.cob_id(), 0x705);
+/// assert_eq!(f.data(), &[0x7F]);
+/// assert!(!f.is_rtr());
+/// ```
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct CanFrame {
+    id: u16,
+    len: u8,
+    rtr: bool,
+    data: [u8; 8],
+}
+
+impl CanFrame {
+    /// A data frame; `None` if the identifier is above 7FFh or there are more than 8 bytes.
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// assert!(CanFrame::new(0x800, &[]).is_none());
+    /// assert!(CanFrame::new(0x100, &[0; 9]).is_none());
+    /// ```
+    pub fn new(cob_id: u16, data: &[u8]) -> Option<Self> {
+        if cob_id > MAX_STANDARD_ID || data.len() > 8 {
+            return None;
+        }
+        let mut buf = [0u8; 8];
+        buf[..data.len()].copy_from_slice(data);
+        Some(CanFrame { id: cob_id, len: data.len() as u8, rtr: false, data: buf })
+    }
+
+    /// A remote (RTR) frame with the given DLC; `None` if the identifier or DLC is out of range.
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// let f = CanFrame::new_rtr(0x705, 1).unwrap();
+    /// assert!(f.is_rtr());
+    /// assert_eq!(f.dlc(), 1);
+    /// assert!(f.data().is_empty());
+    /// ```
+    pub fn new_rtr(cob_id: u16, dlc: u8) -> Option<Self> {
+        if cob_id > MAX_STANDARD_ID || dlc > 8 {
+            return None;
+        }
+        Some(CanFrame { id: cob_id, len: dlc, rtr: true, data: [0; 8] })
+    }
+
+    /// A data frame from an identifier the stack computed itself and a full 8-byte payload of which the
+    /// first `len` bytes are used. Identifier bits above 11 and lengths above 8 are masked/clamped, so this
+    /// never fails; use it only for identifiers that were validated when they were configured.
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// let f = CanFrame::from_parts(0x585, [0x60, 0x17, 0x10, 0, 0, 0, 0, 0], 8);
+    /// assert_eq!(f.dlc(), 8);
+    /// ```
+    pub const fn from_parts(cob_id: u16, data: [u8; 8], len: u8) -> Self {
+        let len = if len > 8 { 8 } else { len };
+        CanFrame { id: cob_id & MAX_STANDARD_ID, len, rtr: false, data }
+    }
+
+    /// The 11-bit identifier (the COB-ID's CAN-ID part).
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// assert_eq!(CanFrame::new(0x80, &[]).unwrap().cob_id(), 0x80);
+    /// ```
+    pub const fn cob_id(&self) -> u16 {
+        self.id
+    }
+
+    /// Whether this is a remote transmission request.
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// assert!(!CanFrame::new(0x80, &[]).unwrap().is_rtr());
+    /// ```
+    pub const fn is_rtr(&self) -> bool {
+        self.rtr
+    }
+
+    /// The DLC: the number of data bytes, or for an RTR frame the requested length.
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// assert_eq!(CanFrame::new(0x80, &[1, 2]).unwrap().dlc(), 2);
+    /// ```
+    pub const fn dlc(&self) -> u8 {
+        self.len
+    }
+
+    /// The data bytes (empty for an RTR frame).
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// assert_eq!(CanFrame::new(0x80, &[1, 2]).unwrap().data(), &[1, 2]);
+    /// ```
+    pub fn data(&self) -> &[u8] {
+        if self.rtr {
+            &[]
+        } else {
+            &self.data[..self.len as usize]
+        }
+    }
+
+    /// The data bytes padded with zeros to 8 (reserved bytes are 0 on the wire, SDO-02).
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// assert_eq!(CanFrame::new(0x80, &[1]).unwrap().padded(), [1, 0, 0, 0, 0, 0, 0, 0]);
+    /// ```
+    pub const fn padded(&self) -> [u8; 8] {
+        self.data
+    }
+
+    /// Converts a driver's frame; `None` for a 29-bit frame (CAN-01: the stack ignores them).
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// let f = CanFrame::new(0x181, &[1]).unwrap();
+    /// let copy: CanFrame = CanFrame::from_frame(&f).unwrap();
+    /// assert_eq!(copy, f);
+    /// ```
+    pub fn from_frame<F: Frame>(frame: &F) -> Option<Self> {
+        let Id::Standard(id) = frame.id() else {
+            return None;
+        };
+        if frame.is_remote_frame() {
+            CanFrame::new_rtr(id.as_raw(), frame.dlc().min(8) as u8)
+        } else {
+            CanFrame::new(id.as_raw(), frame.data())
+        }
+    }
+
+    /// Converts into a driver's frame type.
+    ///
+    /// ```
+    /// # use canopen_core::CanFrame;
+    /// let f = CanFrame::new(0x181, &[1]).unwrap();
+    /// let out: Option<CanFrame> = f.to_frame();
+    /// assert_eq!(out, Some(f));
+    /// ```
+    pub fn to_frame<F: Frame>(&self) -> Option<F> {
+        let id = StandardId::new(self.id)?;
+        if self.rtr {
+            F::new_remote(id, self.len as usize)
+        } else {
+            F::new(id, self.data())
+        }
+    }
+}
+
+impl Frame for CanFrame {
+    fn new(id: impl Into<Id>, data: &[u8]) -> Option<Self> {
+        match id.into() {
+            Id::Standard(id) => CanFrame::new(id.as_raw(), data),
+            Id::Extended(_) => None,
+        }
+    }
+
+    fn new_remote(id: impl Into<Id>, dlc: usize) -> Option<Self> {
+        match id.into() {
+            Id::Standard(id) if dlc <= 8 => CanFrame::new_rtr(id.as_raw(), dlc as u8),
+            _ => None,
+        }
+    }
+
+    fn is_extended(&self) -> bool {
+        false
+    }
+
+    fn is_remote_frame(&self) -> bool {
+        self.rtr
+    }
+
+    fn id(&self) -> Id {
+        // `id` is always <= 7FFh (checked or masked by every constructor).
+        Id::Standard(StandardId::new(self.id).unwrap_or(StandardId::ZERO))
+    }
+
+    fn dlc(&self) -> usize {
+        self.len as usize
+    }
+
+    fn data(&self) -> &[u8] {
+        CanFrame::data(self)
+    }
+}
+
+impl core::fmt::Debug for CanFrame {
+    /// candump-like: `705 [1] 7F`, `705 [RTR]`.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "{:03X} ", self.id)?;
+        if self.rtr {
+            return write!(f, "[RTR]");
+        }
+        write!(f, "[{}]", self.len)?;
+        for b in self.data() {
+            write!(f, " {b:02X}")?;
+        }
+        Ok(())
+    }
+}
+
+impl core::fmt::Display for CanFrame {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        core::fmt::Debug::fmt(self, f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_out_of_range() {
+        assert!(CanFrame::new(0x800, &[]).is_none());
+        assert!(CanFrame::new_rtr(0x100, 9).is_none());
+        assert!(<CanFrame as Frame>::new(embedded_can::ExtendedId::new(0x100).unwrap(), &[]).is_none());
+    }
+
+    #[test]
+    fn debug_is_candump_like() {
+        struct S(heapless::String<32>);
+        impl core::fmt::Write for S {
+            fn write_str(&mut self, s: &str) -> core::fmt::Result {
+                self.0.push_str(s).map_err(|_| core::fmt::Error)
+            }
+        }
+        let mut s = S(heapless::String::new());
+        core::fmt::write(&mut s, format_args!("{:?}", CanFrame::new(0x705, &[0x7F]).unwrap())).unwrap();
+        assert_eq!(s.0.as_str(), "705 [1] 7F");
+        let mut s = S(heapless::String::new());
+        core::fmt::write(&mut s, format_args!("{:?}", CanFrame::new_rtr(0x705, 0).unwrap())).unwrap();
+        assert_eq!(s.0.as_str(), "705 [RTR]");
+    }
+
+    #[test]
+    fn rtr_has_no_data_and_keeps_dlc() {
+        let f = CanFrame::new_rtr(0x705, 1).unwrap();
+        assert_eq!(f.data(), &[] as &[u8]);
+        assert_eq!(Frame::dlc(&f), 1);
+        assert!(f.is_remote_frame());
+    }
+}

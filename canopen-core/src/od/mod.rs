@@ -1,0 +1,302 @@
+//! The object dictionary contract between the services (SDO, PDO, store/restore, EDS) and whatever holds
+//! the values: the `#[derive]`-generated application dictionary and the core's communication profile.
+//!
+//! Covers the shape of CHECKLIST OD-01 (16-bit index, 8-bit sub-index), OD-03/OD-04 (VAR at sub 0,
+//! ARRAY/RECORD count at sub 0), OD-06 ([`ObjectCode`]), OD-08/OD-09 ([`Access`], with `rwr`/`rww` as rw plus
+//! a PDO direction hint), OD-16 (access errors map to fixed [`AbortCode`]s) and DT-17 ([`DataType`] indices).
+//!
+//! The trait is byte-oriented and offset-based so that SDO can stream a large value (a string, a DOMAIN
+//! holding a firmware image) segment by segment without a buffer of the value's size.
+
+mod abort;
+
+pub use abort::AbortCode;
+
+/// CiA 301 basic data types with their static type index (DT-17, 000 §7.4.7.1 Table 44).
+///
+/// ```
+/// use canopen_core::od::DataType;
+/// assert_eq!(DataType::Unsigned32 as u16, 0x0007);
+/// assert_eq!(DataType::Unsigned32.size(), Some(4));
+/// assert_eq!(DataType::TimeOfDay.size(), Some(6));
+/// assert_eq!(DataType::VisibleString.size(), None);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u16)]
+pub enum DataType {
+    /// 0001h BOOLEAN (one byte on SDO: 0 or 1).
+    Boolean = 0x0001,
+    /// 0002h INTEGER8.
+    Integer8 = 0x0002,
+    /// 0003h INTEGER16.
+    Integer16 = 0x0003,
+    /// 0004h INTEGER32.
+    Integer32 = 0x0004,
+    /// 0005h UNSIGNED8.
+    Unsigned8 = 0x0005,
+    /// 0006h UNSIGNED16.
+    Unsigned16 = 0x0006,
+    /// 0007h UNSIGNED32.
+    Unsigned32 = 0x0007,
+    /// 0008h REAL32.
+    Real32 = 0x0008,
+    /// 0009h VISIBLE_STRING.
+    VisibleString = 0x0009,
+    /// 000Ah OCTET_STRING.
+    OctetString = 0x000A,
+    /// 000Bh UNICODE_STRING.
+    UnicodeString = 0x000B,
+    /// 000Ch TIME_OF_DAY.
+    TimeOfDay = 0x000C,
+    /// 000Dh TIME_DIFFERENCE.
+    TimeDifference = 0x000D,
+    /// 000Fh DOMAIN.
+    Domain = 0x000F,
+    /// 0010h INTEGER24.
+    Integer24 = 0x0010,
+    /// 0011h REAL64.
+    Real64 = 0x0011,
+    /// 0012h INTEGER40.
+    Integer40 = 0x0012,
+    /// 0013h INTEGER48.
+    Integer48 = 0x0013,
+    /// 0014h INTEGER56.
+    Integer56 = 0x0014,
+    /// 0015h INTEGER64.
+    Integer64 = 0x0015,
+    /// 0016h UNSIGNED24.
+    Unsigned24 = 0x0016,
+    /// 0018h UNSIGNED40.
+    Unsigned40 = 0x0018,
+    /// 0019h UNSIGNED48.
+    Unsigned48 = 0x0019,
+    /// 001Ah UNSIGNED56.
+    Unsigned56 = 0x001A,
+    /// 001Bh UNSIGNED64.
+    Unsigned64 = 0x001B,
+}
+
+impl DataType {
+    /// The encoded size in bytes for fixed-size types, `None` for strings and DOMAIN.
+    ///
+    /// ```
+    /// # use canopen_core::od::DataType;
+    /// assert_eq!(DataType::Integer24.size(), Some(3));
+    /// assert_eq!(DataType::Domain.size(), None);
+    /// ```
+    pub const fn size(self) -> Option<usize> {
+        use DataType::*;
+        Some(match self {
+            Boolean | Integer8 | Unsigned8 => 1,
+            Integer16 | Unsigned16 => 2,
+            Integer24 | Unsigned24 => 3,
+            Integer32 | Unsigned32 | Real32 => 4,
+            Integer40 | Unsigned40 => 5,
+            Integer48 | Unsigned48 | TimeOfDay | TimeDifference => 6,
+            Integer56 | Unsigned56 => 7,
+            Integer64 | Unsigned64 | Real64 => 8,
+            VisibleString | OctetString | UnicodeString | Domain => return None,
+        })
+    }
+}
+
+/// Access type of a sub-entry (OD-08, OD-09).
+///
+/// `Rwr` and `Rww` are CiA 306 refinements: read-write on SDO, plus the hint that the entry is an input
+/// (mapped to TPDOs) or an output (mapped to RPDOs).
+///
+/// ```
+/// use canopen_core::od::Access;
+/// assert!(Access::Ro.readable() && !Access::Ro.writable());
+/// assert!(Access::Rww.readable() && Access::Rww.writable());
+/// assert!(!Access::Wo.readable());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Access {
+    /// Read only; the value may change at run time.
+    Ro,
+    /// Write only.
+    Wo,
+    /// Read and write.
+    Rw,
+    /// Read and write; an input (TPDO direction).
+    Rwr,
+    /// Read and write; an output (RPDO direction).
+    Rww,
+    /// Read only; the value changes only in NMT Initialization.
+    Const,
+}
+
+impl Access {
+    /// Whether SDO may read it.
+    pub const fn readable(self) -> bool {
+        !matches!(self, Access::Wo)
+    }
+
+    /// Whether SDO may write it.
+    pub const fn writable(self) -> bool {
+        matches!(self, Access::Wo | Access::Rw | Access::Rwr | Access::Rww)
+    }
+}
+
+/// Where a sub-entry may be mapped (OD-11: optional / TPDO only / RPDO only / no).
+///
+/// ```
+/// use canopen_core::od::PdoMapping;
+/// assert!(PdoMapping::Both.tpdo() && PdoMapping::Both.rpdo());
+/// assert!(!PdoMapping::No.tpdo());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PdoMapping {
+    /// Not mappable.
+    No,
+    /// Mappable into TPDOs only.
+    Tpdo,
+    /// Mappable into RPDOs only.
+    Rpdo,
+    /// Mappable both ways.
+    Both,
+}
+
+impl PdoMapping {
+    /// Mappable into a TPDO.
+    pub const fn tpdo(self) -> bool {
+        matches!(self, PdoMapping::Tpdo | PdoMapping::Both)
+    }
+
+    /// Mappable into an RPDO.
+    pub const fn rpdo(self) -> bool {
+        matches!(self, PdoMapping::Rpdo | PdoMapping::Both)
+    }
+}
+
+/// Object codes (OD-06, 000 §7.4.3 Table 42).
+///
+/// ```
+/// use canopen_core::od::ObjectCode;
+/// assert_eq!(ObjectCode::Record as u8, 9);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum ObjectCode {
+    /// 00h NULL.
+    Null = 0x00,
+    /// 02h DOMAIN.
+    Domain = 0x02,
+    /// 05h DEFTYPE.
+    DefType = 0x05,
+    /// 06h DEFSTRUCT.
+    DefStruct = 0x06,
+    /// 07h VAR.
+    Var = 0x07,
+    /// 08h ARRAY.
+    Array = 0x08,
+    /// 09h RECORD.
+    Record = 0x09,
+}
+
+/// What SDO and PDO need to know about one sub-entry before touching its value.
+///
+/// ```
+/// use canopen_core::od::{Access, DataType, PdoMapping, SubInfo};
+/// let info = SubInfo { data_type: DataType::Unsigned16, access: Access::Rw, pdo: PdoMapping::No, size: 2 };
+/// assert_eq!(info.size, 2);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SubInfo {
+    /// The data type.
+    pub data_type: DataType,
+    /// The access type.
+    pub access: Access,
+    /// Where it may be mapped.
+    pub pdo: PdoMapping,
+    /// The current size of the value in bytes (the fixed size, or the current length of a string/DOMAIN).
+    pub size: usize,
+}
+
+/// Read and write access to an object dictionary by (index, sub-index).
+///
+/// Contract (the SDO server, PDO mapping and store/restore rely on it):
+/// - [`info`](Self::info) fails with [`AbortCode::ObjectDoesNotExist`] for an unknown index and
+///   [`AbortCode::SubIndexDoesNotExist`] for an unknown sub-index of an existing index (OD-16).
+/// - [`read`](Self::read) copies bytes `offset..` of the current little-endian encoding into `buf` and
+///   returns how many it copied (fewer than `buf.len()` only at the end of the value). It refuses a
+///   write-only entry with [`AbortCode::ReadOfWriteOnly`].
+/// - [`write`](Self::write) replaces a whole value at once: access (`WriteOfReadOnly`), length
+///   (`LengthTooHigh`/`LengthTooLow`/`LengthMismatch`), limits (`ValueTooHigh`/`ValueTooLow`/`InvalidValue`) and
+///   application hooks are checked before anything changes, so a refused write changes nothing.
+/// - Values that are streamed (strings, OCTET_STRING, DOMAIN, anything longer than 8 bytes) are written with
+///   [`begin_write`](Self::begin_write), [`write_chunk`](Self::write_chunk) in increasing offsets, and
+///   [`end_write`](Self::end_write); a transfer that is abandoned calls [`abort_write`](Self::abort_write).
+///
+/// ```
+/// use canopen_core::od::{AbortCode, Access, DataType, ObjectDictionary, PdoMapping, SubInfo};
+///
+/// /// A one-entry dictionary: 2000h:00 UNSIGNED16 rw.
+/// struct One(u16);
+/// impl ObjectDictionary for One {
+///     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+///         match (index, sub) {
+///             (0x2000, 0) => Ok(SubInfo { data_type: DataType::Unsigned16, access: Access::Rw, pdo: PdoMapping::No, size: 2 }),
+///             (0x2000, _) => Err(AbortCode::SubIndexDoesNotExist),
+///             _ => Err(AbortCode::ObjectDoesNotExist),
+///         }
+///     }
+///     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+///         self.info(index, sub)?;
+///         let bytes = self.0.to_le_bytes();
+///         let src = bytes.get(offset..).unwrap_or(&[]);
+///         let n = src.len().min(buf.len());
+///         buf[..n].copy_from_slice(&src[..n]);
+///         Ok(n)
+///     }
+///     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+///         self.info(index, sub)?;
+///         let v: [u8; 2] = data.try_into().map_err(|_| if data.len() > 2 { AbortCode::LengthTooHigh } else { AbortCode::LengthTooLow })?;
+///         self.0 = u16::from_le_bytes(v);
+///         Ok(())
+///     }
+/// }
+///
+/// let mut od = One(0);
+/// od.write(0x2000, 0, &[0x34, 0x12]).unwrap();
+/// let mut buf = [0u8; 4];
+/// assert_eq!(od.read(0x2000, 0, 0, &mut buf), Ok(2));
+/// assert_eq!(&buf[..2], &[0x34, 0x12]);
+/// assert_eq!(od.write(0x2000, 0, &[1]), Err(AbortCode::LengthTooLow));
+/// assert_eq!(od.info(0x2001, 0).err(), Some(AbortCode::ObjectDoesNotExist));
+/// ```
+pub trait ObjectDictionary {
+    /// Describes a sub-entry.
+    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode>;
+
+    /// Copies bytes `offset..offset + buf.len()` of the current value; returns the number copied.
+    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode>;
+
+    /// Replaces a whole value atomically (all checks first).
+    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode>;
+
+    /// Starts a streamed write; `size` is the announced total when the client gave one. Checks access and,
+    /// where known, the length, so that a wrong size is refused before any data moves.
+    fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
+        let _ = (index, sub, size);
+        Err(AbortCode::UnsupportedAccess)
+    }
+
+    /// Writes one chunk of a streamed value at `offset`.
+    fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        let _ = (index, sub, offset, data);
+        Err(AbortCode::UnsupportedAccess)
+    }
+
+    /// Completes a streamed write of `total` bytes (final length and value checks, hooks).
+    fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), AbortCode> {
+        let _ = (index, sub, total);
+        Err(AbortCode::UnsupportedAccess)
+    }
+
+    /// A streamed write was abandoned (abort, timeout, new transfer).
+    fn abort_write(&mut self, index: u16, sub: u8) {
+        let _ = (index, sub);
+    }
+}

@@ -1,0 +1,173 @@
+//! Time as a value: the core never reads a clock (the smoltcp / quinn-proto shape).
+//!
+//! The caller passes a monotonic [`Instant`] (integer microseconds since any origin) into every call
+//! that depends on time. Deadlines come back out of `Node::poll_timeout`, so a runner sleeps exactly until
+//! the next one and no fixed tick is needed. Integer microseconds keep floating point out of the core.
+
+use core::ops::{Add, AddAssign, Sub};
+
+/// A point on the caller's monotonic clock, in microseconds.
+///
+/// ```
+/// use canopen_core::time::{Duration, Instant};
+/// let t = Instant::from_millis(5) + Duration::from_micros(250);
+/// assert_eq!(t.as_micros(), 5_250);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub struct Instant(u64);
+
+impl Instant {
+    /// The origin of the clock.
+    pub const ZERO: Instant = Instant(0);
+
+    /// An instant `us` microseconds after the origin.
+    ///
+    /// ```
+    /// # use canopen_core::time::Instant;
+    /// assert_eq!(Instant::from_micros(7).as_micros(), 7);
+    /// ```
+    pub const fn from_micros(us: u64) -> Self {
+        Instant(us)
+    }
+
+    /// An instant `ms` milliseconds after the origin.
+    ///
+    /// ```
+    /// # use canopen_core::time::Instant;
+    /// assert_eq!(Instant::from_millis(2).as_micros(), 2_000);
+    /// ```
+    pub const fn from_millis(ms: u64) -> Self {
+        Instant(ms.saturating_mul(1_000))
+    }
+
+    /// Microseconds since the origin.
+    ///
+    /// ```
+    /// # use canopen_core::time::Instant;
+    /// assert_eq!(Instant::from_millis(1).as_micros(), 1_000);
+    /// ```
+    pub const fn as_micros(self) -> u64 {
+        self.0
+    }
+
+    /// Time elapsed from `earlier` to `self`, zero if `earlier` is later.
+    ///
+    /// ```
+    /// # use canopen_core::time::{Duration, Instant};
+    /// let a = Instant::from_millis(1);
+    /// let b = Instant::from_millis(3);
+    /// assert_eq!(b.saturating_duration_since(a), Duration::from_millis(2));
+    /// assert_eq!(a.saturating_duration_since(b), Duration::ZERO);
+    /// ```
+    pub const fn saturating_duration_since(self, earlier: Instant) -> Duration {
+        Duration(self.0.saturating_sub(earlier.0))
+    }
+}
+
+/// A span of time in microseconds.
+///
+/// ```
+/// use canopen_core::time::Duration;
+/// assert_eq!(Duration::from_millis(3).as_micros(), 3_000);
+/// assert_eq!(Duration::from_100us(15).as_micros(), 1_500);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub struct Duration(u64);
+
+impl Duration {
+    /// No time at all.
+    pub const ZERO: Duration = Duration(0);
+
+    /// `us` microseconds.
+    ///
+    /// ```
+    /// # use canopen_core::time::Duration;
+    /// assert_eq!(Duration::from_micros(9).as_micros(), 9);
+    /// ```
+    pub const fn from_micros(us: u64) -> Self {
+        Duration(us)
+    }
+
+    /// `ms` milliseconds (the unit of 1017h, 1016h, 100Ch and event timers).
+    ///
+    /// ```
+    /// # use canopen_core::time::Duration;
+    /// assert_eq!(Duration::from_millis(9).as_micros(), 9_000);
+    /// ```
+    pub const fn from_millis(ms: u64) -> Self {
+        Duration(ms.saturating_mul(1_000))
+    }
+
+    /// `n` × 100 µs (the unit of inhibit times, 1015h and 18xxh sub 3).
+    ///
+    /// ```
+    /// # use canopen_core::time::Duration;
+    /// assert_eq!(Duration::from_100us(10), Duration::from_millis(1));
+    /// ```
+    pub const fn from_100us(n: u64) -> Self {
+        Duration(n.saturating_mul(100))
+    }
+
+    /// The length in microseconds.
+    ///
+    /// ```
+    /// # use canopen_core::time::Duration;
+    /// assert_eq!(Duration::from_millis(1).as_micros(), 1_000);
+    /// ```
+    pub const fn as_micros(self) -> u64 {
+        self.0
+    }
+
+    /// Whether this is zero (CANopen uses 0 to mean "off" for every period).
+    ///
+    /// ```
+    /// # use canopen_core::time::Duration;
+    /// assert!(Duration::ZERO.is_zero());
+    /// ```
+    pub const fn is_zero(self) -> bool {
+        self.0 == 0
+    }
+}
+
+impl Add<Duration> for Instant {
+    type Output = Instant;
+    fn add(self, rhs: Duration) -> Instant {
+        Instant(self.0.saturating_add(rhs.0))
+    }
+}
+
+impl AddAssign<Duration> for Instant {
+    fn add_assign(&mut self, rhs: Duration) {
+        *self = *self + rhs;
+    }
+}
+
+impl Sub<Instant> for Instant {
+    type Output = Duration;
+    fn sub(self, rhs: Instant) -> Duration {
+        self.saturating_duration_since(rhs)
+    }
+}
+
+impl Add for Duration {
+    type Output = Duration;
+    fn add(self, rhs: Duration) -> Duration {
+        Duration(self.0.saturating_add(rhs.0))
+    }
+}
+
+/// The earlier of two optional deadlines (`None` = no deadline).
+///
+/// ```
+/// use canopen_core::time::{earliest, Instant};
+/// let a = Some(Instant::from_millis(5));
+/// assert_eq!(earliest(a, None), a);
+/// assert_eq!(earliest(a, Some(Instant::from_millis(2))), Some(Instant::from_millis(2)));
+/// ```
+pub fn earliest(a: Option<Instant>, b: Option<Instant>) -> Option<Instant> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(x.min(y)),
+        (x, None) => x,
+        (None, y) => y,
+    }
+}

@@ -1,0 +1,1 @@
+//! Linux SocketCAN adapter for `canopen-core` (filled by the SocketCAN issue).
