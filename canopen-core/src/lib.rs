@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 pub mod cob;
+pub mod comm;
 pub mod frame;
 pub mod od;
 pub mod time;

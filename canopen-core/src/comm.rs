@@ -1,0 +1,217 @@
+//! Communication-profile values (1000h–1FFFh) and the node configuration they start from.
+//!
+//! [`NodeConfig`] is the device's fixed description (identity, names, defaults); [`CommParams`] holds the
+//! run-time values of the communication objects that the services read. NMT reset communication sets
+//! [`CommParams`] back to its power-on values (NMT-05, NMT-06), and store/restore (1010h/1011h) saves and
+//! loads it. The object-dictionary view over these values (SDO access to 1000h–1FFFh) lives in the `od`
+//! layer; the rules that belong to a value rather than to its encoding are enforced here, by the setters.
+//!
+//! Implemented here: HB-01 (1017h), HB-06..HB-09 (1016h entries, duplicate node → 0604 0043h), GUARD-02/03
+//! (100Ch, 100Dh), DEV-01/DEV-03/DEV-04 (1000h, 1018h, 1008h–100Ah as configuration).
+
+use crate::od::AbortCode;
+
+/// 1018h identity object (DEV-03).
+///
+/// ```
+/// use canopen_core::comm::Identity;
+/// let id = Identity { vendor_id: 0, product_code: 1, revision: 0x0001_0000, serial: 42 };
+/// assert_eq!(id.serial, 42);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Identity {
+    /// 1018h:01 vendor-ID (CiA-assigned).
+    pub vendor_id: u32,
+    /// 1018h:02 product code.
+    pub product_code: u32,
+    /// 1018h:03 revision number (major.minor in the high/low 16 bits).
+    pub revision: u32,
+    /// 1018h:04 serial number.
+    pub serial: u32,
+}
+
+/// The fixed description of a node and the defaults of its communication parameters.
+///
+/// ```
+/// use canopen_core::comm::NodeConfig;
+/// const CFG: NodeConfig = NodeConfig { heartbeat_time_ms: 1000, ..NodeConfig::DEFAULT };
+/// assert_eq!(CFG.heartbeat_time_ms, 1000);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NodeConfig {
+    /// 1000h device type (DEV-01).
+    pub device_type: u32,
+    /// 1018h identity (DEV-03).
+    pub identity: Identity,
+    /// 1008h manufacturer device name (DEV-04).
+    pub device_name: &'static str,
+    /// 1009h manufacturer hardware version (DEV-04).
+    pub hardware_version: &'static str,
+    /// 100Ah manufacturer software version (DEV-04).
+    pub software_version: &'static str,
+    /// Default 1017h producer heartbeat time in ms (HB-01; 0 = off).
+    pub heartbeat_time_ms: u16,
+    /// Default 100Ch guard time in ms (GUARD-02; 0 = off).
+    pub guard_time_ms: u16,
+    /// Default 100Dh life time factor (GUARD-03; 0 = off).
+    pub life_time_factor: u8,
+}
+
+impl NodeConfig {
+    /// A neutral configuration: no profile, no error control enabled, empty names.
+    pub const DEFAULT: NodeConfig = NodeConfig {
+        device_type: 0,
+        identity: Identity { vendor_id: 0, product_code: 0, revision: 0, serial: 0 },
+        device_name: "",
+        hardware_version: "",
+        software_version: "",
+        heartbeat_time_ms: 0,
+        guard_time_ms: 0,
+        life_time_factor: 0,
+    };
+}
+
+impl Default for NodeConfig {
+    fn default() -> Self {
+        NodeConfig::DEFAULT
+    }
+}
+
+/// Decoded 1016h consumer heartbeat entry (HB-07: bits 23–16 node-ID, bits 15–0 time in ms).
+///
+/// ```
+/// use canopen_core::comm::ConsumerEntry;
+/// let e = ConsumerEntry::from_raw(0x0002_0064);
+/// assert_eq!((e.node_id, e.time_ms), (2, 100));
+/// assert!(e.is_active());
+/// assert!(!ConsumerEntry::from_raw(0x0080_0064).is_active()); // node 128: inactive (HB-08)
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ConsumerEntry {
+    /// Monitored node-ID.
+    pub node_id: u8,
+    /// Consumer time in ms.
+    pub time_ms: u16,
+}
+
+impl ConsumerEntry {
+    /// Decodes the UNSIGNED32 of a 1016h sub-entry (bits 31–24 are reserved and ignored).
+    pub const fn from_raw(raw: u32) -> Self {
+        ConsumerEntry { node_id: (raw >> 16) as u8, time_ms: raw as u16 }
+    }
+
+    /// Encodes as the UNSIGNED32 of a 1016h sub-entry.
+    ///
+    /// ```
+    /// # use canopen_core::comm::ConsumerEntry;
+    /// assert_eq!(ConsumerEntry { node_id: 7, time_ms: 4000 }.raw(), 0x0007_0FA0);
+    /// ```
+    pub const fn raw(self) -> u32 {
+        ((self.node_id as u32) << 16) | self.time_ms as u32
+    }
+
+    /// Active unless the time is 0 or the node-ID is 0 or above 127 (HB-08).
+    pub const fn is_active(self) -> bool {
+        self.time_ms != 0 && self.node_id >= 1 && self.node_id <= 127
+    }
+}
+
+/// Run-time values of the communication objects, for a node with `HB` heartbeat consumer entries.
+///
+/// ```
+/// use canopen_core::comm::{CommParams, NodeConfig};
+/// let mut p: CommParams<4> = CommParams::new(&NodeConfig::DEFAULT);
+/// p.set_consumer(1, 0x0002_0064).unwrap();
+/// assert!(p.set_consumer(2, 0x0002_00C8).is_err()); // node 2 monitored twice (HB-09)
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CommParams<const HB: usize> {
+    /// 1017h producer heartbeat time, ms (HB-01).
+    pub heartbeat_time_ms: u16,
+    /// 1016h:01..HB raw consumer entries (HB-06, HB-07).
+    pub heartbeat_consumers: [u32; HB],
+    /// 100Ch guard time, ms (GUARD-02).
+    pub guard_time_ms: u16,
+    /// 100Dh life time factor (GUARD-03).
+    pub life_time_factor: u8,
+}
+
+impl<const HB: usize> CommParams<HB> {
+    /// The power-on defaults of `config` (nothing stored).
+    pub const fn new(config: &NodeConfig) -> Self {
+        CommParams {
+            heartbeat_time_ms: config.heartbeat_time_ms,
+            heartbeat_consumers: [0; HB],
+            guard_time_ms: config.guard_time_ms,
+            life_time_factor: config.life_time_factor,
+        }
+    }
+
+    /// The decoded consumer entry at 1016h sub-index `sub` (1-based), if it exists.
+    ///
+    /// ```
+    /// # use canopen_core::comm::{CommParams, NodeConfig};
+    /// let p: CommParams<2> = CommParams::new(&NodeConfig::DEFAULT);
+    /// assert!(p.consumer(1).is_some());
+    /// assert!(p.consumer(3).is_none());
+    /// ```
+    pub fn consumer(&self, sub: u8) -> Option<ConsumerEntry> {
+        let i = usize::from(sub).checked_sub(1)?;
+        self.heartbeat_consumers.get(i).map(|&raw| ConsumerEntry::from_raw(raw))
+    }
+
+    /// Writes 1016h sub-index `sub`: refuses a missing sub-index (0609 0011h) and a second active entry for
+    /// a node-ID that another active entry already monitors (HB-09, 0604 0043h).
+    ///
+    /// ```
+    /// # use canopen_core::{comm::{CommParams, NodeConfig}, od::AbortCode};
+    /// let mut p: CommParams<2> = CommParams::new(&NodeConfig::DEFAULT);
+    /// assert_eq!(p.set_consumer(3, 0), Err(AbortCode::SubIndexDoesNotExist));
+    /// ```
+    pub fn set_consumer(&mut self, sub: u8, raw: u32) -> Result<(), AbortCode> {
+        let i = usize::from(sub).checked_sub(1).filter(|&i| i < HB).ok_or(AbortCode::SubIndexDoesNotExist)?;
+        let new = ConsumerEntry::from_raw(raw);
+        if new.is_active() {
+            let duplicate = self.heartbeat_consumers.iter().enumerate().any(|(j, &other)| {
+                j != i
+                    && ConsumerEntry::from_raw(other).is_active()
+                    && ConsumerEntry::from_raw(other).node_id == new.node_id
+            });
+            if duplicate {
+                return Err(AbortCode::ParameterIncompatibility);
+            }
+        }
+        self.heartbeat_consumers[i] = raw;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// V-ENC-20 and V-HBC-01..05.
+    #[test]
+    fn consumer_entries_vectors() {
+        let mut p: CommParams<4> = CommParams::new(&NodeConfig::DEFAULT);
+        assert_eq!(
+            ConsumerEntry::from_raw(u32::from_le_bytes([0x64, 0, 2, 0])),
+            ConsumerEntry { node_id: 2, time_ms: 100 }
+        );
+        assert_eq!(p.set_consumer(1, 0x0002_0064), Ok(()));
+        assert_eq!(p.set_consumer(2, 0x0003_0190), Ok(()));
+        assert_eq!(p.set_consumer(3, 0x0007_0FA0), Ok(()));
+        // HB-09: node 2 again.
+        assert_eq!(p.set_consumer(4, 0x0002_00C8), Err(AbortCode::ParameterIncompatibility));
+        assert_eq!(p.heartbeat_consumers[3], 0);
+        // Rewriting the same entry with a new time is not a duplicate.
+        assert_eq!(p.set_consumer(1, 0x0002_00C8), Ok(()));
+        // Disable entry 1; then node 2 may go elsewhere.
+        assert_eq!(p.set_consumer(1, 0), Ok(()));
+        assert_eq!(p.set_consumer(4, 0x0002_00C8), Ok(()));
+        // An inactive duplicate (time 0) is accepted (HB-08).
+        assert_eq!(p.set_consumer(1, 0x0002_0000), Ok(()));
+        assert_eq!(p.set_consumer(0, 0), Err(AbortCode::SubIndexDoesNotExist));
+        assert_eq!(p.set_consumer(5, 0), Err(AbortCode::SubIndexDoesNotExist));
+    }
+}
