@@ -12,10 +12,19 @@
 
 pub mod cob;
 pub mod comm;
+pub mod event;
 pub mod frame;
+pub mod guarding;
+pub mod heartbeat;
+pub mod nmt;
+pub mod node;
 pub mod od;
 pub mod time;
+pub mod wire;
 
 pub use cob::NodeId;
+pub use event::Event;
 pub use frame::CanFrame;
+pub use nmt::NmtState;
+pub use node::Node;
 pub use time::{Duration, Instant};

@@ -299,4 +299,8 @@ pub trait ObjectDictionary {
     fn abort_write(&mut self, index: u16, sub: u8) {
         let _ = (index, sub);
     }
+
+    /// Sets every value back to its default (power-on) value: NMT Reset Application (NMT-04) calls it for
+    /// the application dictionary. The default does nothing, for dictionaries without defaults.
+    fn restore_defaults(&mut self) {}
 }

@@ -1,0 +1,330 @@
+//! Heartbeat producer (1017h) and consumer (1016h) (CHECKLIST HB-01..HB-14).
+//!
+//! Implemented: HB-02 (frame), HB-03 (cyclic in Pre-operational, Operational and Stopped), HB-04 (the boot-up
+//! counts as the first heartbeat; a written period takes effect at once: the next heartbeat is one new
+//! period after the write), HB-07/HB-08 (entry layout and inactive entries), HB-10 (monitoring starts with
+//! the first heartbeat), HB-11 (one missed consumer time is a time-out; resolved when heartbeats resume or the
+//! entry is disabled; state changes and a re-boot of the producer are reported). HB-05 (never heartbeat and
+//! guarding at once) and HB-13 (time-out is a communication error handled per 1029h) are enforced by `Node`.
+//! HB-09 (duplicate node) is enforced by `comm::CommParams::set_consumer`. HB-12/HB-14 are advice.
+
+use crate::comm::ConsumerEntry;
+use crate::time::{Duration, Instant};
+use crate::wire::error_control::StateCode;
+
+/// The heartbeat producer: when the next heartbeat is due.
+///
+/// ```
+/// use canopen_core::{heartbeat::HeartbeatProducer, Instant};
+/// let mut p = HeartbeatProducer::new();
+/// p.start(Instant::ZERO, 100); // boot-up sent at 0 counts as the first heartbeat
+/// assert_eq!(p.poll_timeout(), Some(Instant::from_millis(100)));
+/// assert!(!p.due(Instant::from_millis(99)));
+/// assert!(p.due(Instant::from_millis(100)));
+/// assert_eq!(p.poll_timeout(), Some(Instant::from_millis(200)));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct HeartbeatProducer {
+    period: Duration,
+    next: Option<Instant>,
+}
+
+impl HeartbeatProducer {
+    /// A producer that is off.
+    pub const fn new() -> Self {
+        HeartbeatProducer { period: Duration::ZERO, next: None }
+    }
+
+    /// Starts (or stops, for 0) the producer at the boot-up sent at `now` (HB-04).
+    pub fn start(&mut self, now: Instant, period_ms: u16) {
+        self.set_period(now, period_ms);
+    }
+
+    /// Applies a new 1017h value written at `now`: takes effect at once (HB-04), 0 stops the producer.
+    pub fn set_period(&mut self, now: Instant, period_ms: u16) {
+        self.period = Duration::from_millis(u64::from(period_ms));
+        self.next = if self.period.is_zero() { None } else { Some(now + self.period) };
+    }
+
+    /// Whether the producer is running.
+    pub const fn is_active(&self) -> bool {
+        self.next.is_some()
+    }
+
+    /// The instant the next heartbeat is due.
+    pub const fn poll_timeout(&self) -> Option<Instant> {
+        self.next
+    }
+
+    /// Whether a heartbeat is due at `now`; if so, schedules the next one. A runner that fell behind by more
+    /// than a period sends one heartbeat, not a burst.
+    pub fn due(&mut self, now: Instant) -> bool {
+        match self.next {
+            Some(next) if next <= now => {
+                let following = next + self.period;
+                self.next = Some(if following <= now { now + self.period } else { following });
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
+/// What the consumer knows about one monitored producer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Monitor {
+    /// No heartbeat seen yet: no time-out (HB-10).
+    Waiting,
+    /// Heartbeats arriving; the next one is due by `deadline`.
+    Alive { state: StateCode, deadline: Instant },
+    /// The consumer time elapsed without a heartbeat (HB-11).
+    TimedOut { state: StateCode },
+}
+
+/// One 1016h entry and its monitoring state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Slot {
+    entry: ConsumerEntry,
+    monitor: Monitor,
+}
+
+impl Slot {
+    const OFF: Slot = Slot { entry: ConsumerEntry { node_id: 0, time_ms: 0 }, monitor: Monitor::Waiting };
+}
+
+/// A heartbeat consumer observation, reported to the application (HB-11).
+///
+/// ```
+/// use canopen_core::heartbeat::ConsumerEvent;
+/// let e = ConsumerEvent::Timeout { node: 2 };
+/// assert!(matches!(e, ConsumerEvent::Timeout { node: 2 }));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ConsumerEvent {
+    /// The first heartbeat of a monitored node arrived: monitoring started (HB-10).
+    Started {
+        /// The producer's node-ID.
+        node: u8,
+        /// Its reported state.
+        state: StateCode,
+    },
+    /// A monitored node reported a new NMT state.
+    StateChanged {
+        /// The producer's node-ID.
+        node: u8,
+        /// The previous state.
+        from: StateCode,
+        /// The new state.
+        to: StateCode,
+    },
+    /// A monitored node sent its boot-up message again: it was reset or power-cycled.
+    Rebooted {
+        /// The producer's node-ID.
+        node: u8,
+    },
+    /// Heartbeat event "occurred / time-out": no heartbeat within the consumer time (HB-11).
+    Timeout {
+        /// The producer's node-ID.
+        node: u8,
+    },
+    /// Heartbeat event "resolved": heartbeats arrived again after a time-out (HB-11).
+    Resumed {
+        /// The producer's node-ID.
+        node: u8,
+        /// Its reported state.
+        state: StateCode,
+    },
+}
+
+/// The heartbeat consumer with `N` entries (1016h:01..N).
+///
+/// ```
+/// use canopen_core::{heartbeat::{ConsumerEvent, HeartbeatConsumer}, Instant};
+/// use canopen_core::wire::error_control::StateCode;
+/// let mut c: HeartbeatConsumer<4> = HeartbeatConsumer::new();
+/// c.configure(&[0x0002_0064, 0, 0, 0]); // node 2, 100 ms
+/// assert_eq!(c.poll_timeout(), None); // nothing until the first heartbeat (HB-10)
+/// let ev = c.handle_heartbeat(Instant::ZERO, 2, StateCode::PreOperational);
+/// assert_eq!(ev, Some(ConsumerEvent::Started { node: 2, state: StateCode::PreOperational }));
+/// assert_eq!(c.poll_timeout(), Some(Instant::from_millis(100)));
+/// assert_eq!(c.handle_timeout(Instant::from_millis(100)), Some(ConsumerEvent::Timeout { node: 2 }));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct HeartbeatConsumer<const N: usize> {
+    slots: [Slot; N],
+}
+
+impl<const N: usize> Default for HeartbeatConsumer<N> {
+    fn default() -> Self {
+        HeartbeatConsumer::new()
+    }
+}
+
+impl<const N: usize> HeartbeatConsumer<N> {
+    /// A consumer with every entry off.
+    pub const fn new() -> Self {
+        HeartbeatConsumer { slots: [Slot::OFF; N] }
+    }
+
+    /// Loads every entry from the raw 1016h values (after reset communication).
+    pub fn configure(&mut self, raw: &[u32; N]) {
+        for (slot, &r) in self.slots.iter_mut().zip(raw.iter()) {
+            *slot = Slot { entry: ConsumerEntry::from_raw(r), monitor: Monitor::Waiting };
+        }
+    }
+
+    /// Applies a written entry (0-based `i`). A changed entry restarts monitoring: it waits for the next
+    /// heartbeat of its node (HB-10); disabling it resolves a pending time-out (HB-11).
+    pub fn set_entry(&mut self, i: usize, raw: u32) {
+        if let Some(slot) = self.slots.get_mut(i) {
+            let entry = ConsumerEntry::from_raw(raw);
+            if slot.entry != entry {
+                *slot = Slot { entry, monitor: Monitor::Waiting };
+            }
+        }
+    }
+
+    /// The last reported state of a monitored node, `None` while waiting for its first heartbeat or when the
+    /// node is not monitored.
+    ///
+    /// ```
+    /// # use canopen_core::heartbeat::HeartbeatConsumer;
+    /// let c: HeartbeatConsumer<1> = HeartbeatConsumer::new();
+    /// assert_eq!(c.remote_state(3), None);
+    /// ```
+    pub fn remote_state(&self, node: u8) -> Option<StateCode> {
+        self.slot(node).and_then(|s| match s.monitor {
+            Monitor::Waiting => None,
+            Monitor::Alive { state, .. } | Monitor::TimedOut { state } => Some(state),
+        })
+    }
+
+    /// Whether a monitored node is currently timed out.
+    pub fn is_timed_out(&self, node: u8) -> bool {
+        self.slot(node).is_some_and(|s| matches!(s.monitor, Monitor::TimedOut { .. }))
+    }
+
+    fn slot(&self, node: u8) -> Option<&Slot> {
+        self.slots.iter().find(|s| s.entry.is_active() && s.entry.node_id == node)
+    }
+
+    /// A heartbeat (or boot-up) of `node` arrived at `now`. Returns what the application should hear, if
+    /// anything. Heartbeats of nodes that no active entry monitors are ignored.
+    pub fn handle_heartbeat(&mut self, now: Instant, node: u8, state: StateCode) -> Option<ConsumerEvent> {
+        let slot = self.slots.iter_mut().find(|s| s.entry.is_active() && s.entry.node_id == node)?;
+        let deadline = now + Duration::from_millis(u64::from(slot.entry.time_ms));
+        let previous = slot.monitor;
+        slot.monitor = Monitor::Alive { state, deadline };
+        match previous {
+            Monitor::Waiting => Some(ConsumerEvent::Started { node, state }),
+            Monitor::TimedOut { .. } => Some(ConsumerEvent::Resumed { node, state }),
+            Monitor::Alive { state: from, .. } if from == state => None,
+            Monitor::Alive { .. } if state == StateCode::BootUp => Some(ConsumerEvent::Rebooted { node }),
+            Monitor::Alive { state: from, .. } => Some(ConsumerEvent::StateChanged { node, from, to: state }),
+        }
+    }
+
+    /// The earliest consumer deadline.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        self.slots
+            .iter()
+            .filter_map(|s| match s.monitor {
+                Monitor::Alive { deadline, .. } => Some(deadline),
+                _ => None,
+            })
+            .min()
+    }
+
+    /// Reports the first entry whose consumer time has elapsed at `now` (HB-11: one missed period is a
+    /// time-out); call again until it returns `None`.
+    pub fn handle_timeout(&mut self, now: Instant) -> Option<ConsumerEvent> {
+        let slot =
+            self.slots.iter_mut().find(|s| matches!(s.monitor, Monitor::Alive { deadline, .. } if deadline <= now))?;
+        if let Monitor::Alive { state, .. } = slot.monitor {
+            slot.monitor = Monitor::TimedOut { state };
+        }
+        Some(ConsumerEvent::Timeout { node: slot.entry.node_id })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ms(v: u64) -> Instant {
+        Instant::from_millis(v)
+    }
+
+    /// HB-04: the boot-up is the first heartbeat; a written period takes effect at once; 0 stops.
+    #[test]
+    fn producer_period_change() {
+        let mut p = HeartbeatProducer::new();
+        p.start(ms(0), 0);
+        assert!(!p.is_active());
+        p.set_period(ms(30), 100);
+        assert_eq!(p.poll_timeout(), Some(ms(130)));
+        assert!(p.due(ms(130)));
+        p.set_period(ms(150), 20);
+        assert_eq!(p.poll_timeout(), Some(ms(170)));
+        p.set_period(ms(160), 0);
+        assert_eq!(p.poll_timeout(), None);
+        assert!(!p.due(ms(1000)));
+    }
+
+    #[test]
+    fn producer_does_not_burst_after_a_stall() {
+        let mut p = HeartbeatProducer::new();
+        p.start(ms(0), 10);
+        assert!(p.due(ms(55)));
+        assert!(!p.due(ms(55)));
+        assert_eq!(p.poll_timeout(), Some(ms(65)));
+    }
+
+    /// HB-10, HB-11: start, state change, reboot, time-out, resume.
+    #[test]
+    fn consumer_lifecycle() {
+        let mut c: HeartbeatConsumer<2> = HeartbeatConsumer::new();
+        c.configure(&[0x0002_0064, 0x0007_0FA0]);
+        assert_eq!(c.poll_timeout(), None);
+        assert_eq!(c.handle_timeout(ms(10_000)), None); // node 7 never seen: no time-out (V-HBC-07)
+        let s = |st| c_state(st);
+        assert_eq!(
+            c.handle_heartbeat(ms(0), 2, StateCode::PreOperational),
+            Some(ConsumerEvent::Started { node: 2, state: s(0x7F) })
+        );
+        assert_eq!(c.handle_heartbeat(ms(90), 2, StateCode::PreOperational), None);
+        assert_eq!(
+            c.handle_heartbeat(ms(180), 2, StateCode::Operational),
+            Some(ConsumerEvent::StateChanged { node: 2, from: s(0x7F), to: s(0x05) })
+        );
+        assert_eq!(c.handle_timeout(ms(279)), None);
+        assert_eq!(c.handle_timeout(ms(280)), Some(ConsumerEvent::Timeout { node: 2 }));
+        assert!(c.is_timed_out(2));
+        assert_eq!(c.handle_timeout(ms(1000)), None); // reported once
+        assert_eq!(
+            c.handle_heartbeat(ms(1000), 2, StateCode::Operational),
+            Some(ConsumerEvent::Resumed { node: 2, state: s(0x05) })
+        );
+        assert_eq!(c.handle_heartbeat(ms(1010), 2, StateCode::BootUp), Some(ConsumerEvent::Rebooted { node: 2 }));
+        assert_eq!(c.handle_heartbeat(ms(1010), 9, StateCode::BootUp), None); // not monitored
+    }
+
+    /// HB-08, HB-11: disabling an entry resolves and stops monitoring; re-enabling waits again.
+    #[test]
+    fn consumer_entry_changes() {
+        let mut c: HeartbeatConsumer<1> = HeartbeatConsumer::new();
+        c.set_entry(0, 0x0002_0064);
+        c.handle_heartbeat(ms(0), 2, StateCode::Stopped);
+        assert_eq!(c.handle_timeout(ms(100)), Some(ConsumerEvent::Timeout { node: 2 }));
+        c.set_entry(0, 0);
+        assert!(!c.is_timed_out(2));
+        assert_eq!(c.poll_timeout(), None);
+        c.set_entry(0, 0x0080_0064); // node 128: inactive
+        assert_eq!(c.handle_heartbeat(ms(0), 0x80, StateCode::Stopped), None);
+        c.set_entry(5, 1); // no such entry: ignored, no panic
+    }
+
+    fn c_state(code: u8) -> StateCode {
+        StateCode::from_code(code).unwrap()
+    }
+}

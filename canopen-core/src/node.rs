@@ -1,0 +1,360 @@
+//! The node: one object that owns every service and is driven from outside (the quinn-proto shape).
+//!
+//! - [`Node::handle_frame`] feeds a received frame, [`Node::handle_timeout`] tells it the time passed;
+//! - [`Node::poll_transmit`] drains frames to send, [`Node::poll_event`] drains events for the application;
+//! - [`Node::poll_timeout`] says when the next deadline is, so a runner sleeps exactly until then.
+//!
+//! Both output queues are bounded (`TXQ`, `EVQ`). When one is full the newest item is dropped and counted
+//! ([`Node::tx_dropped`], [`Node::events_dropped`]); a runner that drains the transmit queue after every call
+//! never sees it full.
+//!
+//! Receive dispatch decodes the function code of the CAN-ID once and branches on it: no scan over services.
+//!
+//! CHECKLIST items carried out here: NMT-03 (power-on: Initialising → reset application → reset
+//! communication → boot-up → Pre-operational, on the first call), NMT-04/NMT-05 (what the resets restore),
+//! NMT-08 (own node-ID or broadcast), NMT-14 (never replies on 000h), NMT-18 (services per state),
+//! NMT-23/NMT-24 (boot-up on 700h + node, once per Initialization → Pre-operational), NMT-26/ERR-12 (a
+//! communication error in Operational → Pre-operational by default), HB-03/HB-04, HB-05 (guarding is
+//! answered only while the heartbeat producer is off), HB-13/GUARD-11 (time-outs are communication errors),
+//! CAN-07 (frames malformed for their COB-ID are ignored). NMT-06 (stored power-on values) and 1029h
+//! configuration come with store/restore and error behaviour.
+
+use heapless::Deque;
+
+use crate::cob::{FunctionCode, NodeId};
+use crate::comm::{CommParams, NodeConfig};
+use crate::event::Event;
+use crate::frame::CanFrame;
+use crate::guarding::Guarding;
+use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
+use crate::nmt::{Nmt, NmtState, Service, Transition};
+use crate::od::{AbortCode, ObjectDictionary};
+use crate::time::{earliest, Instant};
+use crate::wire::error_control::{Heartbeat, StateCode};
+use crate::wire::nmt::NodeControl;
+
+/// A CANopen node with application dictionary `A`, `HB` heartbeat consumer entries, a transmit queue of
+/// `TXQ` frames and an event queue of `EVQ` events.
+///
+/// ```
+/// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, CanFrame, Instant, NodeId};
+///
+/// let cfg = NodeConfig { heartbeat_time_ms: 100, ..NodeConfig::DEFAULT };
+/// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
+///
+/// // Power-on: the first call boots the node (boot-up frame, Pre-operational).
+/// assert_eq!(node.poll_timeout(), Some(Instant::ZERO));
+/// node.handle_timeout(Instant::ZERO);
+/// assert_eq!(node.poll_transmit(), CanFrame::new(0x705, &[0x00]));
+///
+/// // NMT start, then the next heartbeat says Operational.
+/// node.handle_frame(Instant::from_millis(10), &CanFrame::new(0x000, &[0x01, 0x05]).unwrap());
+/// assert_eq!(node.poll_timeout(), Some(Instant::from_millis(100)));
+/// node.handle_timeout(Instant::from_millis(100));
+/// assert_eq!(node.poll_transmit(), CanFrame::new(0x705, &[0x05]));
+/// ```
+pub struct Node<A, const HB: usize = 4, const TXQ: usize = 16, const EVQ: usize = 16> {
+    node_id: NodeId,
+    config: NodeConfig,
+    params: CommParams<HB>,
+    nmt: Nmt,
+    boot_pending: bool,
+    producer: HeartbeatProducer,
+    consumer: HeartbeatConsumer<HB>,
+    guarding: Guarding,
+    app: A,
+    tx: Deque<CanFrame, TXQ>,
+    events: Deque<Event, EVQ>,
+    tx_dropped: u32,
+    events_dropped: u32,
+}
+
+/// An empty application dictionary, for nodes that only use the communication profile.
+///
+/// ```
+/// use canopen_core::{node::NoApplication, od::{AbortCode, ObjectDictionary}};
+/// assert_eq!(NoApplication.info(0x2000, 0).err(), Some(AbortCode::ObjectDoesNotExist));
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NoApplication;
+
+impl ObjectDictionary for NoApplication {
+    fn info(&self, _: u16, _: u8) -> Result<crate::od::SubInfo, AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+    fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+}
+
+impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> Node<A, HB, TXQ, EVQ> {
+    /// A node in Initialization; it boots on the first call that passes the time in (NMT-03).
+    pub fn new(node_id: NodeId, config: NodeConfig, app: A) -> Self {
+        Node {
+            node_id,
+            config,
+            params: CommParams::new(&config),
+            nmt: Nmt::new(),
+            boot_pending: true,
+            producer: HeartbeatProducer::new(),
+            consumer: HeartbeatConsumer::new(),
+            guarding: Guarding::new(),
+            app,
+            tx: Deque::new(),
+            events: Deque::new(),
+            tx_dropped: 0,
+            events_dropped: 0,
+        }
+    }
+
+    /// The node-ID.
+    pub const fn node_id(&self) -> NodeId {
+        self.node_id
+    }
+
+    /// The current NMT state.
+    pub const fn state(&self) -> NmtState {
+        self.nmt.state()
+    }
+
+    /// The node configuration.
+    pub const fn config(&self) -> &NodeConfig {
+        &self.config
+    }
+
+    /// The current communication parameters.
+    pub const fn params(&self) -> &CommParams<HB> {
+        &self.params
+    }
+
+    /// The application dictionary.
+    pub const fn app(&self) -> &A {
+        &self.app
+    }
+
+    /// The application dictionary, to change process values while the node runs.
+    pub fn app_mut(&mut self) -> &mut A {
+        &mut self.app
+    }
+
+    /// The heartbeat consumer (remote states, time-outs).
+    pub const fn heartbeat_consumer(&self) -> &HeartbeatConsumer<HB> {
+        &self.consumer
+    }
+
+    /// Frames dropped because the transmit queue was full.
+    pub const fn tx_dropped(&self) -> u32 {
+        self.tx_dropped
+    }
+
+    /// Events dropped because the event queue was full.
+    pub const fn events_dropped(&self) -> u32 {
+        self.events_dropped
+    }
+
+    /// The next frame to send.
+    pub fn poll_transmit(&mut self) -> Option<CanFrame> {
+        self.tx.pop_front()
+    }
+
+    /// The next event for the application.
+    pub fn poll_event(&mut self) -> Option<Event> {
+        self.events.pop_front()
+    }
+
+    /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work to do.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        if self.boot_pending {
+            return Some(Instant::ZERO);
+        }
+        let mut t = earliest(self.producer.poll_timeout(), self.consumer.poll_timeout());
+        t = earliest(t, self.guarding.poll_timeout());
+        t
+    }
+
+    /// Lets the node act on the time that has passed: boot, heartbeats, consumer and life-guarding time-outs.
+    pub fn handle_timeout(&mut self, now: Instant) {
+        self.ensure_booted(now);
+        if self.producer.due(now) {
+            self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
+        }
+        while let Some(ev) = self.consumer.handle_timeout(now) {
+            self.push_event(Event::Heartbeat(ev));
+            self.communication_error(now);
+        }
+        if let Some(ev) = self.guarding.handle_timeout(now) {
+            self.push_event(Event::LifeGuarding(ev));
+            self.communication_error(now);
+        }
+    }
+
+    /// Feeds one received frame.
+    pub fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
+        self.ensure_booted(now);
+        let Some((function, node)) = FunctionCode::of(frame.cob_id()) else {
+            return;
+        };
+        match function {
+            FunctionCode::Nmt if node == 0 && !frame.is_rtr() => self.handle_node_control(now, frame),
+            FunctionCode::NmtErrorControl if node == self.node_id.get() => self.handle_guarding(now, frame),
+            FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
+            _ => {}
+        }
+    }
+
+    /// Local control of the NMT state (NMT-16, NMT-17): e.g. enter Operational without waiting for a
+    /// master. Resets are requested with NMT commands or [`reset_node`](Self::reset_node).
+    pub fn enter_state(&mut self, target: NmtState) {
+        let from = self.nmt.state();
+        if let Transition::Enter(to) = self.nmt.enter(target) {
+            self.state_changed(from, to);
+        }
+    }
+
+    /// A local Reset Node (as if NMT 81h had been received).
+    pub fn reset_node(&mut self, now: Instant) {
+        self.ensure_booted(now);
+        self.nmt.handle_command(crate::wire::nmt::NmtCommand::ResetNode);
+        self.reset(now, true);
+    }
+
+    /// Writes 1017h producer heartbeat time (HB-01, HB-04: effective at once).
+    pub fn set_heartbeat_time(&mut self, now: Instant, ms: u16) {
+        self.params.heartbeat_time_ms = ms;
+        self.comm_written(now, 0x1017, 0);
+    }
+
+    /// Writes 1016h sub-index `sub` (HB-06..HB-09).
+    pub fn set_consumer_heartbeat(&mut self, now: Instant, sub: u8, raw: u32) -> Result<(), AbortCode> {
+        self.params.set_consumer(sub, raw)?;
+        self.comm_written(now, 0x1016, sub);
+        Ok(())
+    }
+
+    /// Writes 100Ch guard time and 100Dh life time factor (GUARD-02..GUARD-04).
+    pub fn set_life_guarding(&mut self, now: Instant, guard_time_ms: u16, life_time_factor: u8) {
+        self.params.guard_time_ms = guard_time_ms;
+        self.params.life_time_factor = life_time_factor;
+        self.comm_written(now, 0x100C, 0);
+    }
+
+    /// Applies the side effects of a communication object written at `now` (by SDO or the local API).
+    fn comm_written(&mut self, now: Instant, index: u16, sub: u8) {
+        match index {
+            0x1017 => self.producer.set_period(now, self.params.heartbeat_time_ms),
+            0x1016 => {
+                if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| self.params.heartbeat_consumers.get(i))
+                {
+                    self.consumer.set_entry(usize::from(sub) - 1, *raw);
+                }
+            }
+            0x100C | 0x100D => {
+                self.guarding.set_life_time(now, self.params.guard_time_ms, self.params.life_time_factor)
+            }
+            _ => {}
+        }
+    }
+
+    fn ensure_booted(&mut self, now: Instant) {
+        if self.boot_pending {
+            self.boot_pending = false;
+            self.reset(now, true);
+        }
+    }
+
+    /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05).
+    fn reset(&mut self, now: Instant, application: bool) {
+        if application {
+            self.app.restore_defaults();
+            self.push_event(Event::ResetApplication);
+        }
+        self.params = CommParams::new(&self.config);
+        self.consumer.configure(&self.params.heartbeat_consumers);
+        self.guarding.reset();
+        self.push_event(Event::ResetCommunication);
+        // NMT-23: boot-up; HB-04: it counts as the first heartbeat.
+        self.transmit(self.error_control_frame(Heartbeat(StateCode::BootUp).emit()));
+        self.producer.start(now, self.params.heartbeat_time_ms);
+        self.nmt.boot_completed();
+        self.state_changed(NmtState::Initialising, NmtState::PreOperational);
+    }
+
+    fn handle_node_control(&mut self, now: Instant, frame: &CanFrame) {
+        // CAN-07: a malformed node-control frame is ignored.
+        let Ok(request) = NodeControl::parse(frame.data()) else {
+            return;
+        };
+        if !request.addresses(self.node_id.get()) {
+            return;
+        }
+        let from = self.nmt.state();
+        match self.nmt.handle_command(request.command) {
+            Transition::None => {}
+            Transition::Enter(to) => self.state_changed(from, to),
+            Transition::ResetApplication => self.reset(now, true),
+            Transition::ResetCommunication => self.reset(now, false),
+        }
+    }
+
+    fn handle_guarding(&mut self, now: Instant, frame: &CanFrame) {
+        // GUARD-05: the request is an RTR; HB-05: no guarding while the heartbeat producer runs.
+        if !frame.is_rtr() || self.producer.is_active() || !self.nmt.state().allows(Service::ErrorControl) {
+            return;
+        }
+        let (reply, resolved) = self.guarding.handle_request(
+            now,
+            self.nmt.state().state_code(),
+            self.params.guard_time_ms,
+            self.params.life_time_factor,
+        );
+        self.transmit(self.error_control_frame(reply.emit()));
+        if let Some(ev) = resolved {
+            self.push_event(Event::LifeGuarding(ev));
+        }
+    }
+
+    fn handle_remote_heartbeat(&mut self, now: Instant, node: u8, frame: &CanFrame) {
+        if frame.is_rtr() || !self.nmt.state().allows(Service::ErrorControl) {
+            return;
+        }
+        let Ok(Heartbeat(state)) = Heartbeat::parse(frame.data()) else {
+            return;
+        };
+        if let Some(ev) = self.consumer.handle_heartbeat(now, node, state) {
+            self.push_event(Event::Heartbeat(ev));
+        }
+    }
+
+    /// HB-13, GUARD-11, NMT-26, ERR-12: a communication error in Operational enters Pre-operational
+    /// (the 1029h sub 01h default 00h).
+    fn communication_error(&mut self, _now: Instant) {
+        if self.nmt.state() == NmtState::Operational {
+            self.enter_state(NmtState::PreOperational);
+        }
+    }
+
+    fn state_changed(&mut self, from: NmtState, to: NmtState) {
+        self.push_event(Event::StateChanged { from, to });
+    }
+
+    fn error_control_frame(&self, data: [u8; 1]) -> CanFrame {
+        let mut buf = [0u8; 8];
+        buf[0] = data[0];
+        CanFrame::from_parts(FunctionCode::NmtErrorControl.cob_id(self.node_id), buf, 1)
+    }
+
+    fn transmit(&mut self, frame: CanFrame) {
+        if self.tx.push_back(frame).is_err() {
+            self.tx_dropped = self.tx_dropped.saturating_add(1);
+        }
+    }
+
+    fn push_event(&mut self, event: Event) {
+        if self.events.push_back(event).is_err() {
+            self.events_dropped = self.events_dropped.saturating_add(1);
+        }
+    }
+}

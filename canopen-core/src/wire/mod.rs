@@ -1,0 +1,22 @@
+//! Wire formats: one plain struct per frame kind, each with `parse` and `emit`, apart from the state machines
+//! so that tests and fuzzers can build and check frames (the smoltcp `wire` shape).
+//!
+//! Parsing never panics on short or hostile input; it returns an error that the caller maps to the spec's
+//! answer (usually: ignore the frame, CAN-07).
+
+pub mod error_control;
+pub mod nmt;
+
+/// Why a frame's payload could not be parsed.
+///
+/// ```
+/// use canopen_core::wire::{nmt::NodeControl, WireError};
+/// assert_eq!(NodeControl::parse(&[0x01]), Err(WireError::Length));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WireError {
+    /// The DLC is wrong for this frame kind.
+    Length,
+    /// A field holds a value the protocol does not define (e.g. an unknown command specifier).
+    Value,
+}
