@@ -1,0 +1,358 @@
+//! Integration tests on the in-memory bus: NMT command sequences, heartbeat timelines, node guarding.
+//! Expected frames are those of `shared/spec/VECTORS.md` §3–§5; CHECKLIST IDs are cited per test.
+
+mod common;
+
+use canopen::core::{
+    comm::NodeConfig,
+    guarding::LifeGuardingEvent,
+    heartbeat::ConsumerEvent,
+    node::{NoApplication, Node},
+    wire::error_control::StateCode,
+    CanFrame, Event, NmtState, NodeId,
+};
+use common::{events, frame, ms, Bus, Sender};
+
+type TestNode = Node<NoApplication, 4>;
+
+fn node(id: u8, heartbeat_ms: u16) -> TestNode {
+    let cfg = NodeConfig { heartbeat_time_ms: heartbeat_ms, ..NodeConfig::DEFAULT };
+    Node::new(NodeId::new(id).unwrap(), cfg, NoApplication)
+}
+
+fn states(bus: &Bus<TestNode>) -> Vec<NmtState> {
+    bus.stations.iter().map(|n| n.state()).collect()
+}
+
+/// NMT-03, NMT-23, NMT-24, V-HB-01: every node boots by itself into Pre-operational with one boot-up frame.
+#[test]
+fn power_on_boot_up() {
+    let mut bus = Bus::new(vec![node(5, 0), node(6, 0), node(42, 0)]);
+    bus.run_until(ms(0));
+    let boot: Vec<_> = bus.log.iter().map(|s| s.frame).collect();
+    assert_eq!(boot, vec![frame("705 [1] 00"), frame("706 [1] 00"), frame("72A [1] 00")]);
+    assert_eq!(states(&bus), vec![NmtState::PreOperational; 3]);
+    let ev = events(&mut bus.stations[0]);
+    assert_eq!(
+        ev,
+        vec![
+            Event::ResetApplication,
+            Event::ResetCommunication,
+            Event::StateChanged { from: NmtState::Initialising, to: NmtState::PreOperational }
+        ]
+    );
+    // Nothing else is sent with heartbeat off: no periodic traffic.
+    bus.run_for_ms(10_000);
+    assert_eq!(bus.log.len(), 3);
+}
+
+/// NMT-07..NMT-15, V-NMT-01..V-NMT-08: unicast and broadcast commands; the slaves never answer on 000h.
+#[test]
+fn nmt_command_sequence() {
+    let mut bus = Bus::new(vec![node(5, 0), node(6, 0), node(42, 0)]);
+    bus.run_until(ms(0));
+    bus.log.clear();
+    bus.take_master_rx();
+    use NmtState::*;
+
+    bus.inject(frame("000 [2] 01 06")); // V-NMT-03
+    assert_eq!(states(&bus), vec![PreOperational, Operational, PreOperational]);
+    bus.inject(frame("000 [2] 01 07")); // V-NMT-08: addressed to a node that is not here
+    assert_eq!(states(&bus), vec![PreOperational, Operational, PreOperational]);
+    bus.inject(frame("000 [2] 01 00")); // start all
+    assert_eq!(states(&bus), vec![Operational; 3]);
+    bus.inject(frame("000 [2] 02 00")); // V-NMT-01
+    assert_eq!(states(&bus), vec![Stopped; 3]);
+    bus.inject(frame("000 [2] 80 05")); // V-NMT-05
+    assert_eq!(states(&bus), vec![PreOperational, Stopped, Stopped]);
+    bus.inject(frame("000 [2] 80 00")); // V-NMT-04
+    assert_eq!(states(&bus), vec![PreOperational; 3]);
+    bus.inject(frame("000 [2] 01 00"));
+    // No slave ever transmitted during the commands (NMT-14).
+    assert!(bus.log.iter().all(|s| s.from == Sender::Master));
+
+    // V-NMT-02: reset node 42 → boot-up 72A [1] 00 and Pre-operational; the others stay Operational.
+    bus.inject(frame("000 [2] 81 2A"));
+    assert_eq!(states(&bus), vec![Operational, Operational, PreOperational]);
+    let replies: Vec<_> = bus.take_master_rx().into_iter().map(|s| s.frame).collect();
+    assert_eq!(replies, vec![frame("72A [1] 00")]);
+    // V-NMT-07: reset communication, broadcast.
+    bus.inject(frame("000 [2] 82 00"));
+    let replies: Vec<_> = bus.take_master_rx().into_iter().map(|s| s.frame).collect();
+    assert_eq!(replies, vec![frame("705 [1] 00"), frame("706 [1] 00"), frame("72A [1] 00")]);
+    assert_eq!(states(&bus), vec![PreOperational; 3]);
+}
+
+/// CAN-07: malformed node-control frames change nothing and get no answer.
+#[test]
+fn malformed_nmt_frames_are_ignored() {
+    let mut bus = Bus::new(vec![node(5, 0)]);
+    bus.run_until(ms(0));
+    bus.take_master_rx();
+    for f in [
+        CanFrame::new(0x000, &[0x01]).unwrap(),
+        CanFrame::new(0x000, &[0x01, 0x05, 0x00]).unwrap(),
+        CanFrame::new(0x000, &[0x03, 0x05]).unwrap(),
+        CanFrame::new_rtr(0x000, 2).unwrap(),
+        CanFrame::new(0x005, &[0x01, 0x05]).unwrap(), // node part must be 0 on the NMT COB
+    ] {
+        bus.inject(f);
+        assert_eq!(bus.stations[0].state(), NmtState::PreOperational, "{f:?}");
+    }
+    assert!(bus.take_master_rx().is_empty());
+}
+
+/// HB-02..HB-04, NMT-18, NMT-21: the derived heartbeat timeline of VECTORS.md §4 (node 5, 100 ms).
+#[test]
+fn heartbeat_timeline_vector() {
+    let mut bus = Bus::new(vec![node(5, 100)]);
+    bus.run_until(ms(250));
+    bus.inject(frame("000 [2] 01 05")); // step 3 at 250 ms
+    bus.run_until(ms(450));
+    bus.inject(frame("000 [2] 02 05")); // step 5 at 450 ms
+    bus.run_until(ms(650));
+    bus.inject(frame("000 [2] 82 05")); // step 7 at 650 ms
+    bus.run_until(ms(850));
+    let hb: Vec<(u64, u8)> = bus.frames_on(0x705).into_iter().map(|(t, d)| (t, d[0])).collect();
+    assert_eq!(
+        hb,
+        vec![
+            (0, 0x00), // boot-up = first heartbeat
+            (100, 0x7F),
+            (200, 0x7F),
+            (300, 0x05),
+            (400, 0x05),
+            (500, 0x04), // heartbeat continues in Stopped
+            (600, 0x04),
+            (650, 0x00), // reset communication: boot-up, and the timer restarts from it
+            (750, 0x7F),
+            (850, 0x7F),
+        ]
+    );
+}
+
+/// HB-04: a written period takes effect at once; 0 stops the producer. V-HB-04 sets 100 ms.
+#[test]
+fn heartbeat_period_change() {
+    let mut bus = Bus::new(vec![node(9, 0)]);
+    bus.run_until(ms(1000));
+    let now = bus.now;
+    bus.stations[0].set_heartbeat_time(now, 100);
+    bus.run_until(ms(1250));
+    let now = bus.now;
+    bus.stations[0].set_heartbeat_time(now, 30);
+    bus.run_until(ms(1345));
+    let now = bus.now;
+    bus.stations[0].set_heartbeat_time(now, 0);
+    bus.run_until(ms(3000));
+    let times: Vec<u64> = bus.frames_on(0x709).into_iter().map(|(t, _)| t).collect();
+    assert_eq!(times, vec![0, 1100, 1200, 1280, 1310, 1340]);
+}
+
+/// NMT-05, NMT-06: reset communication brings the communication parameters back to their power-on values.
+#[test]
+fn reset_communication_restores_comm_parameters() {
+    let mut bus = Bus::new(vec![node(5, 100)]);
+    bus.run_until(ms(0));
+    bus.stations[0].set_heartbeat_time(ms(0), 20);
+    bus.stations[0].set_consumer_heartbeat(ms(0), 1, 0x0002_0064).unwrap();
+    bus.stations[0].set_life_guarding(ms(0), 100, 3);
+    bus.inject(frame("000 [2] 82 05"));
+    let p = bus.stations[0].params();
+    assert_eq!(p.heartbeat_time_ms, 100);
+    assert_eq!(p.heartbeat_consumers, [0; 4]);
+    assert_eq!((p.guard_time_ms, p.life_time_factor), (0, 0));
+}
+
+/// HB-06..HB-11, V-HBC-05..V-HBC-07, NMT-26: node 9 monitors node 2 (100 ms) and node 7 (never present).
+#[test]
+fn heartbeat_consumer_timeline() {
+    let mut bus = Bus::new(vec![node(9, 0), node(2, 50)]);
+    bus.run_until(ms(0));
+    let now = bus.now;
+    bus.stations[0].set_consumer_heartbeat(now, 1, 0x0002_0064).unwrap();
+    bus.stations[0].set_consumer_heartbeat(now, 2, 0x0007_0FA0).unwrap();
+    // V-HBC-04: node 2 in a second entry is refused with 0604 0043h (HB-09).
+    assert_eq!(
+        bus.stations[0].set_consumer_heartbeat(now, 3, 0x0002_00C8),
+        Err(canopen::core::od::AbortCode::ParameterIncompatibility)
+    );
+    bus.inject(frame("000 [2] 01 00"));
+    events(&mut bus.stations[0]);
+    bus.run_until(ms(500));
+    let ev = events(&mut bus.stations[0]);
+    assert_eq!(
+        ev,
+        vec![
+            Event::Heartbeat(ConsumerEvent::Started { node: 2, state: StateCode::Operational }),
+            // Node 2 was already Operational at its first heartbeat after the start command.
+        ]
+    );
+    // Node 2 goes silent after its heartbeat at 500 ms (its producer stops): one consumer time later, at
+    // 600 ms, a time-out (HB-11), and node 9 leaves Operational for Pre-operational (NMT-26 default).
+    assert_eq!(bus.frames_on(0x702).last(), Some(&(500, vec![0x05])));
+    bus.stations[1].set_heartbeat_time(ms(500), 0);
+    bus.run_until(ms(599));
+    assert!(events(&mut bus.stations[0]).is_empty());
+    bus.run_until(ms(600));
+    assert_eq!(
+        events(&mut bus.stations[0]),
+        vec![
+            Event::Heartbeat(ConsumerEvent::Timeout { node: 2 }),
+            Event::StateChanged { from: NmtState::Operational, to: NmtState::PreOperational }
+        ]
+    );
+    // Node 7 never sent anything: no time-out for it, even after its 4 s (HB-10, V-HBC-07).
+    bus.run_until(ms(10_000));
+    assert!(events(&mut bus.stations[0]).is_empty());
+    // Recovery: node 2 produces again.
+    bus.stations[1].set_heartbeat_time(ms(10_000), 50);
+    bus.run_until(ms(10_050));
+    assert_eq!(
+        events(&mut bus.stations[0]),
+        vec![Event::Heartbeat(ConsumerEvent::Resumed { node: 2, state: StateCode::Operational })]
+    );
+    // State change of the producer is reported; then it reboots (reset node) and that is reported too.
+    bus.inject(frame("000 [2] 02 02"));
+    bus.run_until(ms(10_100));
+    assert_eq!(
+        events(&mut bus.stations[0]),
+        vec![Event::Heartbeat(ConsumerEvent::StateChanged {
+            node: 2,
+            from: StateCode::Operational,
+            to: StateCode::Stopped
+        })]
+    );
+    bus.inject(frame("000 [2] 81 02"));
+    let ev = events(&mut bus.stations[0]);
+    assert_eq!(ev, vec![Event::Heartbeat(ConsumerEvent::Rebooted { node: 2 })]);
+    // V-HBC-05: disabling the entry stops monitoring: node 2 silent again, no time-out.
+    bus.stations[0].set_consumer_heartbeat(bus.now, 1, 0).unwrap();
+    bus.stations[1].set_heartbeat_time(bus.now, 0);
+    bus.run_for_ms(1000);
+    assert!(events(&mut bus.stations[0]).is_empty());
+}
+
+/// GUARD-05..GUARD-08, V-GRD-01..V-GRD-03: the derived toggle sequence of VECTORS.md §5 (node 5).
+#[test]
+fn guarding_toggle_sequence_vector() {
+    let mut bus = Bus::new(vec![node(5, 0)]);
+    bus.run_until(ms(0));
+    bus.take_master_rx();
+    let steps: [(&str, Option<&str>); 10] = [
+        ("705 [RTR]", Some("705 [1] 7F")),
+        ("000 [2] 01 05", None),
+        ("705 [RTR]", Some("705 [1] 85")),
+        ("000 [2] 80 05", None),
+        ("705 [RTR]", Some("705 [1] 7F")),
+        ("705 [RTR]", Some("705 [1] FF")),
+        ("000 [2] 02 05", None),
+        ("705 [RTR]", Some("705 [1] 04")),
+        ("000 [2] 82 05", Some("705 [1] 00")),
+        ("705 [RTR]", Some("705 [1] 7F")),
+    ];
+    for (i, (request, reply)) in steps.iter().enumerate() {
+        bus.run_for_ms(10);
+        bus.inject(frame(request));
+        let got: Vec<CanFrame> = bus.take_master_rx().into_iter().map(|s| s.frame).collect();
+        let want: Vec<CanFrame> = reply.iter().map(|r| frame(r)).collect();
+        assert_eq!(got, want, "step {}", i + 1);
+    }
+    // A guarding RTR with DLC 1 (as some masters send) is answered too; a data frame on 705h is not a request.
+    bus.inject(CanFrame::new_rtr(0x705, 1).unwrap());
+    assert_eq!(bus.take_master_rx().len(), 1);
+    bus.inject(frame("705 [1] 00"));
+    assert!(bus.take_master_rx().is_empty());
+}
+
+/// GUARD-12 with a lost reply: the master polls at the guard time and checks the toggle; a lost reply is
+/// detected by the master, the slave's toggle keeps alternating per request it received, and because the
+/// request itself arrived the slave's life guarding is not disturbed.
+#[test]
+fn guarding_with_a_lost_reply() {
+    let mut bus = Bus::new(vec![node(5, 0)]);
+    bus.run_until(ms(0));
+    bus.stations[0].set_life_guarding(ms(0), 100, 3);
+    bus.take_master_rx();
+    let mut replies = Vec::new();
+    for k in 0..6u64 {
+        if k == 2 {
+            bus.lose_next(|f| f.cob_id() == 0x705 && !f.is_rtr());
+        }
+        bus.run_until(ms(100 * (k + 1)));
+        bus.inject(frame("705 [RTR]"));
+        replies.push(bus.take_master_rx().into_iter().map(|s| s.frame.data()[0]).next());
+    }
+    assert_eq!(replies, vec![Some(0x7F), Some(0xFF), None, Some(0xFF), Some(0x7F), Some(0xFF)]);
+    // The master sees that the toggle did not alternate between the 2nd and 4th replies (it never saw the 3rd).
+    assert!(events(&mut bus.stations[0]).iter().all(|e| !matches!(e, Event::LifeGuarding(_))));
+}
+
+/// GUARD-04, GUARD-09..GUARD-11, NMT-26: life guarding starts with the first RTR; no RTR within
+/// 100Ch × 100Dh → event and Operational → Pre-operational; RTRs again → resolved.
+#[test]
+fn life_guarding_timeout_and_recovery() {
+    let mut bus = Bus::new(vec![node(5, 0)]);
+    bus.run_until(ms(0));
+    bus.stations[0].set_life_guarding(ms(0), 100, 3);
+    bus.inject(frame("000 [2] 01 05"));
+    bus.run_until(ms(5_000)); // no RTR yet: life guarding not started
+    events(&mut bus.stations[0]);
+    assert_eq!(bus.stations[0].state(), NmtState::Operational);
+    bus.inject(frame("705 [RTR]"));
+    bus.run_until(ms(5_299));
+    assert!(events(&mut bus.stations[0]).is_empty());
+    bus.run_until(ms(5_300));
+    assert_eq!(
+        events(&mut bus.stations[0]),
+        vec![
+            Event::LifeGuarding(LifeGuardingEvent::Timeout),
+            Event::StateChanged { from: NmtState::Operational, to: NmtState::PreOperational }
+        ]
+    );
+    bus.run_until(ms(6_000));
+    bus.inject(frame("705 [RTR]"));
+    assert_eq!(events(&mut bus.stations[0]), vec![Event::LifeGuarding(LifeGuardingEvent::Resolved)]);
+}
+
+/// HB-05: while the heartbeat producer runs, guarding requests are not answered.
+#[test]
+fn heartbeat_and_guarding_never_both_active() {
+    let mut bus = Bus::new(vec![node(5, 100)]);
+    bus.run_until(ms(50));
+    bus.take_master_rx();
+    bus.inject(frame("705 [RTR]"));
+    assert!(bus.take_master_rx().is_empty());
+    bus.stations[0].set_heartbeat_time(ms(50), 0);
+    bus.inject(frame("705 [RTR]"));
+    assert_eq!(bus.take_master_rx().len(), 1);
+}
+
+/// The runner contract: poll_timeout says exactly when the next work is due, so no tick is needed.
+#[test]
+fn poll_timeout_is_exact() {
+    let mut n = node(5, 100);
+    assert_eq!(n.poll_timeout(), Some(ms(0)));
+    n.handle_timeout(ms(3));
+    assert_eq!(n.poll_timeout(), Some(ms(103)));
+    n.handle_timeout(ms(50)); // early: nothing happens
+    assert_eq!(n.poll_transmit(), Some(frame("705 [1] 00")));
+    assert_eq!(n.poll_transmit(), None);
+    n.handle_timeout(ms(103));
+    assert_eq!(n.poll_transmit(), Some(frame("705 [1] 7F")));
+}
+
+/// The bounded transmit queue drops the newest frame when full and counts it.
+#[test]
+fn full_transmit_queue_is_counted() {
+    let cfg = NodeConfig::DEFAULT;
+    let mut n: Node<NoApplication, 1, 2, 4> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
+    n.handle_timeout(ms(0)); // boot-up
+    for _ in 0..3 {
+        n.handle_frame(ms(1), &frame("705 [RTR]"));
+    }
+    assert_eq!(n.tx_dropped(), 2);
+    assert_eq!(n.poll_transmit(), Some(frame("705 [1] 00")));
+    assert_eq!(n.poll_transmit(), Some(frame("705 [1] 7F")));
+    assert_eq!(n.poll_transmit(), None);
+}

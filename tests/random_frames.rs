@@ -1,0 +1,74 @@
+//! Property test: random frames on every COB-ID, with random time steps, never make a node panic, and
+//! everything it sends is a frame the spec allows it to send (CAN-07, NMT-14, NMT-18, HB-02, GUARD-06).
+
+use canopen::core::{
+    comm::NodeConfig,
+    node::{NoApplication, Node},
+    CanFrame, Instant, NmtState, NodeId,
+};
+use proptest::prelude::*;
+
+#[derive(Debug, Clone)]
+enum Input {
+    Frame { id: u16, rtr: bool, data: Vec<u8> },
+    Wait(u64),
+}
+
+fn input() -> impl Strategy<Value = Input> {
+    prop_oneof![
+        // Any identifier at all...
+        (0u16..=0x7FF, any::<bool>(), prop::collection::vec(any::<u8>(), 0..=8))
+            .prop_map(|(id, rtr, data)| Input::Frame { id, rtr, data }),
+        // ...and a bias towards the identifiers the node listens on, with plausible payloads.
+        (
+            prop::sample::select(vec![0x000u16, 0x705, 0x702, 0x77F]),
+            any::<bool>(),
+            prop::collection::vec(any::<u8>(), 0..=3)
+        )
+            .prop_map(|(id, rtr, data)| Input::Frame { id, rtr, data }),
+        (0u64..300_000).prop_map(Input::Wait),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_frames_never_panic_and_replies_are_well_formed(
+        inputs in prop::collection::vec(input(), 1..200),
+        heartbeat in prop::sample::select(vec![0u16, 1, 50, 1000]),
+    ) {
+        let cfg = NodeConfig { heartbeat_time_ms: heartbeat, guard_time_ms: 10, life_time_factor: 2, ..NodeConfig::DEFAULT };
+        let mut node: Node<NoApplication, 2, 8, 8> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
+        let _ = node.set_consumer_heartbeat(Instant::ZERO, 1, 0x0002_0032);
+        let mut now = Instant::ZERO;
+        for inp in inputs {
+            match inp {
+                Input::Frame { id, rtr, data } => {
+                    let f = if rtr { CanFrame::new_rtr(id, data.len() as u8) } else { CanFrame::new(id, &data) };
+                    node.handle_frame(now, &f.unwrap());
+                    node.handle_timeout(now);
+                }
+                Input::Wait(us) => {
+                    now = Instant::from_micros(now.as_micros() + us);
+                    node.handle_timeout(now);
+                }
+            }
+            // Every input was followed by handle_timeout or cannot create a due deadline: a deadline at or
+            // before `now` would make a runner spin.
+            if let Some(t) = node.poll_timeout() {
+                prop_assert!(t > now, "deadline {:?} not after now {:?}", t, now);
+            }
+            while let Some(out) = node.poll_transmit() {
+                // The only frames this node may send: boot-up, heartbeat or guarding reply on 705h, DLC 1.
+                prop_assert_eq!(out.cob_id(), 0x705);
+                prop_assert!(!out.is_rtr());
+                prop_assert_eq!(out.data().len(), 1);
+                let b = out.data()[0] & 0x7F;
+                prop_assert!(matches!(b, 0x00 | 0x04 | 0x05 | 0x7F), "state code {:02X}", b);
+            }
+            while node.poll_event().is_some() {}
+            prop_assert!(node.state() != NmtState::Initialising);
+        }
+    }
+}
