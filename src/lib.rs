@@ -1,7 +1,7 @@
 //! `canopen`: a CiA 301 CANopen node stack.
 //!
 //! This facade re-exports the workspace crates:
-//! - [`core`](crate::core) (`canopen-core`): the `no_std`, heap-free, sans-IO services;
+//! - [`core`] (`canopen-core`): the `no_std`, heap-free, sans-IO services;
 //! - the `canopen-od-derive` macro that turns a struct into the object dictionary.
 //!
 //! ```
