@@ -12,3 +12,8 @@
 #![forbid(unsafe_code)]
 
 pub use canopen_core as core;
+
+/// The README's examples are compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -356,3 +356,33 @@ fn full_transmit_queue_is_counted() {
     assert_eq!(n.poll_transmit(), Some(frame("705 [1] 7F")));
     assert_eq!(n.poll_transmit(), None);
 }
+
+/// NMT-16, NMT-17: local control may enter Operational without a master; a local reset node boots again.
+#[test]
+fn local_control_and_local_reset() {
+    let mut bus = Bus::new(vec![node(5, 0)]);
+    bus.run_until(ms(0));
+    events(&mut bus.stations[0]);
+    bus.take_master_rx();
+    bus.stations[0].enter_state(NmtState::Operational);
+    assert_eq!(
+        events(&mut bus.stations[0]),
+        vec![Event::StateChanged { from: NmtState::PreOperational, to: NmtState::Operational }]
+    );
+    bus.stations[0].enter_state(NmtState::Operational); // already there: no event
+    assert!(events(&mut bus.stations[0]).is_empty());
+    bus.stations[0].enter_state(NmtState::Initialising); // not a local target: ignored
+    assert_eq!(bus.stations[0].state(), NmtState::Operational);
+    let now = bus.now;
+    bus.stations[0].reset_node(now);
+    bus.run_for_ms(1);
+    assert_eq!(bus.take_master_rx().iter().map(|s| s.frame).collect::<Vec<_>>(), vec![frame("705 [1] 00")]);
+    assert_eq!(
+        events(&mut bus.stations[0]),
+        vec![
+            Event::ResetApplication,
+            Event::ResetCommunication,
+            Event::StateChanged { from: NmtState::Initialising, to: NmtState::PreOperational }
+        ]
+    );
+}
