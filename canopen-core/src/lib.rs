@@ -12,6 +12,7 @@
 
 pub mod cob;
 pub mod comm;
+pub mod emcy;
 pub mod event;
 pub mod frame;
 pub mod guarding;
@@ -19,6 +20,7 @@ pub mod heartbeat;
 pub mod nmt;
 pub mod node;
 pub mod od;
+pub mod sync;
 pub mod time;
 pub mod wire;
 

@@ -4,6 +4,7 @@
 //! Parsing never panics on short or hostile input; it returns an error that the caller maps to the spec's
 //! answer (usually: ignore the frame, CAN-07).
 
+pub mod emcy;
 pub mod error_control;
 pub mod nmt;
 

@@ -1,0 +1,354 @@
+//! Emergency producer, error register and pre-defined error field (CHECKLIST EMCY-01..EMCY-12, EEC-01..23,
+//! ERR-01..ERR-09, NMT-22).
+//!
+//! [`ErrorState`] keeps the set of active errors, derives the error register 1001h from it (ERR-02: bit 0 set
+//! whenever any error is active, the class bits from each code's class), records each new error at the top
+//! of the 1003h history (ERR-06, ERR-07), and queues the EMCY frames of the emergency state machine
+//! (EMCY-07: an EMCY per new error, `0000h` with the remaining register when some errors clear, `0000h` with
+//! register 0 when the last one clears; EMCY-05: nothing is repeated). [`EmcyProducer`] then spaces the
+//! frames by the 1015h inhibit time without losing any (EMCY-09) and holds them while the node is Stopped,
+//! sending the most recent one when it leaves (NMT-22, EMCY-08). The EMCY consumer (1028h) is in `Node`.
+
+use heapless::{Deque, Vec};
+
+use crate::od::AbortCode;
+use crate::time::{Duration, Instant};
+use crate::wire::emcy::Emergency;
+
+/// Emergency error codes of CiA 301 Table 26 used by the stack itself (EEC-01..EEC-23 are all representable
+/// as plain `u16` codes; these are the ones the core raises or the application commonly needs).
+pub mod codes {
+    /// 0000h error reset / no error (EEC-01).
+    pub const NO_ERROR: u16 = 0x0000;
+    /// 1000h generic error (EEC-02).
+    pub const GENERIC: u16 = 0x1000;
+    /// 8110h CAN overrun, objects lost (EEC-10).
+    pub const CAN_OVERRUN: u16 = 0x8110;
+    /// 8120h CAN in error passive mode (EEC-11).
+    pub const CAN_ERROR_PASSIVE: u16 = 0x8120;
+    /// 8130h life guard error or heartbeat error (EEC-12).
+    pub const HEARTBEAT_OR_LIFE_GUARD: u16 = 0x8130;
+    /// 8140h recovered from bus-off (EEC-13).
+    pub const RECOVERED_FROM_BUS_OFF: u16 = 0x8140;
+    /// 8210h PDO not processed due to length error (EEC-16).
+    pub const PDO_LENGTH: u16 = 0x8210;
+    /// 8220h PDO length exceeded (EEC-17).
+    pub const PDO_LENGTH_EXCEEDED: u16 = 0x8220;
+    /// 8240h unexpected SYNC data length (EEC-19).
+    pub const SYNC_LENGTH: u16 = 0x8240;
+    /// 8250h RPDO time-out (EEC-20).
+    pub const RPDO_TIMEOUT: u16 = 0x8250;
+}
+
+/// Error register 1001h bits (ERR-02, 000 Table 54).
+pub mod register {
+    /// Bit 0: generic error (set whenever any error is active).
+    pub const GENERIC: u8 = 1 << 0;
+    /// Bit 1: current.
+    pub const CURRENT: u8 = 1 << 1;
+    /// Bit 2: voltage.
+    pub const VOLTAGE: u8 = 1 << 2;
+    /// Bit 3: temperature.
+    pub const TEMPERATURE: u8 = 1 << 3;
+    /// Bit 4: communication error (overrun, error state).
+    pub const COMMUNICATION: u8 = 1 << 4;
+    /// Bit 5: device profile specific.
+    pub const DEVICE_PROFILE: u8 = 1 << 5;
+    /// Bit 7: manufacturer specific.
+    pub const MANUFACTURER: u8 = 1 << 7;
+
+    /// The register bits an error code stands for, from its class (Table 25): 2xxxh current, 3xxxh voltage,
+    /// 4xxxh temperature, 81xxh/82xxh communication, FFxxh manufacturer; every error sets the generic bit.
+    ///
+    /// ```
+    /// use canopen_core::emcy::register;
+    /// assert_eq!(register::bits_for(0x1000), 0x01);
+    /// assert_eq!(register::bits_for(0x8130), 0x11);
+    /// assert_eq!(register::bits_for(0x4210), 0x09);
+    /// assert_eq!(register::bits_for(0x0000), 0x00);
+    /// ```
+    pub const fn bits_for(code: u16) -> u8 {
+        let class = match code >> 12 {
+            0x0 => return 0,
+            0x2 => CURRENT,
+            0x3 => VOLTAGE,
+            0x4 => TEMPERATURE,
+            0x8 if matches!(code >> 8, 0x81 | 0x82) => COMMUNICATION,
+            0xF if code >> 8 == 0xFF => MANUFACTURER,
+            _ => 0,
+        };
+        GENERIC | class
+    }
+}
+
+/// An active error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Active {
+    code: u16,
+    bits: u8,
+}
+
+/// The active errors (at most `ACTIVE`), the error register and the 1003h history (depth `HIST`).
+///
+/// ```
+/// use canopen_core::emcy::ErrorState;
+/// let mut e: ErrorState<4, 8, 8> = ErrorState::new();
+/// assert!(e.raise(0x1000, [0; 5]));
+/// assert!(!e.raise(0x1000, [0; 5])); // already active: no second EMCY (EMCY-05)
+/// assert_eq!(e.register(), 0x01);
+/// assert_eq!(e.history(), &[0x0000_1000]);
+/// assert!(e.clear(0x1000));
+/// assert_eq!(e.register(), 0x00);
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ErrorState<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> {
+    active: Vec<Active, ACTIVE>,
+    /// Newest first (sub-index 1 = newest).
+    history: Vec<u32, HIST>,
+    pending: Deque<Emergency, QUEUE>,
+    lost: u32,
+}
+
+impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> Default for ErrorState<ACTIVE, HIST, QUEUE> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTIVE, HIST, QUEUE> {
+    /// Error-free (EMCY-07: after initialisation nothing is sent).
+    pub const fn new() -> Self {
+        ErrorState { active: Vec::new(), history: Vec::new(), pending: Deque::new(), lost: 0 }
+    }
+
+    /// The error register 1001h (ERR-01, ERR-02).
+    pub fn register(&self) -> u8 {
+        self.active.iter().fold(0, |r, a| r | a.bits)
+    }
+
+    /// Whether `code` is active.
+    pub fn is_active(&self, code: u16) -> bool {
+        self.active.iter().any(|a| a.code == code)
+    }
+
+    /// Raises an error with the register bits of its class; see [`raise_with`](Self::raise_with).
+    pub fn raise(&mut self, code: u16, manufacturer: [u8; 5]) -> bool {
+        self.raise_with(code, register::bits_for(code), manufacturer)
+    }
+
+    /// Raises `code` (setting `bits` in the register): records it at the top of 1003h (ERR-06; the entry is
+    /// the code in bits 15–0 and manufacturer bytes 0–1 in bits 31–16, ERR-07) and queues its EMCY. Returns
+    /// `false`, doing nothing, when the code is already active or is 0000h (EMCY-05). When more distinct
+    /// errors are active than the set holds, the EMCY and the history entry are still produced; the
+    /// register keeps the bits of the errors it tracks.
+    pub fn raise_with(&mut self, code: u16, bits: u8, manufacturer: [u8; 5]) -> bool {
+        if code == codes::NO_ERROR || self.is_active(code) {
+            return false;
+        }
+        let _ = self.active.push(Active { code, bits: bits | register::GENERIC });
+        if HIST > 0 {
+            if self.history.is_full() {
+                self.history.pop();
+            }
+            let info = u32::from(u16::from_le_bytes([manufacturer[0], manufacturer[1]])) << 16;
+            let _ = self.history.insert(0, info | u32::from(code));
+        }
+        self.queue(Emergency { code, register: self.register(), manufacturer });
+        true
+    }
+
+    /// Clears `code`: an EMCY 0000h with the remaining register follows (EMCY-07: "error reset" when it was the
+    /// last). Returns `false` when the code was not active.
+    pub fn clear(&mut self, code: u16) -> bool {
+        let Some(i) = self.active.iter().position(|a| a.code == code) else {
+            return false;
+        };
+        self.active.swap_remove(i);
+        self.queue(Emergency { code: codes::NO_ERROR, register: self.register(), manufacturer: [0; 5] });
+        true
+    }
+
+    /// 1003h sub-entries 1..=n, newest first.
+    pub fn history(&self) -> &[u32] {
+        &self.history
+    }
+
+    /// Reads 1003h `sub`: sub 0 = number of entries (ERR-05); an empty entry → 0800 0024h (ERR-08); beyond the
+    /// depth → 0609 0011h.
+    ///
+    /// ```
+    /// use canopen_core::{emcy::ErrorState, od::AbortCode};
+    /// let mut e: ErrorState<2, 4, 4> = ErrorState::new();
+    /// assert_eq!(e.read_history(1), Err(AbortCode::NoDataAvailable)); // V-ERR-04
+    /// e.raise(0x8130, [0; 5]);
+    /// assert_eq!(e.read_history(0), Ok(1));
+    /// assert_eq!(e.read_history(1), Ok(0x0000_8130)); // V-ERR-01
+    /// assert_eq!(e.read_history(5), Err(AbortCode::SubIndexDoesNotExist));
+    /// ```
+    pub fn read_history(&self, sub: u8) -> Result<u32, AbortCode> {
+        match usize::from(sub) {
+            0 => Ok(self.history.len() as u32),
+            s if s > HIST => Err(AbortCode::SubIndexDoesNotExist),
+            s => self.history.get(s - 1).copied().ok_or(AbortCode::NoDataAvailable),
+        }
+    }
+
+    /// Writes 1003h sub 0: 0 erases the history, anything else is 0609 0030h (ERR-05).
+    ///
+    /// ```
+    /// use canopen_core::{emcy::ErrorState, od::AbortCode};
+    /// let mut e: ErrorState<2, 4, 4> = ErrorState::new();
+    /// e.raise(0x1000, [0; 5]);
+    /// assert_eq!(e.write_history_count(1), Err(AbortCode::InvalidValue)); // V-ERR-03
+    /// assert_eq!(e.write_history_count(0), Ok(())); // V-ERR-02
+    /// assert!(e.history().is_empty());
+    /// ```
+    pub fn write_history_count(&mut self, value: u8) -> Result<(), AbortCode> {
+        if value != 0 {
+            return Err(AbortCode::InvalidValue);
+        }
+        self.history.clear();
+        Ok(())
+    }
+
+    /// The next EMCY waiting to go out.
+    pub fn pop_pending(&mut self) -> Option<Emergency> {
+        self.pending.pop_front()
+    }
+
+    /// Whether EMCYs are waiting.
+    pub fn has_pending(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    /// Keeps only the most recent pending EMCY (NMT-22: after Stopped, the most recent one is sent).
+    pub fn keep_most_recent(&mut self) {
+        while self.pending.len() > 1 {
+            self.pending.pop_front();
+            self.lost = self.lost.saturating_add(1);
+        }
+    }
+
+    /// EMCYs dropped because the queue was full or superseded in Stopped.
+    pub const fn lost(&self) -> u32 {
+        self.lost
+    }
+
+    /// Reset communication / reset node: back to error-free, nothing pending (the history survives: it is
+    /// erased only by writing 1003h:00 = 0).
+    pub fn reset(&mut self) {
+        self.active.clear();
+        self.pending.clear();
+    }
+
+    fn queue(&mut self, e: Emergency) {
+        if self.pending.is_full() {
+            self.pending.pop_front();
+            self.lost = self.lost.saturating_add(1);
+        }
+        let _ = self.pending.push_back(e);
+    }
+}
+
+/// Spaces EMCY frames by the 1015h inhibit time (EMCY-09).
+///
+/// ```
+/// use canopen_core::{emcy::EmcyProducer, Instant};
+/// let mut p = EmcyProducer::new();
+/// p.set_inhibit_100us(10); // 1 ms
+/// assert!(p.may_send(Instant::from_micros(0)));
+/// p.sent(Instant::from_micros(0));
+/// assert!(!p.may_send(Instant::from_micros(200)));
+/// assert_eq!(p.next_allowed(), Some(Instant::from_micros(1000)));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct EmcyProducer {
+    inhibit: Duration,
+    next_allowed: Option<Instant>,
+}
+
+impl EmcyProducer {
+    /// A producer with no inhibit time.
+    pub const fn new() -> Self {
+        EmcyProducer { inhibit: Duration::ZERO, next_allowed: None }
+    }
+
+    /// Sets 1015h, in 100 µs units (0 = off).
+    pub fn set_inhibit_100us(&mut self, n: u16) {
+        self.inhibit = Duration::from_100us(u64::from(n));
+        if self.inhibit.is_zero() {
+            self.next_allowed = None;
+        }
+    }
+
+    /// Whether an EMCY may go out at `now`.
+    pub fn may_send(&self, now: Instant) -> bool {
+        self.next_allowed.is_none_or(|t| now >= t)
+    }
+
+    /// An EMCY went out at `now`.
+    pub fn sent(&mut self, now: Instant) {
+        self.next_allowed = (!self.inhibit.is_zero()).then(|| now + self.inhibit);
+    }
+
+    /// When the inhibit time of the last EMCY ends.
+    pub const fn next_allowed(&self) -> Option<Instant> {
+        self.next_allowed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// V-EMCY-03, V-EMCY-04, ERR-06/07: the emergency state machine and the history.
+    #[test]
+    fn emergency_state_machine_vector() {
+        let mut e: ErrorState<4, 8, 8> = ErrorState::new();
+        assert!(e.raise(0x1000, [0; 5]));
+        assert!(e.raise(0x8130, [0; 5]));
+        assert_eq!(e.read_history(0), Ok(2));
+        assert_eq!(e.read_history(1), Ok(0x0000_8130));
+        assert_eq!(e.read_history(2), Ok(0x0000_1000));
+        assert!(e.clear(0x1000));
+        assert!(!e.clear(0x1000));
+        assert!(e.clear(0x8130));
+        let frames: std::vec::Vec<[u8; 8]> = core::iter::from_fn(|| e.pop_pending()).map(|f| f.emit()).collect();
+        assert_eq!(
+            frames,
+            [
+                [0x00, 0x10, 0x01, 0, 0, 0, 0, 0],
+                [0x30, 0x81, 0x11, 0, 0, 0, 0, 0],
+                [0x00, 0x00, 0x11, 0, 0, 0, 0, 0],
+                [0x00, 0x00, 0x00, 0, 0, 0, 0, 0],
+            ]
+        );
+    }
+
+    extern crate std;
+
+    /// ERR-06: the history keeps the newest HIST entries; manufacturer info lands in bits 31–16 (ERR-07).
+    #[test]
+    fn history_depth_and_info() {
+        let mut e: ErrorState<8, 3, 8> = ErrorState::new();
+        for (i, code) in [0x2310u16, 0x3120, 0x4210, 0x5000].iter().enumerate() {
+            e.raise(*code, [i as u8, 0xAB, 0, 0, 0]);
+        }
+        assert_eq!(e.history(), &[0xAB03_5000, 0xAB02_4210, 0xAB01_3120]);
+        assert_eq!(e.register(), 0x01 | 0x02 | 0x04 | 0x08);
+        assert!(!e.raise(0, [0; 5]));
+    }
+
+    /// A full queue drops the oldest and counts it; keep_most_recent keeps the last (NMT-22).
+    #[test]
+    fn queue_bounds() {
+        let mut e: ErrorState<8, 0, 2> = ErrorState::new();
+        e.raise(0x1000, [0; 5]);
+        e.raise(0x2000, [0; 5]);
+        e.raise(0x3000, [0; 5]);
+        assert_eq!(e.lost(), 1);
+        e.keep_most_recent();
+        assert_eq!(e.pop_pending().map(|f| f.code), Some(0x3000));
+        assert_eq!(e.pop_pending(), None);
+    }
+}

@@ -1,0 +1,285 @@
+//! SYNC consumer and producer (CHECKLIST SYNC-01..SYNC-15).
+//!
+//! Implemented: SYNC-02/03 (1005h gen bit and COB-ID rules, [`Sync::set_cob_id`]), SYNC-04 (DLC 0, or 1 with the
+//! counter when 1019h > 1), SYNC-06/07 (1006h period; the first SYNC goes out one period after it becomes
+//! non-zero and carries counter 1), SYNC-08/09 (1007h window: [`Sync::in_window`]), SYNC-10/11 (counter
+//! 1..=1019h, restart at 1 after boot-up and on Stopped → Pre-operational, [`Sync::restart_counter`]),
+//! SYNC-12 (1019h refused while 1006h ≠ 0 with 0800 0022h), SYNC-14 (unexpected DLC → EMCY 8240h, reported
+//! as [`SyncInput::WrongLength`]). SYNC-05 (only in Pre-operational/Operational) is enforced by `Node`.
+
+use crate::cob::CobIdEntry;
+use crate::od::AbortCode;
+use crate::time::{Duration, Instant};
+
+/// The SYNC parameters (1005h, 1006h, 1007h, 1019h).
+///
+/// ```
+/// use canopen_core::sync::SyncParams;
+/// let p = SyncParams::DEFAULT;
+/// assert_eq!(p.cob_id.raw(), 0x0000_0080); // V-ENC-13
+/// assert_eq!(p.counter_overflow, 0);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SyncParams {
+    /// 1005h COB-ID SYNC; bit 30 = this node produces SYNC.
+    pub cob_id: CobIdEntry,
+    /// 1006h communication cycle period, µs (0 = no SYNC produced).
+    pub period_us: u32,
+    /// 1007h synchronous window length, µs (0 = no window).
+    pub window_us: u32,
+    /// 1019h synchronous counter overflow value (0 = no counter).
+    pub counter_overflow: u8,
+}
+
+impl SyncParams {
+    /// Consumer on 080h, no producer, no window, no counter.
+    pub const DEFAULT: SyncParams =
+        SyncParams { cob_id: CobIdEntry::from_raw(0x80), period_us: 0, window_us: 0, counter_overflow: 0 };
+}
+
+impl Default for SyncParams {
+    fn default() -> Self {
+        SyncParams::DEFAULT
+    }
+}
+
+/// A received frame on the SYNC COB-ID, interpreted.
+///
+/// ```
+/// use canopen_core::sync::SyncInput;
+/// assert_eq!(SyncInput::Sync { counter: Some(3) }, SyncInput::Sync { counter: Some(3) });
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SyncInput {
+    /// A SYNC, with its counter when the counter is enabled.
+    Sync {
+        /// The counter value (1..=1019h) or `None` when 1019h = 0.
+        counter: Option<u8>,
+    },
+    /// A SYNC whose DLC does not match 1019h: EMCY 8240h (SYNC-14); it is not acted on.
+    WrongLength,
+}
+
+/// The SYNC object of a node: consumer always, producer when 1005h bit 30 is set and 1006h ≠ 0.
+///
+/// ```
+/// use canopen_core::{sync::{Sync, SyncParams}, cob::CobIdEntry, Instant};
+/// let mut s = Sync::new(SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 10_000, counter_overflow: 3, ..SyncParams::DEFAULT });
+/// s.start(Instant::ZERO);
+/// assert_eq!(s.poll_timeout(), Some(Instant::from_millis(10)));
+/// let f = s.produce(Instant::from_millis(10)).unwrap();
+/// assert_eq!((f.cob_id(), f.data()), (0x80, &[1u8][..]));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Sync {
+    params: SyncParams,
+    counter: u8,
+    next: Option<Instant>,
+    last_sync: Option<Instant>,
+}
+
+impl Sync {
+    /// A SYNC object with `params`; call [`start`](Self::start) at boot-up.
+    pub const fn new(params: SyncParams) -> Self {
+        Sync { params, counter: 1, next: None, last_sync: None }
+    }
+
+    /// The parameters.
+    pub const fn params(&self) -> &SyncParams {
+        &self.params
+    }
+
+    /// Whether this node produces SYNC (1005h bit 30).
+    pub const fn is_producer(&self) -> bool {
+        self.params.cob_id.bit30()
+    }
+
+    /// The CAN-ID SYNC is received (and produced) on.
+    pub const fn can_id(&self) -> u16 {
+        self.params.cob_id.can_id()
+    }
+
+    /// Boot-up / reset communication at `now`: the counter restarts at 1 (SYNC-11) and the producer, if any,
+    /// sends its first SYNC one period later (SYNC-07).
+    pub fn start(&mut self, now: Instant) {
+        self.counter = 1;
+        self.last_sync = None;
+        self.schedule(now);
+    }
+
+    /// Stopped → Pre-operational: the counter restarts at 1 (SYNC-11).
+    pub fn restart_counter(&mut self) {
+        self.counter = 1;
+    }
+
+    fn schedule(&mut self, now: Instant) {
+        let active = self.is_producer() && self.params.period_us != 0;
+        self.next = active.then(|| now + Duration::from_micros(u64::from(self.params.period_us)));
+    }
+
+    /// Writes 1005h (SYNC-02/03, COB-15/16): frame bit refused, ID unchangeable while producing.
+    pub fn set_cob_id(&mut self, now: Instant, raw: u32) -> Result<(), AbortCode> {
+        self.params.cob_id = self.params.cob_id.check_change(raw, |e| e.bit30())?;
+        self.schedule(now);
+        Ok(())
+    }
+
+    /// Writes 1006h; production (re)starts within one period (SYNC-07).
+    pub fn set_period(&mut self, now: Instant, period_us: u32) {
+        self.params.period_us = period_us;
+        self.schedule(now);
+    }
+
+    /// Writes 1007h.
+    pub fn set_window(&mut self, window_us: u32) {
+        self.params.window_us = window_us;
+    }
+
+    /// Writes 1019h: only while 1006h = 0 (SYNC-12: 0800 0022h); 1 and 241–255 are reserved (0609 0030h).
+    ///
+    /// ```
+    /// use canopen_core::{sync::{Sync, SyncParams}, od::AbortCode, Instant};
+    /// let mut s = Sync::new(SyncParams::DEFAULT);
+    /// assert_eq!(s.set_counter_overflow(1), Err(AbortCode::InvalidValue));
+    /// assert_eq!(s.set_counter_overflow(240), Ok(()));
+    /// s.set_period(Instant::ZERO, 1000);
+    /// assert_eq!(s.set_counter_overflow(10), Err(AbortCode::CannotStoreDeviceState));
+    /// ```
+    pub fn set_counter_overflow(&mut self, value: u8) -> Result<(), AbortCode> {
+        if self.params.period_us != 0 {
+            return Err(AbortCode::CannotStoreDeviceState);
+        }
+        if value == 1 || value > 240 {
+            return Err(AbortCode::InvalidValue);
+        }
+        self.params.counter_overflow = value;
+        self.counter = 1;
+        Ok(())
+    }
+
+    /// When the next SYNC is to be produced.
+    pub const fn poll_timeout(&self) -> Option<Instant> {
+        self.next
+    }
+
+    /// Produces the SYNC due at `now`, if any; the node also acts on its own SYNC (call
+    /// [`consume`](Self::consume)-equivalent logic with the returned counter).
+    pub fn produce(&mut self, now: Instant) -> Option<crate::CanFrame> {
+        let next = self.next.filter(|&t| t <= now)?;
+        let period = Duration::from_micros(u64::from(self.params.period_us));
+        let following = next + period;
+        self.next = Some(if following <= now { now + period } else { following });
+        let counter = self.advance_counter();
+        self.last_sync = Some(now);
+        let mut data = [0u8; 8];
+        let len = match counter {
+            Some(c) => {
+                data[0] = c;
+                1
+            }
+            None => 0,
+        };
+        Some(crate::CanFrame::from_parts(self.can_id(), data, len))
+    }
+
+    fn advance_counter(&mut self) -> Option<u8> {
+        if self.params.counter_overflow < 2 {
+            return None;
+        }
+        let c = self.counter;
+        self.counter = if c >= self.params.counter_overflow { 1 } else { c + 1 };
+        Some(c)
+    }
+
+    /// Interprets a frame received on the SYNC CAN-ID at `now` (SYNC-04, SYNC-14).
+    pub fn consume(&mut self, now: Instant, data: &[u8]) -> SyncInput {
+        let expect_counter = self.params.counter_overflow >= 2;
+        match (expect_counter, data) {
+            (false, []) => {
+                self.last_sync = Some(now);
+                SyncInput::Sync { counter: None }
+            }
+            (true, [c]) => {
+                self.last_sync = Some(now);
+                SyncInput::Sync { counter: Some(*c) }
+            }
+            _ => SyncInput::WrongLength,
+        }
+    }
+
+    /// Whether `now` is inside the synchronous window that began with the last SYNC (SYNC-08/09); always true
+    /// when 1007h = 0.
+    ///
+    /// ```
+    /// use canopen_core::{sync::{Sync, SyncParams}, Instant};
+    /// let mut s = Sync::new(SyncParams { window_us: 500, ..SyncParams::DEFAULT });
+    /// s.consume(Instant::from_micros(1000), &[]);
+    /// assert!(s.in_window(Instant::from_micros(1400)));
+    /// assert!(!s.in_window(Instant::from_micros(1600)));
+    /// ```
+    pub fn in_window(&self, now: Instant) -> bool {
+        match (self.params.window_us, self.last_sync) {
+            (0, _) => true,
+            (_, None) => false,
+            (w, Some(t)) => now <= t + Duration::from_micros(u64::from(w)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ms(v: u64) -> Instant {
+        Instant::from_millis(v)
+    }
+
+    /// SYNC-07, SYNC-10, SYNC-11: counter 1..=overflow, then 1 again; restart on reset.
+    #[test]
+    fn producer_counter_wraps() {
+        let mut s = Sync::new(SyncParams {
+            cob_id: CobIdEntry::from_raw(0x4000_0080),
+            period_us: 1000,
+            counter_overflow: 3,
+            ..SyncParams::DEFAULT
+        });
+        s.start(ms(0));
+        let counters: std::vec::Vec<u8> = (1..=7).filter_map(|k| s.produce(ms(k))).map(|f| f.data()[0]).collect();
+        assert_eq!(counters, [1, 2, 3, 1, 2, 3, 1]);
+        s.restart_counter();
+        assert_eq!(s.produce(ms(8)).map(|f| f.data()[0]), Some(1));
+    }
+
+    extern crate std;
+
+    /// SYNC-04: without counter the SYNC has DLC 0 (V-SYNC); a consumer-only node produces nothing.
+    #[test]
+    fn dlc_and_roles() {
+        let mut s =
+            Sync::new(SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 500, ..SyncParams::DEFAULT });
+        s.start(ms(0));
+        let f = s.produce(Instant::from_micros(500)).unwrap();
+        assert_eq!((f.cob_id(), f.dlc()), (0x080, 0));
+        let mut c = Sync::new(SyncParams { period_us: 500, ..SyncParams::DEFAULT });
+        c.start(ms(0));
+        assert_eq!(c.poll_timeout(), None);
+        assert_eq!(c.consume(ms(1), &[]), SyncInput::Sync { counter: None });
+        assert_eq!(c.consume(ms(1), &[5]), SyncInput::WrongLength); // SYNC-14
+        c.set_period(ms(1), 0);
+        c.set_counter_overflow(4).unwrap();
+        assert_eq!(c.consume(ms(1), &[]), SyncInput::WrongLength);
+        assert_eq!(c.consume(ms(1), &[2]), SyncInput::Sync { counter: Some(2) });
+    }
+
+    /// SYNC-03, COB-15/16: 1005h rules.
+    #[test]
+    fn cob_id_rules() {
+        let mut s = Sync::new(SyncParams::DEFAULT);
+        assert_eq!(s.set_cob_id(ms(0), 0x4000_0080), Ok(())); // become producer
+        assert_eq!(s.set_cob_id(ms(0), 0x4000_0081), Err(AbortCode::InvalidValue)); // ID change while producing
+        assert_eq!(s.set_cob_id(ms(0), 0x2000_0080), Err(AbortCode::InvalidValue)); // 29-bit
+        assert_eq!(s.set_cob_id(ms(0), 0x0000_0080), Ok(()));
+        assert_eq!(s.set_cob_id(ms(0), 0x0000_0081), Ok(()));
+        assert_eq!(s.can_id(), 0x81);
+    }
+}
