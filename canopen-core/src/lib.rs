@@ -12,6 +12,7 @@
 
 pub mod cob;
 pub mod comm;
+pub mod driver;
 pub mod emcy;
 pub mod event;
 pub mod frame;

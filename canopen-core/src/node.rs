@@ -69,6 +69,49 @@ pub struct Node<A, const HB: usize = 4, const TXQ: usize = 16, const EVQ: usize 
     events_dropped: u32,
 }
 
+/// The sans-IO surface every runner drives (the async [`crate::driver`], the SocketCAN adapters, the test
+/// bus): implemented by [`Node`], so a runner is written once whatever the node's capacities are.
+///
+/// ```
+/// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node, SansIo}, Instant, NodeId};
+/// fn boot<N: SansIo>(n: &mut N) -> usize {
+///     n.handle_timeout(Instant::ZERO);
+///     core::iter::from_fn(|| n.poll_transmit()).count()
+/// }
+/// let mut node: Node<NoApplication> = Node::new(NodeId::new(1).unwrap(), NodeConfig::DEFAULT, NoApplication);
+/// assert_eq!(boot(&mut node), 1); // the boot-up frame
+/// ```
+pub trait SansIo {
+    /// Feeds one received frame.
+    fn handle_frame(&mut self, now: Instant, frame: &CanFrame);
+    /// Lets the node act on the time that has passed.
+    fn handle_timeout(&mut self, now: Instant);
+    /// The next deadline.
+    fn poll_timeout(&self) -> Option<Instant>;
+    /// The next frame to send.
+    fn poll_transmit(&mut self) -> Option<CanFrame>;
+    /// The next event for the application.
+    fn poll_event(&mut self) -> Option<Event>;
+}
+
+impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> SansIo for Node<A, HB, TXQ, EVQ> {
+    fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
+        Node::handle_frame(self, now, frame)
+    }
+    fn handle_timeout(&mut self, now: Instant) {
+        Node::handle_timeout(self, now)
+    }
+    fn poll_timeout(&self) -> Option<Instant> {
+        Node::poll_timeout(self)
+    }
+    fn poll_transmit(&mut self) -> Option<CanFrame> {
+        Node::poll_transmit(self)
+    }
+    fn poll_event(&mut self) -> Option<Event> {
+        Node::poll_event(self)
+    }
+}
+
 /// An empty application dictionary, for nodes that only use the communication profile.
 ///
 /// ```
