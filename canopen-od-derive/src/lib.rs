@@ -326,13 +326,13 @@ fn check_value(lit: &ConstLit, st: &ScalarType, expr: &Expr, what: &str) -> syn:
         (Class::Signed(bits), ConstLit::Int(i)) => {
             let (lo, hi) = (-(1i128 << (bits - 1)), (1i128 << (bits - 1)) - 1);
             if *i < lo || *i > hi {
-                return bad(format!("{what} {i} does not fit in {} ({lo}..={hi})", st.dt.to_uppercase()));
+                return bad(format!("{what} {i} does not fit in {} ({lo}..={hi})", spec_name(st.dt)));
             }
         }
         (Class::Unsigned(bits), ConstLit::Int(i)) => {
             let hi = (1i128 << bits) - 1;
             if *i < 0 || *i > hi {
-                return bad(format!("{what} {i} does not fit in {} (0..={hi})", st.dt.to_uppercase()));
+                return bad(format!("{what} {i} does not fit in {} (0..={hi})", spec_name(st.dt)));
             }
         }
         (Class::Time, ConstLit::Int(i)) if *i < 0 || *i >= 1 << 48 => {
@@ -343,10 +343,22 @@ fn check_value(lit: &ConstLit, st: &ScalarType, expr: &Expr, what: &str) -> syn:
         (Class::Bool, ConstLit::Bool(_)) => {}
         (Class::Bool, ConstLit::Int(0 | 1)) => {}
         (Class::Text | Class::Bytes, ConstLit::Str(_)) if what == "default" => {}
-        (Class::Text | Class::Bytes, _) => return bad(format!("a {what} is not allowed for {}", st.dt)),
-        _ => return bad(format!("{what} {} does not match the field type {}", lit.show(), st.dt)),
+        (Class::Text | Class::Bytes, _) => return bad(format!("a {what} is not allowed for {}", spec_name(st.dt))),
+        _ => return bad(format!("{what} {} does not match the field type {}", lit.show(), spec_name(st.dt))),
     }
     Ok(())
+}
+
+/// The CiA 301 spelling of a data type: `VisibleString` → `VISIBLE_STRING`.
+fn spec_name(dt: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in dt.chars().enumerate() {
+        if c.is_ascii_uppercase() && i > 0 {
+            out.push('_');
+        }
+        out.push(c.to_ascii_uppercase());
+    }
+    out
 }
 
 fn value_tokens(core: &Ts, lit: &ConstLit, st: &ScalarType) -> Ts {
@@ -833,6 +845,11 @@ fn field_rows(
         };
         return Err(syn::Error::new(ispan, msg));
     }
+    // Errors about a duplicate point at the sub-index of a record member, else at the index.
+    let key_span = match a.sub {
+        Some(SubSpec::One(s, sp)) if s > 0 => sp,
+        _ => ispan,
+    };
     let name = a.name.clone().unwrap_or_else(|| fname.to_string());
     let (access, readable, writable) = access_tokens(core, &a.access)?;
     let (pdo, mapped) = pdo_tokens(core, &a.pdo)?;
@@ -871,10 +888,10 @@ fn field_rows(
             high: quote!(::core::option::Option::None),
             limited: false,
             target: Target::Domain { member: quote!(#fident) },
-            span,
+            span: key_span,
             field: fname.into(),
         };
-        return Ok((vec![row], Some(Object { index, name, code: "Var", span, field: fname.into() })));
+        return Ok((vec![row], Some(Object { index, name, code: "Var", span: key_span, field: fname.into() })));
     }
 
     // Array or scalar.
@@ -908,7 +925,7 @@ fn field_rows(
             format!(
                 "`{}` ({}) cannot be mapped to a PDO: only fixed-size types of at most 8 bytes are mappable",
                 elem_ty.to_token_stream().to_string().replace(' ', ""),
-                st.dt
+                spec_name(st.dt)
             ),
         ));
     }
@@ -985,7 +1002,7 @@ fn field_rows(
             check: a.check.clone(),
             on_write: a.on_write.clone(),
         },
-        span,
+        span: key_span,
         field: fname.into(),
     };
 
@@ -1015,13 +1032,13 @@ fn field_rows(
                 })
                 .collect();
             let highest = first + (n - 1) as u8;
-            rows.push(count_row(core, index, highest, span, fname));
-            Ok((rows, Some(Object { index, name, code: "Array", span, field: fname.into() })))
+            rows.push(count_row(core, index, highest, key_span, fname));
+            Ok((rows, Some(Object { index, name, code: "Array", span: key_span, field: fname.into() })))
         }
         None => match a.sub {
             None | Some(SubSpec::One(0, _)) => {
                 let row = make(0, name.clone(), false, quote!(#fident));
-                Ok((vec![row], Some(Object { index, name, code: "Var", span, field: fname.into() })))
+                Ok((vec![row], Some(Object { index, name, code: "Var", span: key_span, field: fname.into() })))
             }
             Some(SubSpec::One(s, _)) => Ok((vec![make(s, name, false, quote!(#fident))], None)),
             Some(SubSpec::Range(_, _, sp)) => Err(syn::Error::new(sp, "a sub-index range needs an array field")),
