@@ -51,7 +51,7 @@
 //! Generated (no heap, no `unsafe`, nothing in `.data`/`.bss`):
 //! - `App::OD_ENTRIES: &[EntryDesc]` sorted by (index, sub) and `App::OD_OBJECTS: &[ObjectDesc]`
 //!   (const, in `.rodata`), `App::OD_MAX_VALUE_SIZE` (largest non-DOMAIN value, to size an SDO buffer);
-//! - `impl ObjectDictionary for App`: a binary search of `OD_ENTRIES` gives a position, a `match` on the
+//! - `impl ObjectDictionary for App`: a binary search of the 4-byte keys `OD_KEYS` gives a position, a `match` on the
 //!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
 //! - `impl OdDescribe for App` (for the EDS writer).
 //!
@@ -654,6 +654,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
     }
 
     let n_entries = rows.len();
+    let keys = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub));
     Ok(quote! {
         const _: () = {
             use #core::od::AbortCode as __AbortCode;
@@ -665,6 +666,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 pub const OD_ENTRIES: &'static [#core::od::EntryDesc] = &[#(#entries),*];
                 /// The objects of this struct, sorted by index.
                 pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
+                /// The keys `index << 8 | sub` of `OD_ENTRIES`, for a cache-friendly binary search.
+                pub const OD_KEYS: &'static [u32] = &[#(#keys),*];
                 /// The largest encoded size of a non-DOMAIN value (to size an SDO buffer for atomic writes).
                 pub const OD_MAX_VALUE_SIZE: usize = {
                     let sizes: &[usize] = &[0, #(#max_sizes),*];
@@ -691,7 +694,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
                 #[inline]
                 fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::EntryDesc), __AbortCode> {
-                    let pos = #core::od::lookup(Self::OD_ENTRIES, index, sub)?;
+                    let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub)?;
                     let e = Self::OD_ENTRIES.get(pos).ok_or(__AbortCode::ObjectDoesNotExist)?;
                     ::core::result::Result::Ok((pos, e))
                 }
@@ -715,7 +718,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             }
 
             const _: () = assert!(#core::od::is_sorted(#ident::OD_ENTRIES));
-            const _: () = assert!(#ident::OD_ENTRIES.len() == #n_entries);
+            const _: () = assert!(#ident::OD_ENTRIES.len() == #n_entries && #ident::OD_KEYS.len() == #n_entries);
 
             #[automatically_derived]
             impl #core::od::ObjectDictionary for #ident {

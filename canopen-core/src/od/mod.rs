@@ -25,7 +25,7 @@ mod value;
 pub use abort::AbortCode;
 pub use domain::{Domain, DomainBuf};
 pub use merged::Merged;
-pub use table::{count_entry, is_sorted, lookup, EntryDesc, ObjectDesc, OdDescribe, Value};
+pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
     check_len, check_limits, copy_at, OctetString, OdValue, TimeDifference, TimeOfDay, UnicodeString, VisibleString,
     I24, I40, I48, I56, U24, U40, U48, U56,

@@ -5,7 +5,7 @@
 //! codes per object), OD-11 (each entry: name, data type, access, PDO mapping, value range, default) and
 //! OD-16 (unknown index → 0602 0000h, unknown sub-index → 0609 0011h, in [`lookup`]).
 //!
-//! Lookup is a binary search over the `(index, sub)` keys of a table sorted at compile time
+//! Lookup is a binary search over the `(index, sub)` keys (a compact `u32` array, [`lookup_key`]) of a table sorted at compile time
 //! (`O(log n)`, about 7 probes for 100 entries, no hashing, no RAM); the position it returns is then used by
 //! a `match` (a jump table) to reach the field, and PDO handles keep that position so process data never
 //! searches again.
@@ -196,6 +196,34 @@ pub fn lookup(table: &[EntryDesc], index: u16, sub: u8) -> Result<usize, AbortCo
         Ok(pos) => Ok(pos),
         Err(ins) => {
             let same = |p: usize| table.get(p).is_some_and(|e| e.index == index);
+            if same(ins) || ins.checked_sub(1).is_some_and(same) {
+                Err(AbortCode::SubIndexDoesNotExist)
+            } else {
+                Err(AbortCode::ObjectDoesNotExist)
+            }
+        }
+    }
+}
+
+/// Binary search of `(index, sub)` in a compact sorted key array (`index << 8 | sub`, as
+/// [`EntryDesc::key`]): the same answer as [`lookup`] over the matching entry table, but the 4-byte keys keep
+/// the search inside a few cache lines. The derive macro generates such an array (`OD_KEYS`) beside the
+/// entry table.
+///
+/// ```
+/// use canopen_core::od::{lookup_key, AbortCode};
+/// const KEYS: &[u32] = &[0x2000_00, 0x2002_00, 0x2002_01];
+/// assert_eq!(lookup_key(KEYS, 0x2002, 1), Ok(2));
+/// assert_eq!(lookup_key(KEYS, 0x2002, 2), Err(AbortCode::SubIndexDoesNotExist));
+/// assert_eq!(lookup_key(KEYS, 0x2001, 0), Err(AbortCode::ObjectDoesNotExist));
+/// ```
+#[inline]
+pub fn lookup_key(keys: &[u32], index: u16, sub: u8) -> Result<usize, AbortCode> {
+    let key = (u32::from(index) << 8) | u32::from(sub);
+    match keys.binary_search(&key) {
+        Ok(pos) => Ok(pos),
+        Err(ins) => {
+            let same = |p: usize| keys.get(p).is_some_and(|k| k >> 8 == u32::from(index));
             if same(ins) || ins.checked_sub(1).is_some_and(same) {
                 Err(AbortCode::SubIndexDoesNotExist)
             } else {
