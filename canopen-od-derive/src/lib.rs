@@ -1,30 +1,46 @@
 //! `#[derive(ObjectDictionary)]`: a Rust struct becomes a CANopen object dictionary (and its EDS).
 //!
-//! ```ignore
-//! use canopen_core::od::{AbortCode, VisibleString};
+//! ```
+//! use canopen_core::od::{AbortCode, DomainBuf, ObjectDictionary};
 //! use canopen_od_derive::ObjectDictionary;
 //!
-//! #[derive(ObjectDictionary)]
+//! #[derive(ObjectDictionary, Default)]
 //! struct App {
 //!     /// ARRAY 6000h, subs 1..=8, sub 0 = 8 (const).
 //!     #[od(index = 0x6000, sub = 1..=8, access = "ro", pdo = "tpdo", name = "Digital inputs")]
 //!     inputs: [u8; 8],
 //!     /// VAR 2001h with limits and a validation hook.
-//!     #[od(index = 0x2001, access = "rw", pdo = "rpdo", min = -1000, max = 1000, default = 0, check = "check_setpoint")]
+//!     #[od(index = 0x2001, access = "rw", pdo = "rpdo", min = -1000, max = 1000, default = 0,
+//!          check = "check_setpoint")]
 //!     setpoint: i16,
 //!     /// RECORD 2100h: fields sharing an index with different sub-indices.
-//!     #[od(index = 0x2100, sub = 1, record = "PID", name = "Kp")] kp: f32,
-//!     #[od(index = 0x2100, sub = 2, name = "Ki")] ki: f32,
+//!     #[od(index = 0x2100, sub = 1, record = "PID", name = "Kp")]
+//!     kp: f32,
+//!     #[od(index = 0x2100, sub = 2, name = "Ki")]
+//!     ki: f32,
 //!     /// A streamed DOMAIN (any type implementing `canopen_core::od::Domain`).
-//!     #[od(index = 0x2200, domain, access = "rw")] firmware: MyFlash,
+//!     #[od(index = 0x2200, domain)]
+//!     firmware: DomainBuf<256>,
 //!     /// A field without `#[od]` is not in the dictionary.
 //!     scratch: u32,
 //! }
+//!
 //! impl App {
 //!     fn check_setpoint(&self, _sub: u8, v: &i16) -> Result<(), AbortCode> {
 //!         if *v == 13 { Err(AbortCode::InvalidValue) } else { Ok(()) }
 //!     }
 //! }
+//!
+//! let mut app = App::default();
+//! app.write(0x2001, 0, &500i16.to_le_bytes()).unwrap();
+//! assert_eq!(app.setpoint, 500);
+//! assert_eq!(app.write(0x2001, 0, &2000i16.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+//! assert_eq!(app.write(0x2001, 0, &13i16.to_le_bytes()), Err(AbortCode::InvalidValue));
+//! assert_eq!(app.write(0x6000, 1, &[1]), Err(AbortCode::WriteOfReadOnly));
+//! let mut b = [0u8; 1];
+//! assert_eq!(app.read(0x6000, 0, 0, &mut b), Ok(1));
+//! assert_eq!(b, [8]);
+//! assert_eq!(App::OD_ENTRIES.len(), 9 + 1 + 3 + 1);
 //! ```
 //!
 //! Field attribute keys (`#[od(...)]`):
@@ -285,6 +301,7 @@ fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
 
 /// How a row reaches its value.
 #[derive(Clone)]
+#[allow(clippy::large_enum_variant)]
 enum Target {
     /// Sub 00h of an ARRAY/RECORD: a constant count.
     Count(u8),
@@ -949,7 +966,7 @@ fn field_rows(
     let num = |v: &Option<(ConstLit, Expr)>| v.as_ref().and_then(|(l, _)| l.as_f64());
     if let (Some(lo), Some(hi)) = (num(&a.min), num(&a.max)) {
         if lo > hi {
-            return Err(syn::Error::new_spanned(&a.max.as_ref().map(|m| m.1.clone()), "max is less than min"));
+            return Err(syn::Error::new_spanned(a.max.as_ref().map(|m| m.1.clone()), "max is less than min"));
         }
     }
     if let Some((dlit, dexpr)) = &a.default {
