@@ -12,6 +12,23 @@
 #![forbid(unsafe_code)]
 
 pub use canopen_core as core;
+/// `#[derive(ObjectDictionary)]`: see the `canopen-od-derive` crate docs. Use `#[od(crate = "canopen::core")]`
+/// on the struct when `canopen_core` is only reachable through this facade.
+///
+/// ```
+/// use canopen::ObjectDictionary;
+/// use canopen::core::od::ObjectDictionary as _;
+///
+/// #[derive(ObjectDictionary, Default)]
+/// #[od(crate = "canopen::core")]
+/// struct App {
+///     #[od(index = 0x2000, access = "ro")]
+///     counter: u32,
+/// }
+/// let mut b = [0u8; 4];
+/// assert_eq!(App { counter: 7 }.read(0x2000, 0, 0, &mut b), Ok(4));
+/// ```
+pub use canopen_od_derive::ObjectDictionary;
 
 /// The README's examples are compiled and run as doctests.
 #[doc = include_str!("../README.md")]

@@ -134,6 +134,8 @@ pub struct CommParams<const HB: usize> {
     pub guard_time_ms: u16,
     /// 100Dh life time factor (GUARD-03).
     pub life_time_factor: u8,
+    /// 1001h error register (ERR-01/ERR-02; ro on SDO, set by the EMCY/error handling).
+    pub error_register: u8,
 }
 
 impl<const HB: usize> CommParams<HB> {
@@ -144,6 +146,7 @@ impl<const HB: usize> CommParams<HB> {
             heartbeat_consumers: [0; HB],
             guard_time_ms: config.guard_time_ms,
             life_time_factor: config.life_time_factor,
+            error_register: 0,
         }
     }
 

@@ -1,1 +1,1067 @@
-//! Derive macro that turns a Rust struct into a CANopen object dictionary (filled by the object dictionary issue).
+//! `#[derive(ObjectDictionary)]`: a Rust struct becomes a CANopen object dictionary (and its EDS).
+//!
+//! ```
+//! use canopen_core::od::{AbortCode, DomainBuf, ObjectDictionary};
+//! use canopen_od_derive::ObjectDictionary;
+//!
+//! #[derive(ObjectDictionary, Default)]
+//! struct App {
+//!     /// ARRAY 6000h, subs 1..=8, sub 0 = 8 (const).
+//!     #[od(index = 0x6000, sub = 1..=8, access = "ro", pdo = "tpdo", name = "Digital inputs")]
+//!     inputs: [u8; 8],
+//!     /// VAR 2001h with limits and a validation hook.
+//!     #[od(index = 0x2001, access = "rw", pdo = "rpdo", min = -1000, max = 1000, default = 0,
+//!          check = "check_setpoint")]
+//!     setpoint: i16,
+//!     /// RECORD 2100h: fields sharing an index with different sub-indices.
+//!     #[od(index = 0x2100, sub = 1, record = "PID", name = "Kp")]
+//!     kp: f32,
+//!     #[od(index = 0x2100, sub = 2, name = "Ki")]
+//!     ki: f32,
+//!     /// A streamed DOMAIN (any type implementing `canopen_core::od::Domain`).
+//!     #[od(index = 0x2200, domain)]
+//!     firmware: DomainBuf<256>,
+//!     /// A field without `#[od]` is not in the dictionary.
+//!     scratch: u32,
+//! }
+//!
+//! impl App {
+//!     fn check_setpoint(&self, _sub: u8, v: &i16) -> Result<(), AbortCode> {
+//!         if *v == 13 { Err(AbortCode::InvalidValue) } else { Ok(()) }
+//!     }
+//! }
+//!
+//! let mut app = App::default();
+//! app.write(0x2001, 0, &500i16.to_le_bytes()).unwrap();
+//! assert_eq!(app.setpoint, 500);
+//! assert_eq!(app.write(0x2001, 0, &2000i16.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+//! assert_eq!(app.write(0x2001, 0, &13i16.to_le_bytes()), Err(AbortCode::InvalidValue));
+//! assert_eq!(app.write(0x6000, 1, &[1]), Err(AbortCode::WriteOfReadOnly));
+//! let mut b = [0u8; 1];
+//! assert_eq!(app.read(0x6000, 0, 0, &mut b), Ok(1));
+//! assert_eq!(b, [8]);
+//! assert_eq!(App::OD_ENTRIES.len(), 9 + 1 + 3 + 1);
+//! ```
+//!
+//! Field attribute keys (`#[od(...)]`):
+//! - `index = 0x2000..` (required; 2000h–FFFFh: 0000h–1FFFh is refused, the core provides 1000h–1FFFh);
+//! - `sub = n` (record member), `sub = a..=b` (array; must match the array length; default `1..=N`);
+//! - `name = "..."` (ParameterName; default: the field name), `record = "..."` (the record's name);
+//! - `access = "ro" | "wo" | "rw" | "rwr" | "rww" | "const"` (default `rw`; OD-08, OD-09);
+//! - `pdo = "no" | "tpdo" | "rpdo" | "both"` (default `no`; only fixed-size types ≤ 8 bytes);
+//! - `min = …`, `max = …`, `default = …` (literals; checked against each other and the type's range);
+//! - `domain` (the field implements `Domain` and is streamed);
+//! - `check = "method"`: `fn(&self, sub: u8, new: &T) -> Result<(), AbortCode>` runs after the length and
+//!   limit checks and before anything changes: return an abort code to refuse the value;
+//! - `on_write = "method"`: `fn(&mut self, sub: u8)` runs after an accepted write (side effects).
+//!
+//! Struct attribute: `#[od(crate = "canopen::core")]` when `canopen_core` is reached through another
+//! path (default `::canopen_core`).
+//!
+//! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
+//! `f32`, `f64`, `I24`, `I40`, `I48`, `I56`, `U24`, `U40`, `U48`, `U56`, `TimeOfDay`, `TimeDifference`,
+//! `VisibleString<N>`, `OctetString<N>`, `UnicodeString<N>`, and `[T; N]` of those (ARRAY). Anything else
+//! must be a `domain`. A type alias is not seen through; the generated code also asserts at compile time
+//! that the type's `OdValue::DATA_TYPE` is the one the name implies.
+//!
+//! Generated (no heap, no `unsafe`, nothing in `.data`/`.bss`):
+//! - `App::OD_ENTRIES: &[EntryDesc]` sorted by (index, sub) and `App::OD_OBJECTS: &[ObjectDesc]`
+//!   (const, in `.rodata`), `App::OD_MAX_VALUE_SIZE` (largest non-DOMAIN value, to size an SDO buffer);
+//! - `impl ObjectDictionary for App`: a binary search of the 4-byte keys `OD_KEYS` gives a position, a `match` on the
+//!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
+//! - `impl OdDescribe for App` (for the EDS writer).
+//!
+//! Compile errors (pinned by the trybuild tests in `tests/ui/`): duplicate index/sub-index, a type that is
+//! not PDO-mappable marked mappable, an index in 0000h–1FFFh, a default outside its limits (or min > max,
+//! or a limit outside the type), an unsupported field type, a malformed attribute.
+
+use proc_macro::TokenStream;
+use proc_macro2::{Span, TokenStream as Ts};
+use quote::{quote, quote_spanned, ToTokens};
+use syn::spanned::Spanned;
+use syn::{parse_macro_input, Data, DeriveInput, Expr, ExprLit, ExprRange, Fields, Ident, Lit, LitStr, Type, UnOp};
+
+/// Derives `ObjectDictionary` and `OdDescribe` for a struct; see the crate docs for the attributes.
+#[proc_macro_derive(ObjectDictionary, attributes(od))]
+pub fn derive_object_dictionary(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    match expand(&input) {
+        Ok(ts) => ts.into(),
+        Err(e) => e.to_compile_error().into(),
+    }
+}
+
+/// What the macro knows about a field's (element) type.
+#[derive(Clone, Copy, PartialEq)]
+enum Class {
+    Bool,
+    Signed(u32),
+    Unsigned(u32),
+    Real32,
+    Real64,
+    Time,
+    Text,
+    Bytes,
+}
+
+#[derive(Clone)]
+struct ScalarType {
+    dt: &'static str,
+    class: Class,
+    mappable: bool,
+}
+
+fn scalar_type(ty: &Type) -> Option<ScalarType> {
+    let Type::Path(p) = ty else { return None };
+    let seg = p.path.segments.last()?;
+    let name = seg.ident.to_string();
+    let (dt, class) = match name.as_str() {
+        "bool" => ("Boolean", Class::Bool),
+        "i8" => ("Integer8", Class::Signed(8)),
+        "i16" => ("Integer16", Class::Signed(16)),
+        "I24" => ("Integer24", Class::Signed(24)),
+        "i32" => ("Integer32", Class::Signed(32)),
+        "I40" => ("Integer40", Class::Signed(40)),
+        "I48" => ("Integer48", Class::Signed(48)),
+        "I56" => ("Integer56", Class::Signed(56)),
+        "i64" => ("Integer64", Class::Signed(64)),
+        "u8" => ("Unsigned8", Class::Unsigned(8)),
+        "u16" => ("Unsigned16", Class::Unsigned(16)),
+        "U24" => ("Unsigned24", Class::Unsigned(24)),
+        "u32" => ("Unsigned32", Class::Unsigned(32)),
+        "U40" => ("Unsigned40", Class::Unsigned(40)),
+        "U48" => ("Unsigned48", Class::Unsigned(48)),
+        "U56" => ("Unsigned56", Class::Unsigned(56)),
+        "u64" => ("Unsigned64", Class::Unsigned(64)),
+        "f32" => ("Real32", Class::Real32),
+        "f64" => ("Real64", Class::Real64),
+        "TimeOfDay" => ("TimeOfDay", Class::Time),
+        "TimeDifference" => ("TimeDifference", Class::Time),
+        "VisibleString" => ("VisibleString", Class::Text),
+        "UnicodeString" => ("UnicodeString", Class::Text),
+        "OctetString" => ("OctetString", Class::Bytes),
+        _ => return None,
+    };
+    let generic = !seg.arguments.is_empty();
+    if generic != matches!(class, Class::Text | Class::Bytes) {
+        return None;
+    }
+    let mappable = !matches!(class, Class::Text | Class::Bytes);
+    Some(ScalarType { dt, class, mappable })
+}
+
+/// A literal from an attribute.
+#[derive(Clone, Debug)]
+enum ConstLit {
+    Int(i128),
+    Float(f64),
+    Bool(bool),
+    Str(String),
+}
+
+impl ConstLit {
+    fn parse(e: &Expr) -> syn::Result<ConstLit> {
+        match e {
+            Expr::Lit(ExprLit { lit, .. }) => match lit {
+                Lit::Int(i) => Ok(ConstLit::Int(i.base10_parse()?)),
+                Lit::Float(f) => Ok(ConstLit::Float(f.base10_parse()?)),
+                Lit::Bool(b) => Ok(ConstLit::Bool(b.value)),
+                Lit::Str(s) => Ok(ConstLit::Str(s.value())),
+                Lit::ByteStr(s) => Ok(ConstLit::Str(String::from_utf8_lossy(&s.value()).into_owned())),
+                _ => Err(syn::Error::new_spanned(e, "expected an integer, float, bool or string literal")),
+            },
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match ConstLit::parse(&u.expr)? {
+                ConstLit::Int(i) => Ok(ConstLit::Int(-i)),
+                ConstLit::Float(f) => Ok(ConstLit::Float(-f)),
+                _ => Err(syn::Error::new_spanned(e, "only numbers can be negative")),
+            },
+            Expr::Group(g) => ConstLit::parse(&g.expr),
+            Expr::Paren(p) => ConstLit::parse(&p.expr),
+            _ => Err(syn::Error::new_spanned(e, "expected a literal")),
+        }
+    }
+
+    fn as_f64(&self) -> Option<f64> {
+        match *self {
+            ConstLit::Int(i) => Some(i as f64),
+            ConstLit::Float(f) => Some(f),
+            ConstLit::Bool(b) => Some(f64::from(u8::from(b))),
+            ConstLit::Str(_) => None,
+        }
+    }
+
+    fn show(&self) -> String {
+        match self {
+            ConstLit::Int(i) => i.to_string(),
+            ConstLit::Float(f) => f.to_string(),
+            ConstLit::Bool(b) => b.to_string(),
+            ConstLit::Str(s) => format!("{s:?}"),
+        }
+    }
+}
+
+#[derive(Default)]
+struct FieldAttr {
+    index: Option<(u16, Span)>,
+    sub: Option<SubSpec>,
+    name: Option<String>,
+    record: Option<String>,
+    access: Option<(String, Span)>,
+    pdo: Option<(String, Span)>,
+    min: Option<(ConstLit, Expr)>,
+    max: Option<(ConstLit, Expr)>,
+    default: Option<(ConstLit, Expr)>,
+    domain: bool,
+    check: Option<Ident>,
+    on_write: Option<Ident>,
+}
+
+#[derive(Clone)]
+enum SubSpec {
+    One(u8, Span),
+    Range(u8, u8, Span),
+}
+
+fn int_lit<T: std::str::FromStr>(e: &Expr, what: &str) -> syn::Result<T>
+where
+    T::Err: std::fmt::Display,
+{
+    match e {
+        Expr::Lit(ExprLit { lit: Lit::Int(i), .. }) => {
+            i.base10_parse().map_err(|_| syn::Error::new_spanned(e, format!("{what} out of range")))
+        }
+        _ => Err(syn::Error::new_spanned(e, format!("{what} must be an integer literal"))),
+    }
+}
+
+fn str_lit(meta: &syn::meta::ParseNestedMeta) -> syn::Result<(String, Span)> {
+    let s: LitStr = meta.value()?.parse()?;
+    Ok((s.value(), s.span()))
+}
+
+fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
+    let mut a = FieldAttr::default();
+    attr.parse_nested_meta(|meta| {
+        let key = meta.path.get_ident().map(|i| i.to_string()).unwrap_or_default();
+        match key.as_str() {
+            "index" => {
+                let e: Expr = meta.value()?.parse()?;
+                a.index = Some((int_lit(&e, "index")?, e.span()));
+            }
+            "sub" => {
+                let e: Expr = meta.value()?.parse()?;
+                a.sub = Some(match &e {
+                    Expr::Range(ExprRange {
+                        start: Some(s),
+                        end: Some(t),
+                        limits: syn::RangeLimits::Closed(_),
+                        ..
+                    }) => SubSpec::Range(int_lit(s, "sub-index")?, int_lit(t, "sub-index")?, e.span()),
+                    Expr::Range(_) => {
+                        return Err(syn::Error::new_spanned(&e, "use an inclusive range: `sub = 1..=N`"));
+                    }
+                    _ => SubSpec::One(int_lit(&e, "sub-index")?, e.span()),
+                });
+            }
+            "name" => a.name = Some(str_lit(&meta)?.0),
+            "record" => a.record = Some(str_lit(&meta)?.0),
+            "access" => a.access = Some(str_lit(&meta)?),
+            "pdo" => a.pdo = Some(str_lit(&meta)?),
+            "min" | "max" | "default" => {
+                let e: Expr = meta.value()?.parse()?;
+                let v = (ConstLit::parse(&e)?, e);
+                match key.as_str() {
+                    "min" => a.min = Some(v),
+                    "max" => a.max = Some(v),
+                    _ => a.default = Some(v),
+                }
+            }
+            "domain" => a.domain = true,
+            "check" | "on_write" => {
+                let (s, span) = str_lit(&meta)?;
+                let id = syn::parse_str::<Ident>(&s).map_err(|_| syn::Error::new(span, "expected a method name"))?;
+                let id = Ident::new(&id.to_string(), span);
+                if key == "check" {
+                    a.check = Some(id);
+                } else {
+                    a.on_write = Some(id);
+                }
+            }
+            _ => {
+                return Err(meta.error(
+                    "unknown `od` key: expected index, sub, name, record, access, pdo, min, max, default, domain, \
+                     check or on_write",
+                ))
+            }
+        }
+        Ok(())
+    })?;
+    Ok(a)
+}
+
+/// How a row reaches its value.
+#[derive(Clone)]
+#[allow(clippy::large_enum_variant)]
+enum Target {
+    /// Sub 00h of an ARRAY/RECORD: a constant count.
+    Count(u8),
+    /// A field, or element `i` of an array field.
+    Field { member: Ts, ty: Type, st: ScalarType, check: Option<Ident>, on_write: Option<Ident> },
+    /// A DOMAIN field.
+    Domain { member: Ts },
+}
+
+struct Row {
+    index: u16,
+    sub: u8,
+    name: String,
+    numbered: bool,
+    dt: &'static str,
+    access: Ts,
+    pdo: Ts,
+    max_size: Ts,
+    default: Ts,
+    low: Ts,
+    high: Ts,
+    limited: bool,
+    target: Target,
+    span: Span,
+    field: String,
+}
+
+struct Object {
+    index: u16,
+    name: String,
+    code: &'static str,
+    span: Span,
+    field: String,
+}
+
+fn check_value(lit: &ConstLit, st: &ScalarType, expr: &Expr, what: &str) -> syn::Result<()> {
+    let bad = |msg: String| Err(syn::Error::new_spanned(expr, msg));
+    match (st.class, lit) {
+        (Class::Signed(bits), ConstLit::Int(i)) => {
+            let (lo, hi) = (-(1i128 << (bits - 1)), (1i128 << (bits - 1)) - 1);
+            if *i < lo || *i > hi {
+                return bad(format!("{what} {i} does not fit in {} ({lo}..={hi})", spec_name(st.dt)));
+            }
+        }
+        (Class::Unsigned(bits), ConstLit::Int(i)) => {
+            let hi = (1i128 << bits) - 1;
+            if *i < 0 || *i > hi {
+                return bad(format!("{what} {i} does not fit in {} (0..={hi})", spec_name(st.dt)));
+            }
+        }
+        (Class::Time, ConstLit::Int(i)) if *i < 0 || *i >= 1 << 48 => {
+            return bad(format!("{what} {i} does not fit in 48 bits"));
+        }
+        (Class::Time, ConstLit::Int(_)) => {}
+        (Class::Real32 | Class::Real64, ConstLit::Int(_) | ConstLit::Float(_)) => {}
+        (Class::Bool, ConstLit::Bool(_)) => {}
+        (Class::Bool, ConstLit::Int(0 | 1)) => {}
+        (Class::Text | Class::Bytes, ConstLit::Str(_)) if what == "default" => {}
+        (Class::Text | Class::Bytes, _) => return bad(format!("a {what} is not allowed for {}", spec_name(st.dt))),
+        _ => return bad(format!("{what} {} does not match the field type {}", lit.show(), spec_name(st.dt))),
+    }
+    Ok(())
+}
+
+/// The CiA 301 spelling of a data type: `VisibleString` → `VISIBLE_STRING`.
+fn spec_name(dt: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in dt.chars().enumerate() {
+        if c.is_ascii_uppercase() && i > 0 {
+            out.push('_');
+        }
+        out.push(c.to_ascii_uppercase());
+    }
+    out
+}
+
+fn value_tokens(core: &Ts, lit: &ConstLit, st: &ScalarType) -> Ts {
+    match (st.class, lit) {
+        (Class::Bool, ConstLit::Bool(b)) => quote!(#core::od::Value::Bool(#b)),
+        (Class::Bool, ConstLit::Int(i)) => {
+            let b = *i != 0;
+            quote!(#core::od::Value::Bool(#b))
+        }
+        (Class::Signed(_), ConstLit::Int(i)) => {
+            let v = proc_macro2::Literal::i64_suffixed(*i as i64);
+            quote!(#core::od::Value::Int(#v))
+        }
+        (Class::Unsigned(_) | Class::Time, ConstLit::Int(i)) => {
+            let v = proc_macro2::Literal::u64_suffixed(*i as u64);
+            quote!(#core::od::Value::Uint(#v))
+        }
+        (Class::Real32, l) => {
+            let v = proc_macro2::Literal::f32_suffixed(l.as_f64().unwrap_or(0.0) as f32);
+            quote!(#core::od::Value::Real32(#v))
+        }
+        (Class::Real64, l) => {
+            let v = proc_macro2::Literal::f64_suffixed(l.as_f64().unwrap_or(0.0));
+            quote!(#core::od::Value::Real64(#v))
+        }
+        (_, ConstLit::Str(s)) => quote!(#core::od::Value::Str(#s)),
+        _ => quote!(#core::od::Value::Uint(0)),
+    }
+}
+
+fn opt(ts: Option<Ts>) -> Ts {
+    match ts {
+        Some(t) => quote!(::core::option::Option::Some(#t)),
+        None => quote!(::core::option::Option::None),
+    }
+}
+
+fn access_tokens(core: &Ts, a: &Option<(String, Span)>) -> syn::Result<(Ts, bool, bool)> {
+    let (s, span) = a.clone().unwrap_or_else(|| ("rw".into(), Span::call_site()));
+    let (v, r, w) = match s.as_str() {
+        "ro" => (quote!(Ro), true, false),
+        "wo" => (quote!(Wo), false, true),
+        "rw" => (quote!(Rw), true, true),
+        "rwr" => (quote!(Rwr), true, true),
+        "rww" => (quote!(Rww), true, true),
+        "const" => (quote!(Const), true, false),
+        _ => {
+            return Err(syn::Error::new(
+                span,
+                "access must be one of \"ro\", \"wo\", \"rw\", \"rwr\", \"rww\", \"const\"",
+            ))
+        }
+    };
+    Ok((quote!(#core::od::Access::#v), r, w))
+}
+
+fn pdo_tokens(core: &Ts, p: &Option<(String, Span)>) -> syn::Result<(Ts, bool)> {
+    let Some((s, span)) = p.clone() else { return Ok((quote!(#core::od::PdoMapping::No), false)) };
+    let v = match s.as_str() {
+        "no" => return Ok((quote!(#core::od::PdoMapping::No), false)),
+        "tpdo" => quote!(Tpdo),
+        "rpdo" => quote!(Rpdo),
+        "both" => quote!(Both),
+        _ => return Err(syn::Error::new(span, "pdo must be one of \"no\", \"tpdo\", \"rpdo\", \"both\"")),
+    };
+    Ok((quote!(#core::od::PdoMapping::#v), true))
+}
+
+fn struct_crate(input: &DeriveInput) -> syn::Result<Ts> {
+    let mut path: Ts = quote!(::canopen_core);
+    for attr in input.attrs.iter().filter(|a| a.path().is_ident("od")) {
+        attr.parse_nested_meta(|meta| {
+            if meta.path.is_ident("crate") {
+                let s: LitStr = meta.value()?.parse()?;
+                path = s.parse::<syn::Path>()?.into_token_stream();
+                Ok(())
+            } else {
+                Err(meta.error("unknown struct-level `od` key: expected `crate`"))
+            }
+        })?;
+    }
+    Ok(path)
+}
+
+fn expand(input: &DeriveInput) -> syn::Result<Ts> {
+    let core = struct_crate(input)?;
+    let ident = &input.ident;
+    if !input.generics.params.is_empty() {
+        return Err(syn::Error::new_spanned(
+            &input.generics,
+            "ObjectDictionary cannot be derived for a generic struct",
+        ));
+    }
+    let Data::Struct(data) = &input.data else {
+        return Err(syn::Error::new_spanned(ident, "ObjectDictionary can only be derived for a struct"));
+    };
+    let Fields::Named(fields) = &data.fields else {
+        return Err(syn::Error::new_spanned(ident, "ObjectDictionary needs a struct with named fields"));
+    };
+
+    let mut errors: Vec<syn::Error> = Vec::new();
+    let mut rows: Vec<Row> = Vec::new();
+    let mut objects: Vec<Object> = Vec::new();
+    let mut type_asserts: Vec<Ts> = Vec::new();
+
+    for field in &fields.named {
+        let Some(attr) = field.attrs.iter().find(|a| a.path().is_ident("od")) else { continue };
+        let fname = field.ident.as_ref().map(|i| i.to_string()).unwrap_or_default();
+        match field_rows(&core, field, attr, &fname, &mut type_asserts) {
+            Ok((mut r, o)) => {
+                rows.append(&mut r);
+                if let Some(o) = o {
+                    objects.push(o);
+                }
+            }
+            Err(e) => errors.push(e),
+        }
+    }
+
+    // Records: members (sub >= 1, not array elements) of an index that has no VAR/ARRAY object.
+    rows.sort_by_key(|r| (r.index, r.sub));
+    let mut record_rows: Vec<Row> = Vec::new();
+    let mut dup_indices: Vec<u16> = Vec::new();
+    for r in rows.iter().filter(|r| matches!(r.target, Target::Field { .. }) && r.sub > 0 && !r.numbered) {
+        if let Some(o) = objects.iter().find(|o| o.index == r.index) {
+            if o.code != "Record" && !dup_indices.contains(&r.index) {
+                dup_indices.push(r.index);
+                errors.push(syn::Error::new(
+                    r.span,
+                    format!("duplicate object dictionary index {:04X}h: already used by field `{}`", r.index, o.field),
+                ));
+            }
+            continue;
+        }
+        let highest = rows.iter().filter(|x| x.index == r.index).map(|x| x.sub).max().unwrap_or(0);
+        objects.push(Object {
+            index: r.index,
+            name: String::new(),
+            code: "Record",
+            span: r.span,
+            field: r.field.clone(),
+        });
+        record_rows.push(count_row(&core, r.index, highest, r.span, &r.field));
+    }
+    rows.append(&mut record_rows);
+    rows.sort_by_key(|r| (r.index, r.sub));
+
+    // Duplicate objects (two VARs, a VAR and an ARRAY, ... on one index).
+    objects.sort_by_key(|o| o.index);
+    for w in objects.windows(2) {
+        if w[0].index == w[1].index && !dup_indices.contains(&w[1].index) {
+            dup_indices.push(w[1].index);
+            errors.push(syn::Error::new(
+                w[1].span,
+                format!(
+                    "duplicate object dictionary index {:04X}h: already used by field `{}`",
+                    w[1].index, w[0].field
+                ),
+            ));
+        }
+    }
+    // Duplicate (index, sub) among record members.
+    for w in rows.windows(2) {
+        if w[0].index == w[1].index && w[0].sub == w[1].sub && !dup_indices.contains(&w[1].index) {
+            dup_indices.push(w[1].index);
+            errors.push(syn::Error::new(
+                w[1].span,
+                format!(
+                    "duplicate object dictionary entry {:04X}h sub {}: already defined by field `{}`",
+                    w[1].index, w[1].sub, w[0].field
+                ),
+            ));
+        }
+    }
+    if let Some(e) = errors.into_iter().reduce(|mut a, b| {
+        a.combine(b);
+        a
+    }) {
+        return Err(e);
+    }
+
+    // Record names.
+    let record_names = record_names(fields)?;
+    for o in objects.iter_mut().filter(|o| o.code == "Record") {
+        o.name = record_names
+            .iter()
+            .find(|(i, _)| *i == o.index)
+            .map(|(_, n)| n.clone())
+            .unwrap_or_else(|| format!("Record {:04X}h", o.index));
+    }
+
+    // Tables.
+    let entries = rows.iter().map(|r| {
+        let (index, sub, name, numbered) = (r.index, r.sub, &r.name, r.numbered);
+        let dt = Ident::new(r.dt, Span::call_site());
+        let (access, pdo, max_size, default, low, high) = (&r.access, &r.pdo, &r.max_size, &r.default, &r.low, &r.high);
+        quote! {
+            #core::od::EntryDesc {
+                index: #index, sub: #sub, name: #name, numbered: #numbered,
+                data_type: #core::od::DataType::#dt, access: #access, pdo: #pdo, max_size: #max_size,
+                default: #default, low: #low, high: #high,
+            }
+        }
+    });
+    let object_descs = objects.iter().map(|o| {
+        let first = rows.iter().position(|r| r.index == o.index).unwrap_or(0) as u16;
+        let subs = rows.iter().filter(|r| r.index == o.index).count() as u16;
+        let (index, name) = (o.index, &o.name);
+        let code = Ident::new(o.code, Span::call_site());
+        quote! {
+            #core::od::ObjectDesc { index: #index, name: #name, code: #core::od::ObjectCode::#code, first: #first, subs: #subs }
+        }
+    });
+
+    let mut size_arms = Vec::new();
+    let mut read_arms = Vec::new();
+    let mut write_arms = Vec::new();
+    let mut begin_arms = Vec::new();
+    let mut chunk_arms = Vec::new();
+    let mut end_arms = Vec::new();
+    let mut abort_arms = Vec::new();
+    let mut max_sizes = Vec::new();
+    for (pos, r) in rows.iter().enumerate() {
+        let sub = r.sub;
+        match &r.target {
+            Target::Count(n) => {
+                size_arms.push(quote!(#pos => 1,));
+                read_arms.push(quote!(#pos => ::core::result::Result::Ok(#core::od::copy_at(&[#n], offset, buf)),));
+            }
+            Target::Field { member, ty, st, check, on_write } => {
+                let sp = r.span;
+                size_arms.push(quote!(#pos => #core::od::OdValue::size(&self.#member),));
+                read_arms.push(
+                    quote!(#pos => ::core::result::Result::Ok(#core::od::OdValue::read_bytes(&self.#member, offset, buf)),),
+                );
+                max_sizes.push(quote!(<#ty as #core::od::OdValue>::MAX_SIZE));
+                let limits = if !r.limited {
+                    quote!()
+                } else {
+                    let (low, high) = (&r.low, &r.high);
+                    quote!(#core::od::check_limits(&v, (#low).as_ref(), (#high).as_ref())?;)
+                };
+                let check_call = check.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub, &v)?;));
+                let on_write_call = on_write.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub);));
+                write_arms.push(quote_spanned! {sp=>
+                    #pos => {
+                        let v = <#ty as #core::od::OdValue>::decode(data)?;
+                        #limits
+                        #check_call
+                        self.#member = v;
+                        #on_write_call
+                        ::core::result::Result::Ok(())
+                    }
+                });
+                if !st.mappable {
+                    begin_arms.push(quote!(#pos => #core::od::OdValue::begin_stream(&mut self.#member, size),));
+                    chunk_arms.push(quote!(#pos => #core::od::OdValue::stream_chunk(&mut self.#member, offset, data),));
+                    let check_end = check.as_ref().map(|c| {
+                        quote!(if let ::core::result::Result::Err(e) = self.#c(#sub, &self.#member) {
+                            #core::od::OdValue::end_stream(&mut self.#member, 0)?;
+                            return ::core::result::Result::Err(e);
+                        })
+                    });
+                    end_arms.push(quote! {
+                        #pos => {
+                            #core::od::OdValue::end_stream(&mut self.#member, total)?;
+                            #check_end
+                            #on_write_call
+                            ::core::result::Result::Ok(())
+                        }
+                    });
+                }
+            }
+            Target::Domain { member } => {
+                size_arms.push(quote!(#pos => #core::od::Domain::size(&self.#member).unwrap_or(0),));
+                read_arms.push(quote!(#pos => #core::od::Domain::read(&self.#member, offset, buf),));
+                write_arms.push(quote! {
+                    #pos => {
+                        #core::od::Domain::begin_write(&mut self.#member, ::core::option::Option::Some(data.len()))?;
+                        if let ::core::result::Result::Err(e) = #core::od::Domain::write_chunk(&mut self.#member, 0, data) {
+                            #core::od::Domain::abort_write(&mut self.#member);
+                            return ::core::result::Result::Err(e);
+                        }
+                        #core::od::Domain::end_write(&mut self.#member, data.len())
+                    }
+                });
+                begin_arms.push(quote!(#pos => #core::od::Domain::begin_write(&mut self.#member, size),));
+                chunk_arms.push(quote!(#pos => #core::od::Domain::write_chunk(&mut self.#member, offset, data),));
+                end_arms.push(quote!(#pos => #core::od::Domain::end_write(&mut self.#member, total),));
+                abort_arms.push(quote!(#pos => #core::od::Domain::abort_write(&mut self.#member),));
+            }
+        }
+    }
+
+    let n_entries = rows.len();
+    let keys = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub));
+    Ok(quote! {
+        const _: () = {
+            use #core::od::AbortCode as __AbortCode;
+            #(#type_asserts)*
+
+            #[automatically_derived]
+            impl #ident {
+                /// The object-dictionary entries of this struct, sorted by (index, sub-index).
+                pub const OD_ENTRIES: &'static [#core::od::EntryDesc] = &[#(#entries),*];
+                /// The objects of this struct, sorted by index.
+                pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
+                /// The keys `index << 8 | sub` of `OD_ENTRIES`, for a cache-friendly binary search.
+                pub const OD_KEYS: &'static [u32] = &[#(#keys),*];
+                /// The largest encoded size of a non-DOMAIN value (to size an SDO buffer for atomic writes).
+                pub const OD_MAX_VALUE_SIZE: usize = {
+                    let sizes: &[usize] = &[0, #(#max_sizes),*];
+                    let mut m = 0;
+                    let mut i = 0;
+                    while i < sizes.len() {
+                        if sizes[i] > m { m = sizes[i]; }
+                        i += 1;
+                    }
+                    m
+                };
+
+                #[inline]
+                fn __od_size(&self, pos: usize) -> usize {
+                    match pos { #(#size_arms)* _ => 0 }
+                }
+                #[inline]
+                fn __od_read(&self, pos: usize, offset: usize, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
+                    match pos { #(#read_arms)* _ => ::core::result::Result::Err(__AbortCode::ObjectDoesNotExist) }
+                }
+                #[inline]
+                fn __od_write(&mut self, pos: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                    match pos { #(#write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
+                }
+                #[inline]
+                fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::EntryDesc), __AbortCode> {
+                    let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub)?;
+                    let e = Self::OD_ENTRIES.get(pos).ok_or(__AbortCode::ObjectDoesNotExist)?;
+                    ::core::result::Result::Ok((pos, e))
+                }
+                #[inline]
+                fn __od_writable(&self, index: u16, sub: u8) -> ::core::result::Result<usize, __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    if !e.access.writable() {
+                        return ::core::result::Result::Err(__AbortCode::WriteOfReadOnly);
+                    }
+                    ::core::result::Result::Ok(pos)
+                }
+                /// The entry-table slot of a PDO handle, if the handle belongs to this dictionary.
+                #[inline]
+                fn __od_slot(handle: &#core::od::PdoHandle) -> ::core::option::Option<usize> {
+                    let pos = usize::from(handle.slot);
+                    match Self::OD_ENTRIES.get(pos) {
+                        ::core::option::Option::Some(e) if e.index == handle.index && e.sub == handle.sub => ::core::option::Option::Some(pos),
+                        _ => ::core::option::Option::None,
+                    }
+                }
+            }
+
+            const _: () = assert!(#core::od::is_sorted(#ident::OD_ENTRIES));
+            const _: () = assert!(#ident::OD_ENTRIES.len() == #n_entries && #ident::OD_KEYS.len() == #n_entries);
+
+            #[automatically_derived]
+            impl #core::od::ObjectDictionary for #ident {
+                fn info(&self, index: u16, sub: u8) -> ::core::result::Result<#core::od::SubInfo, __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    ::core::result::Result::Ok(#core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: self.__od_size(pos) })
+                }
+                fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    if !e.access.readable() {
+                        return ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly);
+                    }
+                    self.__od_read(pos, offset, buf)
+                }
+                fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                    let pos = self.__od_writable(index, sub)?;
+                    self.__od_write(pos, data)
+                }
+                #[allow(unused_variables)]
+                fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                    let pos = self.__od_writable(index, sub)?;
+                    match pos { #(#begin_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+                }
+                #[allow(unused_variables)]
+                fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                    let pos = self.__od_writable(index, sub)?;
+                    match pos { #(#chunk_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+                }
+                #[allow(unused_variables)]
+                fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
+                    let pos = self.__od_writable(index, sub)?;
+                    match pos { #(#end_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+                }
+                fn abort_write(&mut self, index: u16, sub: u8) {
+                    if let ::core::result::Result::Ok((pos, _)) = self.__od_pos(index, sub) {
+                        match pos { #(#abort_arms)* _ => {} }
+                    }
+                }
+                fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    let info = #core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: 0 };
+                    #core::od::PdoHandle::check(index, sub, &info, dir, pos as u16)
+                }
+                fn pdo_read(&self, handle: &#core::od::PdoHandle, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
+                    match Self::__od_slot(handle) {
+                        ::core::option::Option::Some(pos) => self.__od_read(pos, 0, buf),
+                        ::core::option::Option::None => self.read(handle.index, handle.sub, 0, buf),
+                    }
+                }
+                fn pdo_write(&mut self, handle: &#core::od::PdoHandle, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                    match Self::__od_slot(handle) {
+                        ::core::option::Option::Some(pos) => self.__od_write(pos, data),
+                        ::core::option::Option::None => self.write(handle.index, handle.sub, data),
+                    }
+                }
+            }
+
+            #[automatically_derived]
+            impl #core::od::OdDescribe for #ident {
+                fn object_count(&self) -> usize {
+                    Self::OD_OBJECTS.len()
+                }
+                fn object(&self, n: usize) -> ::core::option::Option<#core::od::ObjectDesc> {
+                    Self::OD_OBJECTS.get(n).copied()
+                }
+                fn entry(&self, index: u16, sub: u8) -> ::core::option::Option<#core::od::EntryDesc> {
+                    self.__od_pos(index, sub).ok().map(|(_, e)| *e)
+                }
+            }
+        };
+    })
+}
+
+fn record_names(fields: &syn::FieldsNamed) -> syn::Result<Vec<(u16, String)>> {
+    let mut out = Vec::new();
+    for field in &fields.named {
+        if let Some(attr) = field.attrs.iter().find(|a| a.path().is_ident("od")) {
+            let a = parse_field_attr(attr)?;
+            if let (Some((i, _)), Some(n)) = (a.index, a.record) {
+                out.push((i, n));
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str) -> Row {
+    Row {
+        index,
+        sub: 0,
+        name: "Highest sub-index supported".into(),
+        numbered: false,
+        dt: "Unsigned8",
+        access: quote!(#core::od::Access::Const),
+        pdo: quote!(#core::od::PdoMapping::No),
+        max_size: quote!(1),
+        default: quote!(::core::option::Option::Some(#core::od::Value::Uint(#highest as u64))),
+        low: quote!(::core::option::Option::None),
+        high: quote!(::core::option::Option::None),
+        limited: false,
+        target: Target::Count(highest),
+        span,
+        field: field.into(),
+    }
+}
+
+#[allow(clippy::type_complexity)]
+fn field_rows(
+    core: &Ts,
+    field: &syn::Field,
+    attr: &syn::Attribute,
+    fname: &str,
+    type_asserts: &mut Vec<Ts>,
+) -> syn::Result<(Vec<Row>, Option<Object>)> {
+    let a = parse_field_attr(attr)?;
+    let fident = field.ident.clone().ok_or_else(|| syn::Error::new_spanned(field, "named field expected"))?;
+    let span = field.span();
+    let (index, ispan) = a.index.ok_or_else(|| syn::Error::new_spanned(attr, "missing `index = 0x....`"))?;
+    if index < 0x2000 {
+        let msg = if index >= 0x1000 {
+            format!(
+                "index {index:04X}h is in the communication profile area 1000h–1FFFh, which the core provides; \
+                 application objects start at 2000h"
+            )
+        } else {
+            format!("index {index:04X}h is reserved for data types (0000h–0FFFh); application objects start at 2000h")
+        };
+        return Err(syn::Error::new(ispan, msg));
+    }
+    // Errors about a duplicate point at the sub-index of a record member, else at the index.
+    let key_span = match a.sub {
+        Some(SubSpec::One(s, sp)) if s > 0 => sp,
+        _ => ispan,
+    };
+    let name = a.name.clone().unwrap_or_else(|| fname.to_string());
+    let (access, readable, writable) = access_tokens(core, &a.access)?;
+    let (pdo, mapped) = pdo_tokens(core, &a.pdo)?;
+    let ty = &field.ty;
+
+    if a.domain {
+        if mapped {
+            return Err(syn::Error::new(a.pdo.map(|p| p.1).unwrap_or(span), "a DOMAIN cannot be mapped to a PDO"));
+        }
+        if a.min.is_some() || a.max.is_some() || a.default.is_some() || a.check.is_some() || a.on_write.is_some() {
+            return Err(syn::Error::new(
+                span,
+                "a DOMAIN has no limits, default or hooks: validate in its `Domain::end_write`",
+            ));
+        }
+        if let Some(SubSpec::One(s, sp) | SubSpec::Range(s, _, sp)) = a.sub {
+            if s != 0 {
+                return Err(syn::Error::new(sp, "a DOMAIN is a VAR at sub-index 0"));
+            }
+        }
+        let _ = (readable, writable);
+        type_asserts.push(quote_spanned! {ty.span()=>
+            const _: fn(&#ty) -> ::core::option::Option<usize> = <#ty as #core::od::Domain>::size;
+        });
+        let row = Row {
+            index,
+            sub: 0,
+            name: name.clone(),
+            numbered: false,
+            dt: "Domain",
+            access,
+            pdo,
+            max_size: quote!(usize::MAX),
+            default: quote!(::core::option::Option::None),
+            low: quote!(::core::option::Option::None),
+            high: quote!(::core::option::Option::None),
+            limited: false,
+            target: Target::Domain { member: quote!(#fident) },
+            span: key_span,
+            field: fname.into(),
+        };
+        return Ok((vec![row], Some(Object { index, name, code: "Var", span: key_span, field: fname.into() })));
+    }
+
+    // Array or scalar.
+    let (elem_ty, len) = match ty {
+        Type::Array(arr) => {
+            let n: usize = match &arr.len {
+                Expr::Lit(ExprLit { lit: Lit::Int(i), .. }) => i.base10_parse()?,
+                other => return Err(syn::Error::new_spanned(other, "the array length must be an integer literal")),
+            };
+            if n == 0 || n > 254 {
+                return Err(syn::Error::new_spanned(&arr.len, "an ARRAY has 1 to 254 elements"));
+            }
+            ((*arr.elem).clone(), Some(n))
+        }
+        _ => (ty.clone(), None),
+    };
+    let st = scalar_type(&elem_ty).ok_or_else(|| {
+        syn::Error::new_spanned(
+            &elem_ty,
+            format!(
+                "unsupported field type `{}`: use bool, i8/i16/i32/i64, u8/u16/u32/u64, I24/I40/I48/I56, \
+                 U24/U40/U48/U56, f32/f64, TimeOfDay, TimeDifference, VisibleString<N>, OctetString<N>, \
+                 UnicodeString<N>, an array of those, or mark a DOMAIN with `domain`",
+                elem_ty.to_token_stream().to_string().replace(' ', "")
+            ),
+        )
+    })?;
+    if mapped && !st.mappable {
+        return Err(syn::Error::new(
+            a.pdo.as_ref().map(|p| p.1).unwrap_or(span),
+            format!(
+                "`{}` ({}) cannot be mapped to a PDO: only fixed-size types of at most 8 bytes are mappable",
+                elem_ty.to_token_stream().to_string().replace(' ', ""),
+                spec_name(st.dt)
+            ),
+        ));
+    }
+    let dt_ident = Ident::new(st.dt, Span::call_site());
+    type_asserts.push(quote_spanned! {elem_ty.span()=>
+        const _: () = assert!(
+            <#elem_ty as #core::od::OdValue>::DATA_TYPE as u16 == #core::od::DataType::#dt_ident as u16,
+            "the field type does not have the data type its name implies"
+        );
+    });
+
+    // Limits and default.
+    for (what, v) in [("min", &a.min), ("max", &a.max), ("default", &a.default)] {
+        if let Some((lit, e)) = v {
+            check_value(lit, &st, e, what)?;
+        }
+    }
+    let num = |v: &Option<(ConstLit, Expr)>| v.as_ref().and_then(|(l, _)| l.as_f64());
+    if let (Some(lo), Some(hi)) = (num(&a.min), num(&a.max)) {
+        if lo > hi {
+            return Err(syn::Error::new_spanned(a.max.as_ref().map(|m| m.1.clone()), "max is less than min"));
+        }
+    }
+    if let Some((dlit, dexpr)) = &a.default {
+        if let Some(d) = dlit.as_f64() {
+            if let Some(lo) = num(&a.min) {
+                if d < lo {
+                    return Err(syn::Error::new_spanned(
+                        dexpr,
+                        format!(
+                            "default value {} is below the low limit (min = {})",
+                            dlit.show(),
+                            a.min.as_ref().map(|m| m.0.show()).unwrap_or_default()
+                        ),
+                    ));
+                }
+            }
+            if let Some(hi) = num(&a.max) {
+                if d > hi {
+                    return Err(syn::Error::new_spanned(
+                        dexpr,
+                        format!(
+                            "default value {} is above the high limit (max = {})",
+                            dlit.show(),
+                            a.max.as_ref().map(|m| m.0.show()).unwrap_or_default()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    let default = opt(a.default.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
+    let low = opt(a.min.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
+    let high = opt(a.max.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
+    let _ = (readable, writable);
+
+    let make = |sub: u8, name: String, numbered: bool, member: Ts| Row {
+        index,
+        sub,
+        name,
+        numbered,
+        dt: st.dt,
+        access: access.clone(),
+        pdo: pdo.clone(),
+        max_size: quote!(<#elem_ty as #core::od::OdValue>::MAX_SIZE),
+        default: default.clone(),
+        low: low.clone(),
+        high: high.clone(),
+        limited: a.min.is_some() || a.max.is_some(),
+        target: Target::Field {
+            member,
+            ty: elem_ty.clone(),
+            st: st.clone(),
+            check: a.check.clone(),
+            on_write: a.on_write.clone(),
+        },
+        span: key_span,
+        field: fname.into(),
+    };
+
+    match len {
+        Some(n) => {
+            let first = match a.sub {
+                None => 1u8,
+                Some(SubSpec::Range(lo, hi, sp)) => {
+                    if lo == 0 || usize::from(hi) + 1 != usize::from(lo) + n {
+                        return Err(syn::Error::new(
+                            sp,
+                            format!(
+                                "the sub-index range must start at 1 or more and have {n} elements, like the array"
+                            ),
+                        ));
+                    }
+                    lo
+                }
+                Some(SubSpec::One(_, sp)) => {
+                    return Err(syn::Error::new(sp, format!("an array field takes a sub-index range: `sub = 1..={n}`")))
+                }
+            };
+            let mut rows: Vec<Row> = (0..n)
+                .map(|i| {
+                    let li = proc_macro2::Literal::usize_unsuffixed(i);
+                    make(first + i as u8, name.clone(), true, quote!(#fident[#li]))
+                })
+                .collect();
+            let highest = first + (n - 1) as u8;
+            rows.push(count_row(core, index, highest, key_span, fname));
+            Ok((rows, Some(Object { index, name, code: "Array", span: key_span, field: fname.into() })))
+        }
+        None => match a.sub {
+            None | Some(SubSpec::One(0, _)) => {
+                let row = make(0, name.clone(), false, quote!(#fident));
+                Ok((vec![row], Some(Object { index, name, code: "Var", span: key_span, field: fname.into() })))
+            }
+            Some(SubSpec::One(s, _)) => Ok((vec![make(s, name, false, quote!(#fident))], None)),
+            Some(SubSpec::Range(_, _, sp)) => Err(syn::Error::new(sp, "a sub-index range needs an array field")),
+        },
+    }
+}

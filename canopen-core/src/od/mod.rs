@@ -7,10 +7,29 @@
 //!
 //! The trait is byte-oriented and offset-based so that SDO can stream a large value (a string, a DOMAIN
 //! holding a firmware image) segment by segment without a buffer of the value's size.
+//!
+//! Submodules: value types and their encodings (`value`: DT-01..DT-14), [`Domain`] streaming (DT-15),
+//! the `const` entry tables and their binary-search [`lookup`] (`table`), the communication profile
+//! ([`comm`]), the [`Merged`] dictionary (comm profile + application, dispatched by index range) and the
+//! CiA 306 EDS writer ([`eds`]). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
+//! written, then used without any table search.
 
 mod abort;
+pub mod comm;
+mod domain;
+pub mod eds;
+mod merged;
+mod table;
+mod value;
 
 pub use abort::AbortCode;
+pub use domain::{Domain, DomainBuf};
+pub use merged::Merged;
+pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
+pub use value::{
+    check_len, check_limits, copy_at, OctetString, OdValue, TimeDifference, TimeOfDay, UnicodeString, VisibleString,
+    I24, I40, I48, I56, U24, U40, U48, U56,
+};
 
 /// CiA 301 basic data types with their static type index (DT-17, 000 §7.4.7.1 Table 44).
 ///
@@ -228,6 +247,15 @@ pub struct SubInfo {
 /// - Values that are streamed (strings, OCTET_STRING, DOMAIN, anything longer than 8 bytes) are written with
 ///   [`begin_write`](Self::begin_write), [`write_chunk`](Self::write_chunk) in increasing offsets, and
 ///   [`end_write`](Self::end_write); a transfer that is abandoned calls [`abort_write`](Self::abort_write).
+///   Fixed-size values (at most 8 bytes) are always written whole with `write`; the derive-generated
+///   dictionaries answer `begin_write` on them with 0601 0000h. Strings are streamed in place (the new
+///   length is taken at `end_write`), so a server that wants the "refused write changes nothing" guarantee
+///   for strings too should collect values up to its buffer size and use `write`.
+/// - Every `Ok` from `write`/`end_write`/[`pdo_write`](Self::pdo_write) is an accepted change: the caller
+///   (the node) reports it to the application as an event.
+/// - PDO mapping resolves each mapped entry once with [`pdo_resolve`](Self::pdo_resolve) and then moves
+///   process data with [`pdo_read`](Self::pdo_read)/[`pdo_write`](Self::pdo_write), which the
+///   derive-generated dictionaries serve without any search. The defaults fall back to `read`/`write`.
 ///
 /// ```
 /// use canopen_core::od::{AbortCode, Access, DataType, ObjectDictionary, PdoMapping, SubInfo};
@@ -303,4 +331,136 @@ pub trait ObjectDictionary {
     /// Sets every value back to its default (power-on) value: NMT Reset Application (NMT-04) calls it for
     /// the application dictionary. The default does nothing, for dictionaries without defaults.
     fn restore_defaults(&mut self) {}
+
+    /// Resolves a mapping target once: checks it exists (0602 0000h / 0609 0011h), is mappable in `dir`
+    /// (0604 0041h: PDO mapping attribute, readable for a TPDO, writable for an RPDO) and has a fixed size.
+    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
+        let info = self.info(index, sub)?;
+        PdoHandle::check(index, sub, &info, dir, PdoHandle::NO_SLOT)
+    }
+
+    /// Copies the current value of a resolved entry into `buf` (its [`PdoHandle::size`] bytes).
+    fn pdo_read(&self, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        self.read(handle.index, handle.sub, 0, buf)
+    }
+
+    /// Writes a resolved entry from received process data (limits and hooks apply as for `write`).
+    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+        self.write(handle.index, handle.sub, data)
+    }
+}
+
+/// PDO direction of a mapping.
+///
+/// ```
+/// use canopen_core::od::PdoDir;
+/// assert_ne!(PdoDir::Tpdo, PdoDir::Rpdo);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PdoDir {
+    /// Transmitted by this node (the entry is read).
+    Tpdo,
+    /// Received by this node (the entry is written).
+    Rpdo,
+}
+
+/// A resolved PDO mapping target: enough to move its bytes without searching the dictionary again.
+///
+/// ```
+/// use canopen_core::od::{Access, DataType, PdoDir, PdoHandle, PdoMapping, SubInfo};
+/// let info = SubInfo { data_type: DataType::Unsigned16, access: Access::Ro, pdo: PdoMapping::Tpdo, size: 2 };
+/// let h = PdoHandle::check(0x6000, 1, &info, PdoDir::Tpdo, 3).unwrap();
+/// assert_eq!((h.size, h.slot), (2, 3));
+/// assert!(PdoHandle::check(0x6000, 1, &info, PdoDir::Rpdo, 3).is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PdoHandle {
+    /// Index of the mapped entry.
+    pub index: u16,
+    /// Sub-index of the mapped entry.
+    pub sub: u8,
+    /// Encoded size in bytes (1..=8).
+    pub size: u8,
+    /// Implementation-defined position (the derive uses the entry-table position; [`Self::NO_SLOT`] if
+    /// unused).
+    pub slot: u16,
+}
+
+impl PdoHandle {
+    /// The slot value of a handle that carries no position.
+    pub const NO_SLOT: u16 = u16::MAX;
+
+    /// Builds a handle after checking mappability of `info` in direction `dir` (0604 0041h otherwise).
+    pub fn check(index: u16, sub: u8, info: &SubInfo, dir: PdoDir, slot: u16) -> Result<PdoHandle, AbortCode> {
+        let ok = match dir {
+            PdoDir::Tpdo => info.pdo.tpdo() && info.access.readable(),
+            PdoDir::Rpdo => info.pdo.rpdo() && info.access.writable(),
+        };
+        let size = info.data_type.size().filter(|&s| s <= 8).ok_or(AbortCode::NotMappable)?;
+        if !ok {
+            return Err(AbortCode::NotMappable);
+        }
+        Ok(PdoHandle { index, sub, size: size as u8, slot })
+    }
+}
+
+/// A mutable reference is a dictionary too, so views such as `Merged<&mut CommProfile, &mut App>` work.
+impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
+    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+        (**self).info(index, sub)
+    }
+    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        (**self).read(index, sub, offset, buf)
+    }
+    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        (**self).write(index, sub, data)
+    }
+    fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
+        (**self).begin_write(index, sub, size)
+    }
+    fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        (**self).write_chunk(index, sub, offset, data)
+    }
+    fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), AbortCode> {
+        (**self).end_write(index, sub, total)
+    }
+    fn abort_write(&mut self, index: u16, sub: u8) {
+        (**self).abort_write(index, sub)
+    }
+    fn restore_defaults(&mut self) {
+        (**self).restore_defaults()
+    }
+    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
+        (**self).pdo_resolve(index, sub, dir)
+    }
+    fn pdo_read(&self, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        (**self).pdo_read(handle, buf)
+    }
+    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+        (**self).pdo_write(handle, data)
+    }
+}
+
+impl<T: OdDescribe + ?Sized> OdDescribe for &T {
+    fn object_count(&self) -> usize {
+        (**self).object_count()
+    }
+    fn object(&self, n: usize) -> Option<ObjectDesc> {
+        (**self).object(n)
+    }
+    fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
+        (**self).entry(index, sub)
+    }
+}
+
+impl<T: OdDescribe + ?Sized> OdDescribe for &mut T {
+    fn object_count(&self) -> usize {
+        (**self).object_count()
+    }
+    fn object(&self, n: usize) -> Option<ObjectDesc> {
+        (**self).object(n)
+    }
+    fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
+        (**self).entry(index, sub)
+    }
 }

@@ -1,0 +1,113 @@
+//! One dictionary from two: the communication profile (1000h–1FFFh) and the application (everything
+//! else), dispatched by index range with one comparison, never by scanning. SDO, PDO mapping and the EDS
+//! writer all see the [`Merged`] dictionary.
+
+use super::{AbortCode, EntryDesc, ObjectDesc, ObjectDictionary, OdDescribe, PdoDir, PdoHandle, SubInfo};
+
+/// The communication profile `comm` (1000h–1FFFh) merged with the application dictionary `app`.
+///
+/// Objects are listed comm first, then app, so the order is increasing as long as the application has no
+/// index below 1000h (the derive macro refuses 0000h–1FFFh).
+///
+/// ```
+/// use canopen_core::comm::NodeConfig;
+/// use canopen_core::od::{comm::CommProfile, Merged, ObjectDictionary, AbortCode};
+/// # use canopen_core::od::{Access, DataType, PdoMapping, SubInfo};
+/// # struct Empty;
+/// # impl ObjectDictionary for Empty {
+/// #     fn info(&self, _: u16, _: u8) -> Result<SubInfo, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+/// #     fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+/// #     fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+/// # }
+/// let od = Merged { comm: CommProfile::<1>::new(NodeConfig::DEFAULT), app: Empty };
+/// assert!(od.info(0x1000, 0).is_ok());
+/// assert_eq!(od.info(0x2000, 0), Err(AbortCode::ObjectDoesNotExist));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Merged<C, A> {
+    /// The communication profile, serving 1000h–1FFFh.
+    pub comm: C,
+    /// The application dictionary, serving every other index.
+    pub app: A,
+}
+
+/// Whether `index` belongs to the communication profile area (OD-02).
+const fn is_comm(index: u16) -> bool {
+    index >= 0x1000 && index <= 0x1FFF
+}
+
+macro_rules! route {
+    ($self:ident, $index:expr, $od:ident => $e:expr) => {
+        if is_comm($index) {
+            let $od = &$self.comm;
+            $e
+        } else {
+            let $od = &$self.app;
+            $e
+        }
+    };
+    (mut $self:ident, $index:expr, $od:ident => $e:expr) => {
+        if is_comm($index) {
+            let $od = &mut $self.comm;
+            $e
+        } else {
+            let $od = &mut $self.app;
+            $e
+        }
+    };
+}
+
+impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A> {
+    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+        route!(self, index, od => od.info(index, sub))
+    }
+    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        route!(self, index, od => od.read(index, sub, offset, buf))
+    }
+    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.write(index, sub, data))
+    }
+    fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.begin_write(index, sub, size))
+    }
+    fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.write_chunk(index, sub, offset, data))
+    }
+    fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.end_write(index, sub, total))
+    }
+    fn abort_write(&mut self, index: u16, sub: u8) {
+        route!(mut self, index, od => od.abort_write(index, sub))
+    }
+    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
+        route!(self, index, od => od.pdo_resolve(index, sub, dir))
+    }
+    fn pdo_read(&self, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        route!(self, handle.index, od => od.pdo_read(handle, buf))
+    }
+    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+        route!(mut self, handle.index, od => od.pdo_write(handle, data))
+    }
+    /// Reset Application restores the application's values only (NMT-04: 2000h–9FFFh); the communication
+    /// profile is restored by Reset Communication.
+    fn restore_defaults(&mut self) {
+        self.app.restore_defaults()
+    }
+}
+
+impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
+    fn object_count(&self) -> usize {
+        self.comm.object_count() + self.app.object_count()
+    }
+    fn object(&self, n: usize) -> Option<ObjectDesc> {
+        let c = self.comm.object_count();
+        if n < c {
+            self.comm.object(n)
+        } else {
+            self.app.object(n - c)
+        }
+    }
+    fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
+        route!(self, index, od => od.entry(index, sub))
+    }
+}

@@ -1,0 +1,890 @@
+//! Rust value types for every CiA 301 basic data type and their exact bus encoding.
+//!
+//! Covers CHECKLIST DT-01 (little-endian), DT-02/DT-05/DT-06 (n-bit integers in ⌈n/8⌉ octets, including the
+//! 24/40/48/56-bit widths as [`I24`] … [`U56`]), DT-03 (BOOLEAN as one octet 0/1 on SDO), DT-07/DT-08 (REAL32/64
+//! copied as IEEE 754 bytes), DT-10/DT-11/DT-12 ([`OctetString`], [`VisibleString`], [`UnicodeString`]: fixed
+//! capacity with a tracked current length, no heap), DT-13/DT-14 ([`TimeOfDay`], [`TimeDifference`]) and
+//! DT-17 (each type names its [`DataType`] index). DOMAIN (DT-15) is streamed through
+//! [`Domain`](super::Domain) instead.
+//!
+//! Every decoder checks the length first (0607 0012h too long, 0607 0013h too short, 0607 0010h for an odd
+//! UNICODE_STRING) and the content second (0609 0030h for a BOOLEAN other than 0/1 or a VISIBLE_STRING with a
+//! character outside 00h/20h–7Eh), and never panics on hostile input.
+//!
+//! Floats are never computed with: REAL32/64 values are copied as bytes; the only float operation is the
+//! comparison against limits ([`OdValue::cmp_limit`]) of entries whose data type is REAL32/64.
+
+use core::cmp::Ordering;
+
+use super::{AbortCode, DataType, Value};
+
+/// A Rust type that can be an object-dictionary entry: its data type and its exact encoding.
+///
+/// The derive macro uses it for every field; implement it for your own type to store a value in a custom
+/// representation (the macro accepts only the types of this module by name, so a custom type is used
+/// through a hand-written [`ObjectDictionary`](super::ObjectDictionary)).
+///
+/// ```
+/// use canopen_core::od::{DataType, OdValue};
+/// assert_eq!(<u16 as OdValue>::DATA_TYPE, DataType::Unsigned16);
+/// let mut buf = [0u8; 2];
+/// assert_eq!(266u16.read_bytes(0, &mut buf), 2);
+/// assert_eq!(buf, [0x0A, 0x01]); // V-ENC-01
+/// assert_eq!(u16::decode(&[0x0A, 0x01]), Ok(266));
+/// ```
+pub trait OdValue: Sized {
+    /// The CiA 301 data type (DT-17).
+    const DATA_TYPE: DataType;
+    /// The largest encoded size in bytes (the capacity of a string).
+    const MAX_SIZE: usize;
+    /// Whether the type may be mapped into a PDO (fixed size of at most 8 bytes).
+    const MAPPABLE: bool;
+
+    /// The current encoded size in bytes.
+    fn size(&self) -> usize;
+
+    /// Copies bytes `offset..` of the encoding into `buf`; returns how many were copied.
+    fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize;
+
+    /// Decodes a complete encoding, checking length and content; never panics.
+    fn decode(data: &[u8]) -> Result<Self, AbortCode>;
+
+    /// Compares the value with a limit from the entry table; `None` if they cannot be compared (then the
+    /// write is refused with 0609 0030h). The default (non-numeric types) always says `Equal`.
+    fn cmp_limit(&self, limit: &Value) -> Option<Ordering> {
+        let _ = limit;
+        Some(Ordering::Equal)
+    }
+
+    /// Streamed write, step 1: accepts or refuses the announced size before any data moves. Only strings
+    /// support streaming; fixed-size values (≤ 8 bytes) are written whole.
+    fn begin_stream(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
+        let _ = size;
+        Err(AbortCode::UnsupportedAccess)
+    }
+
+    /// Streamed write, step 2: stores `data` at `offset`.
+    fn stream_chunk(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        let _ = (offset, data);
+        Err(AbortCode::UnsupportedAccess)
+    }
+
+    /// Streamed write, step 3: the transfer is complete with `total` bytes.
+    fn end_stream(&mut self, total: usize) -> Result<(), AbortCode> {
+        let _ = total;
+        Err(AbortCode::UnsupportedAccess)
+    }
+}
+
+/// Copies `src[offset..]` into `buf`; returns the number of bytes copied (0 past the end).
+///
+/// ```
+/// use canopen_core::od::copy_at;
+/// let mut buf = [0u8; 2];
+/// assert_eq!(copy_at(&[1, 2, 3], 1, &mut buf), 2);
+/// assert_eq!(buf, [2, 3]);
+/// assert_eq!(copy_at(&[1, 2, 3], 9, &mut buf), 0);
+/// ```
+pub fn copy_at(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
+    let src = src.get(offset..).unwrap_or(&[]);
+    let n = src.len().min(buf.len());
+    buf[..n].copy_from_slice(&src[..n]);
+    n
+}
+
+/// Checks that `data` has exactly `size` bytes (0607 0012h / 0607 0013h otherwise).
+///
+/// ```
+/// use canopen_core::od::{check_len, AbortCode};
+/// assert_eq!(check_len(&[1, 2], 2), Ok(()));
+/// assert_eq!(check_len(&[1, 2, 3], 2), Err(AbortCode::LengthTooHigh));
+/// assert_eq!(check_len(&[1], 2), Err(AbortCode::LengthTooLow));
+/// ```
+pub fn check_len(data: &[u8], size: usize) -> Result<(), AbortCode> {
+    match data.len().cmp(&size) {
+        Ordering::Greater => Err(AbortCode::LengthTooHigh),
+        Ordering::Less => Err(AbortCode::LengthTooLow),
+        Ordering::Equal => Ok(()),
+    }
+}
+
+/// Checks a decoded value against optional low/high limits: 0609 0032h below, 0609 0031h above,
+/// 0609 0030h when not comparable (e.g. a NaN REAL32).
+///
+/// ```
+/// use canopen_core::od::{check_limits, AbortCode, Value};
+/// let (lo, hi) = (Some(Value::Int(-1000)), Some(Value::Int(1000)));
+/// assert_eq!(check_limits(&5i16, lo.as_ref(), hi.as_ref()), Ok(()));
+/// assert_eq!(check_limits(&1001i16, lo.as_ref(), hi.as_ref()), Err(AbortCode::ValueTooHigh));
+/// assert_eq!(check_limits(&-1001i16, lo.as_ref(), hi.as_ref()), Err(AbortCode::ValueTooLow));
+/// ```
+pub fn check_limits<T: OdValue>(value: &T, low: Option<&Value>, high: Option<&Value>) -> Result<(), AbortCode> {
+    if let Some(low) = low {
+        match value.cmp_limit(low) {
+            Some(Ordering::Less) => return Err(AbortCode::ValueTooLow),
+            None => return Err(AbortCode::InvalidValue),
+            _ => {}
+        }
+    }
+    if let Some(high) = high {
+        match value.cmp_limit(high) {
+            Some(Ordering::Greater) => return Err(AbortCode::ValueTooHigh),
+            None => return Err(AbortCode::InvalidValue),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn cmp_signed(v: i64, limit: &Value) -> Option<Ordering> {
+    match *limit {
+        Value::Int(l) => Some(v.cmp(&l)),
+        Value::Uint(l) => Some(if v < 0 { Ordering::Less } else { (v as u64).cmp(&l) }),
+        Value::Bool(b) => Some(v.cmp(&i64::from(b))),
+        _ => None,
+    }
+}
+
+fn cmp_unsigned(v: u64, limit: &Value) -> Option<Ordering> {
+    match *limit {
+        Value::Uint(l) => Some(v.cmp(&l)),
+        Value::Int(l) => Some(if l < 0 { Ordering::Greater } else { v.cmp(&(l as u64)) }),
+        Value::Bool(b) => Some(v.cmp(&u64::from(b))),
+        _ => None,
+    }
+}
+
+macro_rules! native_int {
+    ($t:ty, $dt:ident, $cmp:ident, $wide:ty) => {
+        impl OdValue for $t {
+            const DATA_TYPE: DataType = DataType::$dt;
+            const MAX_SIZE: usize = core::mem::size_of::<$t>();
+            const MAPPABLE: bool = true;
+            fn size(&self) -> usize {
+                Self::MAX_SIZE
+            }
+            fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
+                copy_at(&self.to_le_bytes(), offset, buf)
+            }
+            fn decode(data: &[u8]) -> Result<Self, AbortCode> {
+                check_len(data, Self::MAX_SIZE)?;
+                let mut b = [0u8; core::mem::size_of::<$t>()];
+                b.copy_from_slice(data);
+                Ok(<$t>::from_le_bytes(b))
+            }
+            fn cmp_limit(&self, limit: &Value) -> Option<Ordering> {
+                $cmp(*self as $wide, limit)
+            }
+        }
+    };
+}
+
+native_int!(i8, Integer8, cmp_signed, i64);
+native_int!(i16, Integer16, cmp_signed, i64);
+native_int!(i32, Integer32, cmp_signed, i64);
+native_int!(i64, Integer64, cmp_signed, i64);
+native_int!(u8, Unsigned8, cmp_unsigned, u64);
+native_int!(u16, Unsigned16, cmp_unsigned, u64);
+native_int!(u32, Unsigned32, cmp_unsigned, u64);
+native_int!(u64, Unsigned64, cmp_unsigned, u64);
+
+/// BOOLEAN (DT-03): one octet on SDO, 00h = false, 01h = true; anything else is refused with 0609 0030h.
+impl OdValue for bool {
+    const DATA_TYPE: DataType = DataType::Boolean;
+    const MAX_SIZE: usize = 1;
+    const MAPPABLE: bool = true;
+    fn size(&self) -> usize {
+        1
+    }
+    fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
+        copy_at(&[u8::from(*self)], offset, buf)
+    }
+    fn decode(data: &[u8]) -> Result<Self, AbortCode> {
+        check_len(data, 1)?;
+        match data[0] {
+            0 => Ok(false),
+            1 => Ok(true),
+            _ => Err(AbortCode::InvalidValue),
+        }
+    }
+    fn cmp_limit(&self, limit: &Value) -> Option<Ordering> {
+        cmp_unsigned(u64::from(*self), limit)
+    }
+}
+
+macro_rules! native_real {
+    ($t:ty, $dt:ident, $own:ident, $n:expr) => {
+        impl OdValue for $t {
+            const DATA_TYPE: DataType = DataType::$dt;
+            const MAX_SIZE: usize = $n;
+            const MAPPABLE: bool = true;
+            fn size(&self) -> usize {
+                $n
+            }
+            fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
+                copy_at(&self.to_le_bytes(), offset, buf)
+            }
+            fn decode(data: &[u8]) -> Result<Self, AbortCode> {
+                check_len(data, $n)?;
+                let mut b = [0u8; $n];
+                b.copy_from_slice(data);
+                Ok(<$t>::from_le_bytes(b))
+            }
+            fn cmp_limit(&self, limit: &Value) -> Option<Ordering> {
+                match *limit {
+                    Value::$own(l) => self.partial_cmp(&l),
+                    Value::Int(l) => (*self as f64).partial_cmp(&(l as f64)),
+                    Value::Uint(l) => (*self as f64).partial_cmp(&(l as f64)),
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+native_real!(f32, Real32, Real32, 4);
+native_real!(f64, Real64, Real64, 8);
+
+macro_rules! wide_int {
+    ($(#[$doc:meta])* $name:ident, $inner:ty, $dt:ident, $bits:expr, signed) => {
+        wide_int!(@def $(#[$doc])* $name, $inner, $dt, $bits,
+            -(1 << ($bits - 1)), (1 << ($bits - 1)) - 1, cmp_signed, i64);
+    };
+    ($(#[$doc:meta])* $name:ident, $inner:ty, $dt:ident, $bits:expr, unsigned) => {
+        wide_int!(@def $(#[$doc])* $name, $inner, $dt, $bits, 0, (1 << $bits) - 1, cmp_unsigned, u64);
+    };
+    (@def $(#[$doc:meta])* $name:ident, $inner:ty, $dt:ident, $bits:expr, $min:expr, $max:expr, $cmp:ident, $wide:ty) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+        pub struct $name($inner);
+
+        impl $name {
+            /// The smallest value.
+            pub const MIN: $name = $name($min);
+            /// The largest value.
+            pub const MAX: $name = $name($max);
+            /// The encoded size in bytes.
+            pub const SIZE: usize = $bits / 8;
+
+            /// The value if it fits in the type's range.
+            #[allow(unused_comparisons, clippy::int_plus_one)]
+            pub const fn new(v: $inner) -> Option<Self> {
+                if v >= $min && v <= $max {
+                    Some($name(v))
+                } else {
+                    None
+                }
+            }
+
+            /// The value as the next wider Rust integer.
+            pub const fn get(self) -> $inner {
+                self.0
+            }
+        }
+
+        impl OdValue for $name {
+            const DATA_TYPE: DataType = DataType::$dt;
+            const MAX_SIZE: usize = $bits / 8;
+            const MAPPABLE: bool = true;
+            fn size(&self) -> usize {
+                Self::SIZE
+            }
+            fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
+                let b = self.0.to_le_bytes();
+                copy_at(&b[..Self::SIZE], offset, buf)
+            }
+            fn decode(data: &[u8]) -> Result<Self, AbortCode> {
+                check_len(data, Self::SIZE)?;
+                let mut b = [0u8; core::mem::size_of::<$inner>()];
+                b[..Self::SIZE].copy_from_slice(data);
+                // Sign- or zero-extend from the top bit of the last octet (DT-02: bits above n are ignored).
+                let shift = 8 * core::mem::size_of::<$inner>() - $bits;
+                Ok($name((<$inner>::from_le_bytes(b) << shift) >> shift))
+            }
+            fn cmp_limit(&self, limit: &Value) -> Option<Ordering> {
+                $cmp(self.0 as $wide, limit)
+            }
+        }
+    };
+}
+
+wide_int!(
+    /// INTEGER24 (0010h): −2²³ … 2²³−1, 3 octets LE (DT-06).
+    ///
+    /// ```
+    /// use canopen_core::od::{I24, OdValue};
+    /// let v = I24::new(-2).unwrap();
+    /// let mut b = [0u8; 3];
+    /// v.read_bytes(0, &mut b);
+    /// assert_eq!(b, [0xFE, 0xFF, 0xFF]);
+    /// assert_eq!(I24::decode(&b), Ok(v));
+    /// assert!(I24::new(1 << 23).is_none());
+    /// ```
+    I24, i32, Integer24, 24, signed
+);
+wide_int!(
+    /// INTEGER40 (0012h): 5 octets LE (DT-06).
+    ///
+    /// ```
+    /// use canopen_core::od::{I40, OdValue};
+    /// assert_eq!(I40::decode(&[0, 0, 0, 0, 0x80]).unwrap(), I40::MIN);
+    /// ```
+    I40, i64, Integer40, 40, signed
+);
+wide_int!(
+    /// INTEGER48 (0013h): 6 octets LE (DT-06).
+    ///
+    /// ```
+    /// use canopen_core::od::{I48, OdValue};
+    /// assert_eq!(I48::decode(&[0xFF; 6]).unwrap().get(), -1);
+    /// ```
+    I48, i64, Integer48, 48, signed
+);
+wide_int!(
+    /// INTEGER56 (0014h): 7 octets LE (DT-06).
+    ///
+    /// ```
+    /// use canopen_core::od::{I56, OdValue};
+    /// assert_eq!(I56::MAX.get(), (1 << 55) - 1);
+    /// ```
+    I56, i64, Integer56, 56, signed
+);
+wide_int!(
+    /// UNSIGNED24 (0016h): 0 … 2²⁴−1, 3 octets LE (DT-05).
+    ///
+    /// ```
+    /// use canopen_core::od::{U24, OdValue};
+    /// assert_eq!(U24::decode(&[0x56, 0x34, 0x12]).unwrap().get(), 0x12_3456);
+    /// ```
+    U24, u32, Unsigned24, 24, unsigned
+);
+wide_int!(
+    /// UNSIGNED40 (0018h): 5 octets LE (DT-05).
+    ///
+    /// ```
+    /// use canopen_core::od::U40;
+    /// assert!(U40::new(1 << 40).is_none());
+    /// ```
+    U40, u64, Unsigned40, 40, unsigned
+);
+wide_int!(
+    /// UNSIGNED48 (0019h): 6 octets LE (DT-05).
+    ///
+    /// ```
+    /// use canopen_core::od::U48;
+    /// assert_eq!(U48::MAX.get(), 0xFFFF_FFFF_FFFF);
+    /// ```
+    U48, u64, Unsigned48, 48, unsigned
+);
+wide_int!(
+    /// UNSIGNED56 (001Ah): 7 octets LE (DT-05).
+    ///
+    /// ```
+    /// use canopen_core::od::U56;
+    /// assert_eq!(U56::new(5).unwrap().get(), 5);
+    /// ```
+    U56, u64, Unsigned56, 56, unsigned
+);
+
+macro_rules! time_type {
+    ($(#[$doc:meta])* $name:ident, $dt:ident) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+        pub struct $name {
+            /// Days (since 1984-01-01 for TIME_OF_DAY).
+            pub days: u16,
+            /// Milliseconds, 0 … 2²⁸−1 (after midnight for TIME_OF_DAY).
+            pub ms: u32,
+        }
+
+        impl $name {
+            /// The largest millisecond value (28 bits).
+            pub const MS_MAX: u32 = (1 << 28) - 1;
+
+            /// A value from days and milliseconds; `None` if `ms` does not fit in 28 bits.
+            pub const fn new(days: u16, ms: u32) -> Option<Self> {
+                if ms > Self::MS_MAX {
+                    None
+                } else {
+                    Some($name { days, ms })
+                }
+            }
+
+            /// The 6-octet encoding: ms in bits 0–27 of a LE u32 (bits 28–31 reserved, sent as 0), then days LE.
+            pub const fn to_bytes(self) -> [u8; 6] {
+                let m = (self.ms & Self::MS_MAX).to_le_bytes();
+                let d = self.days.to_le_bytes();
+                [m[0], m[1], m[2], m[3], d[0], d[1]]
+            }
+
+            /// Decodes the 6-octet encoding, ignoring the 4 reserved bits.
+            pub const fn from_bytes(b: [u8; 6]) -> Self {
+                $name {
+                    ms: u32::from_le_bytes([b[0], b[1], b[2], b[3]]) & Self::MS_MAX,
+                    days: u16::from_le_bytes([b[4], b[5]]),
+                }
+            }
+
+            /// The encoding read as one 48-bit little-endian number (`days << 32 | ms`), as EDS tools show it.
+            pub const fn raw(self) -> u64 {
+                ((self.days as u64) << 32) | (self.ms & Self::MS_MAX) as u64
+            }
+        }
+
+        impl OdValue for $name {
+            const DATA_TYPE: DataType = DataType::$dt;
+            const MAX_SIZE: usize = 6;
+            const MAPPABLE: bool = true;
+            fn size(&self) -> usize {
+                6
+            }
+            fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
+                copy_at(&self.to_bytes(), offset, buf)
+            }
+            fn decode(data: &[u8]) -> Result<Self, AbortCode> {
+                check_len(data, 6)?;
+                let mut b = [0u8; 6];
+                b.copy_from_slice(data);
+                Ok(Self::from_bytes(b))
+            }
+            fn cmp_limit(&self, limit: &Value) -> Option<Ordering> {
+                cmp_unsigned(self.raw(), limit)
+            }
+        }
+    };
+}
+
+time_type!(
+    /// TIME_OF_DAY (000Ch, DT-13): milliseconds after midnight and days since 1984-01-01.
+    ///
+    /// ```
+    /// use canopen_core::od::TimeOfDay;
+    /// // V-ENC-21: 2011-02-21 12:00:00.000
+    /// let t = TimeOfDay::new(9913, 43_200_000).unwrap();
+    /// assert_eq!(t.to_bytes(), [0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]);
+    /// ```
+    TimeOfDay,
+    TimeOfDay
+);
+time_type!(
+    /// TIME_DIFFERENCE (000Dh, DT-14): a duration in days and milliseconds, same layout as TIME_OF_DAY.
+    ///
+    /// ```
+    /// use canopen_core::od::TimeDifference;
+    /// let d = TimeDifference::new(1, 500).unwrap();
+    /// assert_eq!(d.to_bytes(), [0xF4, 0x01, 0, 0, 1, 0]);
+    /// ```
+    TimeDifference,
+    TimeDifference
+);
+
+macro_rules! byte_string {
+    ($(#[$doc:meta])* $name:ident, $dt:ident, $check:expr) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, PartialEq, Eq, Hash)]
+        pub struct $name<const N: usize> {
+            buf: [u8; N],
+            len: usize,
+        }
+
+        impl<const N: usize> $name<N> {
+            /// The empty value.
+            pub const fn new() -> Self {
+                $name { buf: [0; N], len: 0 }
+            }
+
+            /// The value holding `bytes`; `None` if longer than `N` or with invalid content.
+            pub const fn from_bytes(bytes: &[u8]) -> Option<Self> {
+                if bytes.len() > N {
+                    return None;
+                }
+                let mut buf = [0u8; N];
+                let mut i = 0;
+                while i < bytes.len() {
+                    if !$check(bytes[i]) {
+                        return None;
+                    }
+                    buf[i] = bytes[i];
+                    i += 1;
+                }
+                Some($name { buf, len: bytes.len() })
+            }
+
+            /// The current content.
+            pub fn as_bytes(&self) -> &[u8] {
+                &self.buf[..self.len]
+            }
+
+            /// The current length in bytes.
+            pub const fn len(&self) -> usize {
+                self.len
+            }
+
+            /// Whether the value is empty.
+            pub const fn is_empty(&self) -> bool {
+                self.len == 0
+            }
+
+            /// The capacity in bytes.
+            pub const fn capacity(&self) -> usize {
+                N
+            }
+
+            /// Replaces the content; refuses (and changes nothing) if too long or invalid.
+            pub fn set(&mut self, bytes: &[u8]) -> Result<(), AbortCode> {
+                *self = Self::decode(bytes)?;
+                Ok(())
+            }
+        }
+
+        impl<const N: usize> Default for $name<N> {
+            fn default() -> Self {
+                Self::new()
+            }
+        }
+
+        impl<const N: usize> core::fmt::Debug for $name<N> {
+            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                f.debug_tuple(stringify!($name)).field(&self.as_bytes()).finish()
+            }
+        }
+
+        impl<const N: usize> OdValue for $name<N> {
+            const DATA_TYPE: DataType = DataType::$dt;
+            const MAX_SIZE: usize = N;
+            const MAPPABLE: bool = false;
+            fn size(&self) -> usize {
+                self.len
+            }
+            fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
+                copy_at(self.as_bytes(), offset, buf)
+            }
+            fn decode(data: &[u8]) -> Result<Self, AbortCode> {
+                if data.len() > N {
+                    return Err(AbortCode::LengthTooHigh);
+                }
+                Self::from_bytes(data).ok_or(AbortCode::InvalidValue)
+            }
+            fn begin_stream(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
+                match size {
+                    Some(s) if s > N => Err(AbortCode::LengthTooHigh),
+                    _ => Ok(()),
+                }
+            }
+            fn stream_chunk(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+                let end = offset.checked_add(data.len()).filter(|&e| e <= N).ok_or(AbortCode::LengthTooHigh)?;
+                if !data.iter().all(|&b| $check(b)) {
+                    return Err(AbortCode::InvalidValue);
+                }
+                self.buf[offset..end].copy_from_slice(data);
+                Ok(())
+            }
+            fn end_stream(&mut self, total: usize) -> Result<(), AbortCode> {
+                if total > N {
+                    return Err(AbortCode::LengthTooHigh);
+                }
+                self.len = total;
+                Ok(())
+            }
+        }
+    };
+}
+
+const fn any_byte(_: u8) -> bool {
+    true
+}
+
+/// VISIBLE_CHAR (DT-11): 00h or 20h–7Eh.
+const fn visible_char(b: u8) -> bool {
+    b == 0 || (b >= 0x20 && b <= 0x7E)
+}
+
+byte_string!(
+    /// VISIBLE_STRING (0009h, DT-11) with capacity `N` bytes and a tracked current length. Only 00h and
+    /// 20h–7Eh are accepted (0609 0030h otherwise); no terminating 00h is added.
+    ///
+    /// ```
+    /// use canopen_core::od::{AbortCode, OdValue, VisibleString};
+    /// const NAME: VisibleString<16> = VisibleString::literal("node");
+    /// assert_eq!(NAME.as_str(), "node");
+    /// assert_eq!(VisibleString::<4>::decode(b"toolong"), Err(AbortCode::LengthTooHigh));
+    /// assert_eq!(VisibleString::<4>::decode(&[0x07]), Err(AbortCode::InvalidValue));
+    /// ```
+    VisibleString,
+    VisibleString,
+    visible_char
+);
+byte_string!(
+    /// OCTET_STRING (000Ah, DT-10) with capacity `N` bytes and a tracked current length.
+    ///
+    /// ```
+    /// use canopen_core::od::{OctetString, OdValue};
+    /// let s = OctetString::<8>::from_bytes(&[1, 2, 0xFF]).unwrap();
+    /// assert_eq!(s.size(), 3);
+    /// ```
+    OctetString,
+    OctetString,
+    any_byte
+);
+
+impl<const N: usize> VisibleString<N> {
+    /// A value from a string literal, usable in `const` items; panics at compile time if `s` is longer
+    /// than `N` or holds a character outside 20h–7Eh.
+    pub const fn literal(s: &str) -> Self {
+        match Self::from_bytes(s.as_bytes()) {
+            Some(v) => v,
+            None => panic!("VisibleString::literal: too long or not visible ASCII"),
+        }
+    }
+
+    /// The content as `&str` (always valid: only ASCII is accepted).
+    ///
+    /// ```
+    /// # use canopen_core::od::VisibleString;
+    /// assert_eq!(VisibleString::<8>::from_str("ab").unwrap().as_str(), "ab");
+    /// ```
+    pub fn as_str(&self) -> &str {
+        core::str::from_utf8(self.as_bytes()).unwrap_or("")
+    }
+
+    /// A value from `s`; `None` if too long or not visible ASCII.
+    #[allow(clippy::should_implement_trait)]
+    pub const fn from_str(s: &str) -> Option<Self> {
+        Self::from_bytes(s.as_bytes())
+    }
+}
+
+/// UNICODE_STRING (000Bh, DT-12): up to `N` UNSIGNED16 code units (UTF-16, each LE on the bus) with a
+/// tracked current length. An odd byte count is refused with 0607 0010h.
+///
+/// ```
+/// use canopen_core::od::{AbortCode, OdValue, UnicodeString};
+/// let s = UnicodeString::<4>::from_str("hé").unwrap();
+/// let mut b = [0u8; 8];
+/// assert_eq!(s.read_bytes(0, &mut b), 4);
+/// assert_eq!(&b[..4], &[0x68, 0x00, 0xE9, 0x00]);
+/// assert_eq!(UnicodeString::<4>::decode(&[1, 2, 3]), Err(AbortCode::LengthMismatch));
+/// ```
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct UnicodeString<const N: usize> {
+    units: [u16; N],
+    len: usize,
+}
+
+impl<const N: usize> UnicodeString<N> {
+    /// The empty value.
+    pub const fn new() -> Self {
+        UnicodeString { units: [0; N], len: 0 }
+    }
+
+    /// A value from `s` encoded as UTF-16; `None` if it needs more than `N` code units.
+    #[allow(clippy::should_implement_trait)]
+    pub fn from_str(s: &str) -> Option<Self> {
+        let mut v = Self::new();
+        for u in s.encode_utf16() {
+            *v.units.get_mut(v.len)? = u;
+            v.len += 1;
+        }
+        Some(v)
+    }
+
+    /// The current code units.
+    pub fn units(&self) -> &[u16] {
+        &self.units[..self.len]
+    }
+
+    /// The current length in code units.
+    pub const fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the value is empty.
+    pub const fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
+impl<const N: usize> Default for UnicodeString<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize> core::fmt::Debug for UnicodeString<N> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_tuple("UnicodeString").field(&self.units()).finish()
+    }
+}
+
+impl<const N: usize> OdValue for UnicodeString<N> {
+    const DATA_TYPE: DataType = DataType::UnicodeString;
+    const MAX_SIZE: usize = 2 * N;
+    const MAPPABLE: bool = false;
+    fn size(&self) -> usize {
+        2 * self.len
+    }
+    fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
+        let mut n = 0;
+        for (i, out) in buf.iter_mut().enumerate() {
+            let pos = offset.saturating_add(i);
+            let Some(unit) = self.units().get(pos / 2) else { break };
+            *out = unit.to_le_bytes()[pos % 2];
+            n += 1;
+        }
+        n
+    }
+    fn decode(data: &[u8]) -> Result<Self, AbortCode> {
+        if data.len() > 2 * N {
+            return Err(AbortCode::LengthTooHigh);
+        }
+        if data.len() % 2 != 0 {
+            return Err(AbortCode::LengthMismatch);
+        }
+        let mut v = Self::new();
+        for (unit, pair) in v.units.iter_mut().zip(data.chunks_exact(2)) {
+            *unit = u16::from_le_bytes([pair[0], pair[1]]);
+        }
+        v.len = data.len() / 2;
+        Ok(v)
+    }
+    fn begin_stream(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
+        match size {
+            Some(s) if s > 2 * N => Err(AbortCode::LengthTooHigh),
+            Some(s) if s % 2 != 0 => Err(AbortCode::LengthMismatch),
+            _ => Ok(()),
+        }
+    }
+    fn stream_chunk(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        offset.checked_add(data.len()).filter(|&e| e <= 2 * N).ok_or(AbortCode::LengthTooHigh)?;
+        for (i, &b) in data.iter().enumerate() {
+            let pos = offset + i;
+            let Some(unit) = self.units.get_mut(pos / 2) else { return Err(AbortCode::LengthTooHigh) };
+            let mut le = unit.to_le_bytes();
+            le[pos % 2] = b;
+            *unit = u16::from_le_bytes(le);
+        }
+        Ok(())
+    }
+    fn end_stream(&mut self, total: usize) -> Result<(), AbortCode> {
+        if total > 2 * N {
+            return Err(AbortCode::LengthTooHigh);
+        }
+        if total % 2 != 0 {
+            return Err(AbortCode::LengthMismatch);
+        }
+        self.len = total / 2;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn enc<T: OdValue>(v: &T) -> ([u8; 16], usize) {
+        let mut b = [0u8; 16];
+        let n = v.read_bytes(0, &mut b);
+        (b, n)
+    }
+
+    fn bytes<T: OdValue>(v: &T) -> heapless::Vec<u8, 16> {
+        let (b, n) = enc(v);
+        heapless::Vec::from_slice(&b[..n]).unwrap()
+    }
+
+    /// VECTORS §1: V-ENC-01, 02, 04, 06, 21, 22, 23 and the DT-xx examples.
+    #[test]
+    fn encoding_vectors() {
+        assert_eq!(bytes(&266u16)[..], [0x0A, 0x01]); // V-ENC-01, DT-05
+        assert_eq!(bytes(&-266i16)[..], [0xF6, 0xFE]); // V-ENC-02, DT-06
+        assert_eq!(bytes(&6.25f32)[..], [0x00, 0x00, 0xC8, 0x40]); // V-ENC-04, DT-07
+        assert_eq!(bytes(&0x0102_0304u32)[..], [0x04, 0x03, 0x02, 0x01]); // V-ENC-06, DT-01
+        let t = TimeOfDay::new(9913, 43_200_000).unwrap(); // V-ENC-21
+        assert_eq!(bytes(&t)[..], [0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]);
+        assert_eq!(TimeOfDay::decode(&[0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]), Ok(t));
+        assert_eq!(bytes(&TimeOfDay::default())[..], [0; 6]); // V-ENC-22
+        let t = TimeOfDay::new(5844, 45_296_789).unwrap(); // V-ENC-23
+        assert_eq!(bytes(&t)[..], [0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16]);
+        assert_eq!(TimeOfDay::decode(&[0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16]), Ok(t));
+        // Reserved bits 28–31 are ignored on decode (DT-13).
+        assert_eq!(TimeDifference::decode(&[0x95, 0x2C, 0xB3, 0xF2, 0xD4, 0x16]).unwrap().ms, 45_296_789);
+        assert_eq!(bytes(&6.25f64)[..], 6.25f64.to_le_bytes()); // DT-08
+        assert_eq!(bytes(&true)[..], [1]); // DT-03
+                                           // UNSIGNED10 example of DT-02 lives in a U16 here: 21Ch -> 1C 02 (V-ENC-03).
+        assert_eq!(bytes(&0x21Cu16)[..], [0x1C, 0x02]);
+    }
+
+    #[test]
+    fn wide_integers_round_trip() {
+        for v in [I24::MIN, I24::MAX, I24::new(-266).unwrap(), I24::default()] {
+            assert_eq!(I24::decode(&bytes(&v)), Ok(v));
+        }
+        assert_eq!(bytes(&I24::new(-266).unwrap())[..], [0xF6, 0xFE, 0xFF]);
+        for v in [I40::MIN, I40::MAX, I40::new(-5).unwrap()] {
+            assert_eq!(I40::decode(&bytes(&v)), Ok(v));
+        }
+        assert_eq!(I48::decode(&bytes(&I48::MIN)), Ok(I48::MIN));
+        assert_eq!(I56::decode(&bytes(&I56::MIN)), Ok(I56::MIN));
+        assert_eq!(U24::decode(&bytes(&U24::MAX)), Ok(U24::MAX));
+        assert_eq!(U40::decode(&bytes(&U40::MAX)), Ok(U40::MAX));
+        assert_eq!(bytes(&U48::MAX)[..], [0xFF; 6]);
+        assert_eq!(U56::decode(&[1, 0, 0, 0, 0, 0, 0x80]).unwrap().get(), 0x80_0000_0000_0001);
+        assert_eq!(U40::decode(&[0; 4]), Err(AbortCode::LengthTooLow));
+        assert_eq!(U40::decode(&[0; 6]), Err(AbortCode::LengthTooHigh));
+        assert_eq!(<I56 as OdValue>::MAX_SIZE, 7);
+    }
+
+    #[test]
+    fn strings() {
+        let s = VisibleString::<8>::decode(b"abc").unwrap();
+        assert_eq!(s.as_str(), "abc");
+        let mut b = [0u8; 2];
+        assert_eq!(s.read_bytes(1, &mut b), 2);
+        assert_eq!(&b, b"bc");
+        assert_eq!(s.read_bytes(3, &mut b), 0);
+        assert_eq!(VisibleString::<2>::decode(b"abc"), Err(AbortCode::LengthTooHigh));
+        assert_eq!(VisibleString::<8>::decode(&[0x7F]), Err(AbortCode::InvalidValue));
+        let o = OctetString::<4>::decode(&[0, 0xFF]).unwrap();
+        assert_eq!(o.as_bytes(), &[0, 0xFF]);
+        let u = UnicodeString::<3>::decode(&[0x41, 0, 0x42, 0]).unwrap();
+        assert_eq!(u.units(), &[0x41, 0x42]);
+        let mut b = [0u8; 4];
+        assert_eq!(u.read_bytes(1, &mut b), 3);
+        assert_eq!(b[..3], [0, 0x42, 0]);
+        assert_eq!(UnicodeString::<1>::decode(&[0; 4]), Err(AbortCode::LengthTooHigh));
+        assert!(UnicodeString::<1>::from_str("ab").is_none());
+    }
+
+    #[test]
+    fn streamed_strings() {
+        let mut s = VisibleString::<6>::literal("old");
+        assert_eq!(s.begin_stream(Some(7)), Err(AbortCode::LengthTooHigh));
+        s.begin_stream(Some(5)).unwrap();
+        s.stream_chunk(0, b"hel").unwrap();
+        s.stream_chunk(3, b"lo").unwrap();
+        assert_eq!(s.stream_chunk(5, b"xx"), Err(AbortCode::LengthTooHigh));
+        s.end_stream(5).unwrap();
+        assert_eq!(s.as_str(), "hello");
+        let mut u = UnicodeString::<2>::new();
+        u.begin_stream(None).unwrap();
+        u.stream_chunk(0, &[0x41]).unwrap();
+        u.stream_chunk(1, &[0x00, 0x42, 0x00]).unwrap();
+        assert_eq!(u.end_stream(3), Err(AbortCode::LengthMismatch));
+        u.end_stream(4).unwrap();
+        assert_eq!(u.units(), &[0x41, 0x42]);
+    }
+
+    #[test]
+    fn booleans_and_limits() {
+        assert_eq!(bool::decode(&[2]), Err(AbortCode::InvalidValue));
+        assert_eq!(bool::decode(&[]), Err(AbortCode::LengthTooLow));
+        let lo = Value::Real32(-1.5);
+        let hi = Value::Real32(2.0);
+        assert_eq!(check_limits(&1.0f32, Some(&lo), Some(&hi)), Ok(()));
+        assert_eq!(check_limits(&2.5f32, Some(&lo), Some(&hi)), Err(AbortCode::ValueTooHigh));
+        assert_eq!(check_limits(&f32::NAN, Some(&lo), Some(&hi)), Err(AbortCode::InvalidValue));
+        assert_eq!(check_limits(&u64::MAX, Some(&Value::Int(-1)), Some(&Value::Uint(u64::MAX))), Ok(()));
+        assert_eq!(check_limits(&-1i64, Some(&Value::Uint(0)), None), Err(AbortCode::ValueTooLow));
+        assert_eq!(check_limits(&I24::MAX, None, Some(&Value::Int(10))), Err(AbortCode::ValueTooHigh));
+    }
+}

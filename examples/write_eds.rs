@@ -1,0 +1,33 @@
+//! Writes the EDS of the all-types test dictionary (comm profile + application) to stdout or to the file
+//! given as the first argument: `cargo run --example write_eds -- out.eds`.
+
+#[path = "../tests/common/all_types.rs"]
+mod all_types;
+
+use canopen_core::od::eds::{write_eds, EdsInfo};
+
+fn main() {
+    let od = all_types::node_od();
+    let info = EdsInfo {
+        file_name: "all_types.eds",
+        description: "canopen-rs test device with every data type",
+        vendor_name: "canopen-rs",
+        product_name: "All types",
+        order_code: "AT-1",
+        ..EdsInfo::DEFAULT
+    };
+    let mut text = String::new();
+    if let Err(e) = write_eds(&mut text, &info, &od) {
+        eprintln!("EDS formatting failed: {e}");
+        std::process::exit(1);
+    }
+    match std::env::args().nth(1) {
+        Some(path) => {
+            if let Err(e) = std::fs::write(&path, text) {
+                eprintln!("cannot write {path}: {e}");
+                std::process::exit(1);
+            }
+        }
+        None => print!("{text}"),
+    }
+}

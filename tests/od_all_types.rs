@@ -1,0 +1,264 @@
+//! Every entry of the all-types dictionary read and written through the derive-generated dispatch, with
+//! each abort code of OD-16 / ABORT-09..11, 17..23 and the comm profile merged in (OD-12).
+
+mod common {
+    pub mod all_types;
+}
+
+use canopen_core::od::{
+    AbortCode, Access, DataType, ObjectCode, ObjectDictionary, OdDescribe, PdoDir, PdoMapping, TimeOfDay, Value,
+};
+use common::all_types::{node_od, AllTypes};
+
+fn read(od: &impl ObjectDictionary, index: u16, sub: u8) -> Result<Vec<u8>, AbortCode> {
+    let mut buf = [0u8; 128];
+    let n = od.read(index, sub, 0, &mut buf)?;
+    Ok(buf[..n].to_vec())
+}
+
+/// (index, sub, an encoded value to write, its data type).
+fn samples() -> Vec<(u16, u8, Vec<u8>, DataType)> {
+    use DataType::*;
+    vec![
+        (0x2000, 0, vec![0], Boolean),
+        (0x2001, 0, vec![0x9C], Integer8), // -100
+        (0x2002, 0, (-266i16).to_le_bytes().to_vec(), Integer16),
+        (0x2003, 0, vec![0xF6, 0xFE, 0xFF], Integer24),
+        (0x2004, 0, (-5i32).to_le_bytes().to_vec(), Integer32),
+        (0x2005, 0, vec![1, 2, 3, 4, 0x85], Integer40),
+        (0x2006, 0, vec![1, 2, 3, 4, 5, 0x86], Integer48),
+        (0x2007, 0, vec![1, 2, 3, 4, 5, 6, 0x87], Integer56),
+        (0x2008, 0, i64::MIN.to_le_bytes().to_vec(), Integer64),
+        (0x2010, 0, vec![200], Unsigned8),
+        (0x2011, 0, vec![0x0A, 0x01], Unsigned16),
+        (0x2012, 0, vec![1, 2, 3], Unsigned24),
+        (0x2013, 0, vec![4, 3, 2, 1], Unsigned32),
+        (0x2014, 0, vec![1, 2, 3, 4, 5], Unsigned40),
+        (0x2015, 0, vec![1, 2, 3, 4, 5, 6], Unsigned48),
+        (0x2016, 0, vec![1, 2, 3, 4, 5, 6, 7], Unsigned56),
+        (0x2017, 0, u64::MAX.to_le_bytes().to_vec(), Unsigned64),
+        (0x2018, 0, vec![0x00, 0x00, 0x00, 0x40], Real32), // 2.0
+        (0x2019, 0, 6.25f64.to_le_bytes().to_vec(), Real64),
+        (0x2020, 0, b"visible text".to_vec(), VisibleString),
+        (0x2021, 0, vec![0, 0xFF, 0x10], OctetString),
+        (0x2022, 0, vec![0x41, 0, 0xE9, 0], UnicodeString),
+        (0x2023, 0, vec![0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26], TimeOfDay), // V-ENC-21
+        (0x2024, 0, vec![0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16], TimeDifference),
+        (0x2025, 0, (0..40).collect(), Domain),
+        (0x2100, 1, 0.5f32.to_le_bytes().to_vec(), Real32),
+        (0x2100, 2, 9.5f32.to_le_bytes().to_vec(), Real32),
+        (0x2100, 3, vec![3], Unsigned8),
+        (0x6200, 1, (-10i16).to_le_bytes().to_vec(), Integer16),
+        (0x6200, 4, 10i16.to_le_bytes().to_vec(), Integer16),
+    ]
+}
+
+#[test]
+fn every_writable_entry_round_trips() {
+    let mut od = AllTypes::default();
+    for (index, sub, bytes, dt) in samples() {
+        let info = od.info(index, sub).unwrap();
+        assert_eq!(info.data_type, dt, "{index:04X}:{sub}");
+        od.write(index, sub, &bytes).unwrap_or_else(|e| panic!("{index:04X}:{sub} {e}"));
+        assert_eq!(read(&od, index, sub).unwrap(), bytes, "{index:04X}:{sub}");
+        assert_eq!(od.info(index, sub).unwrap().size, bytes.len());
+        if let Some(size) = dt.size() {
+            assert_eq!(size, bytes.len());
+        }
+    }
+    assert_eq!(od.int16, -266);
+    assert_eq!(od.int24.get(), -266);
+    assert_eq!(od.int40.get(), -0x7A_FBFC_FDFF);
+    assert_eq!(od.uint24.get(), 0x03_0201);
+    assert_eq!(od.time_of_day, TimeOfDay::new(9913, 43_200_000).unwrap());
+    assert_eq!(od.visible.as_str(), "visible text");
+    assert_eq!(od.unicode.units(), &[0x41, 0xE9]);
+    assert_eq!(od.firmware.as_bytes().len(), 40);
+    assert_eq!((od.kp, od.ki, od.mode), (0.5, 9.5, 3));
+    assert_eq!(od.outputs, [-10, 0, 0, 10]);
+    assert_eq!(od.real32, 2.0);
+    // Reading at an offset (SDO segmented upload) and past the end.
+    let mut b = [0u8; 4];
+    assert_eq!(od.read(0x2020, 0, 8, &mut b), Ok(4));
+    assert_eq!(&b, b"text");
+    assert_eq!(od.read(0x2020, 0, 12, &mut b), Ok(0));
+    assert_eq!(od.read(0x2025, 0, 38, &mut b), Ok(2));
+}
+
+#[test]
+fn read_only_entries_and_counts() {
+    let mut od = AllTypes::with_defaults();
+    od.inputs = [1, 2, 3, 4, 5, 6, 7, 8];
+    od.read_only = 0x1234;
+    od.label.set(b"lbl").unwrap();
+    // OD-04: sub 0 of ARRAY and RECORD = highest sub-index, UNSIGNED8 const.
+    assert_eq!(read(&od, 0x6000, 0).unwrap(), [8]);
+    assert_eq!(read(&od, 0x6200, 0).unwrap(), [4]);
+    assert_eq!(read(&od, 0x2100, 0).unwrap(), [4]);
+    let info = od.info(0x6000, 0).unwrap();
+    assert_eq!((info.data_type, info.access), (DataType::Unsigned8, Access::Const));
+    for i in 1..=8u8 {
+        assert_eq!(read(&od, 0x6000, i).unwrap(), [i]);
+    }
+    assert_eq!(read(&od, 0x2031, 0).unwrap(), [0x34, 0x12]);
+    assert_eq!(read(&od, 0x2032, 0).unwrap(), [7]);
+    assert_eq!(read(&od, 0x2100, 4).unwrap(), b"lbl");
+    assert_eq!(read(&od, 0x2021, 0).unwrap(), b"AB");
+}
+
+#[test]
+fn abort_codes() {
+    let mut od = AllTypes::with_defaults();
+    // 0609 0031h / 0609 0032h: limits (ABORT-22/23).
+    assert_eq!(od.write(0x2001, 0, &[101]), Err(AbortCode::ValueTooHigh));
+    assert_eq!(od.write(0x2001, 0, &[(-101i8) as u8]), Err(AbortCode::ValueTooLow));
+    assert_eq!(od.write(0x2011, 0, &9u16.to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(od.write(0x2018, 0, &3.0f32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(od.write(0x2018, 0, &f32::NAN.to_le_bytes()), Err(AbortCode::InvalidValue));
+    assert_eq!(od.write(0x2100, 3, &[0]), Err(AbortCode::ValueTooLow));
+    assert_eq!(od.write(0x6200, 2, &11i16.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    // 0609 0030h: invalid value (ABORT-21): BOOLEAN 2, non-visible char, and the application hook.
+    assert_eq!(od.write(0x2000, 0, &[2]), Err(AbortCode::InvalidValue));
+    assert_eq!(od.write(0x2020, 0, &[0x41, 0x07]), Err(AbortCode::InvalidValue));
+    assert_eq!(od.write(0x2002, 0, &13i16.to_le_bytes()), Err(AbortCode::InvalidValue));
+    assert_eq!(od.int16_writes, 0);
+    // 0607 0012h / 0607 0013h / 0607 0010h: length (ABORT-17..19).
+    assert_eq!(od.write(0x2011, 0, &[1, 2, 3]), Err(AbortCode::LengthTooHigh));
+    assert_eq!(od.write(0x2011, 0, &[1]), Err(AbortCode::LengthTooLow));
+    assert_eq!(od.write(0x2020, 0, &[b'a'; 17]), Err(AbortCode::LengthTooHigh));
+    assert_eq!(od.write(0x2022, 0, &[1, 2, 3]), Err(AbortCode::LengthMismatch));
+    assert_eq!(od.write(0x2025, 0, &[0; 65]), Err(AbortCode::LengthTooHigh));
+    // 0601 0001h: read of a write-only entry (ABORT-09).
+    assert_eq!(read(&od, 0x2030, 0), Err(AbortCode::ReadOfWriteOnly));
+    od.write(0x2030, 0, &[1, 0, 0, 0]).unwrap();
+    assert_eq!(od.write_only, 1);
+    // 0601 0002h: write of ro / const / sub 0 (ABORT-10).
+    assert_eq!(od.write(0x2031, 0, &[0, 0]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(od.write(0x2032, 0, &[0]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(od.write(0x6000, 1, &[0]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(od.write(0x6000, 0, &[8]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(od.write(0x2100, 4, b"x"), Err(AbortCode::WriteOfReadOnly));
+    // 0602 0000h / 0609 0011h (ABORT-11, ABORT-20).
+    assert_eq!(read(&od, 0x2009, 0), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(read(&od, 0x1FFF, 0), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(read(&od, 0xFFFF, 0), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(od.write(0x3000, 0, &[0]), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(read(&od, 0x2001, 1), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(read(&od, 0x6000, 9), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(read(&od, 0x2100, 5), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(od.info(0x6200, 0xFF).err(), Some(AbortCode::SubIndexDoesNotExist));
+    // A refused write changes nothing.
+    let before = format!("{od:?}");
+    for (index, sub, data) in [
+        (0x2001u16, 0u8, &[101u8][..]),
+        (0x2002, 0, &13i16.to_le_bytes()[..]),
+        (0x2020, 0, &[0x41, 0x07][..]),
+        (0x2011, 0, &[1][..]),
+        (0x2025, 0, &[0; 65][..]),
+        (0x2031, 0, &[0, 0][..]),
+    ] {
+        assert!(od.write(index, sub, data).is_err());
+    }
+    assert_eq!(format!("{od:?}"), before);
+    // The on_write hook sees every accepted write.
+    od.write(0x2002, 0, &14i16.to_le_bytes()).unwrap();
+    assert_eq!(od.int16_writes, 1);
+}
+
+#[test]
+fn streamed_writes() {
+    let mut od = AllTypes::default();
+    // DOMAIN streamed in chunks (a firmware image without a buffer of its size).
+    od.begin_write(0x2025, 0, Some(10)).unwrap();
+    od.write_chunk(0x2025, 0, 0, &[1; 7]).unwrap();
+    od.write_chunk(0x2025, 0, 7, &[2; 3]).unwrap();
+    od.end_write(0x2025, 0, 10).unwrap();
+    assert_eq!(od.firmware.as_bytes(), &[1, 1, 1, 1, 1, 1, 1, 2, 2, 2]);
+    assert_eq!(od.begin_write(0x2025, 0, Some(100)), Err(AbortCode::LengthTooHigh));
+    od.begin_write(0x2025, 0, None).unwrap();
+    od.write_chunk(0x2025, 0, 0, &[9; 4]).unwrap();
+    od.abort_write(0x2025, 0);
+    assert_eq!(od.firmware.as_bytes().len(), 10);
+    // Strings stream too.
+    od.begin_write(0x2020, 0, Some(11)).unwrap();
+    od.write_chunk(0x2020, 0, 0, b"hello ").unwrap();
+    od.write_chunk(0x2020, 0, 6, b"world").unwrap();
+    od.end_write(0x2020, 0, 11).unwrap();
+    assert_eq!(od.visible.as_str(), "hello world");
+    assert_eq!(od.begin_write(0x2020, 0, Some(17)), Err(AbortCode::LengthTooHigh));
+    // Fixed-size values are written whole; read-only entries refuse before any data.
+    assert_eq!(od.begin_write(0x2013, 0, Some(4)), Err(AbortCode::UnsupportedAccess));
+    assert_eq!(od.begin_write(0x2031, 0, Some(2)), Err(AbortCode::WriteOfReadOnly));
+}
+
+#[test]
+fn pdo_handles() {
+    let mut od = AllTypes::with_defaults();
+    let h = od.pdo_resolve(0x6000, 3, PdoDir::Tpdo).unwrap();
+    assert_eq!(h.size, 1);
+    od.inputs[2] = 0x55;
+    let mut b = [0u8; 8];
+    assert_eq!(od.pdo_read(&h, &mut b), Ok(1));
+    assert_eq!(b[0], 0x55);
+    assert_eq!(od.pdo_resolve(0x6000, 3, PdoDir::Rpdo), Err(AbortCode::NotMappable));
+    assert_eq!(od.pdo_resolve(0x2020, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable));
+    assert_eq!(od.pdo_resolve(0x2005, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable));
+    assert_eq!(od.pdo_resolve(0x2030, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable)); // wo
+    assert_eq!(od.pdo_resolve(0x2040, 0, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
+    let r = od.pdo_resolve(0x2002, 0, PdoDir::Rpdo).unwrap();
+    od.pdo_write(&r, &500i16.to_le_bytes()).unwrap();
+    assert_eq!(od.int16, 500);
+    assert_eq!(od.pdo_write(&r, &2000i16.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(od.int16, 500);
+    let t = od.pdo_resolve(0x2023, 0, PdoDir::Tpdo).unwrap();
+    assert_eq!(t.size, 6);
+    let u = od.pdo_resolve(0x2017, 0, PdoDir::Tpdo).unwrap();
+    assert_eq!(od.pdo_read(&u, &mut b), Ok(8));
+    assert_eq!(b, [0xFF; 8]);
+}
+
+#[test]
+fn table_is_const_and_sorted() {
+    assert!(canopen_core::od::is_sorted(AllTypes::OD_ENTRIES));
+    assert_eq!(AllTypes::OD_OBJECTS.len(), 31);
+    let e = AllTypes::OD_ENTRIES.iter().find(|e| e.index == 0x2002).unwrap();
+    assert_eq!((e.low, e.high, e.default), (Some(Value::Int(-1000)), Some(Value::Int(1000)), Some(Value::Int(0))));
+    assert_eq!(e.pdo, PdoMapping::Rpdo);
+    assert_eq!(e.access, Access::Rww);
+    let rec = AllTypes::OD_OBJECTS.iter().find(|o| o.index == 0x2100).unwrap();
+    assert_eq!((rec.code, rec.name, rec.subs), (ObjectCode::Record, "PID controller", 5));
+    let arr = AllTypes::OD_OBJECTS.iter().find(|o| o.index == 0x6000).unwrap();
+    assert_eq!((arr.code, arr.subs), (ObjectCode::Array, 9));
+    assert_eq!(AllTypes::OD_MAX_VALUE_SIZE, 16);
+    const ENTRIES: usize = AllTypes::OD_ENTRIES.len();
+    assert_eq!(ENTRIES, 28 + 5 + 9 + 5);
+}
+
+#[test]
+fn merged_with_the_comm_profile() {
+    let mut od = node_od();
+    assert_eq!(read(&od, 0x1000, 0).unwrap(), [0x91, 0x01, 0x01, 0x00]);
+    assert_eq!(read(&od, 0x1018, 2).unwrap(), [0x34, 0x12, 0, 0]);
+    assert_eq!(read(&od, 0x1008, 0).unwrap(), b"canopen-rs all types");
+    assert_eq!(read(&od, 0x2010, 0).unwrap(), [200]);
+    od.write(0x1017, 0, &[0x64, 0]).unwrap();
+    assert_eq!(od.comm.params.heartbeat_time_ms, 100);
+    od.write(0x1016, 1, &[0x64, 0, 2, 0]).unwrap();
+    assert_eq!(od.write(0x1016, 2, &[0xC8, 0, 2, 0]), Err(AbortCode::ParameterIncompatibility));
+    assert_eq!(od.write(0x1001, 0, &[1]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(read(&od, 0x1005, 0), Err(AbortCode::ObjectDoesNotExist));
+    od.write(0x2002, 0, &[5, 0]).unwrap();
+    assert_eq!(od.app.int16, 5);
+    let h = od.pdo_resolve(0x1001, 0, PdoDir::Tpdo).unwrap();
+    od.comm.params.error_register = 0x11;
+    let mut b = [0u8; 1];
+    assert_eq!(od.pdo_read(&h, &mut b), Ok(1));
+    assert_eq!(b, [0x11]);
+    assert_eq!(od.object_count(), 10 + 31);
+    let indices: Vec<u16> = (0..od.object_count()).map(|n| od.object(n).unwrap().index).collect();
+    assert!(indices.windows(2).all(|w| w[0] < w[1]));
+    // Through references too.
+    let mut view = canopen_core::od::Merged { comm: &mut od.comm, app: &mut od.app };
+    view.write(0x2010, 0, &[1]).unwrap();
+    assert_eq!(od.app.uint8, 1);
+}
