@@ -14,7 +14,9 @@ pub mod cob;
 pub mod comm;
 pub mod frame;
 pub mod od;
+pub mod sdo;
 pub mod time;
+pub mod wire;
 
 pub use cob::NodeId;
 pub use frame::CanFrame;
