@@ -92,7 +92,7 @@ impl Multiplexer {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Expedited {
-    /// Bytes 4–7 of the frame; only the first `len` are data.
+    /// Bytes 4–7 of the frame; only the first `len` are data (the rest is 0 after `parse`).
     pub data: [u8; 4],
     /// Number of data bytes, 1..=4 (4 when the size is not indicated).
     pub len: u8,
@@ -155,7 +155,13 @@ impl InitiateData {
         let mut data = [0u8; 4];
         data.copy_from_slice(&b[4..8]);
         match (e, s) {
-            (true, true) => InitiateData::Expedited(Expedited { data, len: 4 - ((b[0] >> 2) & 0x03), size_indicated: true }),
+            (true, true) => {
+                let len = 4 - ((b[0] >> 2) & 0x03);
+                for d in data.iter_mut().skip(usize::from(len)) {
+                    *d = 0;
+                }
+                InitiateData::Expedited(Expedited { data, len, size_indicated: true })
+            }
             (true, false) => InitiateData::Expedited(Expedited { data, len: 4, size_indicated: false }),
             (false, true) => InitiateData::Segmented { size: Some(u32::from_le_bytes(data)) },
             (false, false) => InitiateData::Segmented { size: None },
