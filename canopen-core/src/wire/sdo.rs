@@ -431,7 +431,10 @@ impl ClientRequest {
                     let size = (b[0] & 0x02 != 0).then(|| u32::from_le_bytes([b[4], b[5], b[6], b[7]]));
                     ClientRequest::BlockDownloadInitiate { mux, crc: b[0] & 0x04 != 0, size }
                 } else {
-                    ClientRequest::BlockDownloadEnd { unused: (b[0] >> 2) & 0x07, crc: u16::from_le_bytes([b[1], b[2]]) }
+                    ClientRequest::BlockDownloadEnd {
+                        unused: (b[0] >> 2) & 0x07,
+                        crc: u16::from_le_bytes([b[1], b[2]]),
+                    }
                 }
             }
             _ => return Err(ParseError::CommandSpecifier),
@@ -708,28 +711,31 @@ mod tests {
     #[test]
     fn v_sdo_expedited_vectors() {
         // V-SDO-01
-        check_req([0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00], ClientRequest::InitiateDownload {
-            mux: mux(0x607A, 0),
-            data: exp(&[0xE8, 0x03, 0, 0]),
-        });
+        check_req(
+            [0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00],
+            ClientRequest::InitiateDownload { mux: mux(0x607A, 0), data: exp(&[0xE8, 0x03, 0, 0]) },
+        );
         check_rsp([0x60, 0x7A, 0x60, 0x00, 0, 0, 0, 0], ServerResponse::InitiateDownload { mux: mux(0x607A, 0) });
         // V-SDO-02
         check_req([0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0], ClientRequest::InitiateUpload { mux: mux(0x6041, 0) });
-        check_rsp([0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0], ServerResponse::expedited_upload(mux(0x6041, 0), &[0x40, 2]));
+        check_rsp(
+            [0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0],
+            ServerResponse::expedited_upload(mux(0x6041, 0), &[0x40, 2]),
+        );
         // V-SDO-03 (request) and its conformant abort answer
-        check_req([0x2F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0], ClientRequest::InitiateDownload {
-            mux: mux(0x1400, 2),
-            data: exp(&[0xFD]),
-        });
-        check_rsp([0x80, 0x00, 0x14, 0x02, 0x30, 0x00, 0x09, 0x06], ServerResponse::Abort {
-            mux: mux(0x1400, 2),
-            code: 0x0609_0030,
-        });
+        check_req(
+            [0x2F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0],
+            ClientRequest::InitiateDownload { mux: mux(0x1400, 2), data: exp(&[0xFD]) },
+        );
+        check_rsp(
+            [0x80, 0x00, 0x14, 0x02, 0x30, 0x00, 0x09, 0x06],
+            ServerResponse::Abort { mux: mux(0x1400, 2), code: 0x0609_0030 },
+        );
         // V-SDO-04
-        check_req([0x23, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60], ClientRequest::InitiateDownload {
-            mux: mux(0x1603, 1),
-            data: exp(&[0x08, 0x02, 0x12, 0x60]),
-        });
+        check_req(
+            [0x23, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60],
+            ClientRequest::InitiateDownload { mux: mux(0x1603, 1), data: exp(&[0x08, 0x02, 0x12, 0x60]) },
+        );
         check_rsp([0x60, 0x03, 0x16, 0x01, 0, 0, 0, 0], ServerResponse::InitiateDownload { mux: mux(0x1603, 1) });
         // V-SDO-05, V-SDO-06
         check_rsp([0x4F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0], ServerResponse::expedited_upload(mux(0x1400, 2), &[0xFD]));
@@ -738,7 +744,10 @@ mod tests {
             ServerResponse::expedited_upload(mux(0x1603, 1), &[0x08, 0x02, 0x12, 0x60]),
         );
         // V-SDO-08, V-SDO-09
-        check_rsp([0x43, 0x18, 0x10, 0x01, 0xB6, 0x02, 0, 0], ServerResponse::expedited_upload(mux(0x1018, 1), &[0xB6, 2, 0, 0]));
+        check_rsp(
+            [0x43, 0x18, 0x10, 0x01, 0xB6, 0x02, 0, 0],
+            ServerResponse::expedited_upload(mux(0x1018, 1), &[0xB6, 2, 0, 0]),
+        );
         check_rsp([0x4F, 0x18, 0x10, 0x00, 0x04, 0, 0, 0], ServerResponse::expedited_upload(mux(0x1018, 0), &[4]));
         // V-SDO-10..V-SDO-16 abort frames
         for (b, m, code) in [
@@ -777,25 +786,25 @@ mod tests {
         assert_eq!(r, ClientRequest::InitiateDownload { mux: mux(0x2000, 0), data: InitiateData::Expedited(e) });
         assert_eq!(r.emit()[0], 0x22);
         // 42h expedited upload without size
-        assert_eq!(rsp([0x42, 0, 0x20, 0, 1, 2, 3, 4]), ServerResponse::InitiateUpload {
-            mux: mux(0x2000, 0),
-            data: InitiateData::Expedited(e)
-        });
+        assert_eq!(
+            rsp([0x42, 0, 0x20, 0, 1, 2, 3, 4]),
+            ServerResponse::InitiateUpload { mux: mux(0x2000, 0), data: InitiateData::Expedited(e) }
+        );
         // SDO-16: n is ignored unless e = 1 and s = 1
-        assert_eq!(req([0x2C, 0, 0x20, 0, 0, 0, 0, 0]), ClientRequest::InitiateDownload {
-            mux: mux(0x2000, 0),
-            data: InitiateData::Segmented { size: None }
-        });
+        assert_eq!(
+            req([0x2C, 0, 0x20, 0, 0, 0, 0, 0]),
+            ClientRequest::InitiateDownload { mux: mux(0x2000, 0), data: InitiateData::Segmented { size: None } }
+        );
     }
 
     #[test]
     fn v_sdo_segmented_upload_7_2() {
         let m = mux(0x1009, 0);
         check_req([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], ClientRequest::InitiateUpload { mux: m });
-        check_rsp([0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0], ServerResponse::InitiateUpload {
-            mux: m,
-            data: InitiateData::Segmented { size: Some(23) },
-        });
+        check_rsp(
+            [0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0],
+            ServerResponse::InitiateUpload { mux: m, data: InitiateData::Segmented { size: Some(23) } },
+        );
         check_req([0x60, 0, 0, 0, 0, 0, 0, 0], ClientRequest::UploadSegment { toggle: false });
         check_req([0x70, 0, 0, 0, 0, 0, 0, 0], ClientRequest::UploadSegment { toggle: true });
         // 002's client sends the multiplexer in the reserved bytes: still an upload segment request (SDO-02)
@@ -810,20 +819,23 @@ mod tests {
             check_rsp(b, ServerResponse::UploadSegment(Segment::new(t, c, data)));
         }
         // 7.1 seed step 10 as printed: 0Bh = t 0, n 5, c 1
-        assert_eq!(rsp([0x0B, 0x42, 0, 0, 0, 0, 0, 0]), ServerResponse::UploadSegment(Segment::new(false, true, b"B\0")));
+        assert_eq!(
+            rsp([0x0B, 0x42, 0, 0, 0, 0, 0, 0]),
+            ServerResponse::UploadSegment(Segment::new(false, true, b"B\0"))
+        );
     }
 
     #[test]
     fn v_sdo_segmented_download_7_3() {
         let m = mux(0x2000, 0);
-        check_req([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], ClientRequest::InitiateDownload {
-            mux: m,
-            data: InitiateData::Segmented { size: Some(9) },
-        });
-        check_req([0x20, 0x00, 0x20, 0x00, 0, 0, 0, 0], ClientRequest::InitiateDownload {
-            mux: m,
-            data: InitiateData::Segmented { size: None },
-        });
+        check_req(
+            [0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ClientRequest::InitiateDownload { mux: m, data: InitiateData::Segmented { size: Some(9) } },
+        );
+        check_req(
+            [0x20, 0x00, 0x20, 0x00, 0, 0, 0, 0],
+            ClientRequest::InitiateDownload { mux: m, data: InitiateData::Segmented { size: None } },
+        );
         check_rsp([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0], ServerResponse::InitiateDownload { mux: m });
         check_req(
             [0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37],
@@ -833,9 +845,18 @@ mod tests {
         check_req([0x1B, 0x38, 0x39, 0, 0, 0, 0, 0], ClientRequest::DownloadSegment(Segment::new(true, true, b"89")));
         check_rsp([0x30, 0, 0, 0, 0, 0, 0, 0], ServerResponse::DownloadSegment { toggle: true });
         // toggle-error variant, abort 0503 0000h and timeout abort 0504 0000h
-        assert_eq!(req([0x0B, 0x38, 0x39, 0, 0, 0, 0, 0]), ClientRequest::DownloadSegment(Segment::new(false, true, b"89")));
-        check_rsp([0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x03, 0x05], ServerResponse::Abort { mux: m, code: 0x0503_0000 });
-        check_rsp([0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05], ServerResponse::Abort { mux: m, code: 0x0504_0000 });
+        assert_eq!(
+            req([0x0B, 0x38, 0x39, 0, 0, 0, 0, 0]),
+            ClientRequest::DownloadSegment(Segment::new(false, true, b"89"))
+        );
+        check_rsp(
+            [0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x03, 0x05],
+            ServerResponse::Abort { mux: m, code: 0x0503_0000 },
+        );
+        check_rsp(
+            [0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05],
+            ServerResponse::Abort { mux: m, code: 0x0504_0000 },
+        );
         // n = 7: a segment with no data
         assert_eq!(req([0x0F, 0, 0, 0, 0, 0, 0, 0]), ClientRequest::DownloadSegment(Segment::new(false, true, b"")));
     }
@@ -843,27 +864,26 @@ mod tests {
     #[test]
     fn v_sdo_block_download_8_1_and_8_2() {
         let m = mux(0x2000, 0);
-        check_req([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], ClientRequest::BlockDownloadInitiate {
-            mux: m,
-            crc: true,
-            size: Some(9),
-        });
-        check_req([0xC2, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], ClientRequest::BlockDownloadInitiate {
-            mux: m,
-            crc: false,
-            size: Some(9),
-        });
-        check_req([0xC4, 0x00, 0x20, 0x00, 0, 0, 0, 0], ClientRequest::BlockDownloadInitiate { mux: m, crc: true, size: None });
-        check_rsp([0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0], ServerResponse::BlockDownloadInitiate {
-            mux: m,
-            crc: true,
-            blksize: 127,
-        });
-        check_rsp([0xA0, 0x00, 0x20, 0x00, 0x03, 0, 0, 0], ServerResponse::BlockDownloadInitiate {
-            mux: m,
-            crc: false,
-            blksize: 3,
-        });
+        check_req(
+            [0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ClientRequest::BlockDownloadInitiate { mux: m, crc: true, size: Some(9) },
+        );
+        check_req(
+            [0xC2, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ClientRequest::BlockDownloadInitiate { mux: m, crc: false, size: Some(9) },
+        );
+        check_req(
+            [0xC4, 0x00, 0x20, 0x00, 0, 0, 0, 0],
+            ClientRequest::BlockDownloadInitiate { mux: m, crc: true, size: None },
+        );
+        check_rsp(
+            [0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0],
+            ServerResponse::BlockDownloadInitiate { mux: m, crc: true, blksize: 127 },
+        );
+        check_rsp(
+            [0xA0, 0x00, 0x20, 0x00, 0x03, 0, 0, 0],
+            ServerResponse::BlockDownloadInitiate { mux: m, crc: false, blksize: 3 },
+        );
         let s1 = BlockSegment::parse(&[0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37]).unwrap();
         assert_eq!(s1, BlockSegment { last: false, seqno: 1, data: *b"1234567" });
         let s2 = BlockSegment::parse(&[0x83, 0x4F, 0x50, 0, 0, 0, 0, 0]).unwrap();
@@ -874,30 +894,31 @@ mod tests {
         check_req([0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], ClientRequest::BlockDownloadEnd { unused: 5, crc: 0x6080 });
         check_req([0xC1, 0, 0, 0, 0, 0, 0, 0], ClientRequest::BlockDownloadEnd { unused: 0, crc: 0 });
         check_rsp([0xA1, 0, 0, 0, 0, 0, 0, 0], ServerResponse::BlockDownloadEnd);
-        check_rsp([0x80, 0x00, 0x20, 0x00, 0x04, 0x00, 0x04, 0x05], ServerResponse::Abort { mux: m, code: 0x0504_0004 });
+        check_rsp(
+            [0x80, 0x00, 0x20, 0x00, 0x04, 0x00, 0x04, 0x05],
+            ServerResponse::Abort { mux: m, code: 0x0504_0004 },
+        );
     }
 
     #[test]
     fn v_sdo_block_upload_8_3_and_8_4() {
         let m = mux(0x2000, 0);
-        check_req([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], ClientRequest::BlockUploadInitiate {
-            mux: m,
-            crc: true,
-            blksize: 127,
-            pst: 0,
-        });
-        check_req([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x15, 0, 0], ClientRequest::BlockUploadInitiate {
-            mux: m,
-            crc: true,
-            blksize: 127,
-            pst: 21,
-        });
-        check_rsp([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], ServerResponse::BlockUploadInitiate {
-            mux: m,
-            crc: true,
-            size: Some(9),
-        });
-        check_rsp([0xC0, 0x00, 0x20, 0x00, 0, 0, 0, 0], ServerResponse::BlockUploadInitiate { mux: m, crc: false, size: None });
+        check_req(
+            [0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0],
+            ClientRequest::BlockUploadInitiate { mux: m, crc: true, blksize: 127, pst: 0 },
+        );
+        check_req(
+            [0xA4, 0x00, 0x20, 0x00, 0x7F, 0x15, 0, 0],
+            ClientRequest::BlockUploadInitiate { mux: m, crc: true, blksize: 127, pst: 21 },
+        );
+        check_rsp(
+            [0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ServerResponse::BlockUploadInitiate { mux: m, crc: true, size: Some(9) },
+        );
+        check_rsp(
+            [0xC0, 0x00, 0x20, 0x00, 0, 0, 0, 0],
+            ServerResponse::BlockUploadInitiate { mux: m, crc: false, size: None },
+        );
         check_req([0xA3, 0, 0, 0, 0, 0, 0, 0], ClientRequest::BlockUploadStart);
         let seg = BlockSegment { last: true, seqno: 2, data: [0x38, 0x39, 0, 0, 0, 0, 0] };
         assert_eq!(seg.emit(), [0x82, 0x38, 0x39, 0, 0, 0, 0, 0]);
@@ -905,11 +926,14 @@ mod tests {
         check_rsp([0xD5, 0xC3, 0x31, 0, 0, 0, 0, 0], ServerResponse::BlockUploadEnd { unused: 5, crc: 0x31C3 });
         check_req([0xA1, 0, 0, 0, 0, 0, 0, 0], ClientRequest::BlockUploadEnd);
         // 8.4: protocol switch answers
-        check_rsp([0x41, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], ServerResponse::InitiateUpload {
-            mux: m,
-            data: InitiateData::Segmented { size: Some(9) },
-        });
-        check_rsp([0x4B, 0x17, 0x10, 0x00, 0x64, 0, 0, 0], ServerResponse::expedited_upload(mux(0x1017, 0), &[0x64, 0]));
+        check_rsp(
+            [0x41, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ServerResponse::InitiateUpload { mux: m, data: InitiateData::Segmented { size: Some(9) } },
+        );
+        check_rsp(
+            [0x4B, 0x17, 0x10, 0x00, 0x64, 0, 0, 0],
+            ServerResponse::expedited_upload(mux(0x1017, 0), &[0x64, 0]),
+        );
     }
 
     #[test]
