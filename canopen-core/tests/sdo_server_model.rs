@@ -50,7 +50,7 @@ fn request() -> impl Strategy<Value = ClientRequest> {
         }),
         (mux(), proptest::option::of(0u32..40))
             .prop_map(|(mux, size)| ClientRequest::InitiateDownload { mux, data: InitiateData::Segmented { size } }),
-        (any::<bool>(), any::<bool>(), 0u8..=7, data7.clone())
+        (any::<bool>(), any::<bool>(), 0u8..=7, data7)
             .prop_map(|(t, c, len, d)| ClientRequest::DownloadSegment(Segment::new(t, c, &d[..usize::from(len)]))),
         mux().prop_map(|mux| ClientRequest::InitiateUpload { mux }),
         any::<bool>().prop_map(|toggle| ClientRequest::UploadSegment { toggle }),

@@ -113,6 +113,11 @@ pub struct SdoServerParams {
 
 impl SdoServerParams {
     /// An additional server (1201h–127Fh) before configuration: both COB-IDs invalid (bit 31 = 1, SDO-54).
+    ///
+    /// ```
+    /// # use canopen_core::sdo::SdoServerParams;
+    /// assert!(SdoServerParams::DISABLED.cob_rx.bit31());
+    /// ```
     pub const DISABLED: SdoServerParams = SdoServerParams {
         cob_rx: CobIdEntry::from_raw(CobIdEntry::BIT31),
         cob_tx: CobIdEntry::from_raw(CobIdEntry::BIT31),
@@ -234,6 +239,11 @@ pub struct Response {
 
 impl Response {
     /// Nothing to send, nothing happened (ignored frame, abort received while idle, ...).
+    ///
+    /// ```
+    /// # use canopen_core::sdo::Response;
+    /// assert!(Response::NONE.event.is_none());
+    /// ```
     pub const NONE: Response = Response { frame: None, event: None };
 
     const fn send(frame: [u8; 8]) -> Response {
@@ -352,6 +362,11 @@ pub struct SdoServer {
 
 impl SdoServer {
     /// Upper bound of `size_of::<SdoServer>()` (asserted in a unit test; x86-64 and thumbv6m alike).
+    ///
+    /// ```
+    /// # use canopen_core::sdo::SdoServer;
+    /// assert!(core::mem::size_of::<SdoServer>() <= SdoServer::RAM_BYTES);
+    /// ```
     pub const RAM_BYTES: usize = 80;
 
     /// A server with the [default time-out](super::DEFAULT_TIMEOUT) and block size 127.

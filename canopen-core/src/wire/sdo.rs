@@ -22,9 +22,17 @@
 //! ```
 
 /// Length of every SDO frame (SDO-02).
+///
+/// ```
+/// assert_eq!(canopen_core::wire::sdo::FRAME_LEN, 8);
+/// ```
 pub const FRAME_LEN: usize = 8;
 
 /// Largest block size (SDO-36: blksize 1..127).
+///
+/// ```
+/// assert_eq!(canopen_core::wire::sdo::MAX_BLKSIZE, 0x7F);
+/// ```
 pub const MAX_BLKSIZE: u8 = 127;
 
 /// Why bytes are not a valid SDO frame.
