@@ -3,7 +3,7 @@
 //! Both sides are sans-IO: they take received 8-byte frames and the current [`Instant`](crate::Instant), and
 //! hand back the frames to send. Neither owns a buffer of the object's size: the server streams between
 //! frames and the [`ObjectDictionary`](crate::od::ObjectDictionary), the client between frames and the
-//! caller's [`client::Source`]/[`client::Sink`].
+//! caller's [`client::ClientData`].
 //!
 //! - [`server`]: [`SdoServer`] and its 1200h-style [`SdoServerParams`]; [`SdoServers`] for the default
 //!   server plus additional servers 1201h–127Fh as a compile-time count.
