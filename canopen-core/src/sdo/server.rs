@@ -1350,6 +1350,40 @@ mod tests {
     }
 
     #[test]
+    fn value_shorter_than_announced_is_length_mismatch() {
+        // info says 10 bytes, read delivers only 3: the upload cannot keep its announced size (0607 0010h)
+        struct Shrunk;
+        impl ObjectDictionary for Shrunk {
+            fn info(&self, _: u16, _: u8) -> Result<crate::od::SubInfo, AbortCode> {
+                Ok(crate::od::SubInfo {
+                    data_type: crate::od::DataType::VisibleString,
+                    access: crate::od::Access::Ro,
+                    pdo: crate::od::PdoMapping::No,
+                    size: 10,
+                })
+            }
+            fn read(&self, _: u16, _: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+                let n = 3usize.saturating_sub(offset).min(buf.len());
+                buf[..n].fill(b'x');
+                Ok(n)
+            }
+            fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
+                Err(AbortCode::WriteOfReadOnly)
+            }
+        }
+        let mut s = server();
+        let r = s.handle_request(T0, &[0x40, 0x00, 0x30, 0x00, 0, 0, 0, 0], &mut Shrunk);
+        assert_eq!(r.frame, Some([0x41, 0x00, 0x30, 0x00, 10, 0, 0, 0]));
+        let r = s.handle_request(T0, &[0x60, 0, 0, 0, 0, 0, 0, 0], &mut Shrunk);
+        assert_eq!(r.frame, abort_of(0x3000, 0, AbortCode::LengthMismatch));
+        let r = s.handle_request(T0, &[0xA4, 0x00, 0x30, 0x00, 0x7F, 0, 0, 0], &mut Shrunk);
+        assert_eq!(r.frame, Some([0xC6, 0x00, 0x30, 0x00, 10, 0, 0, 0]));
+        s.handle_request(T0, &[0xA3, 0, 0, 0, 0, 0, 0, 0], &mut Shrunk);
+        assert_eq!(s.poll_transmit(T0, &mut Shrunk).unwrap().frame, abort_of(0x3000, 0, AbortCode::LengthMismatch));
+        assert!(s.is_idle());
+    }
+
+    #[test]
     fn v_sdo_segmented_upload_7_2() {
         let (mut s, mut od) = (server(), TestOd::new());
         let steps: [([u8; 8], [u8; 8]); 5] = [
