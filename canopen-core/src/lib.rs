@@ -10,6 +10,10 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+// Lets the shared test-support files in `tests/support` use `canopen_core::` paths from unit tests too.
+#[cfg(test)]
+extern crate self as canopen_core;
+
 pub mod cob;
 pub mod comm;
 pub mod driver;
@@ -21,6 +25,7 @@ pub mod heartbeat;
 pub mod nmt;
 pub mod node;
 pub mod od;
+pub mod sdo;
 pub mod sync;
 pub mod time;
 pub mod wire;

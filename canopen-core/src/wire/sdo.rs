@@ -1,0 +1,977 @@
+//! SDO frame formats (CiA 301 §7.2.4.3, CHECKLIST SDO-02, SDO-03, SDO-08, SDO-11..SDO-28, SDO-32,
+//! SDO-35..SDO-47).
+//!
+//! Every SDO frame is 8 bytes (SDO-02). Byte 0 is the command byte; the command specifier is in bits 7–5
+//! (SDO-03, SDO-08). Because client and server specifiers overlap (ccs 3 is "upload segment", scs 3 is
+//! "initiate download response"), there are two enums: [`ClientRequest`] (client → server, parsed by the
+//! server) and [`ServerResponse`] (server → client, parsed by the client). Block sub-block segments carry
+//! no command specifier at all (byte 0 = c ‖ seqno, SDO-37), so [`BlockSegment`] is parsed only where the
+//! state machine expects one.
+//!
+//! Design note: unlike smoltcp there is no zero-copy `Packet<&[u8]>` view: an SDO frame is 8 bytes and a
+//! by-value `Repr` is cheaper than a view plus accessors. Parsing is liberal about reserved bits and bytes
+//! ("a server should not depend on their content", SDO-02); emitting always writes them as 0.
+//!
+//! ```
+//! use canopen_core::wire::sdo::{ClientRequest, Multiplexer, ServerResponse};
+//! // V-SDO-02: read 6041h:00 → 2 bytes 0240h
+//! let req = ClientRequest::parse(&[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]).unwrap();
+//! assert_eq!(req, ClientRequest::InitiateUpload { mux: Multiplexer::new(0x6041, 0) });
+//! let rsp = ServerResponse::expedited_upload(Multiplexer::new(0x6041, 0), &[0x40, 0x02]);
+//! assert_eq!(rsp.emit(), [0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0x00, 0x00]);
+//! ```
+
+/// Length of every SDO frame (SDO-02).
+///
+/// ```
+/// assert_eq!(canopen_core::wire::sdo::FRAME_LEN, 8);
+/// ```
+pub const FRAME_LEN: usize = 8;
+
+/// Largest block size (SDO-36: blksize 1..127).
+///
+/// ```
+/// assert_eq!(canopen_core::wire::sdo::MAX_BLKSIZE, 0x7F);
+/// ```
+pub const MAX_BLKSIZE: u8 = 127;
+
+/// Why bytes are not a valid SDO frame.
+///
+/// ```
+/// use canopen_core::wire::sdo::{ClientRequest, ParseError};
+/// assert_eq!(ClientRequest::parse(&[0x40, 0, 0]), Err(ParseError::Length));
+/// assert_eq!(ClientRequest::parse(&[0xE0, 0, 0, 0, 0, 0, 0, 0]), Err(ParseError::CommandSpecifier));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ParseError {
+    /// The frame does not have exactly 8 data bytes (SDO-02).
+    Length,
+    /// Unknown command specifier or sub-command (SDO-09: abort 0504 0001h).
+    CommandSpecifier,
+}
+
+/// The object addressed by an initiate or abort frame: bytes 1–2 index (LE), byte 3 sub-index (SDO-03).
+///
+/// ```
+/// use canopen_core::wire::sdo::Multiplexer;
+/// let m = Multiplexer::new(0x1018, 1);
+/// assert_eq!(m.index, 0x1018);
+/// assert_eq!(m.sub, 1);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Multiplexer {
+    /// 16-bit object index.
+    pub index: u16,
+    /// 8-bit sub-index.
+    pub sub: u8,
+}
+
+impl Multiplexer {
+    /// Builds a multiplexer.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::Multiplexer;
+    /// assert_eq!(Multiplexer::new(0x2000, 0).index, 0x2000);
+    /// ```
+    pub const fn new(index: u16, sub: u8) -> Self {
+        Multiplexer { index, sub }
+    }
+
+    fn parse(b: &[u8; 8]) -> Self {
+        Multiplexer { index: u16::from_le_bytes([b[1], b[2]]), sub: b[3] }
+    }
+
+    fn emit(self, b: &mut [u8; 8]) {
+        let [lo, hi] = self.index.to_le_bytes();
+        b[1] = lo;
+        b[2] = hi;
+        b[3] = self.sub;
+    }
+}
+
+/// Up to four data bytes carried in an expedited initiate frame (SDO-12, SDO-13, SDO-24).
+///
+/// ```
+/// use canopen_core::wire::sdo::Expedited;
+/// let e = Expedited::new(&[1, 2]).unwrap();
+/// assert_eq!(e.bytes(), &[1, 2]);
+/// assert!(e.size_indicated);
+/// assert!(Expedited::new(&[]).is_none());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Expedited {
+    /// Bytes 4–7 of the frame; only the first `len` are data (the rest is 0 after `parse`).
+    pub data: [u8; 4],
+    /// Number of data bytes, 1..=4 (4 when the size is not indicated).
+    pub len: u8,
+    /// `s` bit: whether the size is given (by `n`). When clear, all four bytes are sent and the receiver takes
+    /// the length from the object (SDO-13).
+    pub size_indicated: bool,
+}
+
+impl Expedited {
+    /// Expedited data with size indicated; `None` unless `1 <= bytes.len() <= 4`.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::Expedited;
+    /// assert_eq!(Expedited::new(&[9; 4]).unwrap().len, 4);
+    /// assert!(Expedited::new(&[9; 5]).is_none());
+    /// ```
+    pub fn new(bytes: &[u8]) -> Option<Self> {
+        if bytes.is_empty() || bytes.len() > 4 {
+            return None;
+        }
+        let mut data = [0u8; 4];
+        data[..bytes.len()].copy_from_slice(bytes);
+        Some(Expedited { data, len: bytes.len() as u8, size_indicated: true })
+    }
+
+    /// The data bytes.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::Expedited;
+    /// assert_eq!(Expedited::new(&[7]).unwrap().bytes(), &[7]);
+    /// ```
+    pub fn bytes(&self) -> &[u8] {
+        let n = usize::from(self.len).min(4);
+        &self.data[..n]
+    }
+}
+
+/// What an initiate download request or initiate upload response announces (SDO-11..SDO-16, SDO-24, SDO-25).
+///
+/// ```
+/// use canopen_core::wire::sdo::InitiateData;
+/// let d = InitiateData::Segmented { size: Some(23) };
+/// assert_ne!(d, InitiateData::Segmented { size: None });
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum InitiateData {
+    /// e = 1: the data is in the frame.
+    Expedited(Expedited),
+    /// e = 0: segments follow; `size` when s = 1.
+    Segmented {
+        /// Total byte count (bytes 4–7, UNSIGNED32 LE) when indicated.
+        size: Option<u32>,
+    },
+}
+
+impl InitiateData {
+    fn parse(b: &[u8; 8]) -> Self {
+        let e = b[0] & 0x02 != 0;
+        let s = b[0] & 0x01 != 0;
+        let mut data = [0u8; 4];
+        data.copy_from_slice(&b[4..8]);
+        match (e, s) {
+            (true, true) => {
+                let len = 4 - ((b[0] >> 2) & 0x03);
+                for d in data.iter_mut().skip(usize::from(len)) {
+                    *d = 0;
+                }
+                InitiateData::Expedited(Expedited { data, len, size_indicated: true })
+            }
+            (true, false) => InitiateData::Expedited(Expedited { data, len: 4, size_indicated: false }),
+            (false, true) => InitiateData::Segmented { size: Some(u32::from_le_bytes(data)) },
+            (false, false) => InitiateData::Segmented { size: None },
+        }
+    }
+
+    fn emit(&self, b: &mut [u8; 8]) {
+        match *self {
+            InitiateData::Expedited(e) if e.size_indicated => {
+                let len = e.len.clamp(1, 4);
+                b[0] |= ((4 - len) << 2) | 0x03;
+                let n = usize::from(len);
+                b[4..4 + n].copy_from_slice(&e.data[..n]);
+            }
+            InitiateData::Expedited(e) => {
+                b[0] |= 0x02;
+                b[4..8].copy_from_slice(&e.data);
+            }
+            InitiateData::Segmented { size: Some(size) } => {
+                b[0] |= 0x01;
+                b[4..8].copy_from_slice(&size.to_le_bytes());
+            }
+            InitiateData::Segmented { size: None } => {}
+        }
+    }
+}
+
+/// A segment of a segmented transfer: download segment request (ccs 0, SDO-19) and upload segment
+/// response (scs 0, SDO-27) share the layout 000b ‖ t ‖ n ‖ c, bytes 1–7 data.
+///
+/// ```
+/// use canopen_core::wire::sdo::Segment;
+/// // V §7.3 step 5: t 1, n 5, c 1, "89"
+/// let s = Segment::new(true, true, b"89");
+/// assert_eq!(s.emit(), [0x1B, 0x38, 0x39, 0, 0, 0, 0, 0]);
+/// assert_eq!(Segment::parse(&s.emit()), Ok(s));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Segment {
+    /// Toggle bit (SDO-21, SDO-28).
+    pub toggle: bool,
+    /// c: no more segments (SDO-19, SDO-27).
+    pub last: bool,
+    /// Number of data bytes, 0..=7 (7 − n).
+    pub len: u8,
+    /// Bytes 1–7; only the first `len` are data (the rest is 0 after `parse`).
+    pub data: [u8; 7],
+}
+
+impl Segment {
+    /// A segment carrying `bytes` (at most 7 are used).
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::Segment;
+    /// assert_eq!(Segment::new(false, false, b"1234567").len, 7);
+    /// ```
+    pub fn new(toggle: bool, last: bool, bytes: &[u8]) -> Self {
+        let n = bytes.len().min(7);
+        let mut data = [0u8; 7];
+        data[..n].copy_from_slice(&bytes[..n]);
+        Segment { toggle, last, len: n as u8, data }
+    }
+
+    /// The data bytes.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::Segment;
+    /// assert_eq!(Segment::new(false, true, b"ab").bytes(), b"ab");
+    /// ```
+    pub fn bytes(&self) -> &[u8] {
+        &self.data[..usize::from(self.len).min(7)]
+    }
+
+    /// Parses a segment frame; the command specifier bits are not checked (the caller dispatched on them).
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::Segment;
+    /// let s = Segment::parse(&[0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37]).unwrap();
+    /// assert_eq!((s.toggle, s.last, s.bytes()), (false, false, &b"1234567"[..]));
+    /// ```
+    pub fn parse(data: &[u8]) -> Result<Self, ParseError> {
+        let b = frame(data)?;
+        let len = 7 - ((b[0] >> 1) & 0x07);
+        let n = usize::from(len);
+        let mut d = [0u8; 7];
+        d[..n].copy_from_slice(&b[1..1 + n]);
+        Ok(Segment { toggle: b[0] & 0x10 != 0, last: b[0] & 0x01 != 0, len, data: d })
+    }
+
+    /// Emits the frame (command specifier 000b); unused data bytes are sent as 0.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::Segment;
+    /// assert_eq!(Segment::new(false, false, b"1234567").emit()[0], 0x00);
+    /// ```
+    pub fn emit(&self) -> [u8; 8] {
+        let mut b = [0u8; 8];
+        let len = self.len.min(7);
+        b[0] = (u8::from(self.toggle) << 4) | ((7 - len) << 1) | u8::from(self.last);
+        let n = usize::from(len);
+        b[1..1 + n].copy_from_slice(&self.data[..n]);
+        b
+    }
+}
+
+/// A block-transfer sub-block segment: byte 0 = c (bit 7) ‖ seqno (bits 6–0), bytes 1–7 data (SDO-37).
+///
+/// It carries no command specifier, so it is only parsed where the receiver expects a segment.
+///
+/// ```
+/// use canopen_core::wire::sdo::BlockSegment;
+/// // V-8.1 step 4: c 1, seqno 2, "89"
+/// let s = BlockSegment::parse(&[0x82, 0x38, 0x39, 0, 0, 0, 0, 0]).unwrap();
+/// assert_eq!((s.last, s.seqno), (true, 2));
+/// assert_eq!(s.emit(), [0x82, 0x38, 0x39, 0, 0, 0, 0, 0]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct BlockSegment {
+    /// c: last segment of the whole data set.
+    pub last: bool,
+    /// Sequence number 1..=127 within the sub-block (0 is invalid, SDO-38).
+    pub seqno: u8,
+    /// Bytes 1–7 (the number of valid bytes of the last segment comes with the end frame).
+    pub data: [u8; 7],
+}
+
+impl BlockSegment {
+    /// Parses a sub-block segment.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::{BlockSegment, ParseError};
+    /// assert_eq!(BlockSegment::parse(&[1]), Err(ParseError::Length));
+    /// ```
+    pub fn parse(data: &[u8]) -> Result<Self, ParseError> {
+        let b = frame(data)?;
+        let mut d = [0u8; 7];
+        d.copy_from_slice(&b[1..8]);
+        Ok(BlockSegment { last: b[0] & 0x80 != 0, seqno: b[0] & 0x7F, data: d })
+    }
+
+    /// Emits the frame.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::BlockSegment;
+    /// let s = BlockSegment { last: false, seqno: 1, data: *b"1234567" };
+    /// assert_eq!(s.emit(), [0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37]);
+    /// ```
+    pub fn emit(&self) -> [u8; 8] {
+        let mut b = [0u8; 8];
+        b[0] = (u8::from(self.last) << 7) | (self.seqno & 0x7F);
+        b[1..8].copy_from_slice(&self.data);
+        b
+    }
+}
+
+/// A frame from client to server, as the server parses it (ccs = byte 0 bits 7–5, SDO-08).
+///
+/// ```
+/// use canopen_core::wire::sdo::{ClientRequest, Expedited, InitiateData, Multiplexer};
+/// // V-SDO-01: write 607Ah:00 = 0000 03E8h
+/// let bytes = [0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00];
+/// let req = ClientRequest::parse(&bytes).unwrap();
+/// assert_eq!(req, ClientRequest::InitiateDownload {
+///     mux: Multiplexer::new(0x607A, 0),
+///     data: InitiateData::Expedited(Expedited::new(&[0xE8, 0x03, 0, 0]).unwrap()),
+/// });
+/// assert_eq!(req.emit(), bytes);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ClientRequest {
+    /// ccs 1: initiate download (SDO-11..SDO-16).
+    InitiateDownload {
+        /// The object.
+        mux: Multiplexer,
+        /// Expedited data or the announced segmented size.
+        data: InitiateData,
+    },
+    /// ccs 0: download segment (SDO-19).
+    DownloadSegment(Segment),
+    /// ccs 2: initiate upload (SDO-23).
+    InitiateUpload {
+        /// The object.
+        mux: Multiplexer,
+    },
+    /// ccs 3: upload segment request (SDO-26); bytes 1–7 are reserved and ignored.
+    UploadSegment {
+        /// Toggle bit.
+        toggle: bool,
+    },
+    /// ccs 4: abort transfer (SDO-32). The code is kept raw: a peer may send codes outside Table 22.
+    Abort {
+        /// The object.
+        mux: Multiplexer,
+        /// Abort code (UNSIGNED32 LE in bytes 4–7).
+        code: u32,
+    },
+    /// ccs 6, cs 0: initiate block download (SDO-35).
+    BlockDownloadInitiate {
+        /// The object.
+        mux: Multiplexer,
+        /// cc: the client supports CRC.
+        crc: bool,
+        /// Data set size when s = 1.
+        size: Option<u32>,
+    },
+    /// ccs 6, cs 1: end block download (SDO-41).
+    BlockDownloadEnd {
+        /// n: bytes of the last segment that carry no data (0..=7).
+        unused: u8,
+        /// CRC of the whole data set (0 when not used).
+        crc: u16,
+    },
+    /// ccs 5, cs 0: initiate block upload (SDO-42).
+    BlockUploadInitiate {
+        /// The object.
+        mux: Multiplexer,
+        /// cc: the client supports CRC.
+        crc: bool,
+        /// Segments per sub-block (valid 1..=127; not checked here).
+        blksize: u8,
+        /// Protocol switch threshold (SDO-43).
+        pst: u8,
+    },
+    /// ccs 5, cs 3: start upload (SDO-45).
+    BlockUploadStart,
+    /// ccs 5, cs 2: sub-block acknowledge (SDO-46).
+    BlockUploadAck {
+        /// Last segment received in order (0 = none).
+        ackseq: u8,
+        /// Segments of the next sub-block.
+        blksize: u8,
+    },
+    /// ccs 5, cs 1: end block upload response (SDO-47).
+    BlockUploadEnd,
+}
+
+fn frame(data: &[u8]) -> Result<&[u8; 8], ParseError> {
+    data.try_into().map_err(|_| ParseError::Length)
+}
+
+impl ClientRequest {
+    /// Parses a client frame. Reserved bits and bytes are ignored (SDO-02); only a frame of exactly 8 bytes is
+    /// accepted.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::{ClientRequest, ParseError};
+    /// assert_eq!(ClientRequest::parse(&[0xA3, 0, 0, 0, 0, 0, 0, 0]), Ok(ClientRequest::BlockUploadStart));
+    /// assert_eq!(ClientRequest::parse(&[0xA3; 7]), Err(ParseError::Length));
+    /// ```
+    pub fn parse(data: &[u8]) -> Result<Self, ParseError> {
+        let b = frame(data)?;
+        let mux = Multiplexer::parse(b);
+        Ok(match b[0] >> 5 {
+            0 => ClientRequest::DownloadSegment(Segment::parse(b)?),
+            1 => ClientRequest::InitiateDownload { mux, data: InitiateData::parse(b) },
+            2 => ClientRequest::InitiateUpload { mux },
+            3 => ClientRequest::UploadSegment { toggle: b[0] & 0x10 != 0 },
+            4 => ClientRequest::Abort { mux, code: u32::from_le_bytes([b[4], b[5], b[6], b[7]]) },
+            5 => match b[0] & 0x03 {
+                0 => ClientRequest::BlockUploadInitiate { mux, crc: b[0] & 0x04 != 0, blksize: b[4], pst: b[5] },
+                1 => ClientRequest::BlockUploadEnd,
+                2 => ClientRequest::BlockUploadAck { ackseq: b[1], blksize: b[2] },
+                _ => ClientRequest::BlockUploadStart,
+            },
+            6 => {
+                if b[0] & 0x01 == 0 {
+                    let size = (b[0] & 0x02 != 0).then(|| u32::from_le_bytes([b[4], b[5], b[6], b[7]]));
+                    ClientRequest::BlockDownloadInitiate { mux, crc: b[0] & 0x04 != 0, size }
+                } else {
+                    ClientRequest::BlockDownloadEnd {
+                        unused: (b[0] >> 2) & 0x07,
+                        crc: u16::from_le_bytes([b[1], b[2]]),
+                    }
+                }
+            }
+            _ => return Err(ParseError::CommandSpecifier),
+        })
+    }
+
+    /// Emits the 8-byte frame, reserved bits and bytes 0 (SDO-02).
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::{ClientRequest, Multiplexer};
+    /// let f = ClientRequest::BlockUploadInitiate { mux: Multiplexer::new(0x2000, 0), crc: true, blksize: 127, pst: 0 };
+    /// assert_eq!(f.emit(), [0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0x00, 0x00]);
+    /// ```
+    pub fn emit(&self) -> [u8; 8] {
+        let mut b = [0u8; 8];
+        match *self {
+            ClientRequest::InitiateDownload { mux, data } => {
+                b[0] = 0x20;
+                mux.emit(&mut b);
+                data.emit(&mut b);
+            }
+            ClientRequest::DownloadSegment(s) => b = s.emit(),
+            ClientRequest::InitiateUpload { mux } => {
+                b[0] = 0x40;
+                mux.emit(&mut b);
+            }
+            ClientRequest::UploadSegment { toggle } => b[0] = 0x60 | (u8::from(toggle) << 4),
+            ClientRequest::Abort { mux, code } => return abort_frame(mux, code),
+            ClientRequest::BlockDownloadInitiate { mux, crc, size } => {
+                b[0] = 0xC0 | (u8::from(crc) << 2) | (u8::from(size.is_some()) << 1);
+                mux.emit(&mut b);
+                b[4..8].copy_from_slice(&size.unwrap_or(0).to_le_bytes());
+            }
+            ClientRequest::BlockDownloadEnd { unused, crc } => {
+                b[0] = 0xC1 | ((unused & 0x07) << 2);
+                b[1..3].copy_from_slice(&crc.to_le_bytes());
+            }
+            ClientRequest::BlockUploadInitiate { mux, crc, blksize, pst } => {
+                b[0] = 0xA0 | (u8::from(crc) << 2);
+                mux.emit(&mut b);
+                b[4] = blksize;
+                b[5] = pst;
+            }
+            ClientRequest::BlockUploadStart => b[0] = 0xA3,
+            ClientRequest::BlockUploadAck { ackseq, blksize } => {
+                b[0] = 0xA2;
+                b[1] = ackseq;
+                b[2] = blksize;
+            }
+            ClientRequest::BlockUploadEnd => b[0] = 0xA1,
+        }
+        b
+    }
+}
+
+/// A frame from server to client, as the client parses it (scs = byte 0 bits 7–5, SDO-08).
+///
+/// ```
+/// use canopen_core::wire::sdo::{Multiplexer, ServerResponse};
+/// // V-8.1 step 2: scs 5, sc 1, blksize 127
+/// let r = ServerResponse::parse(&[0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0]).unwrap();
+/// assert_eq!(r, ServerResponse::BlockDownloadInitiate { mux: Multiplexer::new(0x2000, 0), crc: true, blksize: 127 });
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ServerResponse {
+    /// scs 3: initiate download response (SDO-17).
+    InitiateDownload {
+        /// The object.
+        mux: Multiplexer,
+    },
+    /// scs 1: download segment response (SDO-20).
+    DownloadSegment {
+        /// Echo of the request's toggle bit.
+        toggle: bool,
+    },
+    /// scs 2: initiate upload response (SDO-24, SDO-25).
+    InitiateUpload {
+        /// The object.
+        mux: Multiplexer,
+        /// Expedited data or the segmented size.
+        data: InitiateData,
+    },
+    /// scs 0: upload segment response (SDO-27).
+    UploadSegment(Segment),
+    /// scs 4: abort transfer (SDO-32).
+    Abort {
+        /// The object.
+        mux: Multiplexer,
+        /// Abort code.
+        code: u32,
+    },
+    /// scs 5, ss 0: initiate block download response (SDO-36).
+    BlockDownloadInitiate {
+        /// The object.
+        mux: Multiplexer,
+        /// sc: the server supports CRC.
+        crc: bool,
+        /// Segments per sub-block.
+        blksize: u8,
+    },
+    /// scs 5, ss 2: sub-block acknowledge (SDO-39, SDO-40).
+    BlockDownloadAck {
+        /// Last segment received in order (0 = none).
+        ackseq: u8,
+        /// Segments of the next sub-block.
+        blksize: u8,
+    },
+    /// scs 5, ss 1: end block download response (SDO-41).
+    BlockDownloadEnd,
+    /// scs 6, ss 0: initiate block upload response (SDO-44).
+    BlockUploadInitiate {
+        /// The object.
+        mux: Multiplexer,
+        /// sc: the server uses CRC.
+        crc: bool,
+        /// Data set size when s = 1.
+        size: Option<u32>,
+    },
+    /// scs 6, ss 1: end block upload request (SDO-47).
+    BlockUploadEnd {
+        /// n: bytes of the last segment without data.
+        unused: u8,
+        /// CRC of the data set (0 when not used).
+        crc: u16,
+    },
+}
+
+impl ServerResponse {
+    /// An expedited initiate upload response with size indicated (SDO-24); `data` must be 1..=4 bytes
+    /// (longer input is cut to 4, empty input sends one zero byte).
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::{Multiplexer, ServerResponse};
+    /// let r = ServerResponse::expedited_upload(Multiplexer::new(0x1400, 2), &[0xFD]);
+    /// assert_eq!(r.emit(), [0x4F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0]);
+    /// ```
+    pub fn expedited_upload(mux: Multiplexer, data: &[u8]) -> Self {
+        let n = data.len().clamp(1, 4);
+        let mut d = [0u8; 4];
+        let src = data.get(..n).unwrap_or(&[]);
+        d[..src.len()].copy_from_slice(src);
+        ServerResponse::InitiateUpload {
+            mux,
+            data: InitiateData::Expedited(Expedited { data: d, len: n as u8, size_indicated: true }),
+        }
+    }
+
+    /// Parses a server frame.
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::{ParseError, ServerResponse};
+    /// assert_eq!(ServerResponse::parse(&[0xA1, 0, 0, 0, 0, 0, 0, 0]), Ok(ServerResponse::BlockDownloadEnd));
+    /// assert_eq!(ServerResponse::parse(&[0xA3, 0, 0, 0, 0, 0, 0, 0]), Err(ParseError::CommandSpecifier));
+    /// ```
+    pub fn parse(data: &[u8]) -> Result<Self, ParseError> {
+        let b = frame(data)?;
+        let mux = Multiplexer::parse(b);
+        Ok(match b[0] >> 5 {
+            0 => ServerResponse::UploadSegment(Segment::parse(b)?),
+            1 => ServerResponse::DownloadSegment { toggle: b[0] & 0x10 != 0 },
+            2 => ServerResponse::InitiateUpload { mux, data: InitiateData::parse(b) },
+            3 => ServerResponse::InitiateDownload { mux },
+            4 => ServerResponse::Abort { mux, code: u32::from_le_bytes([b[4], b[5], b[6], b[7]]) },
+            5 => match b[0] & 0x03 {
+                0 => ServerResponse::BlockDownloadInitiate { mux, crc: b[0] & 0x04 != 0, blksize: b[4] },
+                1 => ServerResponse::BlockDownloadEnd,
+                2 => ServerResponse::BlockDownloadAck { ackseq: b[1], blksize: b[2] },
+                _ => return Err(ParseError::CommandSpecifier),
+            },
+            6 => {
+                if b[0] & 0x01 == 0 {
+                    let size = (b[0] & 0x02 != 0).then(|| u32::from_le_bytes([b[4], b[5], b[6], b[7]]));
+                    ServerResponse::BlockUploadInitiate { mux, crc: b[0] & 0x04 != 0, size }
+                } else {
+                    ServerResponse::BlockUploadEnd { unused: (b[0] >> 2) & 0x07, crc: u16::from_le_bytes([b[1], b[2]]) }
+                }
+            }
+            _ => return Err(ParseError::CommandSpecifier),
+        })
+    }
+
+    /// Emits the 8-byte frame, reserved bits and bytes 0 (SDO-02).
+    ///
+    /// ```
+    /// # use canopen_core::wire::sdo::ServerResponse;
+    /// assert_eq!(ServerResponse::DownloadSegment { toggle: true }.emit(), [0x30, 0, 0, 0, 0, 0, 0, 0]);
+    /// ```
+    pub fn emit(&self) -> [u8; 8] {
+        let mut b = [0u8; 8];
+        match *self {
+            ServerResponse::InitiateDownload { mux } => {
+                b[0] = 0x60;
+                mux.emit(&mut b);
+            }
+            ServerResponse::DownloadSegment { toggle } => b[0] = 0x20 | (u8::from(toggle) << 4),
+            ServerResponse::InitiateUpload { mux, data } => {
+                b[0] = 0x40;
+                mux.emit(&mut b);
+                data.emit(&mut b);
+            }
+            ServerResponse::UploadSegment(s) => b = s.emit(),
+            ServerResponse::Abort { mux, code } => return abort_frame(mux, code),
+            ServerResponse::BlockDownloadInitiate { mux, crc, blksize } => {
+                b[0] = 0xA0 | (u8::from(crc) << 2);
+                mux.emit(&mut b);
+                b[4] = blksize;
+            }
+            ServerResponse::BlockDownloadAck { ackseq, blksize } => {
+                b[0] = 0xA2;
+                b[1] = ackseq;
+                b[2] = blksize;
+            }
+            ServerResponse::BlockDownloadEnd => b[0] = 0xA1,
+            ServerResponse::BlockUploadInitiate { mux, crc, size } => {
+                b[0] = 0xC0 | (u8::from(crc) << 2) | (u8::from(size.is_some()) << 1);
+                mux.emit(&mut b);
+                b[4..8].copy_from_slice(&size.unwrap_or(0).to_le_bytes());
+            }
+            ServerResponse::BlockUploadEnd { unused, crc } => {
+                b[0] = 0xC1 | ((unused & 0x07) << 2);
+                b[1..3].copy_from_slice(&crc.to_le_bytes());
+            }
+        }
+        b
+    }
+}
+
+/// The abort frame, identical in both directions: 80h, multiplexer, code LE (SDO-32, V-SDO-07).
+///
+/// ```
+/// use canopen_core::wire::sdo::{abort_frame, Multiplexer};
+/// // V-SDO-10: 0602 0000h on 5000h:00
+/// assert_eq!(abort_frame(Multiplexer::new(0x5000, 0), 0x0602_0000), [0x80, 0x00, 0x50, 0x00, 0x00, 0x00, 0x02, 0x06]);
+/// ```
+pub fn abort_frame(mux: Multiplexer, code: u32) -> [u8; 8] {
+    let mut b = [0u8; 8];
+    b[0] = 0x80;
+    mux.emit(&mut b);
+    b[4..8].copy_from_slice(&code.to_le_bytes());
+    b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn req(b: [u8; 8]) -> ClientRequest {
+        ClientRequest::parse(&b).unwrap()
+    }
+
+    fn rsp(b: [u8; 8]) -> ServerResponse {
+        ServerResponse::parse(&b).unwrap()
+    }
+
+    fn mux(index: u16, sub: u8) -> Multiplexer {
+        Multiplexer::new(index, sub)
+    }
+
+    fn exp(bytes: &[u8]) -> InitiateData {
+        InitiateData::Expedited(Expedited::new(bytes).unwrap())
+    }
+
+    /// Requests that must round-trip byte-exactly (the vectors' client frames with reserved bytes 0).
+    fn check_req(b: [u8; 8], want: ClientRequest) {
+        assert_eq!(req(b), want, "{b:02X?}");
+        assert_eq!(want.emit(), b, "{want:?}");
+    }
+
+    fn check_rsp(b: [u8; 8], want: ServerResponse) {
+        assert_eq!(rsp(b), want, "{b:02X?}");
+        assert_eq!(want.emit(), b, "{want:?}");
+    }
+
+    #[test]
+    fn v_sdo_expedited_vectors() {
+        // V-SDO-01
+        check_req(
+            [0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00],
+            ClientRequest::InitiateDownload { mux: mux(0x607A, 0), data: exp(&[0xE8, 0x03, 0, 0]) },
+        );
+        check_rsp([0x60, 0x7A, 0x60, 0x00, 0, 0, 0, 0], ServerResponse::InitiateDownload { mux: mux(0x607A, 0) });
+        // V-SDO-02
+        check_req([0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0], ClientRequest::InitiateUpload { mux: mux(0x6041, 0) });
+        check_rsp(
+            [0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0],
+            ServerResponse::expedited_upload(mux(0x6041, 0), &[0x40, 2]),
+        );
+        // V-SDO-03 (request) and its conformant abort answer
+        check_req(
+            [0x2F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0],
+            ClientRequest::InitiateDownload { mux: mux(0x1400, 2), data: exp(&[0xFD]) },
+        );
+        check_rsp(
+            [0x80, 0x00, 0x14, 0x02, 0x30, 0x00, 0x09, 0x06],
+            ServerResponse::Abort { mux: mux(0x1400, 2), code: 0x0609_0030 },
+        );
+        // V-SDO-04
+        check_req(
+            [0x23, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60],
+            ClientRequest::InitiateDownload { mux: mux(0x1603, 1), data: exp(&[0x08, 0x02, 0x12, 0x60]) },
+        );
+        check_rsp([0x60, 0x03, 0x16, 0x01, 0, 0, 0, 0], ServerResponse::InitiateDownload { mux: mux(0x1603, 1) });
+        // V-SDO-05, V-SDO-06
+        check_rsp([0x4F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0], ServerResponse::expedited_upload(mux(0x1400, 2), &[0xFD]));
+        check_rsp(
+            [0x43, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60],
+            ServerResponse::expedited_upload(mux(0x1603, 1), &[0x08, 0x02, 0x12, 0x60]),
+        );
+        // V-SDO-08, V-SDO-09
+        check_rsp(
+            [0x43, 0x18, 0x10, 0x01, 0xB6, 0x02, 0, 0],
+            ServerResponse::expedited_upload(mux(0x1018, 1), &[0xB6, 2, 0, 0]),
+        );
+        check_rsp([0x4F, 0x18, 0x10, 0x00, 0x04, 0, 0, 0], ServerResponse::expedited_upload(mux(0x1018, 0), &[4]));
+        // V-SDO-10..V-SDO-16 abort frames
+        for (b, m, code) in [
+            ([0x80, 0x00, 0x50, 0x00, 0x00, 0x00, 0x02, 0x06], mux(0x5000, 0), 0x0602_0000),
+            ([0x80, 0x18, 0x10, 0x07, 0x11, 0x00, 0x09, 0x06], mux(0x1018, 7), 0x0609_0011),
+            ([0x80, 0x00, 0x10, 0x00, 0x02, 0x00, 0x01, 0x06], mux(0x1000, 0), 0x0601_0002),
+            ([0x80, 0x17, 0x10, 0x00, 0x13, 0x00, 0x07, 0x06], mux(0x1017, 0), 0x0607_0013),
+            ([0x80, 0x0D, 0x10, 0x00, 0x12, 0x00, 0x07, 0x06], mux(0x100D, 0), 0x0607_0012),
+            ([0x80, 0x00, 0x10, 0x00, 0x01, 0x00, 0x04, 0x05], mux(0x1000, 0), 0x0504_0001),
+            ([0x80, 0x14, 0x10, 0x00, 0x30, 0x00, 0x09, 0x06], mux(0x1014, 0), 0x0609_0030),
+        ] {
+            check_rsp(b, ServerResponse::Abort { mux: m, code });
+            check_req(b, ClientRequest::Abort { mux: m, code });
+        }
+        // V-SDO-15: ccs 7 is not a command
+        assert_eq!(ClientRequest::parse(&[0xE0, 0x00, 0x10, 0, 0, 0, 0, 0]), Err(ParseError::CommandSpecifier));
+        assert_eq!(ServerResponse::parse(&[0xE0, 0x00, 0x10, 0, 0, 0, 0, 0]), Err(ParseError::CommandSpecifier));
+    }
+
+    #[test]
+    fn expedited_command_bytes_sdo_12_24() {
+        for (len, dl, ul) in [(1usize, 0x2F, 0x4F), (2, 0x2B, 0x4B), (3, 0x27, 0x47), (4, 0x23, 0x43)] {
+            let data = &[1, 2, 3, 4][..len];
+            let d = ClientRequest::InitiateDownload { mux: mux(1, 2), data: exp(data) }.emit();
+            assert_eq!(d[0], dl);
+            let u = ServerResponse::InitiateUpload { mux: mux(1, 2), data: exp(data) }.emit();
+            assert_eq!(u[0], ul);
+            match req(d) {
+                ClientRequest::InitiateDownload { data: InitiateData::Expedited(e), .. } => assert_eq!(e.bytes(), data),
+                other => panic!("{other:?}"),
+            }
+        }
+        // SDO-13: 22h expedited without size → 4 bytes, size not indicated
+        let r = req([0x22, 0x00, 0x20, 0x00, 1, 2, 3, 4]);
+        let e = Expedited { data: [1, 2, 3, 4], len: 4, size_indicated: false };
+        assert_eq!(r, ClientRequest::InitiateDownload { mux: mux(0x2000, 0), data: InitiateData::Expedited(e) });
+        assert_eq!(r.emit()[0], 0x22);
+        // 42h expedited upload without size
+        assert_eq!(
+            rsp([0x42, 0, 0x20, 0, 1, 2, 3, 4]),
+            ServerResponse::InitiateUpload { mux: mux(0x2000, 0), data: InitiateData::Expedited(e) }
+        );
+        // SDO-16: n is ignored unless e = 1 and s = 1
+        assert_eq!(
+            req([0x2C, 0, 0x20, 0, 0, 0, 0, 0]),
+            ClientRequest::InitiateDownload { mux: mux(0x2000, 0), data: InitiateData::Segmented { size: None } }
+        );
+    }
+
+    #[test]
+    fn v_sdo_segmented_upload_7_2() {
+        let m = mux(0x1009, 0);
+        check_req([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], ClientRequest::InitiateUpload { mux: m });
+        check_rsp(
+            [0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0],
+            ServerResponse::InitiateUpload { mux: m, data: InitiateData::Segmented { size: Some(23) } },
+        );
+        check_req([0x60, 0, 0, 0, 0, 0, 0, 0], ClientRequest::UploadSegment { toggle: false });
+        check_req([0x70, 0, 0, 0, 0, 0, 0, 0], ClientRequest::UploadSegment { toggle: true });
+        // 002's client sends the multiplexer in the reserved bytes: still an upload segment request (SDO-02)
+        assert_eq!(req([0x60, 0x09, 0x10, 0x00, 0, 0, 0, 0]), ClientRequest::UploadSegment { toggle: false });
+        let segs: [([u8; 8], bool, bool, &[u8]); 4] = [
+            ([0x00, 0x4E, 0x31, 0x30, 0x20, 0x2D, 0x20, 0x57], false, false, b"N10 - W"),
+            ([0x10, 0x54, 0x31, 0x32, 0x30, 0x39, 0x2D, 0x56], true, false, b"T1209-V"),
+            ([0x00, 0x31, 0x2E, 0x30, 0x30, 0x2D, 0x38, 0x4D], false, false, b"1.00-8M"),
+            ([0x1B, 0x42, 0x00, 0, 0, 0, 0, 0], true, true, b"B\0"),
+        ];
+        for (b, t, c, data) in segs {
+            check_rsp(b, ServerResponse::UploadSegment(Segment::new(t, c, data)));
+        }
+        // 7.1 seed step 10 as printed: 0Bh = t 0, n 5, c 1
+        assert_eq!(
+            rsp([0x0B, 0x42, 0, 0, 0, 0, 0, 0]),
+            ServerResponse::UploadSegment(Segment::new(false, true, b"B\0"))
+        );
+    }
+
+    #[test]
+    fn v_sdo_segmented_download_7_3() {
+        let m = mux(0x2000, 0);
+        check_req(
+            [0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ClientRequest::InitiateDownload { mux: m, data: InitiateData::Segmented { size: Some(9) } },
+        );
+        check_req(
+            [0x20, 0x00, 0x20, 0x00, 0, 0, 0, 0],
+            ClientRequest::InitiateDownload { mux: m, data: InitiateData::Segmented { size: None } },
+        );
+        check_rsp([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0], ServerResponse::InitiateDownload { mux: m });
+        check_req(
+            [0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37],
+            ClientRequest::DownloadSegment(Segment::new(false, false, b"1234567")),
+        );
+        check_rsp([0x20, 0, 0, 0, 0, 0, 0, 0], ServerResponse::DownloadSegment { toggle: false });
+        check_req([0x1B, 0x38, 0x39, 0, 0, 0, 0, 0], ClientRequest::DownloadSegment(Segment::new(true, true, b"89")));
+        check_rsp([0x30, 0, 0, 0, 0, 0, 0, 0], ServerResponse::DownloadSegment { toggle: true });
+        // toggle-error variant, abort 0503 0000h and timeout abort 0504 0000h
+        assert_eq!(
+            req([0x0B, 0x38, 0x39, 0, 0, 0, 0, 0]),
+            ClientRequest::DownloadSegment(Segment::new(false, true, b"89"))
+        );
+        check_rsp(
+            [0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x03, 0x05],
+            ServerResponse::Abort { mux: m, code: 0x0503_0000 },
+        );
+        check_rsp(
+            [0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05],
+            ServerResponse::Abort { mux: m, code: 0x0504_0000 },
+        );
+        // n = 7: a segment with no data
+        assert_eq!(req([0x0F, 0, 0, 0, 0, 0, 0, 0]), ClientRequest::DownloadSegment(Segment::new(false, true, b"")));
+    }
+
+    #[test]
+    fn v_sdo_block_download_8_1_and_8_2() {
+        let m = mux(0x2000, 0);
+        check_req(
+            [0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ClientRequest::BlockDownloadInitiate { mux: m, crc: true, size: Some(9) },
+        );
+        check_req(
+            [0xC2, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ClientRequest::BlockDownloadInitiate { mux: m, crc: false, size: Some(9) },
+        );
+        check_req(
+            [0xC4, 0x00, 0x20, 0x00, 0, 0, 0, 0],
+            ClientRequest::BlockDownloadInitiate { mux: m, crc: true, size: None },
+        );
+        check_rsp(
+            [0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0],
+            ServerResponse::BlockDownloadInitiate { mux: m, crc: true, blksize: 127 },
+        );
+        check_rsp(
+            [0xA0, 0x00, 0x20, 0x00, 0x03, 0, 0, 0],
+            ServerResponse::BlockDownloadInitiate { mux: m, crc: false, blksize: 3 },
+        );
+        let s1 = BlockSegment::parse(&[0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37]).unwrap();
+        assert_eq!(s1, BlockSegment { last: false, seqno: 1, data: *b"1234567" });
+        let s2 = BlockSegment::parse(&[0x83, 0x4F, 0x50, 0, 0, 0, 0, 0]).unwrap();
+        assert_eq!((s2.last, s2.seqno, &s2.data[..2]), (true, 3, &b"OP"[..]));
+        check_rsp([0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0], ServerResponse::BlockDownloadAck { ackseq: 2, blksize: 127 });
+        check_rsp([0xA2, 0x01, 0x03, 0, 0, 0, 0, 0], ServerResponse::BlockDownloadAck { ackseq: 1, blksize: 3 });
+        check_req([0xD5, 0xC3, 0x31, 0, 0, 0, 0, 0], ClientRequest::BlockDownloadEnd { unused: 5, crc: 0x31C3 });
+        check_req([0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], ClientRequest::BlockDownloadEnd { unused: 5, crc: 0x6080 });
+        check_req([0xC1, 0, 0, 0, 0, 0, 0, 0], ClientRequest::BlockDownloadEnd { unused: 0, crc: 0 });
+        check_rsp([0xA1, 0, 0, 0, 0, 0, 0, 0], ServerResponse::BlockDownloadEnd);
+        check_rsp(
+            [0x80, 0x00, 0x20, 0x00, 0x04, 0x00, 0x04, 0x05],
+            ServerResponse::Abort { mux: m, code: 0x0504_0004 },
+        );
+    }
+
+    #[test]
+    fn v_sdo_block_upload_8_3_and_8_4() {
+        let m = mux(0x2000, 0);
+        check_req(
+            [0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0],
+            ClientRequest::BlockUploadInitiate { mux: m, crc: true, blksize: 127, pst: 0 },
+        );
+        check_req(
+            [0xA4, 0x00, 0x20, 0x00, 0x7F, 0x15, 0, 0],
+            ClientRequest::BlockUploadInitiate { mux: m, crc: true, blksize: 127, pst: 21 },
+        );
+        check_rsp(
+            [0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ServerResponse::BlockUploadInitiate { mux: m, crc: true, size: Some(9) },
+        );
+        check_rsp(
+            [0xC0, 0x00, 0x20, 0x00, 0, 0, 0, 0],
+            ServerResponse::BlockUploadInitiate { mux: m, crc: false, size: None },
+        );
+        check_req([0xA3, 0, 0, 0, 0, 0, 0, 0], ClientRequest::BlockUploadStart);
+        let seg = BlockSegment { last: true, seqno: 2, data: [0x38, 0x39, 0, 0, 0, 0, 0] };
+        assert_eq!(seg.emit(), [0x82, 0x38, 0x39, 0, 0, 0, 0, 0]);
+        check_req([0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0], ClientRequest::BlockUploadAck { ackseq: 2, blksize: 127 });
+        check_rsp([0xD5, 0xC3, 0x31, 0, 0, 0, 0, 0], ServerResponse::BlockUploadEnd { unused: 5, crc: 0x31C3 });
+        check_req([0xA1, 0, 0, 0, 0, 0, 0, 0], ClientRequest::BlockUploadEnd);
+        // 8.4: protocol switch answers
+        check_rsp(
+            [0x41, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
+            ServerResponse::InitiateUpload { mux: m, data: InitiateData::Segmented { size: Some(9) } },
+        );
+        check_rsp(
+            [0x4B, 0x17, 0x10, 0x00, 0x64, 0, 0, 0],
+            ServerResponse::expedited_upload(mux(0x1017, 0), &[0x64, 0]),
+        );
+    }
+
+    #[test]
+    fn short_and_long_frames_are_length_errors() {
+        for n in 0..16usize {
+            let buf = [0u8; 16];
+            let want = if n == 8 { Ok(()) } else { Err(ParseError::Length) };
+            assert_eq!(ClientRequest::parse(&buf[..n]).map(|_| ()), want);
+            assert_eq!(ServerResponse::parse(&buf[..n]).map(|_| ()), want);
+            assert_eq!(BlockSegment::parse(&buf[..n]).map(|_| ()), want);
+            assert_eq!(Segment::parse(&buf[..n]).map(|_| ()), want);
+        }
+    }
+
+    #[test]
+    fn every_command_byte_parses_or_errors_and_reemits_stably() {
+        for b0 in 0..=255u8 {
+            let b = [b0, 0x34, 0x12, 0x05, 0xAA, 0xBB, 0xCC, 0xDD];
+            if let Ok(r) = ClientRequest::parse(&b) {
+                // emit → parse is a fixed point (reserved bits are dropped once)
+                assert_eq!(ClientRequest::parse(&r.emit()), Ok(r), "{b0:02X}");
+                assert_eq!(r.emit()[0] >> 5, b0 >> 5);
+            } else {
+                assert_eq!(b0 >> 5, 7);
+            }
+            if let Ok(r) = ServerResponse::parse(&b) {
+                assert_eq!(ServerResponse::parse(&r.emit()), Ok(r), "{b0:02X}");
+            } else {
+                assert!(b0 >> 5 == 7 || (b0 >> 5 == 5 && b0 & 3 == 3), "{b0:02X}");
+            }
+        }
+    }
+}
