@@ -4,6 +4,8 @@
 use canopen::core::{
     comm::NodeConfig,
     node::{NoApplication, Node},
+    od::AbortCode,
+    wire::sdo::{BlockSegment, ServerResponse},
     CanFrame, Instant, NmtState, NodeId,
 };
 use proptest::prelude::*;
@@ -15,17 +17,34 @@ enum Input {
 }
 
 fn input() -> impl Strategy<Value = Input> {
+    let frame = |(id, rtr, data)| Input::Frame { id, rtr, data };
     prop_oneof![
         // Any identifier at all...
-        (0u16..=0x7FF, any::<bool>(), prop::collection::vec(any::<u8>(), 0..=8))
-            .prop_map(|(id, rtr, data)| Input::Frame { id, rtr, data }),
-        // ...and a bias towards the identifiers the node listens on, with plausible payloads.
+        (0u16..=0x7FF, any::<bool>(), prop::collection::vec(any::<u8>(), 0..=8)).prop_map(frame),
+        // ...and a bias towards the identifiers the node listens on, with plausible payloads...
         (
             prop::sample::select(vec![0x000u16, 0x705, 0x702, 0x77F]),
             any::<bool>(),
             prop::collection::vec(any::<u8>(), 0..=3)
         )
-            .prop_map(|(id, rtr, data)| Input::Frame { id, rtr, data }),
+            .prop_map(frame),
+        // ...SDO requests to this node, with a valid command byte aimed at 1017h half the time...
+        (
+            prop::sample::select(vec![0x20u8, 0x21, 0x23, 0x2B, 0x40, 0x60, 0x70, 0x80, 0xA0, 0xA3, 0xC2, 0xC6]),
+            any::<[u8; 7]>(),
+            any::<bool>()
+        )
+            .prop_map(|(cs, rest, aimed)| {
+                let mut data = vec![if aimed { cs } else { rest[0] }];
+                data.extend_from_slice(&rest);
+                if aimed {
+                    data[1..4].copy_from_slice(&[0x17, 0x10, 0x00]);
+                }
+                Input::Frame { id: 0x605, rtr: false, data }
+            }),
+        // ...NMT commands, so that every state is visited...
+        prop::sample::select(vec![[0x01u8, 0x05], [0x02, 0x00], [0x80, 0x05], [0x82, 0x00]])
+            .prop_map(|d| Input::Frame { id: 0x000, rtr: false, data: d.to_vec() }),
         (0u64..300_000).prop_map(Input::Wait),
     ]
 }
@@ -60,12 +79,25 @@ proptest! {
                 prop_assert!(t > now, "deadline {:?} not after now {:?}", t, now);
             }
             while let Some(out) = node.poll_transmit() {
-                // The only frames this node may send: boot-up, heartbeat or guarding reply on 705h, DLC 1.
-                prop_assert_eq!(out.cob_id(), 0x705);
                 prop_assert!(!out.is_rtr());
-                prop_assert_eq!(out.data().len(), 1);
-                let b = out.data()[0] & 0x7F;
-                prop_assert!(matches!(b, 0x00 | 0x04 | 0x05 | 0x7F), "state code {:02X}", b);
+                match out.cob_id() {
+                    // Boot-up, heartbeat or guarding reply: DLC 1, a CiA 301 v4.2 state code.
+                    0x705 => {
+                        prop_assert_eq!(out.data().len(), 1);
+                        let b = out.data()[0] & 0x7F;
+                        prop_assert!(matches!(b, 0x00 | 0x04 | 0x05 | 0x7F), "state code {:02X}", b);
+                    }
+                    // SDO: DLC 8, a well-formed server frame; an abort carries a Table 22 code.
+                    0x585 => {
+                        prop_assert_eq!(out.data().len(), 8);
+                        match ServerResponse::parse(out.data()) {
+                            Ok(ServerResponse::Abort { code, .. }) => prop_assert!(AbortCode::from_code(code).is_some()),
+                            Ok(_) => {}
+                            Err(_) => prop_assert!(BlockSegment::parse(out.data()).is_ok(), "{:?}", out),
+                        }
+                    }
+                    other => prop_assert!(false, "frame on {:03X}", other),
+                }
             }
             while node.poll_event().is_some() {}
             prop_assert!(node.state() != NmtState::Initialising);

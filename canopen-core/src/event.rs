@@ -29,4 +29,24 @@ pub enum Event {
     Heartbeat(ConsumerEvent),
     /// A life-guarding observation (GUARD-10).
     LifeGuarding(LifeGuardingEvent),
+    /// An SDO download completed: the entry holds its new value (side effects of communication objects have
+    /// already been applied).
+    ObjectWritten {
+        /// Index.
+        index: u16,
+        /// Sub-index.
+        sub: u8,
+    },
+    /// An SDO transfer was aborted, by this server (`by_client == false`, the abort frame was sent) or by the
+    /// client.
+    SdoAborted {
+        /// Index of the transfer.
+        index: u16,
+        /// Sub-index of the transfer.
+        sub: u8,
+        /// The abort code (a client may send codes outside Table 22).
+        code: u32,
+        /// Whether the client aborted.
+        by_client: bool,
+    },
 }

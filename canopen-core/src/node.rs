@@ -28,7 +28,10 @@ use crate::frame::CanFrame;
 use crate::guarding::Guarding;
 use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
 use crate::nmt::{Nmt, NmtState, Service, Transition};
+use crate::od::comm::CommProfile;
+use crate::od::Merged;
 use crate::od::{AbortCode, ObjectDictionary};
+use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
 use crate::time::{earliest, Instant};
 use crate::wire::error_control::{Heartbeat, StateCode};
 use crate::wire::nmt::NodeControl;
@@ -55,8 +58,10 @@ use crate::wire::nmt::NodeControl;
 /// ```
 pub struct Node<A, const HB: usize = 4, const TXQ: usize = 16, const EVQ: usize = 16> {
     node_id: NodeId,
-    config: NodeConfig,
-    params: CommParams<HB>,
+    comm: CommProfile<HB>,
+    sdo: SdoServer,
+    /// The latest time passed in, for work that `poll_transmit` resumes (block upload segments).
+    now: Instant,
     nmt: Nmt,
     boot_pending: bool,
     producer: HeartbeatProducer,
@@ -138,8 +143,9 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
     pub fn new(node_id: NodeId, config: NodeConfig, app: A) -> Self {
         Node {
             node_id,
-            config,
-            params: CommParams::new(&config),
+            comm: CommProfile::new(config),
+            sdo: SdoServer::new(SdoServerParams::default_server(node_id)),
+            now: Instant::ZERO,
             nmt: Nmt::new(),
             boot_pending: true,
             producer: HeartbeatProducer::new(),
@@ -165,12 +171,23 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
 
     /// The node configuration.
     pub const fn config(&self) -> &NodeConfig {
-        &self.config
+        &self.comm.config
     }
 
     /// The current communication parameters.
     pub const fn params(&self) -> &CommParams<HB> {
-        &self.params
+        &self.comm.params
+    }
+
+    /// The whole object dictionary as SDO, PDO and the EDS see it: the communication profile (1000h–1FFFh)
+    /// merged with the application's entries.
+    pub fn dictionary(&mut self) -> Merged<&mut CommProfile<HB>, &mut A> {
+        Merged { comm: &mut self.comm, app: &mut self.app }
+    }
+
+    /// The communication-profile dictionary (1000h–1FFFh).
+    pub const fn comm_profile(&self) -> &CommProfile<HB> {
+        &self.comm
     }
 
     /// The application dictionary.
@@ -200,7 +217,9 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
 
     /// The next frame to send.
     pub fn poll_transmit(&mut self) -> Option<CanFrame> {
-        self.tx.pop_front()
+        let frame = self.tx.pop_front();
+        self.pump_sdo();
+        frame
     }
 
     /// The next event for the application.
@@ -215,12 +234,17 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         }
         let mut t = earliest(self.producer.poll_timeout(), self.consumer.poll_timeout());
         t = earliest(t, self.guarding.poll_timeout());
-        t
+        earliest(t, self.sdo.poll_timeout())
     }
 
     /// Lets the node act on the time that has passed: boot, heartbeats, consumer and life-guarding time-outs.
     pub fn handle_timeout(&mut self, now: Instant) {
         self.ensure_booted(now);
+        if self.sdo.poll_timeout().is_some_and(|t| t <= now) {
+            let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
+            let response = self.sdo.handle_timeout(now, &mut od);
+            self.sdo_response(now, response);
+        }
         if self.producer.due(now) {
             self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
         }
@@ -244,7 +268,51 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
             FunctionCode::Nmt if node == 0 && !frame.is_rtr() => self.handle_node_control(now, frame),
             FunctionCode::NmtErrorControl if node == self.node_id.get() => self.handle_guarding(now, frame),
             FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
+            _ if Some(frame.cob_id()) == self.sdo.rx_cob_id() => self.handle_sdo(now, frame),
             _ => {}
+        }
+    }
+
+    /// SDO-01, NMT-18: requests are served in Pre-operational and Operational only (V-NMT-09: silence in
+    /// Stopped). The server handles DLC and content (CAN-07: frames shorter than 8 bytes are ignored).
+    fn handle_sdo(&mut self, now: Instant, frame: &CanFrame) {
+        if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {
+            return;
+        }
+        let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
+        let response = self.sdo.handle_request(now, frame.data(), &mut od);
+        self.sdo_response(now, response);
+        self.pump_sdo();
+    }
+
+    fn sdo_response(&mut self, now: Instant, response: Response) {
+        if let (Some(data), Some(cob)) = (response.frame, self.sdo.tx_cob_id()) {
+            self.transmit(CanFrame::from_parts(cob, data, 8));
+        }
+        match response.event {
+            Some(SdoEvent::Written { index, sub }) => {
+                self.comm_written(now, index, sub);
+                self.push_event(Event::ObjectWritten { index, sub });
+            }
+            Some(SdoEvent::Aborted { index, sub, code }) => {
+                self.push_event(Event::SdoAborted { index, sub, code: code.code(), by_client: false })
+            }
+            Some(SdoEvent::AbortReceived { index, sub, code }) => {
+                self.push_event(Event::SdoAborted { index, sub, code, by_client: true })
+            }
+            Some(SdoEvent::Uploaded { .. }) | None => {}
+        }
+    }
+
+    /// Moves block-upload segments from the SDO server into the transmit queue while it has room, so a
+    /// sub-block of up to 127 frames never needs a queue of that size.
+    fn pump_sdo(&mut self) {
+        while self.sdo.wants_transmit() && !self.tx.is_full() {
+            let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
+            let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
+                break;
+            };
+            self.sdo_response(self.now, response);
         }
     }
 
@@ -266,42 +334,41 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
 
     /// Writes 1017h producer heartbeat time (HB-01, HB-04: effective at once).
     pub fn set_heartbeat_time(&mut self, now: Instant, ms: u16) {
-        self.params.heartbeat_time_ms = ms;
+        self.comm.params.heartbeat_time_ms = ms;
         self.comm_written(now, 0x1017, 0);
     }
 
     /// Writes 1016h sub-index `sub` (HB-06..HB-09).
     pub fn set_consumer_heartbeat(&mut self, now: Instant, sub: u8, raw: u32) -> Result<(), AbortCode> {
-        self.params.set_consumer(sub, raw)?;
+        self.comm.params.set_consumer(sub, raw)?;
         self.comm_written(now, 0x1016, sub);
         Ok(())
     }
 
     /// Writes 100Ch guard time and 100Dh life time factor (GUARD-02..GUARD-04).
     pub fn set_life_guarding(&mut self, now: Instant, guard_time_ms: u16, life_time_factor: u8) {
-        self.params.guard_time_ms = guard_time_ms;
-        self.params.life_time_factor = life_time_factor;
+        self.comm.params.guard_time_ms = guard_time_ms;
+        self.comm.params.life_time_factor = life_time_factor;
         self.comm_written(now, 0x100C, 0);
     }
 
     /// Applies the side effects of a communication object written at `now` (by SDO or the local API).
     fn comm_written(&mut self, now: Instant, index: u16, sub: u8) {
+        let p = &self.comm.params;
         match index {
-            0x1017 => self.producer.set_period(now, self.params.heartbeat_time_ms),
+            0x1017 => self.producer.set_period(now, p.heartbeat_time_ms),
             0x1016 => {
-                if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| self.params.heartbeat_consumers.get(i))
-                {
+                if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| p.heartbeat_consumers.get(i)) {
                     self.consumer.set_entry(usize::from(sub) - 1, *raw);
                 }
             }
-            0x100C | 0x100D => {
-                self.guarding.set_life_time(now, self.params.guard_time_ms, self.params.life_time_factor)
-            }
+            0x100C | 0x100D => self.guarding.set_life_time(now, p.guard_time_ms, p.life_time_factor),
             _ => {}
         }
     }
 
     fn ensure_booted(&mut self, now: Instant) {
+        self.now = self.now.max(now);
         if self.boot_pending {
             self.boot_pending = false;
             self.reset(now, true);
@@ -314,13 +381,14 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
             self.app.restore_defaults();
             self.push_event(Event::ResetApplication);
         }
-        self.params = CommParams::new(&self.config);
-        self.consumer.configure(&self.params.heartbeat_consumers);
+        self.comm.reset_communication();
+        self.consumer.configure(&self.comm.params.heartbeat_consumers);
         self.guarding.reset();
+        self.sdo.set_params(SdoServerParams::default_server(self.node_id));
         self.push_event(Event::ResetCommunication);
         // NMT-23: boot-up; HB-04: it counts as the first heartbeat.
         self.transmit(self.error_control_frame(Heartbeat(StateCode::BootUp).emit()));
-        self.producer.start(now, self.params.heartbeat_time_ms);
+        self.producer.start(now, self.comm.params.heartbeat_time_ms);
         self.nmt.boot_completed();
         self.state_changed(NmtState::Initialising, NmtState::PreOperational);
     }
@@ -350,8 +418,8 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         let (reply, resolved) = self.guarding.handle_request(
             now,
             self.nmt.state().state_code(),
-            self.params.guard_time_ms,
-            self.params.life_time_factor,
+            self.comm.params.guard_time_ms,
+            self.comm.params.life_time_factor,
         );
         self.transmit(self.error_control_frame(reply.emit()));
         if let Some(ev) = resolved {

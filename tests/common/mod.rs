@@ -182,3 +182,38 @@ pub fn events<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ:
 pub fn ms(v: u64) -> Instant {
     Instant::from_millis(v)
 }
+
+use canopen::core::sdo::client::{ClientData, ClientEvent, SdoClient};
+
+/// Runs one SDO transfer of `client` against the bus, as the master: sends the client's frames, feeds it the
+/// server's responses, and lets simulated time run when neither side has anything to say.
+pub fn sdo_transfer<S: Station>(bus: &mut Bus<S>, client: &mut SdoClient, data: &mut dyn ClientData) -> ClientEvent {
+    let rx = client.params().rx_cob_id();
+    let tx = client.params().tx_cob_id();
+    for _ in 0..1_000_000 {
+        let mut progressed = false;
+        while let Some(f) = client.poll_transmit(bus.now, data) {
+            progressed = true;
+            bus.inject(CanFrame::new(tx, &f).expect("8-byte SDO frame"));
+        }
+        for seen in bus.take_master_rx() {
+            if seen.frame.cob_id() == rx {
+                progressed = true;
+                if let Some(ev) = client.handle_response(bus.now, seen.frame.data(), data) {
+                    return ev;
+                }
+            }
+        }
+        if !progressed {
+            let step = Instant::from_micros(bus.now.as_micros() + 1_000);
+            let until = client.poll_timeout().map_or(step, |t| t.min(step));
+            bus.run_until(until);
+            if client.poll_timeout().is_some_and(|t| t <= bus.now) {
+                if let Some(ev) = client.handle_timeout(bus.now) {
+                    return ev;
+                }
+            }
+        }
+    }
+    panic!("SDO transfer did not finish");
+}

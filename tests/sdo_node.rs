@@ -1,0 +1,177 @@
+//! SDO through a whole node on the in-memory bus: the communication profile and a derived application
+//! dictionary merged (OD-12), served in the right NMT states (NMT-18), with side effects of written
+//! communication objects applied at once (HB-04, HB-09), block upload paced by a small transmit queue, and
+//! the server's time-out (SDO-31). Frames are the VECTORS.md §4, §6 values where one exists.
+
+mod common;
+
+use canopen::core::{
+    comm::NodeConfig,
+    node::Node,
+    od::DomainBuf,
+    od::VisibleString,
+    sdo::client::{ClientError, ClientEvent, Mode, SdoClient, SliceData},
+    sdo::SdoClientParams,
+    wire::sdo::Multiplexer,
+    Event, NmtState, NodeId,
+};
+use canopen::ObjectDictionary;
+use common::{events, frame, ms, sdo_transfer, Bus};
+
+#[derive(ObjectDictionary, Default)]
+#[od(crate = "canopen::core")]
+struct App {
+    #[od(index = 0x2000, access = "rw", default = 0)]
+    byte: u8,
+    #[od(index = 0x2001, access = "rw", min = -1000, max = 1000)]
+    setpoint: i16,
+    #[od(index = 0x2004, access = "rw")]
+    text: VisibleString<32>,
+    #[od(index = 0x2005, name = "Blob", domain)]
+    blob: DomainBuf<4096>,
+}
+
+const CFG: NodeConfig = NodeConfig { device_type: 0x000F_0191, device_name: "sdo test node", ..NodeConfig::DEFAULT };
+
+fn node(id: u8) -> Node<App, 4, 4, 32> {
+    Node::new(NodeId::new(id).unwrap(), CFG, App::default())
+}
+
+fn replies(bus: &mut Bus<Node<App, 4, 4, 32>>) -> Vec<canopen::core::CanFrame> {
+    bus.take_master_rx().into_iter().map(|s| s.frame).filter(|f| f.cob_id() & 0x780 == 0x580).collect()
+}
+
+/// V-HB-04 through the node: 1017h written by SDO takes effect at once (HB-04).
+#[test]
+fn heartbeat_time_written_by_sdo() {
+    let mut bus = Bus::new(vec![node(9)]);
+    bus.run_until(ms(0));
+    bus.take_master_rx();
+    bus.run_until(ms(50));
+    bus.inject(frame("609 [8] 2B 17 10 00 64 00 00 00"));
+    assert_eq!(replies(&mut bus), vec![frame("589 [8] 60 17 10 00 00 00 00 00")]);
+    assert!(events(&mut bus.stations[0]).contains(&Event::ObjectWritten { index: 0x1017, sub: 0 }));
+    bus.run_until(ms(400));
+    let hb: Vec<u64> = bus.frames_on(0x709).into_iter().map(|(t, _)| t).collect();
+    assert_eq!(hb, vec![0, 150, 250, 350]);
+}
+
+/// V-HBC-01..V-HBC-05 through the node (HB-07..HB-09, ABORT-14) and the seed's wrong-length writes.
+#[test]
+fn consumer_heartbeat_written_by_sdo() {
+    let mut bus = Bus::new(vec![node(9)]);
+    bus.run_until(ms(0));
+    bus.take_master_rx();
+    for (req, rep) in [
+        ("609 [8] 23 16 10 01 64 00 02 00", "589 [8] 60 16 10 01 00 00 00 00"),
+        ("609 [8] 23 16 10 02 90 01 03 00", "589 [8] 60 16 10 02 00 00 00 00"),
+        ("609 [8] 23 16 10 03 A0 0F 07 00", "589 [8] 60 16 10 03 00 00 00 00"),
+        ("609 [8] 23 16 10 04 C8 00 02 00", "589 [8] 80 16 10 04 43 00 04 06"),
+        ("609 [8] 23 16 10 01 00 00 00 00", "589 [8] 60 16 10 01 00 00 00 00"),
+        // The seed's writes (VECTORS §4 ⚠): sub 00h is const, 2Bh announces 2 of 4 bytes.
+        ("609 [8] 2B 16 10 00 03 00 00 00", "589 [8] 80 16 10 00 02 00 01 06"),
+        ("609 [8] 2B 16 10 02 90 01 03 00", "589 [8] 80 16 10 02 13 00 07 06"),
+    ] {
+        bus.inject(frame(req));
+        assert_eq!(replies(&mut bus), vec![frame(rep)], "{req}");
+    }
+    // The write of entry 2 made the consumer watch node 3: its first heartbeat starts monitoring.
+    events(&mut bus.stations[0]);
+    bus.inject(frame("703 [1] 05"));
+    assert_eq!(
+        events(&mut bus.stations[0]),
+        vec![Event::Heartbeat(canopen::core::heartbeat::ConsumerEvent::Started {
+            node: 3,
+            state: canopen::core::wire::error_control::StateCode::Operational
+        })]
+    );
+}
+
+/// V-NMT-09, NMT-18: no SDO in Stopped; served again in Pre-operational and Operational.
+#[test]
+fn sdo_only_in_pre_operational_and_operational() {
+    let mut bus = Bus::new(vec![node(5)]);
+    bus.run_until(ms(0));
+    bus.take_master_rx();
+    let upload = "605 [8] 40 00 10 00 00 00 00 00";
+    let answer = frame("585 [8] 43 00 10 00 91 01 0F 00");
+    bus.inject(frame(upload));
+    assert_eq!(replies(&mut bus), vec![answer]);
+    bus.inject(frame("000 [2] 02 05"));
+    bus.inject(frame(upload));
+    assert!(replies(&mut bus).is_empty());
+    bus.inject(frame("000 [2] 01 05"));
+    assert_eq!(bus.stations[0].state(), NmtState::Operational);
+    bus.inject(frame(upload));
+    assert_eq!(replies(&mut bus), vec![answer]);
+    // A request to another node's server is not ours.
+    bus.inject(frame("606 [8] 40 00 10 00 00 00 00 00"));
+    assert!(replies(&mut bus).is_empty());
+}
+
+/// Every transfer kind through the node, application and communication objects alike; block upload of
+/// 4 KiB through a 4-frame transmit queue proves the node pulls segments only when there is room.
+#[test]
+fn every_transfer_kind_through_the_node() {
+    let mut bus = Bus::new(vec![node(5)]);
+    bus.run_until(ms(0));
+    let mut client = SdoClient::new(SdoClientParams::for_server(NodeId::new(5).unwrap()));
+    let blob: Vec<u8> = (0..4096u32).map(|i| (i * 7 + i / 251) as u8).collect();
+    let modes = [
+        Mode::Segmented,
+        Mode::Block { crc: true, blksize: 127, pst: 0 },
+        Mode::Block { crc: false, blksize: 13, pst: 0 },
+    ];
+    for mode in modes {
+        let mut out = blob.clone();
+        client.start_download(bus.now, Multiplexer::new(0x2005, 0), blob.len(), mode).unwrap();
+        let ev = sdo_transfer(&mut bus, &mut client, &mut SliceData::download(&mut out));
+        assert_eq!(ev, ClientEvent::Done { len: 4096 }, "download {mode:?}");
+        assert_eq!(bus.stations[0].app().blob.as_bytes(), &blob[..]);
+        let mut back = vec![0u8; 4096];
+        client.start_upload(bus.now, Multiplexer::new(0x2005, 0), mode).unwrap();
+        let ev = sdo_transfer(&mut bus, &mut client, &mut SliceData::upload(&mut back));
+        assert_eq!(ev, ClientEvent::Done { len: 4096 }, "upload {mode:?}");
+        assert_eq!(back, blob);
+    }
+    assert_eq!(bus.stations[0].tx_dropped(), 0);
+    // A string, and the device name from the communication profile (segmented upload).
+    let mut text = *b"hello, canopen";
+    client.start_download(bus.now, Multiplexer::new(0x2004, 0), text.len(), Mode::Auto).unwrap();
+    assert_eq!(sdo_transfer(&mut bus, &mut client, &mut SliceData::download(&mut text)), ClientEvent::Done { len: 14 });
+    assert_eq!(bus.stations[0].app().text.as_str(), "hello, canopen");
+    let mut name = [0u8; 32];
+    client.start_upload(bus.now, Multiplexer::new(0x1008, 0), Mode::Auto).unwrap();
+    let ev = sdo_transfer(&mut bus, &mut client, &mut SliceData::upload(&mut name));
+    assert_eq!(ev, ClientEvent::Done { len: 13 });
+    assert_eq!(&name[..13], b"sdo test node");
+    // Limits and access through the merged dictionary (ABORT-10, ABORT-22).
+    let mut v = 2000i16.to_le_bytes();
+    client.start_download(bus.now, Multiplexer::new(0x2001, 0), 2, Mode::Auto).unwrap();
+    let ev = sdo_transfer(&mut bus, &mut client, &mut SliceData::download(&mut v));
+    assert_eq!(ev, ClientEvent::Failed(ClientError::Server(0x0609_0031)));
+    let mut v = [1, 0, 0, 0];
+    client.start_download(bus.now, Multiplexer::new(0x1000, 0), 4, Mode::Auto).unwrap();
+    let ev = sdo_transfer(&mut bus, &mut client, &mut SliceData::download(&mut v));
+    assert_eq!(ev, ClientEvent::Failed(ClientError::Server(0x0601_0002)));
+}
+
+/// SDO-31, ABORT-02: a client that stops in the middle of a segmented download gets 0504 0000h after the
+/// server's time-out, and the node reports the abort.
+#[test]
+fn server_timeout_aborts() {
+    let mut bus = Bus::new(vec![node(5)]);
+    bus.run_until(ms(0));
+    bus.take_master_rx();
+    bus.inject(frame("605 [8] 21 04 20 00 0E 00 00 00")); // segmented download of 14 bytes to 2004h
+    assert_eq!(replies(&mut bus), vec![frame("585 [8] 60 04 20 00 00 00 00 00")]);
+    events(&mut bus.stations[0]);
+    bus.run_until(ms(5_000));
+    assert_eq!(replies(&mut bus), vec![frame("585 [8] 80 04 20 00 00 00 04 05")]);
+    assert!(events(&mut bus.stations[0]).contains(&Event::SdoAborted {
+        index: 0x2004,
+        sub: 0,
+        code: 0x0504_0000,
+        by_client: false
+    }));
+}
