@@ -262,3 +262,29 @@ fn merged_with_the_comm_profile() {
     view.write(0x2010, 0, &[1]).unwrap();
     assert_eq!(od.app.uint8, 1);
 }
+
+/// NMT-04: Reset Application gives every entry its `default =` value (or its type's default), leaving
+/// DOMAINs alone; the result equals the struct built with the documented defaults.
+#[test]
+fn restore_defaults_gives_the_declared_defaults() {
+    let fresh = AllTypes::with_defaults();
+    let mut od = AllTypes::with_defaults();
+    for (index, sub, bytes, _) in samples() {
+        od.write(index, sub, &bytes).unwrap();
+    }
+    let domain_before = read(&od, 0x2025, 0).unwrap();
+    od.restore_defaults();
+    for e in AllTypes::OD_ENTRIES {
+        if e.data_type == DataType::Domain {
+            continue;
+        }
+        assert_eq!(read(&od, e.index, e.sub), read(&fresh, e.index, e.sub), "{:04X}h:{}", e.index, e.sub);
+    }
+    assert_eq!(read(&od, 0x2025, 0).unwrap(), domain_before);
+    // Spot checks against the attributes themselves.
+    assert_eq!(read(&od, 0x2001, 0).unwrap(), vec![0xFF]); // default = -1
+    assert_eq!(read(&od, 0x2018, 0).unwrap(), 1.25f32.to_le_bytes().to_vec());
+    assert_eq!(read(&od, 0x2020, 0).unwrap(), b"hello".to_vec());
+    assert_eq!(read(&od, 0x2022, 0).unwrap(), vec![b'h', 0, b'i', 0]);
+    assert_eq!(read(&od, 0x2006, 0).unwrap(), vec![0; 6]); // no default: the type's default
+}

@@ -175,3 +175,16 @@ fn server_timeout_aborts() {
         by_client: false
     }));
 }
+
+/// NMT-04: reset node brings application values back to their defaults; reset communication does not
+/// touch them (NMT-05 restores only 1000h–1FFFh).
+#[test]
+fn reset_node_restores_application_defaults() {
+    let mut bus = Bus::new(vec![node(5)]);
+    bus.run_until(ms(0));
+    bus.inject(frame("605 [8] 2F 00 20 00 2A 00 00 00")); // 2000h = 42
+    bus.inject(frame("000 [2] 82 05")); // reset communication
+    assert_eq!(bus.stations[0].app().byte, 42);
+    bus.inject(frame("000 [2] 81 05")); // reset node
+    assert_eq!(bus.stations[0].app().byte, 0);
+}

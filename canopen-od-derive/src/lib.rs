@@ -69,7 +69,9 @@
 //!   (const, in `.rodata`), `App::OD_MAX_VALUE_SIZE` (largest non-DOMAIN value, to size an SDO buffer);
 //! - `impl ObjectDictionary for App`: a binary search of the 4-byte keys `OD_KEYS` gives a position, a `match` on the
 //!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
-//! - `impl OdDescribe for App` (for the EDS writer).
+//! - `impl OdDescribe for App` (for the EDS writer);
+//! - `restore_defaults` (NMT-04 Reset Application): each entry gets its `default`, or its type's
+//!   `Default` when none is given; DOMAIN fields and fields without `#[od]` are left alone.
 //!
 //! Compile errors (pinned by the trybuild tests in `tests/ui/`): duplicate index/sub-index, a type that is
 //! not PDO-mappable marked mappable, an index in 0000h–1FFFh, a default outside its limits (or min > max,
@@ -598,6 +600,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
     let mut end_arms = Vec::new();
     let mut abort_arms = Vec::new();
     let mut max_sizes = Vec::new();
+    let mut restores = Vec::new();
     for (pos, r) in rows.iter().enumerate() {
         let sub = r.sub;
         match &r.target {
@@ -612,6 +615,13 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     quote!(#pos => ::core::result::Result::Ok(#core::od::OdValue::read_bytes(&self.#member, offset, buf)),),
                 );
                 max_sizes.push(quote!(<#ty as #core::od::OdValue>::MAX_SIZE));
+                let default = &r.default;
+                restores.push(quote! {
+                    self.#member = (#default)
+                        .as_ref()
+                        .and_then(<#ty as #core::od::OdValue>::from_value)
+                        .unwrap_or_default();
+                });
                 let limits = if !r.limited {
                     quote!()
                 } else {
@@ -769,6 +779,12 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     let pos = self.__od_writable(index, sub)?;
                     match pos { #(#end_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
                 }
+                /// NMT-04 Reset Application: every entry gets its `default` (or the type's default when none
+                /// is given); DOMAIN fields and fields without `#[od]` are left alone.
+                fn restore_defaults(&mut self) {
+                    #(#restores)*
+                }
+
                 fn abort_write(&mut self, index: u16, sub: u8) {
                     if let ::core::result::Result::Ok((pos, _)) = self.__od_pos(index, sub) {
                         match pos { #(#abort_arms)* _ => {} }

@@ -56,6 +56,44 @@ pub trait OdValue: Sized {
         Some(Ordering::Equal)
     }
 
+    /// The value a dictionary default (an entry table's `default`) stands for, or `None` when the default
+    /// does not fit the type. Used by Reset Application (NMT-04) to restore power-on values.
+    ///
+    /// ```
+    /// use canopen_core::od::{OdValue, Value, I24};
+    /// assert_eq!(i16::from_value(&Value::Int(-266)), Some(-266));
+    /// assert_eq!(I24::from_value(&Value::Int(-5)), I24::new(-5));
+    /// assert_eq!(f32::from_value(&Value::Real32(1.25)), Some(1.25));
+    /// assert_eq!(u8::from_value(&Value::Str("x")), None);
+    /// ```
+    fn from_value(value: &Value) -> Option<Self> {
+        let mut buf = [0u8; 8];
+        let n = Self::MAX_SIZE.min(8);
+        let bytes: &[u8] = match *value {
+            Value::Bool(b) => &[b as u8],
+            Value::Int(i) => {
+                buf = i.to_le_bytes();
+                &buf[..n]
+            }
+            Value::Uint(u) => {
+                buf = u.to_le_bytes();
+                &buf[..n]
+            }
+            Value::Real32(f) => {
+                buf[..4].copy_from_slice(&f.to_le_bytes());
+                &buf[..4]
+            }
+            Value::Real64(f) => {
+                buf = f.to_le_bytes();
+                &buf[..8]
+            }
+            Value::Str(s) => s.as_bytes(),
+            Value::Bytes(b) => b,
+            Value::NodeIdPlus(_) => return None,
+        };
+        Self::decode(bytes).ok()
+    }
+
     /// Streamed write, step 1: accepts or refuses the announced size before any data moves. Only strings
     /// support streaming; fixed-size values (≤ 8 bytes) are written whole.
     fn begin_stream(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
@@ -717,6 +755,12 @@ impl<const N: usize> core::fmt::Debug for UnicodeString<N> {
 }
 
 impl<const N: usize> OdValue for UnicodeString<N> {
+    fn from_value(value: &Value) -> Option<Self> {
+        match *value {
+            Value::Str(text) => UnicodeString::from_str(text),
+            _ => None,
+        }
+    }
     const DATA_TYPE: DataType = DataType::UnicodeString;
     const MAX_SIZE: usize = 2 * N;
     const MAPPABLE: bool = false;
