@@ -91,6 +91,11 @@ pub trait OdValue: Sized {
             Value::Bytes(b) => b,
             Value::NodeIdPlus(_) => return None,
         };
+        // Text and bytes are defaults of strings only; numbers of fixed-size types only.
+        let text = matches!(value, Value::Str(_) | Value::Bytes(_));
+        if text != Self::DATA_TYPE.size().is_none() {
+            return None;
+        }
         Self::decode(bytes).ok()
     }
 
