@@ -139,7 +139,9 @@ impl ObjectDictionary for NoApplication {
 }
 
 impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> Node<A, HB, TXQ, EVQ> {
-    /// A node in Initialization; it boots on the first call that passes the time in (NMT-03).
+    /// A node in Initialization; it boots on the first call that passes the time in (NMT-03). Booting runs
+    /// Reset Application, so every application entry then holds its default (for a derived dictionary, its
+    /// `default =` value — the value the EDS announces), exactly as after an NMT reset node.
     pub fn new(node_id: NodeId, config: NodeConfig, app: A) -> Self {
         Node {
             node_id,
