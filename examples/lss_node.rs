@@ -77,10 +77,7 @@ impl FileStore {
         let Ok(text) = std::fs::read_to_string(&self.0) else {
             return 0xFF;
         };
-        text.lines()
-            .find_map(|l| l.strip_prefix("node_id="))
-            .and_then(|v| v.trim().parse().ok())
-            .unwrap_or(0xFF)
+        text.lines().find_map(|l| l.strip_prefix("node_id=")).and_then(|v| v.trim().parse().ok()).unwrap_or(0xFF)
     }
 }
 

@@ -315,10 +315,7 @@ fn bit_timing_configure_and_activate() {
     m.configure_bit_timing(BitRate::K250).unwrap();
     assert_eq!(drive(&mut bus, &mut m, &mut flash), MasterEvent::Configured(Status::SUCCESS));
     let answers: Vec<_> = bus.log.iter().filter(|s| s.frame.cob_id() == 0x7E4).map(|s| s.frame).collect();
-    assert_eq!(
-        &answers[1..],
-        &[frame("7E4 [8] 13 01 00 00 00 00 00 00"), frame("7E4 [8] 13 00 00 00 00 00 00 00")]
-    );
+    assert_eq!(&answers[1..], &[frame("7E4 [8] 13 01 00 00 00 00 00 00"), frame("7E4 [8] 13 00 00 00 00 00 00 00")]);
     assert_eq!(
         lss_events(&mut bus.stations[0]),
         vec![LssEvent::ModeChanged(LssMode::Configuration), LssEvent::BitRateConfigured(BitRate::K250)]
@@ -375,14 +372,14 @@ fn store_errors_are_reported() {
     // Inquiries in configuration state.
     for (f, v) in [(IdentityField::VendorId, 0xABC), (IdentityField::Serial, 3)] {
         m.inquire(f).unwrap();
-        assert_eq!(drive(&mut bus, &mut m, &mut vec![Flash::default()]), MasterEvent::Identity(f, v));
+        assert_eq!(drive(&mut bus, &mut m, &mut [Flash::default()]), MasterEvent::Identity(f, v));
     }
     m.inquire_node_id().unwrap();
-    assert_eq!(drive(&mut bus, &mut m, &mut vec![Flash::default()]), MasterEvent::NodeId(0xFF));
+    assert_eq!(drive(&mut bus, &mut m, &mut [Flash::default()]), MasterEvent::NodeId(0xFF));
     m.identify_remote(0xABC, 0x1001, 0..=0x0001_0000, 0..=2).unwrap();
-    assert_eq!(drive(&mut bus, &mut m, &mut vec![Flash::default()]), MasterEvent::Identified(false));
+    assert_eq!(drive(&mut bus, &mut m, &mut [Flash::default()]), MasterEvent::Identified(false));
     m.identify_remote(0xABC, 0x1001, 0..=0x0001_0000, 0..=3).unwrap();
-    assert_eq!(drive(&mut bus, &mut m, &mut vec![Flash::default()]), MasterEvent::Identified(true));
+    assert_eq!(drive(&mut bus, &mut m, &mut [Flash::default()]), MasterEvent::Identified(true));
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -401,8 +398,8 @@ fn lss_input() -> impl Strategy<Value = Input> {
     let parts = vec![id.vendor_id, id.product_code, id.revision, id.serial, 0, u32::MAX, 7];
     let plausible = (
         prop::sample::select(vec![
-            0x04u8, 0x11, 0x13, 0x15, 0x17, 0x40, 0x41, 0x42, 0x43, 0x46, 0x47, 0x48, 0x49, 0x4A, 0x4B, 0x4C,
-            0x51, 0x5A, 0x5B, 0x5C, 0x5D, 0x5E, 0x44, 0x4F, 0x50,
+            0x04u8, 0x11, 0x13, 0x15, 0x17, 0x40, 0x41, 0x42, 0x43, 0x46, 0x47, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x51,
+            0x5A, 0x5B, 0x5C, 0x5D, 0x5E, 0x44, 0x4F, 0x50,
         ]),
         prop::sample::select(parts),
         prop::sample::select(vec![0u8, 1, 2, 3, 5, 9, 0x22, 0x7F, 0x80, 0xFF]),

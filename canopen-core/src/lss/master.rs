@@ -379,7 +379,12 @@ impl LssMaster {
             ScanStep::Next if !answered => return self.finish(MasterEvent::Timeout),
             ScanStep::Next if scan.sub >= 3 => {
                 let [vendor_id, product_code, revision, serial] = scan.id;
-                return self.finish(MasterEvent::Fastscan(Some(Identity { vendor_id, product_code, revision, serial })));
+                return self.finish(MasterEvent::Fastscan(Some(Identity {
+                    vendor_id,
+                    product_code,
+                    revision,
+                    serial,
+                })));
             }
             ScanStep::Next => {
                 scan.sub += 1;
@@ -404,12 +409,7 @@ fn scan_frame(scan: &Scan) -> LssRequest {
         ScanStep::Bit(b) => (b, sub),
         ScanStep::Next => (0, (sub + 1) & 3),
     };
-    LssRequest::Fastscan {
-        id_number: scan.id[usize::from(sub)],
-        bit_check,
-        lss_sub: field(sub),
-        lss_next: field(next),
-    }
+    LssRequest::Fastscan { id_number: scan.id[usize::from(sub)], bit_check, lss_sub: field(sub), lss_next: field(next) }
 }
 
 /// What [`Commissioning`] reports.
@@ -627,8 +627,11 @@ mod tests {
 
     #[test]
     fn fastscan_finds_the_lowest_and_only_unconfigured() {
-        let mut slaves =
-            [LssSlave::new(&ident(0x3000), None), LssSlave::new(&ident(0x0102), None), LssSlave::new(&ident(1), NodeId::new(4))];
+        let mut slaves = [
+            LssSlave::new(&ident(0x3000), None),
+            LssSlave::new(&ident(0x0102), None),
+            LssSlave::new(&ident(1), NodeId::new(4)),
+        ];
         let mut m = LssMaster::new(T);
         m.fastscan().unwrap();
         let (ev, sent) = run(&mut m, &mut slaves);

@@ -420,10 +420,10 @@ impl LssSlave {
             LssRequest::IdentifyNonConfiguredRemoteSlave if self.is_unconfigured() => {
                 out.response = Some(LssResponse::IdentifyNonConfiguredSlave);
             }
-            LssRequest::Fastscan { id_number, bit_check, lss_sub, lss_next } if !configuration => {
-                if self.is_unconfigured() {
-                    out = self.fastscan(id_number, bit_check, lss_sub, lss_next);
-                }
+            LssRequest::Fastscan { id_number, bit_check, lss_sub, lss_next }
+                if !configuration && self.is_unconfigured() =>
+            {
+                out = self.fastscan(id_number, bit_check, lss_sub, lss_next);
             }
             LssRequest::ConfigureNodeId(id) if configuration => {
                 let status = if NodeId::new(id).is_some() || id == UNCONFIGURED_NODE_ID {
@@ -710,24 +710,27 @@ mod tests {
         assert_eq!(s.poll_timeout(), None);
         // Supported set restricted by the application.
         s.set_supported_bit_rates(1 << 2);
-        assert_eq!(
-            req(&mut s, bt(0, 3)).response,
-            Some(LssResponse::BitTimingConfigured(Status::NOT_SUPPORTED))
-        );
+        assert_eq!(req(&mut s, bt(0, 3)).response, Some(LssResponse::BitTimingConfigured(Status::NOT_SUPPORTED)));
     }
 
     #[test]
     fn store_deferred_and_not_supported() {
         let mut s = LssSlave::new(&ID, None);
         config(&mut s);
-        assert_eq!(req(&mut s, LssRequest::StoreConfiguration).response, Some(LssResponse::Stored(Status::NOT_SUPPORTED)));
+        assert_eq!(
+            req(&mut s, LssRequest::StoreConfiguration).response,
+            Some(LssResponse::Stored(Status::NOT_SUPPORTED))
+        );
         s.set_store_supported(true);
         req(&mut s, LssRequest::ConfigureNodeId(0x22));
         let out = req(&mut s, LssRequest::StoreConfiguration);
         assert_eq!(out.response, None);
         assert_eq!(out.event, Some(LssEvent::StoreRequested { node_id: 0x22, bit_rate: BitRate::K125 }));
         assert!(s.store_pending());
-        assert_eq!(s.complete_store(Err(StoreError::Manufacturer(3))), Some(LssResponse::Stored(Status::manufacturer(3))));
+        assert_eq!(
+            s.complete_store(Err(StoreError::Manufacturer(3))),
+            Some(LssResponse::Stored(Status::manufacturer(3)))
+        );
         assert_eq!(s.complete_store(Ok(())), None);
         req(&mut s, LssRequest::StoreConfiguration);
         assert_eq!(s.complete_store(Ok(())), Some(LssResponse::Stored(Status::SUCCESS)));
@@ -795,12 +798,19 @@ mod tests {
         assert_eq!(s.mode(), LssMode::Configuration);
         // Configured and fastscan is no longer answered, even after going back to waiting.
         let mut s2 = LssSlave::new(&ID, NodeId::new(5));
-        assert_eq!(req(&mut s2, LssRequest::Fastscan {
-            id_number: 0,
-            bit_check: 0x80,
-            lss_sub: IdentityField::VendorId,
-            lss_next: IdentityField::VendorId
-        }).response, None);
+        assert_eq!(
+            req(
+                &mut s2,
+                LssRequest::Fastscan {
+                    id_number: 0,
+                    bit_check: 0x80,
+                    lss_sub: IdentityField::VendorId,
+                    lss_next: IdentityField::VendorId
+                }
+            )
+            .response,
+            None
+        );
     }
 
     #[test]

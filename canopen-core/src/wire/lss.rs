@@ -372,9 +372,7 @@ impl LssRequest {
     pub fn parse(data: &[u8]) -> Result<Self, WireError> {
         let d = eight(data)?;
         Ok(match d[0] {
-            cs::SWITCH_STATE_GLOBAL => {
-                LssRequest::SwitchStateGlobal(LssMode::from_u8(d[1]).ok_or(WireError::Value)?)
-            }
+            cs::SWITCH_STATE_GLOBAL => LssRequest::SwitchStateGlobal(LssMode::from_u8(d[1]).ok_or(WireError::Value)?),
             c @ 0x40..=0x43 => LssRequest::SwitchStateSelective(
                 IdentityField::from_index(c - 0x40).ok_or(WireError::Value)?,
                 u32_at(d),
