@@ -120,6 +120,12 @@ pub struct LssMaster {
 
 impl LssMaster {
     /// A master that waits `timeout` for each answer.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::LssMaster, Duration};
+    /// let m = LssMaster::new(Duration::from_millis(500)); // python canopen's RESPONSE_TIMEOUT
+    /// assert!(m.is_idle());
+    /// ```
     pub fn new(timeout: Duration) -> Self {
         LssMaster { timeout, tx: Deque::new(), op: Op::Idle, deadline: None }
     }
@@ -302,6 +308,17 @@ impl LssMaster {
 
     /// The next frame to send on 7E5h. Handing out the last frame of a confirmed service starts its
     /// response time-out at `now`.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{LssMaster, MasterEvent}, Instant};
+    /// let mut m = LssMaster::new(canopen_core::Duration::from_millis(10));
+    /// m.inquire_node_id().unwrap();
+    /// assert_eq!(m.poll_timeout(), None);
+    /// assert_eq!(m.poll_transmit(Instant::ZERO), Some([0x5E, 0, 0, 0, 0, 0, 0, 0]));
+    /// assert_eq!(m.poll_timeout(), Some(Instant::from_millis(10)));
+    /// assert_eq!(m.handle_timeout(Instant::from_millis(9)), None);
+    /// assert_eq!(m.handle_timeout(Instant::from_millis(10)), Some(MasterEvent::Timeout));
+    /// ```
     pub fn poll_transmit(&mut self, now: Instant) -> Option<[u8; 8]> {
         let f = self.tx.pop_front()?;
         if self.tx.is_empty() && self.op != Op::Idle {
@@ -311,11 +328,31 @@ impl LssMaster {
     }
 
     /// When [`handle_timeout`](Self::handle_timeout) must be called.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{LssMaster, MasterEvent}, Instant};
+    /// let mut m = LssMaster::new(canopen_core::Duration::from_millis(10));
+    /// m.inquire_node_id().unwrap();
+    /// assert_eq!(m.poll_timeout(), None);
+    /// assert_eq!(m.poll_transmit(Instant::ZERO), Some([0x5E, 0, 0, 0, 0, 0, 0, 0]));
+    /// assert_eq!(m.poll_timeout(), Some(Instant::from_millis(10)));
+    /// assert_eq!(m.handle_timeout(Instant::from_millis(9)), None);
+    /// assert_eq!(m.handle_timeout(Instant::from_millis(10)), Some(MasterEvent::Timeout));
+    /// ```
     pub fn poll_timeout(&self) -> Option<Instant> {
         self.deadline
     }
 
     /// Feeds the data of one frame received on 7E4h.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{LssMaster, MasterEvent}, Instant};
+    /// let mut m = LssMaster::new(canopen_core::Duration::from_millis(10));
+    /// m.identify_non_configured().unwrap();
+    /// m.poll_transmit(Instant::ZERO);
+    /// let ev = m.handle_response(Instant::ZERO, &[0x50, 0, 0, 0, 0, 0, 0, 0]);
+    /// assert_eq!(ev, Some(MasterEvent::NonConfigured(true)));
+    /// ```
     pub fn handle_response(&mut self, now: Instant, data: &[u8]) -> Option<MasterEvent> {
         self.deadline?;
         let response = LssResponse::parse(data).ok()?;
@@ -338,6 +375,17 @@ impl LssMaster {
     }
 
     /// Acts on an expired response time-out.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{LssMaster, MasterEvent}, Instant};
+    /// let mut m = LssMaster::new(canopen_core::Duration::from_millis(10));
+    /// m.inquire_node_id().unwrap();
+    /// assert_eq!(m.poll_timeout(), None);
+    /// assert_eq!(m.poll_transmit(Instant::ZERO), Some([0x5E, 0, 0, 0, 0, 0, 0, 0]));
+    /// assert_eq!(m.poll_timeout(), Some(Instant::from_millis(10)));
+    /// assert_eq!(m.handle_timeout(Instant::from_millis(9)), None);
+    /// assert_eq!(m.handle_timeout(Instant::from_millis(10)), Some(MasterEvent::Timeout));
+    /// ```
     pub fn handle_timeout(&mut self, now: Instant) -> Option<MasterEvent> {
         if self.deadline.is_none_or(|d| d > now) {
             return None;
@@ -475,6 +523,12 @@ pub struct Commissioning {
 
 impl Commissioning {
     /// A sequence that hands out node-IDs from `first` upwards, storing each when `store`.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::Commissioning, Duration, NodeId};
+    /// let c = Commissioning::new(Duration::from_millis(20), NodeId::new(2).unwrap(), true);
+    /// assert!(!c.is_done());
+    /// ```
     pub fn new(timeout: Duration, first: NodeId, store: bool) -> Self {
         Commissioning {
             master: LssMaster::new(timeout),
@@ -497,6 +551,17 @@ impl Commissioning {
     }
 
     /// The next frame to send on 7E5h.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{Commissioning, CommissioningEvent}, Duration, Instant, NodeId};
+    /// let mut c = Commissioning::new(Duration::from_millis(10), NodeId::new(1).unwrap(), false);
+    /// assert!(c.poll_transmit(Instant::ZERO).is_some()); // fastscan reset
+    /// assert_eq!(c.poll_timeout(), Some(Instant::from_millis(10)));
+    /// // One slave answers: the scan goes on with bit 31 of the vendor-ID.
+    /// assert_eq!(c.handle_response(Instant::ZERO, &[0x4F, 0, 0, 0, 0, 0, 0, 0]), None);
+    /// assert_eq!(c.poll_transmit(Instant::ZERO), Some([0x51, 0, 0, 0, 0, 31, 0, 0]));
+    /// assert_eq!(c.handle_timeout(Instant::from_millis(5)), None);
+    /// ```
     pub fn poll_transmit(&mut self, now: Instant) -> Option<[u8; 8]> {
         loop {
             if let Some(f) = self.master.poll_transmit(now) {
@@ -531,17 +596,50 @@ impl Commissioning {
     }
 
     /// When [`handle_timeout`](Self::handle_timeout) must be called.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{Commissioning, CommissioningEvent}, Duration, Instant, NodeId};
+    /// let mut c = Commissioning::new(Duration::from_millis(10), NodeId::new(1).unwrap(), false);
+    /// assert!(c.poll_transmit(Instant::ZERO).is_some()); // fastscan reset
+    /// assert_eq!(c.poll_timeout(), Some(Instant::from_millis(10)));
+    /// // One slave answers: the scan goes on with bit 31 of the vendor-ID.
+    /// assert_eq!(c.handle_response(Instant::ZERO, &[0x4F, 0, 0, 0, 0, 0, 0, 0]), None);
+    /// assert_eq!(c.poll_transmit(Instant::ZERO), Some([0x51, 0, 0, 0, 0, 31, 0, 0]));
+    /// assert_eq!(c.handle_timeout(Instant::from_millis(5)), None);
+    /// ```
     pub fn poll_timeout(&self) -> Option<Instant> {
         self.master.poll_timeout()
     }
 
     /// Feeds the data of one frame received on 7E4h.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{Commissioning, CommissioningEvent}, Duration, Instant, NodeId};
+    /// let mut c = Commissioning::new(Duration::from_millis(10), NodeId::new(1).unwrap(), false);
+    /// assert!(c.poll_transmit(Instant::ZERO).is_some()); // fastscan reset
+    /// assert_eq!(c.poll_timeout(), Some(Instant::from_millis(10)));
+    /// // One slave answers: the scan goes on with bit 31 of the vendor-ID.
+    /// assert_eq!(c.handle_response(Instant::ZERO, &[0x4F, 0, 0, 0, 0, 0, 0, 0]), None);
+    /// assert_eq!(c.poll_transmit(Instant::ZERO), Some([0x51, 0, 0, 0, 0, 31, 0, 0]));
+    /// assert_eq!(c.handle_timeout(Instant::from_millis(5)), None);
+    /// ```
     pub fn handle_response(&mut self, now: Instant, data: &[u8]) -> Option<CommissioningEvent> {
         let ev = self.master.handle_response(now, data)?;
         self.on_master_event(ev)
     }
 
     /// Acts on an expired response time-out.
+    ///
+    /// ```
+    /// use canopen_core::{lss::master::{Commissioning, CommissioningEvent}, Duration, Instant, NodeId};
+    /// let mut c = Commissioning::new(Duration::from_millis(10), NodeId::new(1).unwrap(), false);
+    /// assert!(c.poll_transmit(Instant::ZERO).is_some()); // fastscan reset
+    /// assert_eq!(c.poll_timeout(), Some(Instant::from_millis(10)));
+    /// // One slave answers: the scan goes on with bit 31 of the vendor-ID.
+    /// assert_eq!(c.handle_response(Instant::ZERO, &[0x4F, 0, 0, 0, 0, 0, 0, 0]), None);
+    /// assert_eq!(c.poll_transmit(Instant::ZERO), Some([0x51, 0, 0, 0, 0, 31, 0, 0]));
+    /// assert_eq!(c.handle_timeout(Instant::from_millis(5)), None);
+    /// ```
     pub fn handle_timeout(&mut self, now: Instant) -> Option<CommissioningEvent> {
         let ev = self.master.handle_timeout(now)?;
         self.on_master_event(ev)

@@ -65,6 +65,11 @@
 //! record), or on a file, as `examples/lss_node.rs` does. A slave whose application does not store
 //! ([`LssSlave::set_store_supported`] false, the default) answers 17h with error 01h at once.
 
+///
+/// ```
+/// use canopen_core::{lss::master::LssMaster, Duration};
+/// assert!(LssMaster::new(Duration::from_millis(20)).is_idle());
+/// ```
 pub mod master;
 
 use crate::cob::NodeId;
@@ -135,6 +140,11 @@ pub enum StoreError {
 
 impl StoreError {
     /// The wire status.
+    ///
+    /// ```
+    /// use canopen_core::lss::StoreError;
+    /// assert_eq!(StoreError::Manufacturer(4).status().spec, 4);
+    /// ```
     pub const fn status(self) -> Status {
         match self {
             StoreError::NotSupported => Status::NOT_SUPPORTED,
@@ -165,6 +175,17 @@ impl StoreError {
 /// ```
 pub trait LssStore {
     /// Stores the pending node-ID (1–127 or FFh) and bit rate so that the next power-up uses them.
+    ///
+    /// ```
+    /// use canopen_core::{lss::{LssStore, StoreError}, wire::lss::BitRate};
+    /// struct ReadOnly;
+    /// impl LssStore for ReadOnly {
+    ///     fn store(&mut self, _: u8, _: BitRate) -> Result<(), StoreError> {
+    ///         Err(StoreError::NotSupported)
+    ///     }
+    /// }
+    /// assert_eq!(ReadOnly.store(1, BitRate::K125), Err(StoreError::NotSupported));
+    /// ```
     fn store(&mut self, node_id: u8, bit_rate: BitRate) -> Result<(), StoreError>;
 }
 
@@ -193,6 +214,12 @@ struct BitSwitch {
 }
 
 /// Bit mask of the CiA 301 table rates (indices 0–4, 6–8), the default set of supported bit rates.
+///
+/// ```
+/// use canopen_core::{lss::CIA301_BIT_RATES, wire::lss::BitRate};
+/// assert!(CIA301_BIT_RATES & (1 << BitRate::K500.index()) != 0);
+/// assert!(CIA301_BIT_RATES & (1 << BitRate::Auto.index()) == 0);
+/// ```
 pub const CIA301_BIT_RATES: u16 = 0b1_1101_1111;
 
 /// The LSS slave: LSS waiting / configuration, node-ID and bit-rate configuration, identification and
@@ -235,6 +262,12 @@ impl LssSlave {
     /// A slave in LSS waiting with the LSS address `identity` (1018h) and active node-ID `node_id`
     /// (`None` = FFh, unconfigured). The bit rate defaults to 125 kbit/s; set the real one with
     /// [`set_bit_rate`](Self::set_bit_rate).
+    ///
+    /// ```
+    /// use canopen_core::{comm::Identity, lss::LssSlave, NodeId};
+    /// let s = LssSlave::new(&Identity::default(), NodeId::new(5));
+    /// assert_eq!(s.pending_node_id(), 5);
+    /// ```
     pub fn new(identity: &Identity, node_id: Option<NodeId>) -> Self {
         let raw = node_id.map_or(UNCONFIGURED_NODE_ID, NodeId::get);
         LssSlave {
@@ -377,6 +410,16 @@ impl LssSlave {
 
     /// Handles one frame received on 7E5h (its data bytes). Malformed frames and requests the current
     /// state does not serve are ignored (an empty output).
+    ///
+    /// ```
+    /// use canopen_core::{comm::Identity, lss::LssSlave, wire::lss::LssResponse, Instant};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// // Inquire node-ID in LSS waiting: silence.
+    /// assert_eq!(s.handle_request(Instant::ZERO, &[0x5E, 0, 0, 0, 0, 0, 0, 0]).response, None);
+    /// // Identify non-configured: answered 50h.
+    /// let out = s.handle_request(Instant::ZERO, &[0x4C, 0, 0, 0, 0, 0, 0, 0]);
+    /// assert_eq!(out.response, Some(LssResponse::IdentifyNonConfiguredSlave));
+    /// ```
     pub fn handle_request(&mut self, now: Instant, data: &[u8]) -> LssOutput {
         let Ok(request) = LssRequest::parse(data) else {
             return LssOutput::default();
@@ -501,6 +544,15 @@ impl LssSlave {
 
     /// Acts on the time that passed: reports [`LssEvent::SwitchBitRate`] at the end of the first delay and
     /// [`LssEvent::TransmitResumed`] at the end of the second.
+    ///
+    /// ```
+    /// use canopen_core::{comm::Identity, lss::{LssEvent, LssSlave}, wire::lss::LssMode, Instant};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// s.handle_request(Instant::ZERO, &[0x04, 1, 0, 0, 0, 0, 0, 0]);
+    /// s.handle_request(Instant::ZERO, &[0x15, 10, 0, 0, 0, 0, 0, 0]); // 10 ms switch delay
+    /// assert!(matches!(s.handle_timeout(Instant::from_millis(10)), Some(LssEvent::SwitchBitRate(_))));
+    /// assert_eq!(s.handle_timeout(Instant::from_millis(20)), Some(LssEvent::TransmitResumed));
+    /// ```
     pub fn handle_timeout(&mut self, now: Instant) -> Option<LssEvent> {
         let s = self.switch.as_mut()?;
         if !s.switched && now >= s.switch_at {

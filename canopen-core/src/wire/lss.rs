@@ -32,48 +32,133 @@
 use super::WireError;
 
 /// Length of every LSS frame.
+///
+/// ```
+/// use canopen_core::wire::lss::{LssRequest, LSS_FRAME_LEN};
+/// assert_eq!(LssRequest::InquireNodeId.emit().len(), LSS_FRAME_LEN);
+/// ```
 pub const LSS_FRAME_LEN: usize = 8;
 
 /// Command specifiers (CiA 305; CANopenNode `CO_LSS.h`, python `canopen/lss.py`).
+///
+/// ```
+/// use canopen_core::wire::lss::{cs, LssRequest};
+/// assert_eq!(LssRequest::StoreConfiguration.emit()[0], cs::STORE_CONFIGURATION);
+/// ```
 pub mod cs {
     /// Switch state global.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::SWITCH_STATE_GLOBAL, 0x04);
+    /// ```
     pub const SWITCH_STATE_GLOBAL: u8 = 0x04;
     /// Configure node-ID.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::CONFIGURE_NODE_ID, 0x11);
+    /// ```
     pub const CONFIGURE_NODE_ID: u8 = 0x11;
     /// Configure bit timing parameters.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::CONFIGURE_BIT_TIMING, 0x13);
+    /// ```
     pub const CONFIGURE_BIT_TIMING: u8 = 0x13;
     /// Activate bit timing parameters.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::ACTIVATE_BIT_TIMING, 0x15);
+    /// ```
     pub const ACTIVATE_BIT_TIMING: u8 = 0x15;
     /// Store configuration.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::STORE_CONFIGURATION, 0x17);
+    /// ```
     pub const STORE_CONFIGURATION: u8 = 0x17;
     /// Switch state selective, vendor-ID (first of 40h–43h).
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::SWITCH_STATE_SELECTIVE_VENDOR, 0x40);
+    /// ```
     pub const SWITCH_STATE_SELECTIVE_VENDOR: u8 = 0x40;
     /// Switch state selective, serial number (last of 40h–43h).
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::SWITCH_STATE_SELECTIVE_SERIAL, 0x43);
+    /// ```
     pub const SWITCH_STATE_SELECTIVE_SERIAL: u8 = 0x43;
     /// Switch state selective response.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::SWITCH_STATE_SELECTIVE_RESPONSE, 0x44);
+    /// ```
     pub const SWITCH_STATE_SELECTIVE_RESPONSE: u8 = 0x44;
     /// Identify remote slave, vendor-ID (first of 46h–4Bh).
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::IDENTIFY_REMOTE_VENDOR, 0x46);
+    /// ```
     pub const IDENTIFY_REMOTE_VENDOR: u8 = 0x46;
     /// Identify remote slave, serial number high bound (last of 46h–4Bh).
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::IDENTIFY_REMOTE_SERIAL_HIGH, 0x4B);
+    /// ```
     pub const IDENTIFY_REMOTE_SERIAL_HIGH: u8 = 0x4B;
     /// Identify non-configured remote slave.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::IDENTIFY_NON_CONFIGURED_REMOTE, 0x4C);
+    /// ```
     pub const IDENTIFY_NON_CONFIGURED_REMOTE: u8 = 0x4C;
     /// Identify slave (response).
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::IDENTIFY_SLAVE, 0x4F);
+    /// ```
     pub const IDENTIFY_SLAVE: u8 = 0x4F;
     /// Identify non-configured slave (response).
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::IDENTIFY_NON_CONFIGURED_SLAVE, 0x50);
+    /// ```
     pub const IDENTIFY_NON_CONFIGURED_SLAVE: u8 = 0x50;
     /// Fastscan.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::FASTSCAN, 0x51);
+    /// ```
     pub const FASTSCAN: u8 = 0x51;
     /// Inquire identity vendor-ID (first of 5Ah–5Dh).
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::INQUIRE_VENDOR, 0x5A);
+    /// ```
     pub const INQUIRE_VENDOR: u8 = 0x5A;
     /// Inquire node-ID.
+    ///
+    /// ```
+    /// assert_eq!(canopen_core::wire::lss::cs::INQUIRE_NODE_ID, 0x5E);
+    /// ```
     pub const INQUIRE_NODE_ID: u8 = 0x5E;
 }
 
 /// Fastscan BitCheck value that resets the scan: every non-configured slave in LSS waiting answers.
+///
+/// ```
+/// use canopen_core::wire::lss::{LssRequest, FASTSCAN_CONFIRM};
+/// let f = [0x51, 0, 0, 0, 0, FASTSCAN_CONFIRM, 0, 0];
+/// assert!(matches!(LssRequest::parse(&f), Ok(LssRequest::Fastscan { bit_check: 0x80, .. })));
+/// ```
 pub const FASTSCAN_CONFIRM: u8 = 0x80;
 
 /// The node-ID value that means "not configured" (CiA 305).
+///
+/// ```
+/// use canopen_core::wire::lss::{LssResponse, UNCONFIGURED_NODE_ID};
+/// assert_eq!(LssResponse::NodeId(UNCONFIGURED_NODE_ID).emit()[1], 0xFF);
+/// ```
 pub const UNCONFIGURED_NODE_ID: u8 = 0xFF;
 
 /// The LSS slave states (CiA 305 LSS FSA).
@@ -94,6 +179,11 @@ pub enum LssMode {
 
 impl LssMode {
     /// The mode for a mode byte, `None` if undefined.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::LssMode;
+    /// assert_eq!(LssMode::from_u8(2), None);
+    /// ```
     pub const fn from_u8(v: u8) -> Option<Self> {
         match v {
             0 => Some(LssMode::Waiting),
@@ -125,10 +215,21 @@ pub enum IdentityField {
 
 impl IdentityField {
     /// All four, in order.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::IdentityField;
+    /// assert_eq!(IdentityField::ALL[3], IdentityField::Serial);
+    /// ```
     pub const ALL: [IdentityField; 4] =
         [IdentityField::VendorId, IdentityField::ProductCode, IdentityField::Revision, IdentityField::Serial];
 
     /// The field for an index 0–3 (fastscan LSSSub/LSSNext), `None` otherwise.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::IdentityField;
+    /// assert_eq!(IdentityField::from_index(4), None);
+    /// assert_eq!(IdentityField::Serial.index(), 3);
+    /// ```
     pub const fn from_index(i: u8) -> Option<Self> {
         match i {
             0 => Some(IdentityField::VendorId),
@@ -140,6 +241,12 @@ impl IdentityField {
     }
 
     /// The index 0–3.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::IdentityField;
+    /// assert_eq!(IdentityField::from_index(4), None);
+    /// assert_eq!(IdentityField::Serial.index(), 3);
+    /// ```
     pub const fn index(self) -> u8 {
         self as u8
     }
@@ -170,11 +277,22 @@ pub enum IdentifyPart {
 
 impl IdentifyPart {
     /// The command specifier.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::IdentifyPart;
+    /// assert_eq!(IdentifyPart::VendorId.cs(), 0x46);
+    /// ```
     pub const fn cs(self) -> u8 {
         self as u8
     }
 
     /// The part for a command specifier 46h–4Bh.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::IdentifyPart;
+    /// assert_eq!(IdentifyPart::from_cs(0x48), Some(IdentifyPart::RevisionLow));
+    /// assert_eq!(IdentifyPart::from_cs(0x4C), None);
+    /// ```
     pub const fn from_cs(cs: u8) -> Option<Self> {
         Some(match cs {
             0x46 => IdentifyPart::VendorId,
@@ -225,6 +343,11 @@ pub enum BitRate {
 
 impl BitRate {
     /// The entry for a table index, `None` for reserved or undefined indices.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::BitRate;
+    /// assert_eq!(BitRate::from_index(4).map(BitRate::index), Some(4));
+    /// ```
     pub const fn from_index(i: u8) -> Option<Self> {
         Some(match i {
             0 => BitRate::K1000,
@@ -241,11 +364,22 @@ impl BitRate {
     }
 
     /// The table index.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::BitRate;
+    /// assert_eq!(BitRate::from_index(4).map(BitRate::index), Some(4));
+    /// ```
     pub const fn index(self) -> u8 {
         self as u8
     }
 
     /// The bit rate in kbit/s, `None` for automatic detection.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::BitRate;
+    /// assert_eq!(BitRate::K10.kbit_per_s(), Some(10));
+    /// assert_eq!(BitRate::Auto.kbit_per_s(), None);
+    /// ```
     pub const fn kbit_per_s(self) -> Option<u16> {
         Some(match self {
             BitRate::K1000 => 1000,
@@ -278,18 +412,43 @@ pub struct Status {
 
 impl Status {
     /// 00h: protocol successfully completed.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::Status;
+    /// assert!(Status::SUCCESS.is_success());
+    /// ```
     pub const SUCCESS: Status = Status { error: 0, spec: 0 };
     /// 01h: node-ID out of range (11h), bit timing not supported (13h), store not supported (17h).
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::Status;
+    /// assert_eq!(Status::NOT_SUPPORTED.error, 1);
+    /// ```
     pub const NOT_SUPPORTED: Status = Status { error: 1, spec: 0 };
     /// 02h: storage media access error (17h).
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::Status;
+    /// assert_eq!(Status::MEDIA_ACCESS.error, 2);
+    /// ```
     pub const MEDIA_ACCESS: Status = Status { error: 2, spec: 0 };
 
     /// FFh with an implementation-specific error code.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::Status;
+    /// assert_eq!(Status::manufacturer(1).error, 0xFF);
+    /// ```
     pub const fn manufacturer(spec: u8) -> Self {
         Status { error: 0xFF, spec }
     }
 
     /// Whether this is success.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::Status;
+    /// assert!(!Status::NOT_SUPPORTED.is_success());
+    /// ```
     pub const fn is_success(self) -> bool {
         self.error == 0
     }
@@ -369,6 +528,12 @@ fn eight(data: &[u8]) -> Result<&[u8; 8], WireError> {
 impl LssRequest {
     /// Parses an 8-byte request; any other length, an unknown command specifier or an out-of-range field
     /// (mode, fastscan BitCheck/LSSSub/LSSNext) is an error, which the slave ignores (CAN-07).
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::{LssRequest, IdentityField};
+    /// assert_eq!(LssRequest::parse(&[0x5D, 0, 0, 0, 0, 0, 0, 0]), Ok(LssRequest::Inquire(IdentityField::Serial)));
+    /// assert!(LssRequest::parse(&[0x5D]).is_err());
+    /// ```
     pub fn parse(data: &[u8]) -> Result<Self, WireError> {
         let d = eight(data)?;
         Ok(match d[0] {
@@ -406,6 +571,12 @@ impl LssRequest {
     }
 
     /// The 8 data bytes (reserved bytes 0).
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::{LssRequest, BitRate};
+    /// let r = LssRequest::ConfigureBitTiming { table_selector: 0, table_index: BitRate::K250.index() };
+    /// assert_eq!(r.emit(), [0x13, 0, 3, 0, 0, 0, 0, 0]);
+    /// ```
     pub fn emit(&self) -> [u8; 8] {
         match *self {
             LssRequest::SwitchStateGlobal(mode) => {
@@ -476,6 +647,11 @@ pub enum LssResponse {
 
 impl LssResponse {
     /// Parses an 8-byte response; other lengths and unknown command specifiers are errors.
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::{LssResponse, Status};
+    /// assert_eq!(LssResponse::parse(&[0x17, 2, 0, 0, 0, 0, 0, 0]), Ok(LssResponse::Stored(Status::MEDIA_ACCESS)));
+    /// ```
     pub fn parse(data: &[u8]) -> Result<Self, WireError> {
         let d = eight(data)?;
         let status = Status { error: d[1], spec: d[2] };
@@ -495,6 +671,11 @@ impl LssResponse {
     }
 
     /// The 8 data bytes (reserved bytes 0).
+    ///
+    /// ```
+    /// use canopen_core::wire::lss::LssResponse;
+    /// assert_eq!(LssResponse::SwitchStateSelective.emit(), [0x44, 0, 0, 0, 0, 0, 0, 0]);
+    /// ```
     pub fn emit(&self) -> [u8; 8] {
         let with_status = |c: u8, s: Status| {
             let mut f = frame(c);
