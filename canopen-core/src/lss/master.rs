@@ -17,6 +17,11 @@
 //! unconfigured slave"), then for each LSSSub 0–3 the bits 31..0 (no answer means the bit is 1), then
 //! BitCheck 0 with LSSNext = LSSSub + 1 mod 4; after the serial number the matching slave is in LSS
 //! configuration.
+//!
+//! ```
+//! use canopen_core::{lss::master::LssMaster, Duration};
+//! assert!(LssMaster::new(Duration::from_millis(20)).is_idle());
+//! ```
 
 use heapless::Deque;
 

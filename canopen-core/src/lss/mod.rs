@@ -65,11 +65,6 @@
 //! record), or on a file, as `examples/lss_node.rs` does. A slave whose application does not store
 //! ([`LssSlave::set_store_supported`] false, the default) answers 17h with error 01h at once.
 
-///
-/// ```
-/// use canopen_core::{lss::master::LssMaster, Duration};
-/// assert!(LssMaster::new(Duration::from_millis(20)).is_idle());
-/// ```
 pub mod master;
 
 use crate::cob::NodeId;
