@@ -96,6 +96,12 @@ proptest! {
                             Err(_) => prop_assert!(BlockSegment::parse(out.data()).is_ok(), "{:?}", out),
                         }
                     }
+                    // LSS (CiA 305) answer to a random 7E5h frame: DLC 8, a well-formed response (tests/lss.rs
+                    // checks when answers are allowed).
+                    0x7E4 => {
+                        prop_assert_eq!(out.data().len(), 8);
+                        prop_assert!(canopen::core::wire::lss::LssResponse::parse(out.data()).is_ok(), "{:?}", out);
+                    }
                     other => prop_assert!(false, "frame on {:03X}", other),
                 }
             }

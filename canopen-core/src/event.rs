@@ -2,6 +2,7 @@
 
 use crate::guarding::LifeGuardingEvent;
 use crate::heartbeat::ConsumerEvent;
+use crate::lss::LssEvent;
 use crate::nmt::NmtState;
 
 /// An event for the application.
@@ -49,4 +50,7 @@ pub enum Event {
         /// Whether the client aborted.
         by_client: bool,
     },
+    /// An LSS (CiA 305) observation: state change, node-ID or bit rate configured, bit-rate switch
+    /// instants, store requested.
+    Lss(LssEvent),
 }

@@ -22,6 +22,7 @@ pub mod event;
 pub mod frame;
 pub mod guarding;
 pub mod heartbeat;
+pub mod lss;
 pub mod nmt;
 pub mod node;
 pub mod od;

@@ -21,12 +21,15 @@
 
 use heapless::Deque;
 
+mod with_lss;
+
 use crate::cob::{FunctionCode, NodeId};
 use crate::comm::{CommParams, NodeConfig};
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::guarding::Guarding;
 use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
+use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
 use crate::od::comm::CommProfile;
 use crate::od::Merged;
@@ -67,6 +70,8 @@ pub struct Node<A, const HB: usize = 4, const TXQ: usize = 16, const EVQ: usize 
     producer: HeartbeatProducer,
     consumer: HeartbeatConsumer<HB>,
     guarding: Guarding,
+    /// CiA 305 LSS slave (see `node/with_lss.rs`).
+    lss: LssSlave,
     app: A,
     tx: Deque<CanFrame, TXQ>,
     events: Deque<Event, EVQ>,
@@ -153,6 +158,7 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
             producer: HeartbeatProducer::new(),
             consumer: HeartbeatConsumer::new(),
             guarding: Guarding::new(),
+            lss: LssSlave::new(&config.identity, Some(node_id)),
             app,
             tx: Deque::new(),
             events: Deque::new(),
@@ -219,6 +225,9 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
 
     /// The next frame to send.
     pub fn poll_transmit(&mut self) -> Option<CanFrame> {
+        if self.lss.holds_transmit(self.now) {
+            return None; // CiA 305: silent from the bit-rate switch to the end of the second switch delay
+        }
         let frame = self.tx.pop_front();
         self.pump_sdo();
         frame
@@ -236,12 +245,14 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         }
         let mut t = earliest(self.producer.poll_timeout(), self.consumer.poll_timeout());
         t = earliest(t, self.guarding.poll_timeout());
+        t = earliest(t, self.lss.poll_timeout());
         earliest(t, self.sdo.poll_timeout())
     }
 
     /// Lets the node act on the time that has passed: boot, heartbeats, consumer and life-guarding time-outs.
     pub fn handle_timeout(&mut self, now: Instant) {
         self.ensure_booted(now);
+        self.lss_timeout(now);
         if self.sdo.poll_timeout().is_some_and(|t| t <= now) {
             let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
             let response = self.sdo.handle_timeout(now, &mut od);
@@ -263,6 +274,12 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
     /// Feeds one received frame.
     pub fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
         self.ensure_booted(now);
+        if frame.cob_id() == crate::cob::LSS_MASTER_ID {
+            return self.handle_lss(now, frame); // CiA 305: LSS in every NMT state
+        }
+        if self.lss.active_node_id().is_none() {
+            return; // CiA 305: no node-ID, LSS only
+        }
         let Some((function, node)) = FunctionCode::of(frame.cob_id()) else {
             return;
         };
@@ -383,11 +400,15 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
             self.app.restore_defaults();
             self.push_event(Event::ResetApplication);
         }
+        let configured = self.lss_reset_communication(now); // CiA 305: a pending node-ID becomes active
         self.comm.reset_communication();
         self.consumer.configure(&self.comm.params.heartbeat_consumers);
         self.guarding.reset();
         self.sdo.set_params(SdoServerParams::default_server(self.node_id));
         self.push_event(Event::ResetCommunication);
+        if !configured {
+            return; // CiA 305: no node-ID, stay in Initialisation serving LSS only
+        }
         // NMT-23: boot-up; HB-04: it counts as the first heartbeat.
         self.transmit(self.error_control_frame(Heartbeat(StateCode::BootUp).emit()));
         self.producer.start(now, self.comm.params.heartbeat_time_ms);

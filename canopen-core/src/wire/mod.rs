@@ -6,6 +6,7 @@
 
 pub mod emcy;
 pub mod error_control;
+pub mod lss;
 pub mod nmt;
 pub mod sdo;
 

@@ -1,0 +1,182 @@
+//! The node's LSS side (CiA 305), kept apart from `node.rs`: constructors for nodes without a node-ID,
+//! the 7E5h handler, the switch-delay timer, store completion, and the node-ID change at reset
+//! communication. See [`crate::lss`] for the protocol and what it relies on.
+//!
+//! A node without a node-ID (FFh) stays in NMT Initialisation and serves LSS only: no boot-up, no
+//! heartbeat, no NMT, SDO or guarding. When a master gives it a node-ID and switches it back to LSS
+//! waiting, it runs reset communication and boots (boot-up frame, Pre-operational). A node-ID configured
+//! while the node has one stays pending until the next NMT reset communication (or reset node).
+
+use super::Node;
+use crate::cob::{NodeId, LSS_SLAVE_ID};
+use crate::comm::NodeConfig;
+use crate::event::Event;
+use crate::frame::CanFrame;
+use crate::lss::{LssSlave, LssStore, StoreError, PLACEHOLDER_NODE_ID};
+use crate::od::ObjectDictionary;
+use crate::time::Instant;
+use crate::wire::lss::{LssResponse, UNCONFIGURED_NODE_ID};
+
+impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> Node<A, HB, TXQ, EVQ> {
+    /// A node without a node-ID (FFh): after power-on it waits in Initialisation, serving LSS only, until
+    /// an LSS master assigns one.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, CanFrame, Instant, NmtState};
+    /// let mut node: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
+    /// node.handle_timeout(Instant::ZERO);
+    /// assert_eq!(node.poll_transmit(), None); // no boot-up
+    /// assert_eq!(node.state(), NmtState::Initialising);
+    /// assert_eq!(node.lss_node_id(), None);
+    /// ```
+    pub fn new_unconfigured(config: NodeConfig, app: A) -> Self {
+        let mut node = Node::new(PLACEHOLDER_NODE_ID, config, app);
+        node.lss = LssSlave::new(&config.identity, None);
+        node
+    }
+
+    /// A node from a raw (for example stored) node-ID: 1–127 as [`Node::new`], FFh as
+    /// [`Node::new_unconfigured`]; `None` for any other value.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}};
+    /// let n: Node<NoApplication> = Node::from_raw_node_id(0x22, NodeConfig::DEFAULT, NoApplication).unwrap();
+    /// assert_eq!(n.lss_node_id().map(|id| id.get()), Some(0x22));
+    /// let u: Node<NoApplication> = Node::from_raw_node_id(0xFF, NodeConfig::DEFAULT, NoApplication).unwrap();
+    /// assert_eq!(u.lss_node_id(), None);
+    /// assert!(Node::<NoApplication>::from_raw_node_id(0, NodeConfig::DEFAULT, NoApplication).is_none());
+    /// ```
+    pub fn from_raw_node_id(raw: u8, config: NodeConfig, app: A) -> Option<Self> {
+        match NodeId::new(raw) {
+            Some(id) => Some(Node::new(id, config, app)),
+            None if raw == UNCONFIGURED_NODE_ID => Some(Node::new_unconfigured(config, app)),
+            None => None,
+        }
+    }
+
+    /// The active node-ID, `None` while the node has none (then [`Node::node_id`] is a placeholder).
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, NodeId};
+    /// let n: Node<NoApplication> = Node::new(NodeId::new(9).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// assert_eq!(n.lss_node_id(), NodeId::new(9));
+    /// ```
+    pub const fn lss_node_id(&self) -> Option<NodeId> {
+        self.lss.active_node_id()
+    }
+
+    /// The LSS slave (state, pending node-ID and bit rate).
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, wire::lss::LssMode};
+    /// let n: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
+    /// assert_eq!(n.lss().mode(), LssMode::Waiting);
+    /// ```
+    pub const fn lss(&self) -> &LssSlave {
+        &self.lss
+    }
+
+    /// The LSS slave, to declare the bit rate, the supported rates and store support.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, wire::lss::BitRate};
+    /// let mut n: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
+    /// n.lss_mut().set_bit_rate(BitRate::K250);
+    /// n.lss_mut().set_store_supported(true);
+    /// ```
+    pub fn lss_mut(&mut self) -> &mut LssSlave {
+        &mut self.lss
+    }
+
+    /// Answers a pending LSS store configuration request ([`crate::lss::LssEvent::StoreRequested`]) by
+    /// storing through `store`. Does nothing when no store is pending, so a runner may call it after every
+    /// batch of events.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, lss::{LssStore, StoreError}, node::{NoApplication, Node}};
+    /// use canopen_core::{wire::lss::BitRate, CanFrame, Instant};
+    /// struct Ram(Option<u8>);
+    /// impl LssStore for Ram {
+    ///     fn store(&mut self, node_id: u8, _: BitRate) -> Result<(), StoreError> {
+    ///         self.0 = Some(node_id);
+    ///         Ok(())
+    ///     }
+    /// }
+    /// let mut node: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
+    /// node.lss_mut().set_store_supported(true);
+    /// let t = Instant::ZERO;
+    /// for data in [[0x04, 1, 0, 0, 0, 0, 0, 0], [0x11, 0x22, 0, 0, 0, 0, 0, 0], [0x17, 0, 0, 0, 0, 0, 0, 0]] {
+    ///     node.handle_frame(t, &CanFrame::new(0x7E5, &data).unwrap());
+    /// }
+    /// assert_eq!(node.poll_transmit(), CanFrame::new(0x7E4, &[0x11, 0, 0, 0, 0, 0, 0, 0])); // node-ID ok
+    /// assert_eq!(node.poll_transmit(), None); // store waits for the application
+    /// let mut ram = Ram(None);
+    /// node.complete_lss_store(&mut ram);
+    /// assert_eq!(ram.0, Some(0x22));
+    /// assert_eq!(node.poll_transmit(), CanFrame::new(0x7E4, &[0x17, 0, 0, 0, 0, 0, 0, 0]));
+    /// ```
+    pub fn complete_lss_store(&mut self, store: &mut impl LssStore) {
+        if !self.lss.store_pending() {
+            return;
+        }
+        let result = store.store(self.lss.pending_node_id(), self.lss.pending_bit_rate());
+        self.lss_store_result(result);
+    }
+
+    /// Answers a pending LSS store request with a result the application got by other means.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, lss::StoreError, node::{NoApplication, Node}};
+    /// let mut node: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
+    /// node.lss_store_result(Err(StoreError::MediaAccess)); // nothing pending: no frame
+    /// assert_eq!(node.poll_transmit(), None);
+    /// ```
+    pub fn lss_store_result(&mut self, result: Result<(), StoreError>) {
+        if let Some(r) = self.lss.complete_store(result) {
+            self.lss_transmit(r);
+        }
+    }
+
+    /// A frame on 7E5h, in any NMT state.
+    pub(super) fn handle_lss(&mut self, now: Instant, frame: &CanFrame) {
+        if frame.is_rtr() {
+            return;
+        }
+        let out = self.lss.handle_request(now, frame.data());
+        if let Some(r) = out.response {
+            self.lss_transmit(r);
+        }
+        if let Some(e) = out.event {
+            self.push_event(Event::Lss(e));
+        }
+        if out.reset_communication {
+            self.reset(now, false);
+        }
+    }
+
+    /// The switch-delay timer.
+    pub(super) fn lss_timeout(&mut self, now: Instant) {
+        if let Some(e) = self.lss.handle_timeout(now) {
+            self.push_event(Event::Lss(e));
+        }
+    }
+
+    /// Reset communication: the pending node-ID becomes active. Returns false when the node has no
+    /// node-ID: it then stays in Initialisation with its heartbeat producer off.
+    pub(super) fn lss_reset_communication(&mut self, now: Instant) -> bool {
+        match self.lss.apply_pending() {
+            Some(id) => {
+                self.node_id = id;
+                true
+            }
+            None => {
+                self.producer.start(now, 0);
+                false
+            }
+        }
+    }
+
+    fn lss_transmit(&mut self, r: LssResponse) {
+        self.transmit(CanFrame::from_parts(LSS_SLAVE_ID, r.emit(), 8));
+    }
+}

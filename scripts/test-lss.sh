@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# python canopen's LSS master (network.lss: fastscan, configure_node_id, store_configuration) against
+# examples/lss_node over vcan: tests/python/test_lss.py. Builds on the host, then runs node + pytest in ONE
+# with-vcan VM (processes in different VMs cannot see each other).
+# Usage: scripts/test-lss.sh        (installs tests/python/requirements.txt first unless SKIP_PIP=1)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+WITH_VCAN="${WITH_VCAN:-../shared/vcan/with-vcan}"
+if [[ "${SKIP_PIP:-0}" != 1 ]]; then
+    # canopen, python-can, pytest (pinned: canopen 2.4.1 is the lss.py the slave was checked against).
+    python3 -m pip install --quiet -r tests/python/requirements.txt
+fi
+cargo build --quiet --example lss_node
+set +e
+"$WITH_VCAN" -- env LSS_NODE_BIN="$PWD/target/debug/examples/lss_node" \
+    python3 -m pytest -q -p no:cacheprovider tests/python/test_lss.py
+rc=$?
+set -e
+if [[ $rc -eq 125 ]]; then
+    echo "test-lss: FAILED: the vcan VM could not start (with-vcan exit 125); nothing was tested" >&2
+fi
+exit $rc

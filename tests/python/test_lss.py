@@ -1,0 +1,116 @@
+"""python canopen's LSS master against `examples/lss_node` over vcan (run by scripts/test-lss.sh inside
+../shared/vcan/with-vcan): fastscan finds the node started without a node-ID, configure_node_id(0x22),
+store_configuration, switch to waiting → the node boots as 0x22 and answers SDO; restarted, it boots as
+0x22 from its store file."""
+
+import os
+import pathlib
+import subprocess
+import threading
+import time
+
+import canopen
+import pytest
+from canopen.lss import LssError
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+NODE_BIN = os.environ.get("LSS_NODE_BIN", str(ROOT / "target/debug/examples/lss_node"))
+IFACE = os.environ.get("CAN_IFACE", "vcan0")
+# The LSS address of the example node (examples/lss_node.rs CONFIG, serial from --serial).
+VENDOR, PRODUCT, REVISION, SERIAL = 0x0, 0x1, 0x0001_0000, 0x8000_0001
+NEW_ID = 0x22
+
+
+class Recorder:
+    """Collects frames on one COB-ID."""
+
+    def __init__(self, network, cob_id):
+        self.frames = []
+        self.event = threading.Event()
+        network.subscribe(cob_id, self._on)
+
+    def _on(self, cob_id, data, timestamp):
+        self.frames.append(bytes(data))
+        self.event.set()
+
+    def wait(self, timeout=3.0):
+        assert self.event.wait(timeout), "no frame in time"
+        return self.frames
+
+
+@pytest.fixture
+def network():
+    net = canopen.Network()
+    net.connect(interface="socketcan", channel=IFACE)
+    yield net
+    net.disconnect()
+
+
+def start_node(store, log_path):
+    log = open(log_path, "a")
+    proc = subprocess.Popen(
+        [NODE_BIN, "--iface", IFACE, "--store", str(store), "--serial", hex(SERIAL)],
+        stdout=log,
+        stderr=subprocess.STDOUT,
+    )
+    time.sleep(0.5)
+    assert proc.poll() is None, pathlib.Path(log_path).read_text()
+    return proc
+
+
+def stop_node(proc):
+    proc.terminate()
+    proc.wait(timeout=5)
+
+
+def test_fastscan_configure_store_and_reboot(network, tmp_path):
+    store = tmp_path / "lss-node.txt"
+    log = tmp_path / "lss-node.log"
+    boot = Recorder(network, 0x700 + NEW_ID)
+    lss_answers = Recorder(network, 0x7E4)
+    proc = start_node(store, log)
+    try:
+        # Without a node-ID the node is silent and ignores NMT.
+        network.nmt.send_command(0x01)
+        time.sleep(0.3)
+        assert boot.frames == [] and lss_answers.frames == []
+        # LSS waiting: configuration services are not answered.
+        with pytest.raises(LssError):
+            network.lss.inquire_node_id()
+
+        network.lss.send_switch_state_global(network.lss.WAITING_STATE)
+        found, lss_id = network.lss.fast_scan()
+        assert found, pathlib.Path(log).read_text()
+        assert lss_id == [VENDOR, PRODUCT, REVISION, SERIAL]
+        # Fastscan left it in LSS configuration.
+        assert network.lss.inquire_node_id() == 0xFF
+        assert network.lss.inquire_lss_address(canopen.lss.CS_INQUIRE_SERIAL_NUMBER) == SERIAL
+
+        network.lss.configure_node_id(NEW_ID)
+        network.lss.store_configuration()
+        assert "node_id=34" in store.read_text()
+        # The new node-ID is pending until the node leaves LSS configuration.
+        assert network.lss.inquire_node_id() == 0xFF
+        assert boot.frames == []
+
+        network.lss.send_switch_state_global(network.lss.WAITING_STATE)
+        assert boot.wait() == [b"\x00"], pathlib.Path(log).read_text()
+
+        node = network.add_node(NEW_ID, canopen.ObjectDictionary())
+        assert int.from_bytes(node.sdo.upload(0x1018, 4), "little") == SERIAL
+        assert int.from_bytes(node.sdo.upload(0x1018, 2), "little") == PRODUCT
+        # Configured now: fastscan no longer finds it.
+        assert network.lss.fast_scan() == (False, None)
+    finally:
+        stop_node(proc)
+
+    # Power cycle: the stored node-ID is used at once.
+    boot.frames.clear()
+    boot.event.clear()
+    proc = start_node(store, log)
+    try:
+        assert boot.wait() == [b"\x00"], pathlib.Path(log).read_text()
+        node = network.nodes[NEW_ID]
+        assert int.from_bytes(node.sdo.upload(0x1018, 4), "little") == SERIAL
+    finally:
+        stop_node(proc)
