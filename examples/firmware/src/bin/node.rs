@@ -119,11 +119,13 @@ fn on_event(event: Event) {
 #[embassy_executor::task]
 async fn process(node: &'static NodeCell<DeviceNode>, button: Input<'static>, mut led: Output<'static>) {
     let mut ticker = Ticker::every(Duration::from_millis(10));
-    let start = embassy_time::Instant::now();
+    // Uptime counted in ticks: `Instant::elapsed().as_secs()` would link a 64-bit division (~1 KB of flash).
+    let mut ticks: u32 = 0;
     loop {
         ticker.next().await;
+        ticks = ticks.wrapping_add(1);
         let inputs = u8::from(button.is_low());
-        let uptime_s = start.elapsed().as_secs() as u32;
+        let uptime_s = ticks / 100;
         let (changed, outputs) = node.lock(|n| {
             let app = n.app_mut();
             let changed = app.inputs[0] != inputs;
