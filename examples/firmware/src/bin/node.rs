@@ -21,13 +21,13 @@ use canopen_core::{Event, NmtState, Node, NodeId};
 use canopen_firmware::{AppWake, BxCanRx, BxCanTx, EmbassyClock, NodeCell};
 use canopen_od_derive::ObjectDictionary;
 use embassy_executor::Spawner;
+use embassy_stm32::bind_interrupts;
 use embassy_stm32::can::filter::Mask32;
 use embassy_stm32::can::{
     Can, Fifo, Rx0InterruptHandler, Rx1InterruptHandler, SceInterruptHandler, TxInterruptHandler,
 };
 use embassy_stm32::gpio::{Input, Level, Output, Pull, Speed};
 use embassy_stm32::peripherals::CAN1;
-use embassy_stm32::bind_interrupts;
 use embassy_time::{Duration, Ticker, Timer};
 use static_cell::StaticCell;
 
