@@ -18,6 +18,7 @@ use crate::od::AbortCode;
 /// assert!(NodeId::new(128).is_none());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct NodeId(u8);
 
 impl NodeId {
@@ -58,6 +59,7 @@ impl NodeId {
 /// assert_eq!(FunctionCode::of(0x185), Some((FunctionCode::Tpdo1, 5)));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
 pub enum FunctionCode {
     /// 0000b: NMT node control (000h, node part 0).

@@ -19,6 +19,7 @@ use crate::od::AbortCode;
 /// assert_eq!(id.serial, 42);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Identity {
     /// 1018h:01 vendor-ID (CiA-assigned).
     pub vendor_id: u32,
@@ -38,6 +39,7 @@ pub struct Identity {
 /// assert_eq!(CFG.heartbeat_time_ms, 1000);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct NodeConfig {
     /// 1000h device type (DEV-01).
     pub device_type: u32,
@@ -87,6 +89,7 @@ impl Default for NodeConfig {
 /// assert!(!ConsumerEntry::from_raw(0x0080_0064).is_active()); // node 128: inactive (HB-08)
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ConsumerEntry {
     /// Monitored node-ID.
     pub node_id: u8,

@@ -92,6 +92,7 @@ impl Wake for NoWake {
 
 /// Why [`run`] stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum DriverError<R, T> {
     /// Receiving failed.
     Receive(R),
@@ -170,13 +171,21 @@ where
     W: Wake,
 {
     loop {
-        let deadline = service(shared, tx, timer.now(), &mut on_event).await.map_err(DriverError::Transmit)?;
+        let deadline = service(shared, tx, timer.now(), &mut on_event).await.map_err(|e| {
+            crate::trace::driver_error(false);
+            DriverError::Transmit(e)
+        })?;
         match wait(rx, timer, wake, deadline).await {
             Woken::Frame(Ok(frame)) => {
+                #[cfg(any(feature = "defmt", feature = "log"))]
+                crate::trace::rx(&frame);
                 let now = timer.now();
                 shared.lock(|n| n.handle_frame(now, &frame));
             }
-            Woken::Frame(Err(e)) => return Err(DriverError::Receive(e)),
+            Woken::Frame(Err(e)) => {
+                crate::trace::driver_error(true);
+                return Err(DriverError::Receive(e));
+            }
             Woken::Deadline | Woken::Application => {}
         }
     }
@@ -202,9 +211,12 @@ async fn service<N: SansIo, S: Shared<N>, T: CanTx>(
             n.poll_timeout()
         });
         for e in &events {
+            crate::trace::event(e);
             on_event(*e);
         }
         for f in &frames {
+            #[cfg(any(feature = "defmt", feature = "log"))]
+            crate::trace::tx(f);
             tx.transmit(f).await?;
         }
         if !frames.is_full() && !events.is_full() {

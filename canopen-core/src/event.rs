@@ -13,6 +13,7 @@ use crate::nmt::NmtState;
 /// assert!(matches!(e, Event::StateChanged { to: NmtState::Operational, .. }));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum Event {
     /// The NMT state changed (by a command, a reset, local control or the error behaviour).

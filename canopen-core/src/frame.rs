@@ -202,6 +202,18 @@ impl Frame for CanFrame {
     }
 }
 
+#[cfg(feature = "defmt")]
+impl defmt::Format for CanFrame {
+    /// candump-like, as `Debug`: `705 [1] 7F`, `705 [RTR]`.
+    fn format(&self, f: defmt::Formatter<'_>) {
+        if self.rtr {
+            defmt::write!(f, "{=u16:03X} [RTR]", self.id)
+        } else {
+            defmt::write!(f, "{=u16:03X} [{=u8}] {=[u8]:02X}", self.id, self.len, self.data())
+        }
+    }
+}
+
 impl core::fmt::Debug for CanFrame {
     /// candump-like: `705 [1] 7F`, `705 [RTR]`.
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {

@@ -17,6 +17,7 @@ use crate::wire::error_control::{GuardReply, StateCode};
 /// assert_ne!(LifeGuardingEvent::Timeout, LifeGuardingEvent::Resolved);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum LifeGuardingEvent {
     /// Life-guarding event "occurred / time-out": no guarding request within the node life time.
     Timeout,

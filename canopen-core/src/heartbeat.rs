@@ -100,6 +100,7 @@ impl Slot {
 /// assert!(matches!(e, ConsumerEvent::Timeout { node: 2 }));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ConsumerEvent {
     /// The first heartbeat of a monitored node arrived: monitoring started (HB-10).
     Started {

@@ -4,6 +4,10 @@
 //! time in, and drains frames to send, events for the application and the next deadline out. Each CiA 301
 //! service is a small state machine in its own module; the wire formats live apart from them.
 //!
+//! Optional features: `defmt` (derives `defmt::Format` on the public types; NMT state changes, SDO aborts,
+//! driver errors and frames are logged through defmt) and `log` (the same trace points through the `log`
+//! facade, for std users). Both are off by default; the trace points sit in the [`driver`].
+//!
 //! Requirement IDs (NMT-03, SDO-17, ...) refer to `shared/spec/CHECKLIST.md`; each module's docs say which
 //! it implements.
 #![no_std]
@@ -29,6 +33,7 @@ pub mod od;
 pub mod sdo;
 pub mod sync;
 pub mod time;
+mod trace;
 pub mod wire;
 
 pub use cob::NodeId;

@@ -18,6 +18,7 @@ use crate::wire::{error_control::StateCode, nmt::NmtCommand};
 /// assert_eq!(NmtState::Operational.code(), 0x05);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum NmtState {
     /// Initialization (before boot-up; no communication).
     Initialising,

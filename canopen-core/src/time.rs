@@ -14,6 +14,7 @@ use core::ops::{Add, AddAssign, Sub};
 /// assert_eq!(t.as_micros(), 5_250);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Instant(u64);
 
 impl Instant {
@@ -72,6 +73,7 @@ impl Instant {
 /// assert_eq!(Duration::from_100us(15).as_micros(), 1_500);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Duration(u64);
 
 impl Duration {

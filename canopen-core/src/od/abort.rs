@@ -12,6 +12,7 @@
 /// assert_eq!(AbortCode::from_code(0x1234_5678), None);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u32)]
 pub enum AbortCode {
     /// 0503 0000h: toggle bit not alternated (ABORT-01).

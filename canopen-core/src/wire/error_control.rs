@@ -12,6 +12,7 @@ use super::WireError;
 /// assert_eq!(StateCode::from_code(0x01), None); // pre-v4 "disconnected" is not a CiA 301 v4.2 state (GUARD-13)
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
 pub enum StateCode {
     /// 00h: boot-up.

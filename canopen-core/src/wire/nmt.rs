@@ -11,6 +11,7 @@ use super::WireError;
 /// assert_eq!(NmtCommand::ResetNode as u8, 0x81);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
 pub enum NmtCommand {
     /// 01h: start remote node → Operational (NMT-09).
