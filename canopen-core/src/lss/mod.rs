@@ -83,6 +83,7 @@ use crate::wire::lss::{
 /// assert!(matches!(e, LssEvent::ModeChanged(LssMode::Configuration)));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum LssEvent {
     /// The LSS state changed (switch state global/selective, fastscan match).
     ModeChanged(LssMode),

@@ -169,6 +169,7 @@ pub const UNCONFIGURED_NODE_ID: u8 = 0xFF;
 /// assert_eq!(LssMode::Waiting as u8, 0);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
 pub enum LssMode {
     /// LSS waiting: only switch, identify and fastscan are served.
@@ -319,6 +320,7 @@ impl IdentifyPart {
 /// assert_eq!(BitRate::from_index(5), None);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
 pub enum BitRate {
     /// 1000 kbit/s.
