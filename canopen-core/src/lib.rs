@@ -26,6 +26,7 @@ pub mod nmt;
 pub mod node;
 pub mod od;
 pub mod sdo;
+pub mod storage;
 pub mod sync;
 pub mod time;
 pub mod wire;

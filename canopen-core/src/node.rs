@@ -138,6 +138,18 @@ impl ObjectDictionary for NoApplication {
     }
 }
 
+impl crate::od::OdDescribe for NoApplication {
+    fn object_count(&self) -> usize {
+        0
+    }
+    fn object(&self, _: usize) -> Option<crate::od::ObjectDesc> {
+        None
+    }
+    fn entry(&self, _: u16, _: u8) -> Option<crate::od::EntryDesc> {
+        None
+    }
+}
+
 impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> Node<A, HB, TXQ, EVQ> {
     /// A node in Initialization; it boots on the first call that passes the time in (NMT-03).
     pub fn new(node_id: NodeId, config: NodeConfig, app: A) -> Self {
