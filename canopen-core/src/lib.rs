@@ -25,6 +25,7 @@ pub mod heartbeat;
 pub mod nmt;
 pub mod node;
 pub mod od;
+pub mod pdo;
 pub mod sdo;
 pub mod storage;
 pub mod sync;

@@ -7,6 +7,7 @@
 pub mod emcy;
 pub mod error_control;
 pub mod nmt;
+pub mod pdo_mapping;
 pub mod sdo;
 
 /// Why a frame's payload could not be parsed.
