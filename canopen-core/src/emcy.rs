@@ -250,6 +250,11 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
     }
 }
 
+/// The error state a node keeps: 8 distinct active errors, a 1003h history of
+/// [`HISTORY`](crate::od::comm::HISTORY) entries and 8 EMCYs waiting for the inhibit time or for the node to
+/// leave Stopped.
+pub type NodeErrors = ErrorState<8, { crate::od::comm::HISTORY }, 8>;
+
 /// Spaces EMCY frames by the 1015h inhibit time (EMCY-09).
 ///
 /// ```
