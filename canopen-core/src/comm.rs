@@ -218,13 +218,8 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO,
     /// assert_eq!(p.rpdo_comm[1].cob_id, 0x8000_0305); // no default mapping: not valid
     /// ```
     pub const fn for_node(config: &NodeConfig, node_id: u8) -> Self {
-        let mut rpdo_comm = [PdoComm {
-            cob_id: 0,
-            transmission_type: 0,
-            inhibit_100us: 0,
-            event_timer_ms: 0,
-            sync_start: 0,
-        }; RPDO];
+        let mut rpdo_comm =
+            [PdoComm { cob_id: 0, transmission_type: 0, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 }; RPDO];
         let mut rpdo_map = [PdoMapParams { count: 0, entries: [0; crate::pdo::mapping::MAX_ENTRIES] }; RPDO];
         let mut k = 0;
         while k < RPDO {
@@ -233,13 +228,8 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO,
             rpdo_map[k] = m;
             k += 1;
         }
-        let mut tpdo_comm = [PdoComm {
-            cob_id: 0,
-            transmission_type: 0,
-            inhibit_100us: 0,
-            event_timer_ms: 0,
-            sync_start: 0,
-        }; TPDO];
+        let mut tpdo_comm =
+            [PdoComm { cob_id: 0, transmission_type: 0, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 }; TPDO];
         let mut tpdo_map = [PdoMapParams { count: 0, entries: [0; crate::pdo::mapping::MAX_ENTRIES] }; TPDO];
         let mut k = 0;
         while k < TPDO {

@@ -491,7 +491,8 @@ where
     let mut buf = [0u8; 255];
     while let Some((index, sub, len)) = items.next(&mut buf)? {
         let comm = (0x1000..=0x1FFF).contains(&index);
-        let wanted = if comm { groups.has_comm() && h.groups.has_comm() } else { groups.has_app() && h.groups.has_app() };
+        let wanted =
+            if comm { groups.has_comm() && h.groups.has_comm() } else { groups.has_app() && h.groups.has_app() };
         if wanted {
             write_back(od, index, sub, &buf[..len]);
         }

@@ -124,6 +124,26 @@ impl Sync {
         Ok(())
     }
 
+    /// Takes over parameters written through the dictionary (which checked them): the counter restarts when
+    /// 1019h changed, production is rescheduled when the COB-ID or the period changed (SYNC-07).
+    ///
+    /// ```
+    /// use canopen_core::{sync::{Sync, SyncParams}, cob::CobIdEntry, Instant};
+    /// let mut s = Sync::new(SyncParams::DEFAULT);
+    /// s.reconfigure(Instant::ZERO, SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 1000, ..SyncParams::DEFAULT });
+    /// assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1)));
+    /// ```
+    pub fn reconfigure(&mut self, now: Instant, params: SyncParams) {
+        let old = self.params;
+        self.params = params;
+        if old.counter_overflow != params.counter_overflow {
+            self.counter = 1;
+        }
+        if old.cob_id != params.cob_id || old.period_us != params.period_us {
+            self.schedule(now);
+        }
+    }
+
     /// Writes 1006h; production (re)starts within one period (SYNC-07).
     pub fn set_period(&mut self, now: Instant, period_us: u32) {
         self.params.period_us = period_us;

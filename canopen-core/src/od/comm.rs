@@ -71,8 +71,11 @@ const OBJECTS: [u16; 21] = [
 pub const HISTORY: usize = 8;
 
 const STORE_NAMES: [&str; 3] = ["Save all parameters", "Save communication parameters", "Save application parameters"];
-const RESTORE_NAMES: [&str; 3] =
-    ["Restore all default parameters", "Restore communication default parameters", "Restore application default parameters"];
+const RESTORE_NAMES: [&str; 3] = [
+    "Restore all default parameters",
+    "Restore communication default parameters",
+    "Restore application default parameters",
+];
 
 /// Which PDO object an index is.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -308,7 +311,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
         }
         Ok(match (index, sub) {
             (0x1000, _) => c.device_type,
-            (0x1001, _) => self.errors.register().into(),
+            (0x1001, _) => (self.errors.register() | p.error_register).into(),
             (0x1003, s) => self.errors.read_history(s)?,
             (0x1005, _) => p.sync.cob_id.raw(),
             (0x1006, _) => p.sync.period_us,
@@ -526,7 +529,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
 /// Unchecked(&mut od).write(0x1017, 0, &[10, 0]).unwrap();
 /// assert_eq!(od.params.heartbeat_time_ms, 10);
 /// ```
-pub struct Unchecked<'a, const HB: usize, const RPDO: usize, const TPDO: usize>(pub &'a mut CommProfile<HB, RPDO, TPDO>);
+pub struct Unchecked<'a, const HB: usize, const RPDO: usize, const TPDO: usize>(
+    pub &'a mut CommProfile<HB, RPDO, TPDO>,
+);
 
 impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for Unchecked<'_, HB, RPDO, TPDO> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {

@@ -285,8 +285,7 @@ mod tests {
         // bit 0 = 1, bits 1..5 = 0xA, bits 5..21 = 0xBEEF
         let expect = 1u64 | (0xA << 1) | (0xBEEF << 5);
         assert_eq!(u64::from_le_bytes(out), expect);
-        let rxm =
-            ResolvedMap::resolve(&od, &[0x2000_0401, 0x0005_0004, 0x2000_0210], PdoDir::Rpdo).unwrap();
+        let rxm = ResolvedMap::resolve(&od, &[0x2000_0401, 0x0005_0004, 0x2000_0210], PdoDir::Rpdo).unwrap();
         let mut rx = Od::default();
         assert_eq!(rx.a, 0);
         assert_eq!(rxm.unpack(&mut rx, &out[..3]), 0);

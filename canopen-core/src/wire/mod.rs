@@ -9,6 +9,7 @@ pub mod error_control;
 pub mod nmt;
 pub mod pdo_mapping;
 pub mod sdo;
+pub mod time_stamp;
 
 /// Why a frame's payload could not be parsed.
 ///
