@@ -197,7 +197,7 @@ fn acyclic_and_sync_start_value() {
     let mut bus = bus_of(vec![node_with(1, NodeConfig { tpdo: TPDOS, sync, ..NodeConfig::DEFAULT })]);
     bus.stations[0].enter_state(NmtState::Operational);
     bus.run_until(ms(15));
-    assert!(bus.stations[0].trigger_tpdo(0) == false); // type 0: not now...
+    assert!(!bus.stations[0].trigger_tpdo(0)); // type 0: not now...
     bus.run_until(ms(85));
     // SYNC V-SYNC-06: counters 1,2,3,4,1,2,3,4 at 10..80 ms.
     let counters: Vec<u8> = on(&bus, 0x080).iter().map(|(_, d)| d[0]).collect();

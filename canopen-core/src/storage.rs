@@ -364,10 +364,10 @@ pub fn write_back<D: ObjectDictionary + ?Sized>(od: &mut D, index: u16, sub: u8,
     let Ok(info) = od.info(index, sub) else { return };
     if info.data_type.size().is_some() {
         let _ = od.write(index, sub, value);
-    } else if od.begin_write(index, sub, Some(value.len())).is_ok() {
-        if od.write_chunk(index, sub, 0, value).and_then(|()| od.end_write(index, sub, value.len())).is_err() {
-            od.abort_write(index, sub);
-        }
+    } else if od.begin_write(index, sub, Some(value.len())).is_ok()
+        && od.write_chunk(index, sub, 0, value).and_then(|()| od.end_write(index, sub, value.len())).is_err()
+    {
+        od.abort_write(index, sub);
     }
 }
 
