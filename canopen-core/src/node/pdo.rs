@@ -118,10 +118,13 @@ impl<
 
     /// Samples TPDO `k` and queues it.
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
-        let od = Merged { comm: &mut self.comm, app: &mut self.app };
         let Some(t) = self.tpdos.get_mut(k) else { return };
         let mut data = [0u8; 8];
-        let len = t.map.pack(&od, &mut data);
+        let len = if t.map.app_only() {
+            t.map.pack(&self.app, &mut data)
+        } else {
+            t.map.pack(&Merged { comm: &mut self.comm, app: &mut self.app }, &mut data)
+        };
         t.sent(now);
         t.last_sent = Some((data, len as u8));
         let frame = CanFrame::from_parts(t.can_id(), data, len as u8);
@@ -146,8 +149,11 @@ impl<
                 return;
             }
             RxOutcome::Apply { exceeded } => {
-                let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
-                r.map.unpack(&mut od, frame.data());
+                if r.map.app_only() {
+                    r.map.unpack(&mut self.app, frame.data());
+                } else {
+                    r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, frame.data());
+                }
                 self.push_event(Event::RpdoReceived { pdo: k as u16 });
                 exceeded
             }

@@ -77,12 +77,19 @@ pub struct ResolvedMap {
     count: u8,
     bits: u8,
     aligned: bool,
+    app_only: bool,
 }
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
     pub const EMPTY: ResolvedMap =
-        ResolvedMap { entries: [Mapped { handle: None, bits: 0 }; MAX_ENTRIES], count: 0, bits: 0, aligned: true };
+        ResolvedMap {
+            entries: [Mapped { handle: None, bits: 0 }; MAX_ENTRIES],
+            count: 0,
+            bits: 0,
+            aligned: true,
+            app_only: true,
+        };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
@@ -107,6 +114,7 @@ impl ResolvedMap {
                 return Err(AbortCode::PdoLengthExceeded);
             }
             m.aligned &= e.bits % 8 == 0 && e.handle.is_none_or(|h| u16::from(h.size) * 8 == u16::from(e.bits));
+            m.app_only &= e.handle.is_none_or(|h| !(0x1000..=0x1FFF).contains(&h.index));
             *slot = e;
         }
         m.count = raw.len() as u8;
@@ -122,6 +130,12 @@ impl ResolvedMap {
     /// Whether the mapping is empty.
     pub const fn is_empty(&self) -> bool {
         self.count == 0
+    }
+
+    /// Whether no entry maps a communication-profile object (1000h–1FFFh): the node then moves the data
+    /// with the application dictionary directly, without the merged view's routing.
+    pub const fn app_only(&self) -> bool {
+        self.app_only
     }
 
     /// Total mapped bits.
@@ -143,15 +157,15 @@ impl ResolvedMap {
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
         *out = [0; 8];
         if self.aligned {
-            let mut pos = 0;
+            let mut rest: &mut [u8] = out;
             for e in self.entries() {
-                let n = usize::from(e.bits / 8);
-                if let (Some(h), Some(dst)) = (&e.handle, out.get_mut(pos..pos + n)) {
+                let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
+                if let Some(h) = &e.handle {
                     let _ = od.pdo_read(h, dst);
                 }
-                pos += n;
+                rest = tail;
             }
-            return pos;
+            return usize::from(self.bits >> 3);
         }
         let mut acc = 0u64;
         let mut off = 0u32;
@@ -173,13 +187,13 @@ impl ResolvedMap {
     pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
         let mut refused = 0;
         if self.aligned {
-            let mut pos = 0;
+            let mut rest = data;
             for e in self.entries() {
-                let n = usize::from(e.bits / 8);
-                if let (Some(h), Some(src)) = (&e.handle, data.get(pos..pos + n)) {
+                let Some((src, tail)) = rest.split_at_checked(usize::from(e.bits >> 3)) else { break };
+                if let Some(h) = &e.handle {
                     refused += usize::from(od.pdo_write(h, src).is_err());
                 }
-                pos += n;
+                rest = tail;
             }
             return refused;
         }
