@@ -427,3 +427,48 @@ fn nmt_startup_self_start() {
         frame("586 [8] 43 80 1F 00 04 00 00 00")
     );
 }
+
+/// PDO-10/14/24/26 (no inhibit time or SYNC start value change while valid), PDO-18 (reserved types), COB-13
+/// (a restricted CAN-ID cannot be made valid), ERR-09 (1003h entries are ro), EMCY-03 (1014h ID change while
+/// valid), SYNC-01/02 (1005h read), ERR-10 (1029h sub 00h).
+#[test]
+fn parameter_change_rules() {
+    let mut bus = bus_of(vec![node_with(5, NodeConfig { tpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
+    let refused = |req: &str| {
+        let f = frame(req);
+        let d = f.data();
+        CanFrame::new(f.cob_id() - 0x80, &[0x80, d[1], d[2], d[3], 0x30, 0x00, 0x09, 0x06]).unwrap()
+    };
+    for req in [
+        "605 [8] 2B 00 18 03 0A 00 00 00", // inhibit while valid
+        "605 [8] 2F 00 18 06 02 00 00 00", // start value while valid
+        "605 [8] 2F 00 18 02 F1 00 00 00", // reserved type
+        "605 [8] 23 14 10 00 86 00 00 00", // 1014h ID change while valid
+    ] {
+        assert_eq!(sdo(&mut bus, req), refused(req), "{req}");
+    }
+    assert_eq!(sdo(&mut bus, "605 [8] 40 00 18 00 00 00 00 00"), frame("585 [8] 4F 00 18 00 06 00 00 00"));
+    assert_eq!(sdo(&mut bus, "605 [8] 40 04 14 00 00 00 00 00"), frame("585 [8] 80 04 14 00 00 00 02 06")); // no RPDO5
+    assert_eq!(sdo(&mut bus, "605 [8] 40 05 10 00 00 00 00 00"), frame("585 [8] 43 05 10 00 80 00 00 00"));
+    assert_eq!(sdo(&mut bus, "605 [8] 40 29 10 00 00 00 00 00"), frame("585 [8] 4F 29 10 00 01 00 00 00"));
+    assert_eq!(sdo(&mut bus, "605 [8] 23 03 10 01 00 00 00 00"), frame("585 [8] 80 03 10 01 02 00 01 06"));
+    sdo_ok(
+        &mut bus,
+        &[
+            "605 [8] 23 00 18 01 85 01 00 80", // off
+            "605 [8] 2B 00 18 03 0A 00 00 00", // now the inhibit time may change
+            "605 [8] 2F 00 18 06 02 00 00 00",
+            "605 [8] 23 00 18 01 01 07 00 80", // 701h while not valid: fine...
+        ],
+    );
+    // ...but not valid with a restricted ID (COB-13).
+    assert_eq!(sdo(&mut bus, "605 [8] 23 00 18 01 01 07 00 00"), refused("605 [8] 23 00 18 01 01 07 00 00"));
+    // 1014h: invalidate, move, validate (COB-16 sequence); EMCYs go to the new ID.
+    sdo_ok(
+        &mut bus,
+        &["605 [8] 23 14 10 00 85 00 00 80", "605 [8] 23 14 10 00 90 00 00 80", "605 [8] 23 14 10 00 90 00 00 00"],
+    );
+    bus.stations[0].raise_error(0x1000, [0; 5]);
+    bus.run_for_ms(0);
+    assert_eq!(on(&bus, 0x090).len(), 1);
+}

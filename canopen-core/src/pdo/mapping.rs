@@ -82,14 +82,13 @@ pub struct ResolvedMap {
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
-    pub const EMPTY: ResolvedMap =
-        ResolvedMap {
-            entries: [Mapped { handle: None, bits: 0 }; MAX_ENTRIES],
-            count: 0,
-            bits: 0,
-            aligned: true,
-            app_only: true,
-        };
+    pub const EMPTY: ResolvedMap = ResolvedMap {
+        entries: [Mapped { handle: None, bits: 0 }; MAX_ENTRIES],
+        count: 0,
+        bits: 0,
+        aligned: true,
+        app_only: true,
+    };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
