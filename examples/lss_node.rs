@@ -63,9 +63,7 @@ const CONFIG: NodeConfig = NodeConfig {
     device_name: "canopen LSS example node",
     hardware_version: "vcan",
     software_version: env!("CARGO_PKG_VERSION"),
-    heartbeat_time_ms: 0,
-    guard_time_ms: 0,
-    life_time_factor: 0,
+    ..NodeConfig::DEFAULT
 };
 
 /// The LSS configuration in a small text file: `node_id=<dec>` and `bit_rate=<table index>`.

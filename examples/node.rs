@@ -46,6 +46,7 @@ const CONFIG: NodeConfig = NodeConfig {
     heartbeat_time_ms: 1000,
     guard_time_ms: 0,
     life_time_factor: 0,
+    ..NodeConfig::DEFAULT
 };
 
 fn main() -> ExitCode {

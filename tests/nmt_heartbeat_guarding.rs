@@ -342,7 +342,8 @@ fn poll_timeout_is_exact() {
     assert_eq!(n.poll_transmit(), Some(frame("705 [1] 7F")));
 }
 
-/// The bounded transmit queue drops the newest frame when full and counts it.
+/// The bounded transmit queue drops the newest frame when full and counts it; the loss is reported by EMCY
+/// 8110h (CAN overrun, EEC-10) once there is room.
 #[test]
 fn full_transmit_queue_is_counted() {
     let cfg = NodeConfig::DEFAULT;
@@ -354,6 +355,7 @@ fn full_transmit_queue_is_counted() {
     assert_eq!(n.tx_dropped(), 2);
     assert_eq!(n.poll_transmit(), Some(frame("705 [1] 00")));
     assert_eq!(n.poll_transmit(), Some(frame("705 [1] 7F")));
+    assert_eq!(n.poll_transmit(), Some(frame("085 [8] 10 81 11 00 00 00 00 00")));
     assert_eq!(n.poll_transmit(), None);
 }
 

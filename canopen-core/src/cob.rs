@@ -175,6 +175,7 @@ pub const fn is_restricted(can_id: u16) -> bool {
 /// assert_eq!(e.raw(), 0x8000_0180);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct CobIdEntry(u32);
 
 impl CobIdEntry {

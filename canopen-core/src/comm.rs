@@ -10,6 +10,8 @@
 //! (100Ch, 100Dh), DEV-01/DEV-03/DEV-04 (1000h, 1018h, 1008h–100Ah as configuration).
 
 use crate::od::AbortCode;
+use crate::pdo::{PdoComm, PdoDefault, PdoMapParams};
+use crate::sync::SyncParams;
 
 /// 1018h identity object (DEV-03).
 ///
@@ -57,6 +59,22 @@ pub struct NodeConfig {
     pub guard_time_ms: u16,
     /// Default 100Dh life time factor (GUARD-03; 0 = off).
     pub life_time_factor: u8,
+    /// Default SYNC parameters 1005h, 1006h, 1007h, 1019h.
+    pub sync: SyncParams,
+    /// Default 1012h COB-ID TIME (bit 31 consume, bit 30 produce; TIME-01/02).
+    pub time_cob_id: u32,
+    /// Default 1015h EMCY inhibit time, 100 µs (EMCY-09).
+    pub emcy_inhibit_100us: u16,
+    /// Default 1029h sub 01h, the reaction to a communication error (ERR-10/11: 0 Pre-operational, 1 no
+    /// change, 2 Stopped).
+    pub error_behaviour: u8,
+    /// Default 1F80h NMT startup (CiA 302-2). Only bit 2 is evaluated: 0 = enter Operational by itself after
+    /// boot-up (NMT-17, NMT-27).
+    pub nmt_startup: u32,
+    /// Defaults of RPDO 1..n (1400h+k, 1600h+k); PDOs beyond the slice use [`PdoDefault::UNUSED`].
+    pub rpdo: &'static [PdoDefault],
+    /// Defaults of TPDO 1..n (1800h+k, 1A00h+k).
+    pub tpdo: &'static [PdoDefault],
 }
 
 impl NodeConfig {
@@ -70,7 +88,32 @@ impl NodeConfig {
         heartbeat_time_ms: 0,
         guard_time_ms: 0,
         life_time_factor: 0,
+        sync: SyncParams::DEFAULT,
+        time_cob_id: 0x8000_0100,
+        emcy_inhibit_100us: 0,
+        error_behaviour: 0,
+        nmt_startup: 0x0000_0004,
+        rpdo: &[],
+        tpdo: &[],
     };
+
+    /// The default of RPDO `k` (0-based).
+    pub const fn rpdo_default(&self, k: usize) -> PdoDefault {
+        if k < self.rpdo.len() {
+            self.rpdo[k]
+        } else {
+            PdoDefault::UNUSED
+        }
+    }
+
+    /// The default of TPDO `k` (0-based).
+    pub const fn tpdo_default(&self, k: usize) -> PdoDefault {
+        if k < self.tpdo.len() {
+            self.tpdo[k]
+        } else {
+            PdoDefault::UNUSED
+        }
+    }
 }
 
 impl Default for NodeConfig {
@@ -119,7 +162,8 @@ impl ConsumerEntry {
     }
 }
 
-/// Run-time values of the communication objects, for a node with `HB` heartbeat consumer entries.
+/// Run-time values of the communication objects, for a node with `HB` heartbeat consumer entries, `RPDO`
+/// receive and `TPDO` transmit PDOs.
 ///
 /// ```
 /// use canopen_core::comm::{CommParams, NodeConfig};
@@ -128,7 +172,7 @@ impl ConsumerEntry {
 /// assert!(p.set_consumer(2, 0x0002_00C8).is_err()); // node 2 monitored twice (HB-09)
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CommParams<const HB: usize> {
+pub struct CommParams<const HB: usize, const RPDO: usize = 0, const TPDO: usize = 0> {
     /// 1017h producer heartbeat time, ms (HB-01).
     pub heartbeat_time_ms: u16,
     /// 1016h:01..HB raw consumer entries (HB-06, HB-07).
@@ -139,17 +183,80 @@ pub struct CommParams<const HB: usize> {
     pub life_time_factor: u8,
     /// 1001h error register (ERR-01/ERR-02; ro on SDO, set by the EMCY/error handling).
     pub error_register: u8,
+    /// 1005h, 1006h, 1007h, 1019h.
+    pub sync: SyncParams,
+    /// 1012h COB-ID TIME.
+    pub time_cob_id: u32,
+    /// 1014h COB-ID EMCY (EMCY-02: default 80h + node).
+    pub emcy_cob_id: u32,
+    /// 1015h inhibit time EMCY, 100 µs.
+    pub emcy_inhibit_100us: u16,
+    /// 1029h sub 01h communication error behaviour.
+    pub error_behaviour: u8,
+    /// 1F80h NMT startup.
+    pub nmt_startup: u32,
+    /// 1400h+k RPDO communication parameters.
+    pub rpdo_comm: [PdoComm; RPDO],
+    /// 1600h+k RPDO mapping.
+    pub rpdo_map: [PdoMapParams; RPDO],
+    /// 1800h+k TPDO communication parameters.
+    pub tpdo_comm: [PdoComm; TPDO],
+    /// 1A00h+k TPDO mapping.
+    pub tpdo_map: [PdoMapParams; TPDO],
 }
 
-impl<const HB: usize> CommParams<HB> {
-    /// The power-on defaults of `config` (nothing stored).
+impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO, TPDO> {
+    /// The power-on defaults of `config` (nothing stored) for node-ID 0 (node-ID-relative defaults such as
+    /// the PDO COB-IDs are then relative to 0; a node uses [`for_node`](Self::for_node)).
     pub const fn new(config: &NodeConfig) -> Self {
+        Self::for_node(config, 0)
+    }
+
+    /// The power-on defaults of `config` for `node_id` (COB-04/05/06, COB-10).
+    ///
+    /// ```
+    /// use canopen_core::comm::{CommParams, NodeConfig};
+    /// let p: CommParams<0, 4, 4> = CommParams::for_node(&NodeConfig::DEFAULT, 5);
+    /// assert_eq!(p.emcy_cob_id, 0x85);
+    /// assert_eq!(p.rpdo_comm[1].cob_id, 0x8000_0305); // no default mapping: not valid
+    /// ```
+    pub const fn for_node(config: &NodeConfig, node_id: u8) -> Self {
+        let mut rpdo_comm =
+            [PdoComm { cob_id: 0, transmission_type: 0, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 }; RPDO];
+        let mut rpdo_map = [PdoMapParams { count: 0, entries: [0; crate::pdo::mapping::MAX_ENTRIES] }; RPDO];
+        let mut k = 0;
+        while k < RPDO {
+            let (c, m) = config.rpdo_default(k).params(k, 0x200, node_id);
+            rpdo_comm[k] = c;
+            rpdo_map[k] = m;
+            k += 1;
+        }
+        let mut tpdo_comm =
+            [PdoComm { cob_id: 0, transmission_type: 0, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 }; TPDO];
+        let mut tpdo_map = [PdoMapParams { count: 0, entries: [0; crate::pdo::mapping::MAX_ENTRIES] }; TPDO];
+        let mut k = 0;
+        while k < TPDO {
+            let (c, m) = config.tpdo_default(k).params(k, 0x180, node_id);
+            tpdo_comm[k] = c;
+            tpdo_map[k] = m;
+            k += 1;
+        }
         CommParams {
             heartbeat_time_ms: config.heartbeat_time_ms,
             heartbeat_consumers: [0; HB],
             guard_time_ms: config.guard_time_ms,
             life_time_factor: config.life_time_factor,
             error_register: 0,
+            sync: config.sync,
+            time_cob_id: config.time_cob_id,
+            emcy_cob_id: 0x80 + node_id as u32,
+            emcy_inhibit_100us: config.emcy_inhibit_100us,
+            error_behaviour: config.error_behaviour,
+            nmt_startup: config.nmt_startup,
+            rpdo_comm,
+            rpdo_map,
+            tpdo_comm,
+            tpdo_map,
         }
     }
 

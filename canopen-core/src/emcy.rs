@@ -7,7 +7,15 @@
 //! (EMCY-07: an EMCY per new error, `0000h` with the remaining register when some errors clear, `0000h` with
 //! register 0 when the last one clears; EMCY-05: nothing is repeated). [`EmcyProducer`] then spaces the
 //! frames by the 1015h inhibit time without losing any (EMCY-09) and holds them while the node is Stopped,
-//! sending the most recent one when it leaves (NMT-22, EMCY-08). The EMCY consumer (1028h) is in `Node`.
+//! sending the most recent one when it leaves (NMT-22, EMCY-08).
+//!
+//! The `Node` wires both (`node/errors.rs`): `Node::raise_error`/`Node::clear_error`, 1014h COB-ID (an
+//! invalid 1014h drops EMCYs), 1015h, and the errors the stack raises itself: 8110h transmit queue overrun,
+//! 8130h heartbeat/life-guarding time-out, 8210h/8220h RPDO length, 8240h SYNC length, 8250h RPDO time-out.
+//! The EMCY consumer reports every EMCY on 081h–0FFh from other nodes as an event (EMCY-11); the 1028h
+//! object that would select producers (EMCY-10, optional) is not implemented. 8120h/8140h (error passive,
+//! bus-off) need the CAN controller's state, which the core does not see: the driver or application raises
+//! them with `Node::raise_error`.
 
 use heapless::{Deque, Vec};
 
@@ -249,6 +257,11 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
         let _ = self.pending.push_back(e);
     }
 }
+
+/// The error state a node keeps: 8 distinct active errors, a 1003h history of
+/// [`HISTORY`](crate::od::comm::HISTORY) entries and 8 EMCYs waiting for the inhibit time or for the node to
+/// leave Stopped.
+pub type NodeErrors = ErrorState<8, { crate::od::comm::HISTORY }, 8>;
 
 /// Spaces EMCY frames by the 1015h inhibit time (EMCY-09).
 ///

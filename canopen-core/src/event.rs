@@ -4,6 +4,8 @@ use crate::guarding::LifeGuardingEvent;
 use crate::heartbeat::ConsumerEvent;
 use crate::lss::LssEvent;
 use crate::nmt::NmtState;
+use crate::od::TimeOfDay;
+use crate::wire::emcy::Emergency;
 
 /// An event for the application.
 ///
@@ -54,4 +56,29 @@ pub enum Event {
     /// An LSS (CiA 305) observation: state change, node-ID or bit rate configured, bit-rate switch
     /// instants, store requested.
     Lss(LssEvent),
+    /// An RPDO's data was written into the dictionary (at reception for FEh/FFh, at the SYNC for
+    /// synchronous RPDOs).
+    RpdoReceived {
+        /// RPDO number, 0-based (RPDO 1 = 0, 1400h + pdo).
+        pdo: u16,
+    },
+    /// A SYNC was received or produced (Pre-operational and Operational).
+    Sync {
+        /// The SYNC counter, when 1019h enables it.
+        counter: Option<u8>,
+    },
+    /// A TIME message was received (TIME-04; 1012h bit 31 set).
+    Time(TimeOfDay),
+    /// Another node's EMCY was received (EMCY-11: the reaction is the application's).
+    Emergency {
+        /// The producer's node-ID (the CAN-ID minus 80h).
+        node: u8,
+        /// The message.
+        emcy: Emergency,
+    },
+    /// An RPDO's event timer expired without reception (PDO-12; EMCY 8250h was raised).
+    RpdoTimeout {
+        /// RPDO number, 0-based.
+        pdo: u16,
+    },
 }

@@ -8,7 +8,12 @@
 //! ([`Node::tx_dropped`], [`Node::events_dropped`]); a runner that drains the transmit queue after every call
 //! never sees it full.
 //!
-//! Receive dispatch decodes the function code of the CAN-ID once and branches on it: no scan over services.
+//! Receive dispatch compares the CAN-ID with the few configurable single-object IDs (NMT 000h, SYNC 1005h,
+//! TIME 1012h), then binary-searches a small sorted table of (CAN-ID → RPDO) rebuilt whenever a COB-ID
+//! changes, then decodes the function code once for the rest: no scan over services, no scan over PDOs.
+//!
+//! The PDO, SYNC, TIME and EMCY wiring lives in `node/pdo.rs` and `node/errors.rs`; the dictionary SDO sees
+//! (mapping checks, store/restore commands) in `node/dict.rs`.
 //!
 //! CHECKLIST items carried out here: NMT-03 (power-on: Initialising → reset application → reset
 //! communication → boot-up → Pre-operational, on the first call), NMT-04/NMT-05 (what the resets restore),
@@ -16,31 +21,46 @@
 //! NMT-23/NMT-24 (boot-up on 700h + node, once per Initialization → Pre-operational), NMT-26/ERR-12 (a
 //! communication error in Operational → Pre-operational by default), HB-03/HB-04, HB-05 (guarding is
 //! answered only while the heartbeat producer is off), HB-13/GUARD-11 (time-outs are communication errors),
-//! CAN-07 (frames malformed for their COB-ID are ignored). NMT-06 (stored power-on values) and 1029h
-//! configuration come with store/restore and error behaviour.
+//! CAN-07 (frames malformed for their COB-ID are ignored), NMT-06 (power-on and resets load the stored
+//! values, [`crate::storage`]), NMT-22 (EMCY pending in Stopped), NMT-27 (1F80h bit 2 = 0: enter Operational
+//! by itself after boot-up; the bit meaning is CiA 302-2's, as the lely stack reads it in
+//! `co_nmt_startup_slave`: "enter the operational state automatically if bit 2 of the NMT startup value is
+//! 0"), ERR-10..13 (1029h sub 01h decides the reaction to a communication error).
 
-use heapless::Deque;
+mod dict;
+mod errors;
+mod pdo;
+
+use heapless::{Deque, Vec};
 
 mod with_lss;
 
 use crate::cob::{FunctionCode, NodeId};
 use crate::comm::{CommParams, NodeConfig};
+use crate::emcy::{codes, EmcyProducer};
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::guarding::Guarding;
 use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
 use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
-use crate::od::comm::CommProfile;
+use crate::od::comm::{CommProfile, Unchecked};
 use crate::od::Merged;
-use crate::od::{AbortCode, ObjectDictionary};
+use crate::od::{AbortCode, ObjectDictionary, OdDescribe};
+use crate::pdo::{rpdo::Rpdo, tpdo::Tpdo};
 use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
+use crate::storage::{self, Groups, NoStorage, Storage};
+use crate::sync::Sync;
 use crate::time::{earliest, Instant};
 use crate::wire::error_control::{Heartbeat, StateCode};
 use crate::wire::nmt::NodeControl;
+use dict::{NodeDict, SaveFn};
 
 /// A CANopen node with application dictionary `A`, `HB` heartbeat consumer entries, a transmit queue of
-/// `TXQ` frames and an event queue of `EVQ` events.
+/// `TXQ` frames, an event queue of `EVQ` events, `RPDO` receive and `TPDO` transmit PDOs and non-volatile
+/// storage `S` ([`NoStorage`] unless built with [`Node::with_storage`]). The defaults keep `Node<App>` a
+/// complete CiA 301 device with 4 + 4 PDOs; the new parameters come last so that existing spellings such as
+/// `Node<App, 4, 16, 32>` keep their meaning.
 ///
 /// ```
 /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, CanFrame, Instant, NodeId};
@@ -59,9 +79,17 @@ use crate::wire::nmt::NodeControl;
 /// node.handle_timeout(Instant::from_millis(100));
 /// assert_eq!(node.poll_transmit(), CanFrame::new(0x705, &[0x05]));
 /// ```
-pub struct Node<A, const HB: usize = 4, const TXQ: usize = 16, const EVQ: usize = 16> {
+pub struct Node<
+    A,
+    const HB: usize = 4,
+    const TXQ: usize = 16,
+    const EVQ: usize = 16,
+    const RPDO: usize = 4,
+    const TPDO: usize = 4,
+    S = NoStorage,
+> {
     node_id: NodeId,
-    comm: CommProfile<HB>,
+    comm: CommProfile<HB, RPDO, TPDO>,
     sdo: SdoServer,
     /// The latest time passed in, for work that `poll_transmit` resumes (block upload segments).
     now: Instant,
@@ -73,6 +101,18 @@ pub struct Node<A, const HB: usize = 4, const TXQ: usize = 16, const EVQ: usize 
     /// CiA 305 LSS slave (see `node/with_lss.rs`).
     lss: LssSlave,
     app: A,
+    sync: Sync,
+    emcy: EmcyProducer,
+    rpdos: [Rpdo; RPDO],
+    tpdos: [Tpdo; TPDO],
+    /// (CAN-ID, RPDO number) of the valid RPDOs, sorted by CAN-ID.
+    rx_table: Vec<(u16, u16), RPDO>,
+    /// (CAN-ID, TPDO number) of the TPDOs that answer a remote request, sorted by CAN-ID.
+    rtr_table: Vec<(u16, u16), TPDO>,
+    storage: S,
+    save: SaveFn<S, CommProfile<HB, RPDO, TPDO>, A>,
+    sync_length_error: bool,
+    tx_overrun: bool,
     tx: Deque<CanFrame, TXQ>,
     events: Deque<Event, EVQ>,
     tx_dropped: u32,
@@ -104,7 +144,16 @@ pub trait SansIo {
     fn poll_event(&mut self) -> Option<Event>;
 }
 
-impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> SansIo for Node<A, HB, TXQ, EVQ> {
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: Storage,
+    > SansIo for Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
     fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
         Node::handle_frame(self, now, frame)
     }
@@ -143,14 +192,83 @@ impl ObjectDictionary for NoApplication {
     }
 }
 
-impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> Node<A, HB, TXQ, EVQ> {
+impl crate::od::OdDescribe for NoApplication {
+    fn object_count(&self) -> usize {
+        0
+    }
+    fn object(&self, _: usize) -> Option<crate::od::ObjectDesc> {
+        None
+    }
+    fn entry(&self, _: u16, _: u8) -> Option<crate::od::EntryDesc> {
+        None
+    }
+}
+
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, NoStorage>
+{
     /// A node in Initialization; it boots on the first call that passes the time in (NMT-03). Booting runs
     /// Reset Application, so every application entry then holds its default (for a derived dictionary, its
-    /// `default =` value — the value the EDS announces), exactly as after an NMT reset node.
+    /// `default =` value — the value the EDS announces), exactly as after an NMT reset node. It has no
+    /// storage: 1010h/1011h answer 0606 0000h.
     pub fn new(node_id: NodeId, config: NodeConfig, app: A) -> Self {
+        Self::build(node_id, config, app, NoStorage, |st, g, c, _| storage::save(st, g, c, &NoApplication))
+    }
+}
+
+impl<
+        A: ObjectDictionary + OdDescribe,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: Storage,
+    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
+    /// A node whose parameters can be stored in `storage` (1010h/1011h, NMT-06): communication parameters
+    /// and every writable application entry the dictionary describes.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, storage::NoStorage, NodeId};
+    /// let node: Node<NoApplication, 0, 8, 8, 1, 1, NoStorage> =
+    ///     Node::with_storage(NodeId::new(2).unwrap(), NodeConfig::DEFAULT, NoApplication, NoStorage);
+    /// assert_eq!(node.node_id().get(), 2);
+    /// ```
+    pub fn with_storage(node_id: NodeId, config: NodeConfig, app: A, storage: S) -> Self {
+        Self::build(node_id, config, app, storage, |st, g, c, a| storage::save(st, g, c, a))
+    }
+}
+
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: Storage,
+    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
+    fn build(
+        node_id: NodeId,
+        config: NodeConfig,
+        app: A,
+        storage: S,
+        save: SaveFn<S, CommProfile<HB, RPDO, TPDO>, A>,
+    ) -> Self {
+        let mut comm = CommProfile::for_node(config, node_id.get());
+        comm.storage_supported = storage.capacity() > 0;
+        let sync = Sync::new(comm.params.sync);
         Node {
             node_id,
-            comm: CommProfile::new(config),
+            comm,
             sdo: SdoServer::new(SdoServerParams::default_server(node_id)),
             now: Instant::ZERO,
             nmt: Nmt::new(),
@@ -160,6 +278,16 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
             guarding: Guarding::new(),
             lss: LssSlave::new(&config.identity, Some(node_id)),
             app,
+            sync,
+            emcy: EmcyProducer::new(),
+            rpdos: core::array::from_fn(|_| Rpdo::new(&Default::default(), crate::pdo::mapping::ResolvedMap::EMPTY)),
+            tpdos: core::array::from_fn(|_| Tpdo::new(&Default::default(), crate::pdo::mapping::ResolvedMap::EMPTY)),
+            rx_table: Vec::new(),
+            rtr_table: Vec::new(),
+            storage,
+            save,
+            sync_length_error: false,
+            tx_overrun: false,
             tx: Deque::new(),
             events: Deque::new(),
             tx_dropped: 0,
@@ -183,18 +311,18 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
     }
 
     /// The current communication parameters.
-    pub const fn params(&self) -> &CommParams<HB> {
+    pub const fn params(&self) -> &CommParams<HB, RPDO, TPDO> {
         &self.comm.params
     }
 
     /// The whole object dictionary as SDO, PDO and the EDS see it: the communication profile (1000h–1FFFh)
     /// merged with the application's entries.
-    pub fn dictionary(&mut self) -> Merged<&mut CommProfile<HB>, &mut A> {
+    pub fn dictionary(&mut self) -> Merged<&mut CommProfile<HB, RPDO, TPDO>, &mut A> {
         Merged { comm: &mut self.comm, app: &mut self.app }
     }
 
     /// The communication-profile dictionary (1000h–1FFFh).
-    pub const fn comm_profile(&self) -> &CommProfile<HB> {
+    pub const fn comm_profile(&self) -> &CommProfile<HB, RPDO, TPDO> {
         &self.comm
     }
 
@@ -206,6 +334,16 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
     /// The application dictionary, to change process values while the node runs.
     pub fn app_mut(&mut self) -> &mut A {
         &mut self.app
+    }
+
+    /// The storage.
+    pub const fn storage(&self) -> &S {
+        &self.storage
+    }
+
+    /// The storage, e.g. to inspect or replace its content in tests.
+    pub fn storage_mut(&mut self) -> &mut S {
+        &mut self.storage
     }
 
     /// The heartbeat consumer (remote states, time-outs).
@@ -229,6 +367,12 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
             return None; // CiA 305: silent from the bit-rate switch to the end of the second switch delay
         }
         let frame = self.tx.pop_front();
+        if self.tx_overrun {
+            // EEC-10: frames were lost; reported once there is room for the EMCY.
+            self.tx_overrun = false;
+            self.raise_error(codes::CAN_OVERRUN, [0; 5]);
+        }
+        self.pump_emcy(self.now);
         self.pump_sdo();
         frame
     }
@@ -246,7 +390,10 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         let mut t = earliest(self.producer.poll_timeout(), self.consumer.poll_timeout());
         t = earliest(t, self.guarding.poll_timeout());
         t = earliest(t, self.lss.poll_timeout());
-        earliest(t, self.sdo.poll_timeout())
+        t = earliest(t, self.sdo.poll_timeout());
+        t = earliest(t, self.sync.poll_timeout());
+        t = earliest(t, self.emcy_timeout());
+        earliest(t, self.pdo_timeout())
     }
 
     /// Lets the node act on the time that has passed: boot, heartbeats, consumer and life-guarding time-outs.
@@ -254,7 +401,8 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         self.ensure_booted(now);
         self.lss_timeout(now);
         if self.sdo.poll_timeout().is_some_and(|t| t <= now) {
-            let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
+            let mut od =
+                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
             let response = self.sdo.handle_timeout(now, &mut od);
             self.sdo_response(now, response);
         }
@@ -263,12 +411,17 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         }
         while let Some(ev) = self.consumer.handle_timeout(now) {
             self.push_event(Event::Heartbeat(ev));
+            self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
             self.communication_error(now);
         }
         if let Some(ev) = self.guarding.handle_timeout(now) {
             self.push_event(Event::LifeGuarding(ev));
+            self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
             self.communication_error(now);
         }
+        self.sync_timeout(now);
+        self.pdo_handle_timeout(now);
+        self.pump_emcy(now);
     }
 
     /// Feeds one received frame.
@@ -280,14 +433,30 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         if self.lss.active_node_id().is_none() {
             return; // CiA 305: no node-ID, LSS only
         }
-        let Some((function, node)) = FunctionCode::of(frame.cob_id()) else {
+        let id = frame.cob_id();
+        if id == self.sync.can_id() && id != 0 {
+            return self.handle_sync(now, frame);
+        }
+        if let Ok(i) = self.rx_table.binary_search_by_key(&id, |e| e.0) {
+            return self.handle_rpdo(now, i, frame);
+        }
+        if frame.is_rtr() {
+            if let Ok(i) = self.rtr_table.binary_search_by_key(&id, |e| e.0) {
+                return self.handle_tpdo_rtr(now, i);
+            }
+        }
+        if id == self.time_can_id() {
+            return self.handle_time(frame);
+        }
+        let Some((function, node)) = FunctionCode::of(id) else {
             return;
         };
         match function {
             FunctionCode::Nmt if node == 0 && !frame.is_rtr() => self.handle_node_control(now, frame),
             FunctionCode::NmtErrorControl if node == self.node_id.get() => self.handle_guarding(now, frame),
             FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
-            _ if Some(frame.cob_id()) == self.sdo.rx_cob_id() => self.handle_sdo(now, frame),
+            FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),
+            _ if Some(id) == self.sdo.rx_cob_id() => self.handle_sdo(now, frame),
             _ => {}
         }
     }
@@ -298,7 +467,7 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {
             return;
         }
-        let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
+        let mut od = NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
         let response = self.sdo.handle_request(now, frame.data(), &mut od);
         self.sdo_response(now, response);
         self.pump_sdo();
@@ -327,7 +496,8 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
     /// sub-block of up to 127 frames never needs a queue of that size.
     fn pump_sdo(&mut self) {
         while self.sdo.wants_transmit() && !self.tx.is_full() {
-            let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
+            let mut od =
+                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
                 break;
             };
@@ -375,6 +545,10 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
     fn comm_written(&mut self, now: Instant, index: u16, sub: u8) {
         let p = &self.comm.params;
         match index {
+            0x1005 | 0x1006 | 0x1007 | 0x1019 => self.sync.reconfigure(now, p.sync),
+            0x1014 | 0x1015 => self.emcy.set_inhibit_100us(p.emcy_inhibit_100us),
+            0x1400..=0x17FF => self.configure_rpdo(usize::from(index & 0x1FF)),
+            0x1800..=0x1BFF => self.configure_tpdo(usize::from(index & 0x1FF)),
             0x1017 => self.producer.set_period(now, p.heartbeat_time_ms),
             0x1016 => {
                 if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| p.heartbeat_consumers.get(i)) {
@@ -394,17 +568,20 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         }
     }
 
-    /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05).
+    /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05),
+    /// each loading the stored values of its group after the defaults (NMT-06).
     fn reset(&mut self, now: Instant, application: bool) {
         if application {
             self.app.restore_defaults();
+            let _ = storage::load(&mut self.storage, Groups::APP, &mut self.app);
             self.push_event(Event::ResetApplication);
         }
         let configured = self.lss_reset_communication(now); // CiA 305: a pending node-ID becomes active
         self.comm.reset_communication();
-        self.consumer.configure(&self.comm.params.heartbeat_consumers);
-        self.guarding.reset();
-        self.sdo.set_params(SdoServerParams::default_server(self.node_id));
+        self.comm.errors.reset();
+        self.comm.params.error_register = 0;
+        let _ = storage::load(&mut self.storage, Groups::COMM, &mut Unchecked(&mut self.comm));
+        self.apply_comm_params(now);
         self.push_event(Event::ResetCommunication);
         if !configured {
             return; // CiA 305: no node-ID, stay in Initialisation serving LSS only
@@ -414,6 +591,27 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         self.producer.start(now, self.comm.params.heartbeat_time_ms);
         self.nmt.boot_completed();
         self.state_changed(NmtState::Initialising, NmtState::PreOperational);
+        if self.comm.params.nmt_startup & 0x04 == 0 {
+            self.enter_state(NmtState::Operational); // NMT-17, NMT-27
+        }
+    }
+
+    /// Sets every service up from the (reset or loaded) communication parameters.
+    fn apply_comm_params(&mut self, now: Instant) {
+        let p = &self.comm.params;
+        self.consumer.configure(&p.heartbeat_consumers);
+        self.guarding.reset();
+        self.sdo.set_params(SdoServerParams::default_server(self.node_id));
+        self.sync = Sync::new(p.sync);
+        self.sync.start(now);
+        self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
+        self.sync_length_error = false;
+        for k in 0..RPDO {
+            self.configure_rpdo(k);
+        }
+        for k in 0..TPDO {
+            self.configure_tpdo(k);
+        }
     }
 
     fn handle_node_control(&mut self, now: Instant, frame: &CanFrame) {
@@ -462,16 +660,30 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         }
     }
 
-    /// HB-13, GUARD-11, NMT-26, ERR-12: a communication error in Operational enters Pre-operational
-    /// (the 1029h sub 01h default 00h).
+    /// HB-13, GUARD-11, NMT-26, ERR-10..13: a communication error; 1029h sub 01h says what happens: 0 (the
+    /// default) Operational → Pre-operational, 1 no change, 2 Stopped, 80h–FFh (manufacturer) as 1.
     fn communication_error(&mut self, _now: Instant) {
-        if self.nmt.state() == NmtState::Operational {
-            self.enter_state(NmtState::PreOperational);
+        match self.comm.params.error_behaviour {
+            0 if self.nmt.state() == NmtState::Operational => self.enter_state(NmtState::PreOperational),
+            2 => self.enter_state(NmtState::Stopped),
+            _ => {}
         }
     }
 
     fn state_changed(&mut self, from: NmtState, to: NmtState) {
         self.push_event(Event::StateChanged { from, to });
+        if from == NmtState::Operational {
+            self.stop_pdos();
+        }
+        if from == NmtState::Stopped && to == NmtState::PreOperational {
+            self.sync.restart_counter(); // SYNC-11
+        }
+        if to == NmtState::Operational {
+            self.start_pdos(self.now);
+        }
+        if from == NmtState::Stopped {
+            self.pump_emcy(self.now); // NMT-22: the most recent pending EMCY goes out now
+        }
     }
 
     fn error_control_frame(&self, data: [u8; 1]) -> CanFrame {
@@ -480,9 +692,12 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
         CanFrame::from_parts(FunctionCode::NmtErrorControl.cob_id(self.node_id), buf, 1)
     }
 
+    /// Queues a frame; a full queue drops it, counts it and raises EMCY 8110h (CAN overrun, EEC-10) as soon
+    /// as there is room again. The error stays active until the application clears it.
     fn transmit(&mut self, frame: CanFrame) {
         if self.tx.push_back(frame).is_err() {
             self.tx_dropped = self.tx_dropped.saturating_add(1);
+            self.tx_overrun = true;
         }
     }
 

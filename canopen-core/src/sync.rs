@@ -20,6 +20,7 @@ use crate::time::{Duration, Instant};
 /// assert_eq!(p.counter_overflow, 0);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SyncParams {
     /// 1005h COB-ID SYNC; bit 30 = this node produces SYNC.
     pub cob_id: CobIdEntry,
@@ -122,6 +123,26 @@ impl Sync {
         self.params.cob_id = self.params.cob_id.check_change(raw, |e| e.bit30())?;
         self.schedule(now);
         Ok(())
+    }
+
+    /// Takes over parameters written through the dictionary (which checked them): the counter restarts when
+    /// 1019h changed, production is rescheduled when the COB-ID or the period changed (SYNC-07).
+    ///
+    /// ```
+    /// use canopen_core::{sync::{Sync, SyncParams}, cob::CobIdEntry, Instant};
+    /// let mut s = Sync::new(SyncParams::DEFAULT);
+    /// s.reconfigure(Instant::ZERO, SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 1000, ..SyncParams::DEFAULT });
+    /// assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1)));
+    /// ```
+    pub fn reconfigure(&mut self, now: Instant, params: SyncParams) {
+        let old = self.params;
+        self.params = params;
+        if old.counter_overflow != params.counter_overflow {
+            self.counter = 1;
+        }
+        if old.cob_id != params.cob_id || old.period_us != params.period_us {
+            self.schedule(now);
+        }
     }
 
     /// Writes 1006h; production (re)starts within one period (SYNC-07).

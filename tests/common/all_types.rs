@@ -9,6 +9,7 @@ use canopen_core::od::{
     AbortCode, DomainBuf, Merged, OctetString, TimeDifference, TimeOfDay, UnicodeString, VisibleString, I24, I40, I48,
     I56, U24, U40, U48, U56,
 };
+use canopen_core::pdo::PdoDefault;
 use canopen_od_derive::ObjectDictionary;
 
 #[derive(ObjectDictionary, Debug, Default)]
@@ -137,13 +138,15 @@ pub const CONFIG: NodeConfig = NodeConfig {
     hardware_version: "HW 1.0",
     software_version: "SW 0.1",
     heartbeat_time_ms: 1000,
+    tpdo: &[PdoDefault { mapping: &[0x2010_0008, 0x2011_0010], ..PdoDefault::EVENT }],
+    rpdo: &[PdoDefault { mapping: &[0x2002_0010], ..PdoDefault::EVENT }],
     ..NodeConfig::DEFAULT
 };
 
-/// The whole node dictionary: comm profile (4 heartbeat consumers) + application.
-pub type NodeOd = Merged<CommProfile<4>, AllTypes>;
+/// The whole node dictionary: comm profile (4 heartbeat consumers, 4 RPDOs, 4 TPDOs) + application.
+pub type NodeOd = Merged<CommProfile<4, 4, 4>, AllTypes>;
 
-/// A fresh node dictionary.
+/// A fresh node dictionary (node-ID 5).
 pub fn node_od() -> NodeOd {
-    Merged { comm: CommProfile::new(CONFIG), app: AllTypes::with_defaults() }
+    Merged { comm: CommProfile::for_node(CONFIG, 5), app: AllTypes::with_defaults() }
 }

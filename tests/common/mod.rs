@@ -6,7 +6,7 @@
 //! injecting frames and may make the bus lose chosen frames.
 #![allow(dead_code)]
 
-use canopen::core::{node::Node, od::ObjectDictionary, CanFrame, Event, Instant};
+use canopen::core::{node::Node, od::ObjectDictionary, storage::Storage, CanFrame, Event, Instant};
 
 /// Something that can sit on the bus.
 pub trait Station {
@@ -16,7 +16,16 @@ pub trait Station {
     fn poll_transmit(&mut self) -> Option<CanFrame>;
 }
 
-impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> Station for Node<A, HB, TXQ, EVQ> {
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: Storage,
+    > Station for Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
     fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
         Node::handle_frame(self, now, frame)
     }
@@ -173,8 +182,16 @@ pub fn frame(text: &str) -> CanFrame {
 }
 
 /// Drains a node's events.
-pub fn events<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize>(
-    node: &mut Node<A, HB, TXQ, EVQ>,
+pub fn events<
+    A: ObjectDictionary,
+    const HB: usize,
+    const TXQ: usize,
+    const EVQ: usize,
+    const RPDO: usize,
+    const TPDO: usize,
+    S: Storage,
+>(
+    node: &mut Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>,
 ) -> Vec<Event> {
     std::iter::from_fn(|| node.poll_event()).collect()
 }

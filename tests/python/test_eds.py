@@ -22,6 +22,14 @@ VARS = {
     0x100C: ("Guard time", dt.UNSIGNED16, "rw", 0, False, None, None),
     0x100D: ("Life time factor", dt.UNSIGNED8, "rw", 0, False, None, None),
     0x1017: ("Producer heartbeat time", dt.UNSIGNED16, "rw", 1000, False, None, None),
+    0x1005: ("COB-ID SYNC message", dt.UNSIGNED32, "rw", 0x80, False, None, None),
+    0x1006: ("Communication cycle period", dt.UNSIGNED32, "rw", 0, False, None, None),
+    0x1007: ("Synchronous window length", dt.UNSIGNED32, "rw", 0, False, None, None),
+    0x1012: ("COB-ID time stamp object", dt.UNSIGNED32, "rw", 0x80000100, False, None, None),
+    0x1014: ("COB-ID EMCY", dt.UNSIGNED32, "rw", 0x85, False, None, None),  # $NODEID+0x80, node 5
+    0x1015: ("Inhibit time EMCY", dt.UNSIGNED16, "rw", 0, False, None, None),
+    0x1019: ("Synchronous counter overflow value", dt.UNSIGNED8, "rw", 0, False, None, None),
+    0x1F80: ("NMT startup", dt.UNSIGNED32, "rw", 4, False, None, None),
     0x2000: ("Boolean", dt.BOOLEAN, "rw", 1, True, None, None),
     0x2001: ("Integer8", dt.INTEGER8, "rw", -1, True, -100, 100),
     0x2002: ("Integer16", dt.INTEGER16, "rww", 0, True, -1000, 1000),
@@ -63,6 +71,30 @@ COMPOUND = {
         3: ("Revision number", dt.UNSIGNED32, "ro", 0x00010002, False, None, None),
         4: ("Serial number", dt.UNSIGNED32, "ro", 42, False, None, None),
     }, 4),
+    0x1010: (ODArray, "Store parameters", {
+        1: ("Save all parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
+        2: ("Save communication parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
+        3: ("Save application parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
+    }, 3),
+    0x1011: (ODArray, "Restore default parameters", {
+        1: ("Restore all default parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
+        2: ("Restore communication default parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
+        3: ("Restore application default parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
+    }, 3),
+    0x1029: (ODArray, "Error behaviour", {1: ("Communication error", dt.UNSIGNED8, "rw", 0, False, None, None)}, 1),
+    **{0x1400 + k: (ODRecord, "RPDO communication parameter", {
+        1: ("COB-ID used by RPDO", dt.UNSIGNED32, "rw", (0x200 + 0x100 * k + 5) | (0 if k == 0 else 0x80000000), False, None, None),
+        2: ("Transmission type", dt.UNSIGNED8, "rw", 254, False, None, None),
+        3: ("Inhibit time", dt.UNSIGNED16, "rw", 0, False, None, None),
+        5: ("Event timer", dt.UNSIGNED16, "rw", 0, False, None, None),
+    }, 5) for k in range(4)},
+    **{0x1800 + k: (ODRecord, "TPDO communication parameter", {
+        1: ("COB-ID used by TPDO", dt.UNSIGNED32, "rw", (0x180 + 0x100 * k + 5) | (0 if k == 0 else 0x80000000), False, None, None),
+        2: ("Transmission type", dt.UNSIGNED8, "rw", 254, False, None, None),
+        3: ("Inhibit time", dt.UNSIGNED16, "rw", 0, False, None, None),
+        5: ("Event timer", dt.UNSIGNED16, "rw", 0, False, None, None),
+        6: ("SYNC start value", dt.UNSIGNED8, "rw", 0, False, None, None),
+    }, 6) for k in range(4)},
     0x2100: (ODRecord, "PID controller", {
         1: ("Kp", dt.REAL32, "rw", 1.0, True, None, None),
         2: ("Ki", dt.REAL32, "rw", 0, False, 0, 10),  # limits written "0" and "10": python reads them
@@ -107,9 +139,31 @@ def check_var(var, expected):
     assert var.max == high, f"{name}: HighLimit"
 
 
+# Objects whose sub 00h is writable (checked in test_rw_count_objects).
+RW_COUNT = {0x1003, *range(0x1600, 0x1604), *range(0x1A00, 0x1A04)}
+
+
 def test_every_object_is_present(od):
-    expected = set(VARS) | set(COMPOUND)
+    expected = set(VARS) | set(COMPOUND) | RW_COUNT
     assert {obj.index for obj in od.values()} == expected
+
+
+def test_rw_count_objects(od):
+    hist = od[0x1003]
+    assert isinstance(hist, ODArray) and hist.name == "Pre-defined error field"
+    assert hist[0].access_type == "rw" and hist[0].data_type == dt.UNSIGNED8
+    assert sorted(hist.subindices) == list(range(0, 9))
+    assert hist[1].access_type == "ro" and hist[1].name == "Standard error field 1"
+    for base, first in ((0x1600, [0x20020010]), (0x1A00, [0x20100008, 0x20110010])):
+        for k in range(4):
+            m = od[base + k]
+            assert isinstance(m, ODRecord)
+            assert m[0].access_type == "rw"
+            assert m[0].default == (len(first) if k == 0 else 0)
+            assert sorted(m.subindices) == list(range(0, 9))
+            for s in range(1, 9):
+                assert m[s].data_type == dt.UNSIGNED32
+                assert m[s].default == (first[s - 1] if k == 0 and s <= len(first) else 0)
 
 
 @pytest.mark.parametrize("index", sorted(VARS))
@@ -159,7 +213,7 @@ def test_device_info(od):
     assert info.vendor_name == "canopen-rs"
     assert info.product_name == "All types"
     assert info.simple_boot_up_slave is True
-    assert info.nr_of_RXPDO == 0 and info.nr_of_TXPDO == 0
+    assert info.nr_of_RXPDO == 4 and info.nr_of_TXPDO == 4
     assert info.allowed_baudrates == {125000, 250000, 500000, 1000000}
 
 

@@ -14,10 +14,19 @@ use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::lss::{LssSlave, LssStore, StoreError, PLACEHOLDER_NODE_ID};
 use crate::od::ObjectDictionary;
+use crate::storage::{NoStorage, Storage};
 use crate::time::Instant;
 use crate::wire::lss::{LssResponse, UNCONFIGURED_NODE_ID};
 
-impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> Node<A, HB, TXQ, EVQ> {
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, NoStorage>
+{
     /// A node without a node-ID (FFh): after power-on it waits in Initialisation, serving LSS only, until
     /// an LSS master assigns one.
     ///
@@ -30,9 +39,7 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
     /// assert_eq!(node.lss_node_id(), None);
     /// ```
     pub fn new_unconfigured(config: NodeConfig, app: A) -> Self {
-        let mut node = Node::new(PLACEHOLDER_NODE_ID, config, app);
-        node.lss = LssSlave::new(&config.identity, None);
-        node
+        Node::new(PLACEHOLDER_NODE_ID, config, app).without_node_id()
     }
 
     /// A node from a raw (for example stored) node-ID: 1–127 as [`Node::new`], FFh as
@@ -52,6 +59,31 @@ impl<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize> N
             None if raw == UNCONFIGURED_NODE_ID => Some(Node::new_unconfigured(config, app)),
             None => None,
         }
+    }
+}
+
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: Storage,
+    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
+    /// The same node without a node-ID, waiting for an LSS master (for nodes built with
+    /// [`Node::with_storage`]; [`Node::new_unconfigured`] is the short form without storage).
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, storage::NoStorage, NodeId};
+    /// let node: Node<NoApplication> =
+    ///     Node::with_storage(NodeId::new(1).unwrap(), NodeConfig::DEFAULT, NoApplication, NoStorage).without_node_id();
+    /// assert_eq!(node.lss_node_id(), None);
+    /// ```
+    pub fn without_node_id(mut self) -> Self {
+        self.lss = LssSlave::new(&self.comm.config.identity, None);
+        self
     }
 
     /// The active node-ID, `None` while the node has none (then [`Node::node_id`] is a placeholder).

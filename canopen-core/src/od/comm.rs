@@ -1,25 +1,39 @@
 //! The communication profile (1000h–1FFFh) as an object dictionary, built from the core's
 //! [`NodeConfig`] and [`CommParams`].
 //!
-//! Objects: 1000h device type (DEV-01, ro), 1001h error register (ERR-01, ro, TPDO-mappable), 1008h/1009h/
-//! 100Ah names (DEV-04, const VISIBLE_STRING), 100Ch guard time and 100Dh life time factor (GUARD-02/03,
-//! rw), 1016h consumer heartbeat times (HB-06..HB-09: ARRAY of UNSIGNED32, sub 00h const = `HB`, entries rw
-//! through [`CommParams::set_consumer`], so a duplicate node-ID is refused with 0604 0043h; omitted when
-//! `HB == 0`), 1017h producer heartbeat time (HB-01, rw), 1018h identity (DEV-03, RECORD, sub 00h const 4,
-//! subs ro). OD-12 (1000h, 1001h, 1018h mandatory) and OD-16 (abort codes) hold.
+//! Objects: 1000h device type (DEV-01), 1001h error register (ERR-01, ro, TPDO-mappable, from the active
+//! errors), 1003h pre-defined error field (ERR-04..09: sub 00h rw, only 0 may be written, else 0609 0030h;
+//! empty entry → 0800 0024h), 1005h–1007h SYNC (SYNC-01..08; COB-ID rules COB-15/16), 1008h–100Ah names
+//! (DEV-04), 100Ch/100Dh guarding (GUARD-02/03), 1010h/1011h store/restore (STORE-01..11; the node performs
+//! the save, see [`crate::storage`]), 1012h COB-ID TIME (TIME-01..03), 1014h COB-ID EMCY (EMCY-02/03),
+//! 1015h EMCY inhibit (EMCY-09), 1016h consumer heartbeat times (HB-06..09; omitted when `HB == 0`), 1017h
+//! (HB-01), 1018h identity (DEV-03), 1019h SYNC counter overflow (SYNC-10/12), 1029h error behaviour
+//! (ERR-10/11), 1400h+k / 1600h+k RPDO communication and mapping (PDO-06..13, PDO-30..37), 1800h+k / 1A00h+k
+//! TPDO communication and mapping (PDO-14..18, PDO-24..26), 1F80h NMT startup (NMT-27).
 //!
-//! Not here yet: 1005h–1007h SYNC, 1010h/1011h store/restore, 1012h–1015h TIME/EMCY, 1019h, 1029h,
-//! 1200h SDO server, 1400h–1BFFh PDOs. They are added the same way: one arm per object in [`CommProfile`]'s
-//! `desc`/`read`/`write` and one index in its object list, kept sorted. Dispatch is a `match` on the index
-//! (compiled to a jump table / comparison tree), no table search.
+//! PDO change rules (PDO-17, PDO-35): a COB-ID's CAN-ID changes only while bit 31 = 1 (else 0609 0030h); a
+//! CAN-ID from the restricted set (COB-13) cannot be made valid (0609 0030h); the inhibit time and SYNC start
+//! value change only while the PDO is not valid (0609 0030h: the seeds name no code, ERRATA §0); mapping
+//! sub 00h and entries change only while the PDO is not valid, and entries only while sub 00h = 0 (0601 0000h,
+//! as CANopenNode answers); sub 04h and RPDO sub 06h do not exist (0609 0011h, PDO-11/13); an unsupported
+//! transmission type is 0609 0030h (PDO-09/18). Whether a mapping entry names a mappable object (0602 0000h,
+//! 0604 0041h, 0604 0042h) needs the application dictionary too and is checked by the node's dictionary view
+//! before the value reaches this one.
+//!
+//! Dispatch is a `match` on the index (compiled to a jump table / comparison tree), no table search.
 
 use super::{
     copy_at, count_entry, AbortCode, Access, DataType, EntryDesc, ObjectCode, ObjectDesc, ObjectDictionary, OdDescribe,
     OdValue, PdoMapping, SubInfo, Value,
 };
+use crate::cob::{is_restricted, CobIdEntry};
 use crate::comm::{CommParams, NodeConfig};
+use crate::emcy::NodeErrors;
+use crate::pdo::{mapping::MAX_ENTRIES, rpdo_type_ok, tpdo_type_ok, PdoComm, PdoMapParams};
+use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 
-/// The communication-profile dictionary of a node with `HB` heartbeat consumer entries.
+/// The communication-profile dictionary of a node with `HB` heartbeat consumer entries, `RPDO` receive and
+/// `TPDO` transmit PDOs.
 ///
 /// ```
 /// use canopen_core::comm::{CommParams, NodeConfig};
@@ -34,28 +48,76 @@ use crate::comm::{CommParams, NodeConfig};
 /// assert_eq!(od.write(0x1000, 0, &b), Err(AbortCode::WriteOfReadOnly));
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CommProfile<const HB: usize> {
+pub struct CommProfile<const HB: usize, const RPDO: usize = 0, const TPDO: usize = 0> {
     /// The fixed description (identity, names, defaults).
     pub config: NodeConfig,
     /// The run-time values the services use.
-    pub params: CommParams<HB>,
+    pub params: CommParams<HB, RPDO, TPDO>,
+    /// The node-ID the node-ID-relative defaults refer to.
+    pub node_id: u8,
+    /// Active errors, 1001h and the 1003h history.
+    pub errors: NodeErrors,
+    /// Whether 1010h can save (reads 1 in bit 0, STORE-05) and 1011h can restore (STORE-11).
+    pub storage_supported: bool,
 }
 
-/// Indices of the objects, in increasing order.
-const OBJECTS: [u16; 10] = [0x1000, 0x1001, 0x1008, 0x1009, 0x100A, 0x100C, 0x100D, 0x1016, 0x1017, 0x1018];
+/// Indices of the fixed objects, in increasing order (the PDO ranges and 1F80h follow).
+const OBJECTS: [u16; 21] = [
+    0x1000, 0x1001, 0x1003, 0x1005, 0x1006, 0x1007, 0x1008, 0x1009, 0x100A, 0x100C, 0x100D, 0x1010, 0x1011, 0x1012,
+    0x1014, 0x1015, 0x1016, 0x1017, 0x1018, 0x1019, 0x1029,
+];
 
-impl<const HB: usize> CommProfile<HB> {
-    const HB_FITS: () = assert!(HB <= 127, "1016h has at most 127 consumer entries (HB-06)");
+/// Depth of the 1003h error history.
+pub const HISTORY: usize = 8;
 
-    /// The power-on state of `config`.
+const STORE_NAMES: [&str; 3] = ["Save all parameters", "Save communication parameters", "Save application parameters"];
+const RESTORE_NAMES: [&str; 3] = [
+    "Restore all default parameters",
+    "Restore communication default parameters",
+    "Restore application default parameters",
+];
+
+/// Which PDO object an index is.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum PdoObj {
+    RpdoComm(usize),
+    RpdoMap(usize),
+    TpdoComm(usize),
+    TpdoMap(usize),
+}
+
+impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO, TPDO> {
+    const FITS: () = {
+        assert!(HB <= 127, "1016h has at most 127 consumer entries (HB-06)");
+        assert!(RPDO <= 512 && TPDO <= 512, "at most 512 RPDOs and 512 TPDOs (PDO-02)");
+    };
+
+    /// The power-on state of `config` for node-ID 0 (see [`for_node`](Self::for_node)).
     pub const fn new(config: NodeConfig) -> Self {
-        #[allow(clippy::let_unit_value)]
-        let () = Self::HB_FITS;
-        CommProfile { params: CommParams::new(&config), config }
+        Self::for_node(config, 0)
     }
 
-    /// NMT reset communication: the parameters go back to their power-on values (the error register
-    /// is kept, as it belongs to the error handling).
+    /// The power-on state of `config` for `node_id`.
+    ///
+    /// ```
+    /// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile};
+    /// let od: CommProfile<0, 1, 1> = CommProfile::for_node(NodeConfig::DEFAULT, 3);
+    /// assert_eq!(od.params.emcy_cob_id, 0x83);
+    /// ```
+    pub const fn for_node(config: NodeConfig, node_id: u8) -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::FITS;
+        CommProfile {
+            params: CommParams::for_node(&config, node_id),
+            config,
+            node_id,
+            errors: NodeErrors::new(),
+            storage_supported: false,
+        }
+    }
+
+    /// NMT reset communication: the parameters go back to their power-on values (the error register and
+    /// history are kept: they belong to the error handling).
     ///
     /// ```
     /// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile};
@@ -66,12 +128,46 @@ impl<const HB: usize> CommProfile<HB> {
     /// ```
     pub fn reset_communication(&mut self) {
         let err = self.params.error_register;
-        self.params = CommParams::new(&self.config);
+        self.params = CommParams::for_node(&self.config, self.node_id);
         self.params.error_register = err;
     }
 
-    fn has(index: u16) -> bool {
-        OBJECTS.contains(&index) && (index != 0x1016 || HB > 0)
+    fn pdo_obj(index: u16) -> Option<PdoObj> {
+        let k = usize::from(index & 0x1FF);
+        match index {
+            0x1400..=0x15FF if k < RPDO => Some(PdoObj::RpdoComm(k)),
+            0x1600..=0x17FF if k < RPDO => Some(PdoObj::RpdoMap(k)),
+            0x1800..=0x19FF if k < TPDO => Some(PdoObj::TpdoComm(k)),
+            0x1A00..=0x1BFF if k < TPDO => Some(PdoObj::TpdoMap(k)),
+            _ => None,
+        }
+    }
+
+    /// The index of the `n`-th object (increasing order).
+    fn index_at(n: usize) -> Option<u16> {
+        let fixed = OBJECTS.len() - usize::from(HB == 0);
+        if n < fixed {
+            return OBJECTS.iter().copied().filter(|&i| i != 0x1016 || HB > 0).nth(n);
+        }
+        let mut m = n - fixed;
+        for (base, count) in [(0x1400u16, RPDO), (0x1600, RPDO), (0x1800, TPDO), (0x1A00, TPDO)] {
+            if m < count {
+                return Some(base + m as u16);
+            }
+            m -= count;
+        }
+        (m == 0).then_some(0x1F80)
+    }
+
+    fn pdo_cob_default(&self, tx: bool, k: usize) -> Value {
+        let d = if tx { self.config.tpdo_default(k) } else { self.config.rpdo_default(k) };
+        let base = if tx { 0x180 } else { 0x200 };
+        let (c, _) = d.params(k, base, 0);
+        if d.can_id.is_none() && k < 4 {
+            Value::NodeIdPlus(c.cob_id)
+        } else {
+            Value::Uint(c.cob_id.into())
+        }
     }
 
     /// The description of one sub-entry, or the OD-16 abort code.
@@ -86,23 +182,50 @@ impl<const HB: usize> CommProfile<HB> {
                 Err(AbortCode::SubIndexDoesNotExist)
             }
         };
+        let uint = |v: u32| Value::Uint(v.into());
+        if let Some(obj) = Self::pdo_obj(index) {
+            return self.pdo_desc(obj, index, sub);
+        }
         match index {
-            0x1000 => var("Device type", Unsigned32, Ro, Value::Uint(c.device_type.into())),
-            0x1001 => var("Error register", Unsigned8, Ro, Value::Uint(0)).map(|e| e.with_pdo(PdoMapping::Tpdo)),
+            0x1000 => var("Device type", Unsigned32, Ro, uint(c.device_type)),
+            0x1001 => var("Error register", Unsigned8, Ro, uint(0)).map(|e| e.with_pdo(PdoMapping::Tpdo)),
+            0x1003 => match sub {
+                0 => Ok(EntryDesc::var(index, 0, "Number of errors", Unsigned8, Rw).with_default(uint(0))),
+                s if usize::from(s) <= HISTORY => Ok(EntryDesc {
+                    numbered: true,
+                    ..EntryDesc::var(index, s, "Standard error field", Unsigned32, Ro).with_default(uint(0))
+                }),
+                _ => Err(AbortCode::SubIndexDoesNotExist),
+            },
+            0x1005 => var("COB-ID SYNC message", Unsigned32, Rw, uint(c.sync.cob_id.raw())),
+            0x1006 => var("Communication cycle period", Unsigned32, Rw, uint(c.sync.period_us)),
+            0x1007 => var("Synchronous window length", Unsigned32, Rw, uint(c.sync.window_us)),
             0x1008 => var("Manufacturer device name", VisibleString, Const, Value::Str(c.device_name)),
             0x1009 => var("Manufacturer hardware version", VisibleString, Const, Value::Str(c.hardware_version)),
             0x100A => var("Manufacturer software version", VisibleString, Const, Value::Str(c.software_version)),
-            0x100C => var("Guard time", Unsigned16, Rw, Value::Uint(c.guard_time_ms.into())),
-            0x100D => var("Life time factor", Unsigned8, Rw, Value::Uint(c.life_time_factor.into())),
+            0x100C => var("Guard time", Unsigned16, Rw, uint(c.guard_time_ms.into())),
+            0x100D => var("Life time factor", Unsigned8, Rw, uint(c.life_time_factor.into())),
+            0x1010 | 0x1011 => {
+                let names = if index == 0x1010 { &STORE_NAMES } else { &RESTORE_NAMES };
+                match sub {
+                    0 => Ok(count_entry(index, 3)),
+                    1..=3 => Ok(EntryDesc::var(index, sub, names[usize::from(sub) - 1], Unsigned32, Rw)
+                        .with_default(uint(u32::from(self.storage_supported)))),
+                    _ => Err(AbortCode::SubIndexDoesNotExist),
+                }
+            }
+            0x1012 => var("COB-ID time stamp object", Unsigned32, Rw, uint(c.time_cob_id)),
+            0x1014 => var("COB-ID EMCY", Unsigned32, Rw, Value::NodeIdPlus(0x80)),
+            0x1015 => var("Inhibit time EMCY", Unsigned16, Rw, uint(c.emcy_inhibit_100us.into())),
             0x1016 if HB > 0 => match sub {
                 0 => Ok(count_entry(index, HB as u8)),
                 s if usize::from(s) <= HB => Ok(EntryDesc {
                     numbered: true,
-                    ..EntryDesc::var(index, s, "Consumer heartbeat time", Unsigned32, Rw).with_default(Value::Uint(0))
+                    ..EntryDesc::var(index, s, "Consumer heartbeat time", Unsigned32, Rw).with_default(uint(0))
                 }),
                 _ => Err(AbortCode::SubIndexDoesNotExist),
             },
-            0x1017 => var("Producer heartbeat time", Unsigned16, Rw, Value::Uint(c.heartbeat_time_ms.into())),
+            0x1017 => var("Producer heartbeat time", Unsigned16, Rw, uint(c.heartbeat_time_ms.into())),
             0x1018 => {
                 let id = &c.identity;
                 let (name, v) = match sub {
@@ -113,9 +236,55 @@ impl<const HB: usize> CommProfile<HB> {
                     4 => ("Serial number", id.serial),
                     _ => return Err(AbortCode::SubIndexDoesNotExist),
                 };
-                Ok(EntryDesc::var(index, sub, name, Unsigned32, Ro).with_default(Value::Uint(v.into())))
+                Ok(EntryDesc::var(index, sub, name, Unsigned32, Ro).with_default(uint(v)))
             }
+            0x1019 => var("Synchronous counter overflow value", Unsigned8, Rw, uint(c.sync.counter_overflow.into())),
+            0x1029 => match sub {
+                0 => Ok(count_entry(index, 1)),
+                1 => Ok(EntryDesc::var(index, 1, "Communication error", Unsigned8, Rw)
+                    .with_default(uint(c.error_behaviour.into()))),
+                _ => Err(AbortCode::SubIndexDoesNotExist),
+            },
+            0x1F80 => var("NMT startup", Unsigned32, Rw, uint(c.nmt_startup)),
             _ => Err(AbortCode::ObjectDoesNotExist),
+        }
+    }
+
+    fn pdo_desc(&self, obj: PdoObj, index: u16, sub: u8) -> Result<EntryDesc, AbortCode> {
+        use Access::*;
+        use DataType::*;
+        let uint = |v: u32| Value::Uint(v.into());
+        match obj {
+            PdoObj::RpdoComm(k) | PdoObj::TpdoComm(k) => {
+                let tx = matches!(obj, PdoObj::TpdoComm(_));
+                let d = if tx { self.config.tpdo_default(k) } else { self.config.rpdo_default(k) };
+                let e = |name, dt, v| Ok(EntryDesc::var(index, sub, name, dt, Rw).with_default(v));
+                match sub {
+                    0 => Ok(count_entry(index, if tx { 6 } else { 5 })),
+                    1 if tx => e("COB-ID used by TPDO", Unsigned32, self.pdo_cob_default(true, k)),
+                    1 => e("COB-ID used by RPDO", Unsigned32, self.pdo_cob_default(false, k)),
+                    2 => e("Transmission type", Unsigned8, uint(d.transmission_type.into())),
+                    3 => e("Inhibit time", Unsigned16, uint(d.inhibit_100us.into())),
+                    5 => e("Event timer", Unsigned16, uint(d.event_timer_ms.into())),
+                    6 if tx => e("SYNC start value", Unsigned8, uint(d.sync_start.into())),
+                    _ => Err(AbortCode::SubIndexDoesNotExist),
+                }
+            }
+            PdoObj::RpdoMap(k) | PdoObj::TpdoMap(k) => {
+                let tx = matches!(obj, PdoObj::TpdoMap(_));
+                let d = if tx { self.config.tpdo_default(k) } else { self.config.rpdo_default(k) };
+                let m = PdoMapParams::from_slice(d.mapping);
+                match usize::from(sub) {
+                    0 => Ok(EntryDesc::var(index, 0, "Number of mapped application objects in PDO", Unsigned8, Rw)
+                        .with_default(uint(m.count.into()))),
+                    s if s <= MAX_ENTRIES => Ok(EntryDesc {
+                        numbered: true,
+                        ..EntryDesc::var(index, sub, "Application object", Unsigned32, Rw)
+                            .with_default(uint(m.entries[s - 1]))
+                    }),
+                    _ => Err(AbortCode::SubIndexDoesNotExist),
+                }
+            }
         }
     }
 
@@ -127,9 +296,256 @@ impl<const HB: usize> CommProfile<HB> {
             _ => None,
         }
     }
+
+    /// The current value of a numeric entry (every entry but the strings), after `desc` succeeded.
+    fn value(&self, index: u16, sub: u8) -> Result<u32, AbortCode> {
+        let p = &self.params;
+        let c = &self.config;
+        if let Some(obj) = Self::pdo_obj(index) {
+            return Ok(match obj {
+                PdoObj::RpdoComm(k) => comm_value(p.rpdo_comm.get(k), sub, 5),
+                PdoObj::TpdoComm(k) => comm_value(p.tpdo_comm.get(k), sub, 6),
+                PdoObj::RpdoMap(k) => map_value(p.rpdo_map.get(k), sub),
+                PdoObj::TpdoMap(k) => map_value(p.tpdo_map.get(k), sub),
+            });
+        }
+        Ok(match (index, sub) {
+            (0x1000, _) => c.device_type,
+            (0x1001, _) => (self.errors.register() | p.error_register).into(),
+            (0x1003, s) => self.errors.read_history(s)?,
+            (0x1005, _) => p.sync.cob_id.raw(),
+            (0x1006, _) => p.sync.period_us,
+            (0x1007, _) => p.sync.window_us,
+            (0x100C, _) => p.guard_time_ms.into(),
+            (0x100D, _) => p.life_time_factor.into(),
+            (0x1010 | 0x1011, 0) => 3,
+            (0x1010 | 0x1011, _) => u32::from(self.storage_supported),
+            (0x1012, _) => p.time_cob_id,
+            (0x1014, _) => p.emcy_cob_id,
+            (0x1015, _) => p.emcy_inhibit_100us.into(),
+            (0x1016, 0) => HB as u32,
+            (0x1016, s) => p.consumer(s).map_or(0, |e| e.raw()),
+            (0x1017, _) => p.heartbeat_time_ms.into(),
+            (0x1018, 0) => 4,
+            (0x1018, 1) => c.identity.vendor_id,
+            (0x1018, 2) => c.identity.product_code,
+            (0x1018, 3) => c.identity.revision,
+            (0x1018, _) => c.identity.serial,
+            (0x1019, _) => p.sync.counter_overflow.into(),
+            (0x1029, 0) => 1,
+            (0x1029, _) => p.error_behaviour.into(),
+            (0x1F80, _) => p.nmt_startup,
+            _ => return Err(AbortCode::ObjectDoesNotExist),
+        })
+    }
+
+    /// Writes a numeric entry; `rules` applies the change rules of the module docs (SDO), without them the
+    /// value is only range-checked by its type (loading stored values after a reset).
+    fn set(&mut self, index: u16, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
+        if let Some(obj) = Self::pdo_obj(index) {
+            return self.set_pdo(obj, sub, v, rules);
+        }
+        let p = &mut self.params;
+        let cob = |cur: u32, active: fn(CobIdEntry) -> bool| -> Result<u32, AbortCode> {
+            if rules {
+                CobIdEntry::from_raw(cur).check_change(v, active).map(CobIdEntry::raw)
+            } else {
+                Ok(v)
+            }
+        };
+        match index {
+            0x1003 => self.errors.write_history_count(v as u8)?,
+            0x1005 => p.sync.cob_id = CobIdEntry::from_raw(cob(p.sync.cob_id.raw(), |e| e.bit30())?),
+            0x1006 => p.sync.period_us = v,
+            0x1007 => p.sync.window_us = v,
+            0x100C => p.guard_time_ms = v as u16,
+            0x100D => p.life_time_factor = v as u8,
+            0x1010 | 0x1011 if rules => {
+                let sig = if index == 0x1010 { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
+                // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
+                return Err(if v != sig { AbortCode::CannotStore } else { AbortCode::HardwareError });
+            }
+            0x1010 | 0x1011 => {}
+            0x1012 => p.time_cob_id = cob(p.time_cob_id, |e| e.bit31() || e.bit30())?,
+            0x1014 => p.emcy_cob_id = cob(p.emcy_cob_id, |e| !e.bit31())?,
+            0x1015 => p.emcy_inhibit_100us = v as u16,
+            0x1016 => p.set_consumer(sub, v)?,
+            0x1017 => p.heartbeat_time_ms = v as u16,
+            0x1019 => {
+                if rules && p.sync.period_us != 0 {
+                    return Err(AbortCode::CannotStoreDeviceState); // SYNC-12
+                }
+                if v == 1 || v > 240 {
+                    return Err(AbortCode::InvalidValue); // SYNC-10
+                }
+                p.sync.counter_overflow = v as u8;
+            }
+            0x1029 => {
+                if (3..=0x7F).contains(&v) {
+                    return Err(AbortCode::InvalidValue); // ERR-11: reserved
+                }
+                p.error_behaviour = v as u8;
+            }
+            0x1F80 => p.nmt_startup = v,
+            _ => return Err(AbortCode::WriteOfReadOnly),
+        }
+        Ok(())
+    }
+
+    fn set_pdo(&mut self, obj: PdoObj, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
+        let p = &mut self.params;
+        let (comm, map, tx) = match obj {
+            PdoObj::RpdoComm(k) | PdoObj::RpdoMap(k) => (p.rpdo_comm.get_mut(k), p.rpdo_map.get_mut(k), false),
+            PdoObj::TpdoComm(k) | PdoObj::TpdoMap(k) => (p.tpdo_comm.get_mut(k), p.tpdo_map.get_mut(k), true),
+        };
+        let (Some(comm), Some(map)) = (comm, map) else {
+            return Err(AbortCode::ObjectDoesNotExist);
+        };
+        if matches!(obj, PdoObj::RpdoMap(_) | PdoObj::TpdoMap(_)) {
+            return set_map(comm, map, sub, v, rules);
+        }
+        let valid = comm.is_valid();
+        match sub {
+            1 => {
+                if rules {
+                    let new = comm.cob().check_change(v, |e| !e.bit31())?;
+                    if !new.bit31() && is_restricted(new.can_id()) {
+                        return Err(AbortCode::InvalidValue); // COB-13
+                    }
+                }
+                comm.cob_id = v;
+            }
+            2 => {
+                let ok = if tx { tpdo_type_ok(v as u8) } else { rpdo_type_ok(v as u8) };
+                if !ok {
+                    return Err(AbortCode::InvalidValue);
+                }
+                comm.transmission_type = v as u8;
+            }
+            3 => {
+                if rules && valid {
+                    return Err(AbortCode::InvalidValue); // PDO-10, PDO-24
+                }
+                comm.inhibit_100us = v as u16;
+            }
+            5 => comm.event_timer_ms = v as u16,
+            6 => {
+                if rules && valid || v > 240 {
+                    return Err(AbortCode::InvalidValue); // PDO-26
+                }
+                comm.sync_start = v as u8;
+            }
+            _ => return Err(AbortCode::SubIndexDoesNotExist),
+        }
+        Ok(())
+    }
 }
 
-impl<const HB: usize> ObjectDictionary for CommProfile<HB> {
+fn comm_value(c: Option<&PdoComm>, sub: u8, _subs: u8) -> u32 {
+    let Some(c) = c else { return 0 };
+    match sub {
+        0 => u32::from(_subs),
+        1 => c.cob_id,
+        2 => c.transmission_type.into(),
+        3 => c.inhibit_100us.into(),
+        5 => c.event_timer_ms.into(),
+        _ => c.sync_start.into(),
+    }
+}
+
+fn map_value(m: Option<&PdoMapParams>, sub: u8) -> u32 {
+    let Some(m) = m else { return 0 };
+    match usize::from(sub).checked_sub(1) {
+        None => m.count.into(),
+        Some(i) => m.entries.get(i).copied().unwrap_or(0),
+    }
+}
+
+/// PDO-30/35/37: the mapping changes only while the PDO is not valid, entries only while sub 00h = 0.
+fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
+    if rules && comm.is_valid() {
+        return Err(AbortCode::UnsupportedAccess);
+    }
+    match usize::from(sub) {
+        0 => {
+            if v as usize > MAX_ENTRIES {
+                return Err(AbortCode::PdoLengthExceeded);
+            }
+            if rules && map.entries.iter().take(v as usize).any(|&e| e & 0xFF == 0) {
+                return Err(AbortCode::PdoLengthExceeded); // an empty entry inside the count
+            }
+            map.count = v as u8;
+        }
+        s => {
+            if rules && map.count != 0 {
+                return Err(AbortCode::UnsupportedAccess);
+            }
+            let slot = map.entries.get_mut(s - 1).ok_or(AbortCode::SubIndexDoesNotExist)?;
+            *slot = v;
+        }
+    }
+    Ok(())
+}
+
+impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO, TPDO> {
+    fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
+        let d = self.desc(index, sub)?;
+        if !d.access.writable() {
+            return Err(AbortCode::WriteOfReadOnly);
+        }
+        let size = d.data_type.size().ok_or(AbortCode::UnsupportedAccess)?;
+        let v = match (size, data.len()) {
+            (_, n) if n > size => return Err(AbortCode::LengthTooHigh),
+            (_, n) if n < size => return Err(AbortCode::LengthTooLow),
+            (1, _) => u8::decode(data)?.into(),
+            (2, _) => u16::decode(data)?.into(),
+            _ => u32::decode(data)?,
+        };
+        self.set(index, sub, v, rules)
+    }
+
+    /// Writes a stored value without the SDO change rules (store/restore after a reset: the record was
+    /// consistent when it was saved; PDO mappings are resolved again when the node applies them).
+    ///
+    /// ```
+    /// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile};
+    /// let mut od: CommProfile<0, 1, 0> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
+    /// od.load_value(0x1600, 1, &[8, 0, 1, 0x10]).unwrap(); // entry while sub 00h = 0 is fine anyway
+    /// od.load_value(0x1400, 1, &[0x01, 0x02, 0, 0]).unwrap();
+    /// od.load_value(0x1600, 0, &[1]).unwrap(); // count while the PDO is valid: only without rules
+    /// assert_eq!(od.params.rpdo_map[0].count, 1);
+    /// ```
+    pub fn load_value(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        self.write_checked(index, sub, data, false)
+    }
+}
+
+/// A view of a [`CommProfile`] whose writes skip the SDO change rules: what [`crate::storage::load`]
+/// writes stored communication values through.
+///
+/// ```
+/// # use canopen_core::{comm::NodeConfig, od::{ObjectDictionary, comm::{CommProfile, Unchecked}}};
+/// let mut od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+/// Unchecked(&mut od).write(0x1017, 0, &[10, 0]).unwrap();
+/// assert_eq!(od.params.heartbeat_time_ms, 10);
+/// ```
+pub struct Unchecked<'a, const HB: usize, const RPDO: usize, const TPDO: usize>(
+    pub &'a mut CommProfile<HB, RPDO, TPDO>,
+);
+
+impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for Unchecked<'_, HB, RPDO, TPDO> {
+    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+        self.0.info(index, sub)
+    }
+    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        self.0.read(index, sub, offset, buf)
+    }
+    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        self.0.load_value(index, sub, data)
+    }
+}
+
+impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for CommProfile<HB, RPDO, TPDO> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         let d = self.desc(index, sub)?;
         let size = self.current_size(index).unwrap_or(d.max_size);
@@ -137,45 +553,21 @@ impl<const HB: usize> ObjectDictionary for CommProfile<HB> {
     }
 
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        self.desc(index, sub)?;
-        let p = &self.params;
+        let d = self.desc(index, sub)?;
         let c = &self.config;
-        let mut tmp = [0u8; 4];
-        let n = match (index, sub) {
-            (0x1008, _) => return Ok(copy_at(c.device_name.as_bytes(), offset, buf)),
-            (0x1009, _) => return Ok(copy_at(c.hardware_version.as_bytes(), offset, buf)),
-            (0x100A, _) => return Ok(copy_at(c.software_version.as_bytes(), offset, buf)),
-            (0x1000, _) => c.device_type.read_bytes(0, &mut tmp),
-            (0x1001, _) => p.error_register.read_bytes(0, &mut tmp),
-            (0x100C, _) => p.guard_time_ms.read_bytes(0, &mut tmp),
-            (0x100D, _) => p.life_time_factor.read_bytes(0, &mut tmp),
-            (0x1016, 0) => (HB as u8).read_bytes(0, &mut tmp),
-            (0x1016, s) => p.consumer(s).map_or(0, |e| e.raw()).read_bytes(0, &mut tmp),
-            (0x1017, _) => p.heartbeat_time_ms.read_bytes(0, &mut tmp),
-            (0x1018, 0) => 4u8.read_bytes(0, &mut tmp),
-            (0x1018, 1) => c.identity.vendor_id.read_bytes(0, &mut tmp),
-            (0x1018, 2) => c.identity.product_code.read_bytes(0, &mut tmp),
-            (0x1018, 3) => c.identity.revision.read_bytes(0, &mut tmp),
-            (0x1018, _) => c.identity.serial.read_bytes(0, &mut tmp),
-            _ => return Err(AbortCode::ObjectDoesNotExist),
-        };
-        Ok(copy_at(&tmp[..n], offset, buf))
+        match index {
+            0x1008 => return Ok(copy_at(c.device_name.as_bytes(), offset, buf)),
+            0x1009 => return Ok(copy_at(c.hardware_version.as_bytes(), offset, buf)),
+            0x100A => return Ok(copy_at(c.software_version.as_bytes(), offset, buf)),
+            _ => {}
+        }
+        let v = self.value(index, sub)?.to_le_bytes();
+        let n = d.data_type.size().unwrap_or(4).min(4);
+        Ok(copy_at(&v[..n], offset, buf))
     }
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        let d = self.desc(index, sub)?;
-        if !d.access.writable() {
-            return Err(AbortCode::WriteOfReadOnly);
-        }
-        let p = &mut self.params;
-        match index {
-            0x100C => p.guard_time_ms = u16::decode(data)?,
-            0x100D => p.life_time_factor = u8::decode(data)?,
-            0x1016 => p.set_consumer(sub, u32::decode(data)?)?,
-            0x1017 => p.heartbeat_time_ms = u16::decode(data)?,
-            _ => return Err(AbortCode::WriteOfReadOnly),
-        }
-        Ok(())
+        self.write_checked(index, sub, data, true)
     }
 
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
@@ -188,16 +580,24 @@ impl<const HB: usize> ObjectDictionary for CommProfile<HB> {
     }
 }
 
-impl<const HB: usize> OdDescribe for CommProfile<HB> {
+impl<const HB: usize, const RPDO: usize, const TPDO: usize> OdDescribe for CommProfile<HB, RPDO, TPDO> {
     fn object_count(&self) -> usize {
-        OBJECTS.iter().filter(|&&i| Self::has(i)).count()
+        OBJECTS.len() - usize::from(HB == 0) + 2 * RPDO + 2 * TPDO + 1
     }
 
     fn object(&self, n: usize) -> Option<ObjectDesc> {
-        let index = OBJECTS.iter().copied().filter(|&i| Self::has(i)).nth(n)?;
-        let (name, code, subs) = match index {
-            0x1016 => ("Consumer heartbeat time", ObjectCode::Array, HB as u16 + 1),
-            0x1018 => ("Identity object", ObjectCode::Record, 5),
+        let index = Self::index_at(n)?;
+        let (name, code, subs) = match (index, Self::pdo_obj(index)) {
+            (_, Some(PdoObj::RpdoComm(_))) => ("RPDO communication parameter", ObjectCode::Record, 5),
+            (_, Some(PdoObj::TpdoComm(_))) => ("TPDO communication parameter", ObjectCode::Record, 6),
+            (_, Some(PdoObj::RpdoMap(_))) => ("RPDO mapping parameter", ObjectCode::Record, MAX_ENTRIES as u16 + 1),
+            (_, Some(PdoObj::TpdoMap(_))) => ("TPDO mapping parameter", ObjectCode::Record, MAX_ENTRIES as u16 + 1),
+            (0x1003, _) => ("Pre-defined error field", ObjectCode::Array, HISTORY as u16 + 1),
+            (0x1010, _) => ("Store parameters", ObjectCode::Array, 4),
+            (0x1011, _) => ("Restore default parameters", ObjectCode::Array, 4),
+            (0x1016, _) => ("Consumer heartbeat time", ObjectCode::Array, HB as u16 + 1),
+            (0x1018, _) => ("Identity object", ObjectCode::Record, 5),
+            (0x1029, _) => ("Error behaviour", ObjectCode::Array, 2),
             _ => (self.desc(index, 0).ok()?.name, ObjectCode::Var, 1),
         };
         Some(ObjectDesc { index, name, code, first: 0, subs })
@@ -272,14 +672,20 @@ mod tests {
 
     #[test]
     fn describes_itself() {
+        extern crate std;
         let od: CommProfile<2> = CommProfile::new(CFG);
-        assert_eq!(od.object_count(), 10);
-        assert_eq!(od.object(7).unwrap().code, ObjectCode::Array);
-        assert_eq!(od.object(7).unwrap().subs, 3);
+        assert_eq!(od.object_count(), 22);
+        assert_eq!(od.object(16).unwrap().index, 0x1016);
+        assert_eq!(od.object(16).unwrap().code, ObjectCode::Array);
+        assert_eq!(od.object(16).unwrap().subs, 3);
         assert!(od.entry(0x1016, 2).unwrap().numbered);
         let none: CommProfile<0> = CommProfile::new(CFG);
-        assert_eq!(none.object_count(), 9);
+        assert_eq!(none.object_count(), 21);
         assert_eq!(none.info(0x1016, 0), Err(AbortCode::ObjectDoesNotExist));
-        assert_eq!(none.object(7).unwrap().index, 0x1017);
+        assert_eq!(none.object(16).unwrap().index, 0x1017);
+        let pdos: CommProfile<0, 2, 3> = CommProfile::new(CFG);
+        let all: std::vec::Vec<u16> = (0..pdos.object_count()).map(|n| pdos.object(n).unwrap().index).collect();
+        assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
+        assert_eq!(all[20..], [0x1400, 0x1401, 0x1600, 0x1601, 0x1800, 0x1801, 0x1802, 0x1A00, 0x1A01, 0x1A02, 0x1F80]);
     }
 }

@@ -227,7 +227,7 @@ fn identity<D: OdDescribe + ?Sized>(od: &D, sub: u8) -> u64 {
 /// use canopen_core::comm::NodeConfig;
 /// use canopen_core::od::{comm::CommProfile, eds::{write_eds, EdsInfo}};
 /// let od: CommProfile<1> = CommProfile::new(NodeConfig::DEFAULT);
-/// let mut s = heapless::String::<4096>::new();
+/// let mut s = heapless::String::<8192>::new();
 /// write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
 /// assert!(s.contains("[1018sub1]\nParameterName=Vendor-ID\nObjectType=0x7\nDataType=0x0007\n"));
 /// ```
@@ -293,7 +293,7 @@ mod tests {
             ..NodeConfig::DEFAULT
         };
         let od: CommProfile<2> = CommProfile::new(CFG);
-        let mut s = heapless::String::<8192>::new();
+        let mut s = heapless::String::<16384>::new();
         write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
         assert!(s.contains("VendorNumber=0x2B6\n"));
         assert!(s.contains("ProductNumber=0x7\n"));
@@ -313,5 +313,19 @@ mod tests {
                 assert!(textual || !v.is_empty(), "empty field {k}");
             }
         }
+    }
+
+    /// `[DeviceInfo]` counts the PDO communication objects; every PDO object gets its sections.
+    #[test]
+    fn pdo_objects_in_the_eds() {
+        extern crate std;
+        let od: CommProfile<0, 3, 2> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
+        let mut s = std::string::String::new();
+        write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
+        assert!(s.contains("NrOfRXPDO=3\nNrOfTXPDO=2\n"));
+        assert!(s.contains("[1400sub1]\nParameterName=COB-ID used by RPDO\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=$NODEID+0x80000200\n"));
+        assert!(s.contains("[1A01]\nParameterName=TPDO mapping parameter\nObjectType=0x9\nSubNumber=0x9\n"));
+        assert!(s.contains("[1801sub6]\nParameterName=SYNC start value\n"));
+        assert!(!s.contains("[1400sub4]") && !s.contains("[1400sub6]"));
     }
 }

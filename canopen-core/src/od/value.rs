@@ -433,6 +433,7 @@ macro_rules! time_type {
     ($(#[$doc:meta])* $name:ident, $dt:ident) => {
         $(#[$doc])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
         pub struct $name {
             /// Days (since 1984-01-01 for TIME_OF_DAY).
             pub days: u16,

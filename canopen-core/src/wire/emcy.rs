@@ -13,6 +13,7 @@ use super::WireError;
 /// assert_eq!(Emergency::parse(&e.emit()), Ok(e));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Emergency {
     /// Emergency error code (Table 26; 0000h = error reset / no error).
     pub code: u16,

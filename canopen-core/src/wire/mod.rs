@@ -8,7 +8,9 @@ pub mod emcy;
 pub mod error_control;
 pub mod lss;
 pub mod nmt;
+pub mod pdo_mapping;
 pub mod sdo;
+pub mod time_stamp;
 
 /// Why a frame's payload could not be parsed.
 ///

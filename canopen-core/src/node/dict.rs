@@ -1,0 +1,134 @@
+//! The dictionary SDO sees on a node: the communication profile merged with the application, plus the
+//! three things that need both halves or the storage:
+//! - a mapping entry (1600h–17FFh / 1A00h–1BFFh sub 01h–08h) must name an existing, mappable object of the
+//!   merged dictionary (PDO-36: 0602 0000h / 0609 0011h / 0604 0041h), and enabling a mapping (sub 00h)
+//!   resolves every entry again (PDO-37: 0602 0000h, 0604 0042h above 64 bits); a refused write is rolled
+//!   back, so nothing changes;
+//! - 1010h "save" stores the groups of its sub-index before the SDO response goes out (STORE-04);
+//! - 1011h "load" removes the groups from the stored record (STORE-08..10).
+
+use crate::od::comm::CommProfile;
+use crate::od::{AbortCode, Merged, ObjectDictionary, OdValue, PdoDir, PdoHandle, SubInfo};
+use crate::pdo::mapping::ResolvedMap;
+use crate::storage::{self, abort_of, Groups, Storage, StorageError, LOAD_SIGNATURE, SAVE_SIGNATURE};
+
+/// Saves the groups of a record: `storage::save` with the application's description where the node has it.
+pub(crate) type SaveFn<S, C, A> = fn(&mut S, Groups, &C, &A) -> Result<(), StorageError>;
+
+pub(crate) struct NodeDict<'a, const HB: usize, const RPDO: usize, const TPDO: usize, A, S> {
+    pub comm: &'a mut CommProfile<HB, RPDO, TPDO>,
+    pub app: &'a mut A,
+    pub storage: &'a mut S,
+    pub save: SaveFn<S, CommProfile<HB, RPDO, TPDO>, A>,
+}
+
+const fn is_comm(index: u16) -> bool {
+    index >= 0x1000 && index <= 0x1FFF
+}
+
+impl<const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDictionary, S: Storage>
+    NodeDict<'_, HB, RPDO, TPDO, A, S>
+{
+    fn write_mapping(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        let mut old = [0u8; 4];
+        let n = self.comm.read(index, sub, 0, &mut old)?;
+        self.comm.write(index, sub, data)?;
+        let dir = if index < 0x1A00 { PdoDir::Rpdo } else { PdoDir::Tpdo };
+        let checked = self.check_mapping(index, sub, dir);
+        if checked.is_err() {
+            let _ = self.comm.load_value(index, sub, &old[..n]);
+        }
+        checked
+    }
+
+    fn check_mapping(&mut self, index: u16, sub: u8, dir: PdoDir) -> Result<(), AbortCode> {
+        let k = usize::from(index & 0x1FF);
+        let p = &self.comm.params;
+        let map = if dir == PdoDir::Rpdo { p.rpdo_map.get(k) } else { p.tpdo_map.get(k) };
+        let Some(map) = map.copied() else { return Ok(()) };
+        let od = Merged { comm: &mut *self.comm, app: &mut *self.app };
+        if sub == 0 {
+            ResolvedMap::resolve(&od, map.active(), dir).map(|_| ())
+        } else {
+            let raw = map.entries.get(usize::from(sub) - 1).copied().unwrap_or(0);
+            crate::pdo::mapping::resolve(&od, raw, dir).map(|_| ())
+        }
+    }
+
+    fn store_command(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        if !self.comm.info(index, sub)?.access.writable() {
+            return Err(AbortCode::WriteOfReadOnly);
+        }
+        let v = u32::decode(data)?;
+        let sig = if index == 0x1010 { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
+        if v != sig {
+            return Err(AbortCode::CannotStore); // STORE-04/09, V-STO-02
+        }
+        let groups = Groups::from_sub(sub).ok_or(AbortCode::SubIndexDoesNotExist)?;
+        if index == 0x1010 {
+            (self.save)(self.storage, groups, self.comm, self.app).map_err(abort_of)
+        } else {
+            storage::restore_defaults(self.storage, groups).map_err(abort_of)
+        }
+    }
+}
+
+macro_rules! route {
+    ($self:ident, $index:expr, $od:ident => $e:expr) => {
+        if is_comm($index) {
+            let $od = &*$self.comm;
+            $e
+        } else {
+            let $od = &*$self.app;
+            $e
+        }
+    };
+    (mut $self:ident, $index:expr, $od:ident => $e:expr) => {
+        if is_comm($index) {
+            let $od = &mut *$self.comm;
+            $e
+        } else {
+            let $od = &mut *$self.app;
+            $e
+        }
+    };
+}
+
+impl<const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDictionary, S: Storage> ObjectDictionary
+    for NodeDict<'_, HB, RPDO, TPDO, A, S>
+{
+    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+        route!(self, index, od => od.info(index, sub))
+    }
+    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        route!(self, index, od => od.read(index, sub, offset, buf))
+    }
+    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        match index {
+            0x1010 | 0x1011 => self.store_command(index, sub, data),
+            0x1600..=0x17FF | 0x1A00..=0x1BFF => self.write_mapping(index, sub, data),
+            _ => route!(mut self, index, od => od.write(index, sub, data)),
+        }
+    }
+    fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.begin_write(index, sub, size))
+    }
+    fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.write_chunk(index, sub, offset, data))
+    }
+    fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.end_write(index, sub, total))
+    }
+    fn abort_write(&mut self, index: u16, sub: u8) {
+        route!(mut self, index, od => od.abort_write(index, sub))
+    }
+    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
+        route!(self, index, od => od.pdo_resolve(index, sub, dir))
+    }
+    fn pdo_read(&self, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        route!(self, handle.index, od => od.pdo_read(handle, buf))
+    }
+    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+        route!(mut self, handle.index, od => od.pdo_write(handle, data))
+    }
+}

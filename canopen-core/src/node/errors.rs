@@ -1,0 +1,97 @@
+//! The node's emergency wiring: the public raise/clear API, the EMCY producer with 1014h/1015h, the
+//! Stopped rule and the EMCY consumer.
+
+use super::Node;
+use crate::cob::CobIdEntry;
+use crate::event::Event;
+use crate::frame::CanFrame;
+use crate::nmt::{NmtState, Service};
+use crate::od::ObjectDictionary;
+use crate::storage::Storage;
+use crate::time::Instant;
+use crate::wire::emcy::Emergency;
+
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: Storage,
+    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
+    /// Raises error `code` with manufacturer bytes `manufacturer` (EMCY-05/07, ERR-02, ERR-06/07): 1001h and
+    /// 1003h follow, an EMCY is queued (spaced by 1015h, held in Stopped). Returns `false` when the code is
+    /// already active (nothing is repeated) or is 0000h.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, Instant, NodeId};
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// node.handle_timeout(Instant::ZERO);
+    /// while node.poll_transmit().is_some() {}
+    /// assert!(node.raise_error(0x1000, [0; 5]));
+    /// assert_eq!(node.poll_transmit().map(|f| (f.cob_id(), f.padded())), Some((0x83, [0x00, 0x10, 0x01, 0, 0, 0, 0, 0]))); // V-EMCY-03
+    /// assert!(node.clear_error(0x1000));
+    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0; 8]); // V-EMCY-01
+    /// ```
+    pub fn raise_error(&mut self, code: u16, manufacturer: [u8; 5]) -> bool {
+        let raised = self.comm.errors.raise(code, manufacturer);
+        self.comm.params.error_register = self.comm.errors.register();
+        self.pump_emcy(self.now);
+        raised
+    }
+
+    /// Clears error `code`: an EMCY 0000h with the remaining register follows (EMCY-07). Returns `false` when
+    /// the code was not active.
+    pub fn clear_error(&mut self, code: u16) -> bool {
+        let cleared = self.comm.errors.clear(code);
+        self.comm.params.error_register = self.comm.errors.register();
+        self.pump_emcy(self.now);
+        cleared
+    }
+
+    /// The error register 1001h.
+    pub fn error_register(&self) -> u8 {
+        self.comm.errors.register()
+    }
+
+    /// Moves pending EMCYs to the transmit queue while the state, the 1015h inhibit time and the queue
+    /// allow (EMCY-08/09, NMT-22). A not-valid 1014h (bit 31) drops them: there is no EMCY object.
+    pub(super) fn pump_emcy(&mut self, now: Instant) {
+        if !self.comm.errors.has_pending() {
+            return;
+        }
+        let cob = CobIdEntry::from_raw(self.comm.params.emcy_cob_id);
+        if cob.bit31() {
+            while self.comm.errors.pop_pending().is_some() {}
+            return;
+        }
+        match self.nmt.state() {
+            NmtState::Stopped => return self.comm.errors.keep_most_recent(),
+            NmtState::Initialising => return,
+            _ => {}
+        }
+        while self.comm.errors.has_pending() && self.emcy.may_send(now) && !self.tx.is_full() {
+            let Some(e) = self.comm.errors.pop_pending() else { break };
+            self.transmit(CanFrame::from_parts(cob.can_id(), e.emit(), 8));
+            self.emcy.sent(now);
+        }
+    }
+
+    pub(super) fn emcy_timeout(&self) -> Option<Instant> {
+        let sendable = self.nmt.state().allows(Service::Emcy) && self.comm.errors.has_pending();
+        sendable.then(|| self.emcy.next_allowed()).flatten()
+    }
+
+    /// Another node's EMCY (EMCY-10/11: every EMCY on 081h–0FFh is reported; 1028h is not implemented).
+    /// EMCY-06: an RTR is never answered.
+    pub(super) fn handle_emcy(&mut self, node: u8, frame: &CanFrame) {
+        if frame.is_rtr() || node == self.node_id.get() || !self.nmt.state().allows(Service::Emcy) {
+            return;
+        }
+        if let Ok(emcy) = Emergency::parse(frame.data()) {
+            self.push_event(Event::Emergency { node, emcy });
+        }
+    }
+}

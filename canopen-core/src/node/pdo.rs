@@ -1,0 +1,352 @@
+//! The node's PDO, SYNC and TIME wiring: configuring the state machines from the communication parameters,
+//! the receive paths and the SYNC/TPDO transmit paths.
+
+use super::Node;
+use crate::cob::CobIdEntry;
+use crate::emcy::codes;
+use crate::event::Event;
+use crate::frame::CanFrame;
+use crate::nmt::{NmtState, Service};
+use crate::od::{Merged, ObjectDictionary, PdoDir, TimeOfDay};
+use crate::pdo::mapping::ResolvedMap;
+use crate::pdo::rpdo::{Rpdo, RxOutcome};
+use crate::pdo::tpdo::{SyncAction, Tpdo};
+use crate::storage::Storage;
+use crate::sync::SyncInput;
+use crate::time::{earliest, Instant};
+use crate::wire::time_stamp::TimeStamp;
+
+impl<
+        A: ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: Storage,
+    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
+    /// Rebuilds RPDO `k` from 1400h+k / 1600h+k: the mapping is resolved once here; a mapping that no
+    /// longer resolves (e.g. loaded from storage for another firmware) leaves the RPDO not valid.
+    pub(super) fn configure_rpdo(&mut self, k: usize) {
+        let (Some(mut comm), Some(map)) =
+            (self.comm.params.rpdo_comm.get(k).copied(), self.comm.params.rpdo_map.get(k).copied())
+        else {
+            return;
+        };
+        let od = Merged { comm: &mut self.comm, app: &mut self.app };
+        let resolved = ResolvedMap::resolve(&od, map.active(), PdoDir::Rpdo).unwrap_or_else(|_| {
+            comm.cob_id |= CobIdEntry::BIT31;
+            ResolvedMap::EMPTY
+        });
+        if let Some(r) = self.rpdos.get_mut(k) {
+            *r = Rpdo::new(&comm, resolved);
+        }
+        self.rx_table.clear();
+        for (i, r) in self.rpdos.iter().enumerate() {
+            if r.is_valid() {
+                let _ = self.rx_table.push((r.can_id(), i as u16));
+            }
+        }
+        self.rx_table.sort_unstable_by_key(|e| e.0);
+    }
+
+    /// Rebuilds TPDO `k` from 1800h+k / 1A00h+k (see [`configure_rpdo`](Self::configure_rpdo)).
+    pub(super) fn configure_tpdo(&mut self, k: usize) {
+        let (Some(mut comm), Some(map)) =
+            (self.comm.params.tpdo_comm.get(k).copied(), self.comm.params.tpdo_map.get(k).copied())
+        else {
+            return;
+        };
+        let od = Merged { comm: &mut self.comm, app: &mut self.app };
+        let resolved = ResolvedMap::resolve(&od, map.active(), PdoDir::Tpdo).unwrap_or_else(|_| {
+            comm.cob_id |= CobIdEntry::BIT31;
+            ResolvedMap::EMPTY
+        });
+        if let Some(t) = self.tpdos.get_mut(k) {
+            *t = Tpdo::new(&comm, resolved);
+        }
+        self.rtr_table.clear();
+        for (i, t) in self.tpdos.iter().enumerate() {
+            if t.rtr_allowed() {
+                let _ = self.rtr_table.push((t.can_id(), i as u16));
+            }
+        }
+        self.rtr_table.sort_unstable_by_key(|e| e.0);
+    }
+
+    /// Entering Operational: event-driven TPDOs go out at once (PDO-28, V-PDO-09).
+    pub(super) fn start_pdos(&mut self, now: Instant) {
+        for k in 0..TPDO {
+            if self.tpdos[k].start() {
+                self.send_tpdo(now, k);
+            }
+        }
+    }
+
+    /// Leaving Operational: PDO timers stop, buffered RPDO data is dropped (PDO-04).
+    pub(super) fn stop_pdos(&mut self) {
+        self.rpdos.iter_mut().for_each(Rpdo::stop);
+        self.tpdos.iter_mut().for_each(Tpdo::stop);
+    }
+
+    pub(super) fn pdo_timeout(&self) -> Option<Instant> {
+        if self.nmt.state() != NmtState::Operational {
+            return None;
+        }
+        let t = self.tpdos.iter().fold(None, |t, p| earliest(t, p.poll_timeout()));
+        self.rpdos.iter().fold(t, |t, p| earliest(t, p.poll_timeout()))
+    }
+
+    pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
+        if self.nmt.state() != NmtState::Operational {
+            return;
+        }
+        for k in 0..TPDO {
+            if self.tpdos[k].handle_timeout(now) {
+                self.send_tpdo(now, k);
+            }
+        }
+        for k in 0..RPDO {
+            if self.rpdos[k].handle_timeout(now) {
+                self.push_event(Event::RpdoTimeout { pdo: k as u16 });
+                self.raise_error(codes::RPDO_TIMEOUT, [k as u8 + 1, 0, 0, 0, 0]);
+                // PDO-12, EEC-20
+            }
+        }
+    }
+
+    /// Samples TPDO `k` and queues it.
+    pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
+        let Some(t) = self.tpdos.get_mut(k) else { return };
+        let mut data = [0u8; 8];
+        let len = if t.map.app_only() {
+            t.map.pack(&self.app, &mut data)
+        } else {
+            t.map.pack(&Merged { comm: &mut self.comm, app: &mut self.app }, &mut data)
+        };
+        t.sent(now);
+        t.last_sent = Some((data, len as u8));
+        let frame = CanFrame::from_parts(t.can_id(), data, len as u8);
+        self.transmit(frame);
+    }
+
+    /// An RPDO frame (PDO-04: Operational only; PDO-38/39 lengths; PDO-40 window).
+    pub(super) fn handle_rpdo(&mut self, now: Instant, i: usize, frame: &CanFrame) {
+        if frame.is_rtr() || self.nmt.state() != NmtState::Operational {
+            return;
+        }
+        let Some(&(_, k)) = self.rx_table.get(i) else { return };
+        let k = usize::from(k);
+        let in_window = self.sync.in_window(now);
+        let Some(r) = self.rpdos.get_mut(k) else { return };
+        let outcome = r.receive(now, frame.data());
+        let timed_out = core::mem::take(&mut r.timed_out);
+        let exceeded = match outcome {
+            RxOutcome::TooShort => {
+                r.length_error = true;
+                self.raise_error(codes::PDO_LENGTH, [k as u8 + 1, 0, 0, 0, 0]);
+                return;
+            }
+            RxOutcome::Apply { exceeded } => {
+                if r.map.app_only() {
+                    r.map.unpack(&mut self.app, frame.data());
+                } else {
+                    r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, frame.data());
+                }
+                self.push_event(Event::RpdoReceived { pdo: k as u16 });
+                exceeded
+            }
+            RxOutcome::Buffered { exceeded } => {
+                if !in_window {
+                    r.discard(); // SYNC-09: after the window, discarded until the next SYNC
+                }
+                exceeded
+            }
+        };
+        if timed_out {
+            self.clear_error(codes::RPDO_TIMEOUT);
+        }
+        self.rpdo_length_state(k, exceeded);
+    }
+
+    /// EMCY 8220h for a long RPDO; both length errors clear with the next frame of the right length.
+    fn rpdo_length_state(&mut self, k: usize, exceeded: bool) {
+        let Some(r) = self.rpdos.get_mut(k) else { return };
+        if exceeded {
+            r.length_error = true;
+            self.raise_error(codes::PDO_LENGTH_EXCEEDED, [k as u8 + 1, 0, 0, 0, 0]);
+        } else if core::mem::take(&mut r.length_error) {
+            self.clear_error(codes::PDO_LENGTH);
+            self.clear_error(codes::PDO_LENGTH_EXCEEDED);
+        }
+    }
+
+    /// A remote request for TPDO `rtr_table[i]` (PDO-21, PDO-22, PDO-29).
+    pub(super) fn handle_tpdo_rtr(&mut self, now: Instant, i: usize) {
+        if self.nmt.state() != NmtState::Operational {
+            return;
+        }
+        let Some(&(_, k)) = self.rtr_table.get(i) else { return };
+        let k = usize::from(k);
+        let Some(t) = self.tpdos.get_mut(k) else { return };
+        if t.transmission_type() == 252 {
+            if let Some((data, len)) = t.rtr_buffer {
+                let frame = CanFrame::from_parts(t.can_id(), data, len);
+                self.transmit(frame);
+            }
+            return;
+        }
+        self.send_tpdo(now, k);
+    }
+
+    /// A frame on the SYNC COB-ID (SYNC-04, SYNC-05, SYNC-14).
+    pub(super) fn handle_sync(&mut self, now: Instant, frame: &CanFrame) {
+        if frame.is_rtr() || !self.nmt.state().allows(Service::Sync) {
+            return;
+        }
+        match self.sync.consume(now, frame.data()) {
+            SyncInput::WrongLength => {
+                self.sync_length_error = true;
+                self.raise_error(codes::SYNC_LENGTH, [frame.dlc(), 0, 0, 0, 0]);
+            }
+            SyncInput::Sync { counter } => {
+                if core::mem::take(&mut self.sync_length_error) {
+                    self.clear_error(codes::SYNC_LENGTH);
+                }
+                self.process_sync(now, counter);
+            }
+        }
+    }
+
+    /// The SYNC producer (SYNC-06/07): produced in Pre-operational and Operational, and acted on by this node
+    /// as by every consumer.
+    pub(super) fn sync_timeout(&mut self, now: Instant) {
+        if self.sync.poll_timeout().is_none_or(|t| t > now) {
+            return;
+        }
+        let Some(frame) = self.sync.produce(now) else { return };
+        if self.nmt.state().allows(Service::Sync) {
+            self.transmit(frame);
+            self.process_sync(now, frame.data().first().copied());
+        }
+    }
+
+    /// What a SYNC does: synchronous RPDO data is applied, synchronous TPDOs are sampled and sent.
+    pub(super) fn process_sync(&mut self, now: Instant, counter: Option<u8>) {
+        self.push_event(Event::Sync { counter });
+        if self.nmt.state() != NmtState::Operational {
+            return;
+        }
+        for k in 0..RPDO {
+            if let Some(data) = self.rpdos[k].take_pending() {
+                let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
+                let n = self.rpdos[k].map.bytes();
+                self.rpdos[k].map.unpack(&mut od, &data[..n]);
+                self.push_event(Event::RpdoReceived { pdo: k as u16 });
+            }
+        }
+        for k in 0..TPDO {
+            match self.tpdos[k].on_sync(counter) {
+                SyncAction::None => {}
+                SyncAction::Send => self.send_tpdo(now, k),
+                SyncAction::Sample => {
+                    let od = Merged { comm: &mut self.comm, app: &mut self.app };
+                    let t = &mut self.tpdos[k];
+                    let mut data = [0u8; 8];
+                    let len = t.map.pack(&od, &mut data);
+                    t.rtr_buffer = Some((data, len as u8));
+                }
+            }
+        }
+    }
+
+    /// An application event for TPDO `k` (0-based; PDO-19, PDO-23): an event-driven TPDO is sampled and
+    /// sent now (at the time last passed in), or when its inhibit time ends; a type-00h TPDO goes out at the
+    /// next SYNC. Returns whether a frame was queued now. Only in Operational (PDO-04).
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, pdo::PdoDefault, Instant, NmtState, NodeId};
+    /// const CFG: NodeConfig = NodeConfig { tpdo: &[PdoDefault { mapping: &[0x1001_0008], ..PdoDefault::EVENT }], ..NodeConfig::DEFAULT };
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(1).unwrap(), CFG, NoApplication);
+    /// node.handle_timeout(Instant::ZERO);
+    /// node.enter_state(NmtState::Operational); // sends TPDO1 once (PDO-28)
+    /// while node.poll_transmit().is_some() {}
+    /// assert!(node.trigger_tpdo(0));
+    /// assert_eq!(node.poll_transmit().map(|f| (f.cob_id(), f.dlc())), Some((0x181, 1)));
+    /// ```
+    pub fn trigger_tpdo(&mut self, k: usize) -> bool {
+        let now = self.now;
+        if self.nmt.state() != NmtState::Operational || !self.tpdos.get_mut(k).is_some_and(|t| t.trigger(now)) {
+            return false;
+        }
+        self.send_tpdo(now, k);
+        true
+    }
+
+    /// Change-of-value detection (PDO-23): samples every valid event-driven TPDO and triggers those whose
+    /// data differs from what they last sent. Call it after changing process values (or periodically);
+    /// returns how many TPDOs were queued now.
+    pub fn trigger_changed_tpdos(&mut self) -> usize {
+        let mut sent = 0;
+        for k in 0..TPDO {
+            let t = &self.tpdos[k];
+            if !t.is_valid() || t.transmission_type() < 254 {
+                continue;
+            }
+            let od = Merged { comm: &mut self.comm, app: &mut self.app };
+            let mut data = [0u8; 8];
+            let len = t.map.pack(&od, &mut data);
+            if t.last_sent != Some((data, len as u8)) && self.trigger_tpdo(k) {
+                sent += 1;
+            }
+        }
+        sent
+    }
+
+    /// The CAN-ID the TIME object uses while this node consumes or produces it, else an impossible ID.
+    pub(super) fn time_can_id(&self) -> u16 {
+        let cob = CobIdEntry::from_raw(self.comm.params.time_cob_id);
+        if cob.bit31() || cob.bit30() {
+            cob.can_id()
+        } else {
+            u16::MAX
+        }
+    }
+
+    /// A TIME frame (TIME-04/05): an event when consumed (1012h bit 31), in Pre-operational/Operational.
+    pub(super) fn handle_time(&mut self, frame: &CanFrame) {
+        let consume = CobIdEntry::from_raw(self.comm.params.time_cob_id).bit31();
+        if frame.is_rtr() || !consume || !self.nmt.state().allows(Service::Time) {
+            return;
+        }
+        if let Ok(TimeStamp(t)) = TimeStamp::parse(frame.data()) {
+            self.push_event(Event::Time(t));
+        }
+    }
+
+    /// Produces a TIME message carrying `time` (TIME-02/04: only when 1012h bit 30 is set, in
+    /// Pre-operational/Operational). The core has no wall clock: the application says what time it is.
+    /// Returns whether the frame was queued.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, od::TimeOfDay, Instant, NodeId};
+    /// const CFG: NodeConfig = NodeConfig { time_cob_id: 0x4000_0100, ..NodeConfig::DEFAULT };
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(1).unwrap(), CFG, NoApplication);
+    /// node.handle_timeout(Instant::ZERO);
+    /// while node.poll_transmit().is_some() {}
+    /// assert!(node.produce_time(TimeOfDay::new(9913, 43_200_000).unwrap()));
+    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]); // V-TIME-02
+    /// ```
+    pub fn produce_time(&mut self, time: TimeOfDay) -> bool {
+        let cob = CobIdEntry::from_raw(self.comm.params.time_cob_id);
+        if !cob.bit30() || !self.nmt.state().allows(Service::Time) {
+            return false;
+        }
+        let b = TimeStamp(time).emit();
+        let mut data = [0u8; 8];
+        data[..6].copy_from_slice(&b);
+        self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));
+        true
+    }
+}

@@ -1,0 +1,322 @@
+//! Resolved PDO mappings: each mapping entry is checked and resolved once (when it is written, or when
+//! the PDO is configured) into a [`PdoHandle`], so packing and unpacking a PDO never searches the dictionary.
+//!
+//! CHECKLIST: PDO-31 (entry layout), PDO-32 (packed in entry order from bit 0, LE, ≤ 64 bits), PDO-33
+//! (mappability per direction, through [`ObjectDictionary::pdo_resolve`]), PDO-34 (dummy entries in RPDOs),
+//! PDO-36/PDO-37 (abort codes of a bad entry / a bad count). Bit granularity: an entry may map fewer bits
+//! than its object holds (e.g. a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits); the low bits are transferred and,
+//! on reception, the remaining high bits of the object are written as 0 (no sign extension).
+//!
+//! Packing has a byte-aligned fast path (every entry a whole number of bytes, the common case): values are
+//! copied straight between the dictionary and the frame. Otherwise the frame is assembled in a `u64`, so
+//! bit granularity costs a shift and a mask per entry, never a loop over bits.
+
+use crate::od::{AbortCode, ObjectDictionary, PdoDir, PdoHandle};
+use crate::wire::pdo_mapping::MappingEntry;
+
+/// Mapping entries per PDO that this stack stores (sub 01h–08h; CANopenNode uses the same limit). 8 entries
+/// already fill 64 bits with byte-sized objects; bit-sized mappings with more than 8 objects are not
+/// supported (writing sub 09h and up → 0609 0011h, a count above 8 → 0604 0042h).
+pub const MAX_ENTRIES: usize = 8;
+
+/// One resolved entry: the object (or `None` for a dummy entry) and its length in bits.
+///
+/// ```
+/// use canopen_core::pdo::mapping::Mapped;
+/// let m = Mapped { handle: None, bits: 8 };
+/// assert_eq!(m.bits, 8);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Mapped {
+    /// The object, `None` for a dummy entry (RPDO only).
+    pub handle: Option<PdoHandle>,
+    /// Mapped length in bits (1..=64).
+    pub bits: u8,
+}
+
+/// Resolves one mapping entry (PDO-33, PDO-34, PDO-36): the object must exist (0602 0000h / 0609 0011h),
+/// be mappable in `dir` (0604 0041h) and hold at least `bits` bits (0604 0041h otherwise); length 0 is
+/// refused with 0604 0041h. Dummy entries are accepted in RPDOs only.
+///
+/// ```
+/// use canopen_core::{comm::NodeConfig, od::{comm::CommProfile, PdoDir, AbortCode}, pdo::mapping::resolve};
+/// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+/// assert!(resolve(&od, 0x1001_0008, PdoDir::Tpdo).is_ok()); // 1001h is TPDO-mappable
+/// assert_eq!(resolve(&od, 0x1001_0008, PdoDir::Rpdo), Err(AbortCode::NotMappable));
+/// assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
+/// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().handle.is_none()); // dummy
+/// ```
+pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
+    let e = MappingEntry::from_raw(raw);
+    if e.bits == 0 || e.bits > 64 {
+        return Err(AbortCode::NotMappable);
+    }
+    if let Some(bits) = e.dummy_bits() {
+        if dir == PdoDir::Rpdo && e.bits <= bits {
+            return Ok(Mapped { handle: None, bits: e.bits });
+        }
+        return Err(AbortCode::NotMappable);
+    }
+    let handle = od.pdo_resolve(e.index, e.sub, dir)?;
+    if u16::from(e.bits) > u16::from(handle.size) * 8 {
+        return Err(AbortCode::NotMappable);
+    }
+    Ok(Mapped { handle: Some(handle), bits: e.bits })
+}
+
+/// A PDO's resolved mapping.
+///
+/// ```
+/// use canopen_core::pdo::mapping::ResolvedMap;
+/// let m = ResolvedMap::EMPTY;
+/// assert_eq!((m.len(), m.bytes()), (0, 0));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ResolvedMap {
+    entries: [Mapped; MAX_ENTRIES],
+    count: u8,
+    bits: u8,
+    aligned: bool,
+    app_only: bool,
+}
+
+impl ResolvedMap {
+    /// No entries (mapping disabled).
+    pub const EMPTY: ResolvedMap = ResolvedMap {
+        entries: [Mapped { handle: None, bits: 0 }; MAX_ENTRIES],
+        count: 0,
+        bits: 0,
+        aligned: true,
+        app_only: true,
+    };
+
+    /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
+    /// a bad entry → its [`resolve`] error).
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, od::{comm::CommProfile, PdoDir, AbortCode}, pdo::mapping::ResolvedMap};
+    /// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+    /// let m = ResolvedMap::resolve(&od, &[0x1001_0008, 0x1001_0004], PdoDir::Tpdo).unwrap();
+    /// assert_eq!((m.len(), m.bits(), m.bytes()), (2, 12, 2));
+    /// assert_eq!(ResolvedMap::resolve(&od, &[0x1001_0008; 9], PdoDir::Tpdo), Err(AbortCode::PdoLengthExceeded));
+    /// ```
+    pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: &[u32], dir: PdoDir) -> Result<Self, AbortCode> {
+        if raw.len() > MAX_ENTRIES {
+            return Err(AbortCode::PdoLengthExceeded);
+        }
+        let mut m = Self::EMPTY;
+        let mut total = 0u16;
+        for (slot, &r) in m.entries.iter_mut().zip(raw) {
+            let e = resolve(od, r, dir)?;
+            total += u16::from(e.bits);
+            if total > 64 {
+                return Err(AbortCode::PdoLengthExceeded);
+            }
+            m.aligned &= e.bits % 8 == 0 && e.handle.is_none_or(|h| u16::from(h.size) * 8 == u16::from(e.bits));
+            m.app_only &= e.handle.is_none_or(|h| !(0x1000..=0x1FFF).contains(&h.index));
+            *slot = e;
+        }
+        m.count = raw.len() as u8;
+        m.bits = total as u8;
+        Ok(m)
+    }
+
+    /// Number of entries.
+    pub const fn len(&self) -> usize {
+        self.count as usize
+    }
+
+    /// Whether the mapping is empty.
+    pub const fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// Whether no entry maps a communication-profile object (1000h–1FFFh): the node then moves the data
+    /// with the application dictionary directly, without the merged view's routing.
+    pub const fn app_only(&self) -> bool {
+        self.app_only
+    }
+
+    /// Total mapped bits.
+    pub const fn bits(&self) -> u8 {
+        self.bits
+    }
+
+    /// The PDO length in bytes (bits rounded up).
+    pub const fn bytes(&self) -> usize {
+        (self.bits as usize).div_ceil(8)
+    }
+
+    fn entries(&self) -> &[Mapped] {
+        self.entries.get(..self.len()).unwrap_or(&[])
+    }
+
+    /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
+    /// read leaves zeros.
+    pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
+        *out = [0; 8];
+        if self.aligned {
+            let mut rest: &mut [u8] = out;
+            for e in self.entries() {
+                let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
+                if let Some(h) = &e.handle {
+                    let _ = od.pdo_read(h, dst);
+                }
+                rest = tail;
+            }
+            return usize::from(self.bits >> 3);
+        }
+        let mut acc = 0u64;
+        let mut off = 0u32;
+        for e in self.entries() {
+            if let Some(h) = &e.handle {
+                let mut v = [0u8; 8];
+                let n = usize::from(h.size).min(8);
+                let _ = od.pdo_read(h, &mut v[..n]);
+                acc |= (u64::from_le_bytes(v) & mask(e.bits)).checked_shl(off).unwrap_or(0);
+            }
+            off += u32::from(e.bits);
+        }
+        *out = acc.to_le_bytes();
+        self.bytes()
+    }
+
+    /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
+    /// how many writes the dictionary refused (limits, hooks).
+    pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
+        let mut refused = 0;
+        if self.aligned {
+            let mut rest = data;
+            for e in self.entries() {
+                let Some((src, tail)) = rest.split_at_checked(usize::from(e.bits >> 3)) else { break };
+                if let Some(h) = &e.handle {
+                    refused += usize::from(od.pdo_write(h, src).is_err());
+                }
+                rest = tail;
+            }
+            return refused;
+        }
+        let mut buf = [0u8; 8];
+        let n = data.len().min(8);
+        buf[..n].copy_from_slice(&data[..n]);
+        let frame = u64::from_le_bytes(buf);
+        let mut off = 0u32;
+        for e in self.entries() {
+            if let Some(h) = &e.handle {
+                let v = (frame.checked_shr(off).unwrap_or(0) & mask(e.bits)).to_le_bytes();
+                let size = usize::from(h.size).min(8);
+                refused += usize::from(od.pdo_write(h, &v[..size]).is_err());
+            }
+            off += u32::from(e.bits);
+        }
+        refused
+    }
+}
+
+const fn mask(bits: u8) -> u64 {
+    if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::od::{Access, DataType, PdoMapping, SubInfo};
+
+    /// 2000h:01..04 u8/u16/u32/bool, all mappable both ways.
+    #[derive(Default)]
+    struct Od {
+        a: u8,
+        b: u16,
+        c: u32,
+        d: bool,
+    }
+
+    impl ObjectDictionary for Od {
+        fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+            let dt = match (index, sub) {
+                (0x2000, 1) => DataType::Unsigned8,
+                (0x2000, 2) => DataType::Unsigned16,
+                (0x2000, 3) => DataType::Unsigned32,
+                (0x2000, 4) => DataType::Boolean,
+                (0x2000, _) => return Err(AbortCode::SubIndexDoesNotExist),
+                _ => return Err(AbortCode::ObjectDoesNotExist),
+            };
+            Ok(SubInfo { data_type: dt, access: Access::Rw, pdo: PdoMapping::Both, size: dt.size().unwrap_or(0) })
+        }
+        fn read(&self, index: u16, sub: u8, _: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+            self.info(index, sub)?;
+            let v = match sub {
+                1 => u32::from(self.a),
+                2 => u32::from(self.b),
+                3 => self.c,
+                _ => u32::from(self.d),
+            }
+            .to_le_bytes();
+            let n = buf.len().min(4);
+            buf[..n].copy_from_slice(&v[..n]);
+            Ok(n)
+        }
+        fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+            self.info(index, sub)?;
+            let mut v = [0u8; 4];
+            v[..data.len().min(4)].copy_from_slice(&data[..data.len().min(4)]);
+            let v = u32::from_le_bytes(v);
+            match sub {
+                1 => self.a = v as u8,
+                2 => self.b = v as u16,
+                3 => self.c = v,
+                _ if v > 1 => return Err(AbortCode::InvalidValue),
+                _ => self.d = v == 1,
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn aligned_round_trip() {
+        let od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
+        let m = ResolvedMap::resolve(&od, &[0x2000_0108, 0x2000_0210, 0x2000_0320], PdoDir::Tpdo).unwrap();
+        let mut out = [0u8; 8];
+        assert_eq!(m.pack(&od, &mut out), 7);
+        assert_eq!(out[..7], [0x11, 0x33, 0x22, 0x77, 0x66, 0x55, 0x44]);
+        let mut rx = Od::default();
+        assert_eq!(m.unpack(&mut rx, &out[..7]), 0);
+        assert_eq!((rx.a, rx.b, rx.c), (0x11, 0x2233, 0x4455_6677));
+    }
+
+    /// Bit granularity: a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits, a dummy of 3 bits, a UNSIGNED16.
+    #[test]
+    fn bit_granularity() {
+        let od = Od { a: 0xFA, b: 0xBEEF, c: 0, d: true };
+        let tx = ResolvedMap::resolve(&od, &[0x2000_0401, 0x2000_0104, 0x2000_0210], PdoDir::Tpdo).unwrap();
+        let mut out = [0u8; 8];
+        assert_eq!(tx.pack(&od, &mut out), 3);
+        // bit 0 = 1, bits 1..5 = 0xA, bits 5..21 = 0xBEEF
+        let expect = 1u64 | (0xA << 1) | (0xBEEF << 5);
+        assert_eq!(u64::from_le_bytes(out), expect);
+        let rxm = ResolvedMap::resolve(&od, &[0x2000_0401, 0x0005_0004, 0x2000_0210], PdoDir::Rpdo).unwrap();
+        let mut rx = Od::default();
+        assert_eq!(rx.a, 0);
+        assert_eq!(rxm.unpack(&mut rx, &out[..3]), 0);
+        assert_eq!((rx.d, rx.a, rx.b), (true, 0, 0xBEEF));
+    }
+
+    /// PDO-36/PDO-37 error codes.
+    #[test]
+    fn resolve_errors() {
+        let od = Od::default();
+        assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Rpdo), Err(AbortCode::ObjectDoesNotExist));
+        assert_eq!(resolve(&od, 0x2000_0908, PdoDir::Rpdo), Err(AbortCode::SubIndexDoesNotExist));
+        assert_eq!(resolve(&od, 0x2000_0110, PdoDir::Rpdo), Err(AbortCode::NotMappable)); // 16 bits of a u8
+        assert_eq!(resolve(&od, 0x2000_0100, PdoDir::Rpdo), Err(AbortCode::NotMappable));
+        assert_eq!(resolve(&od, 0x0005_0008, PdoDir::Tpdo), Err(AbortCode::NotMappable));
+        assert_eq!(
+            ResolvedMap::resolve(&od, &[0x2000_0320, 0x2000_0320, 0x2000_0320], PdoDir::Rpdo),
+            Err(AbortCode::PdoLengthExceeded)
+        );
+    }
+}

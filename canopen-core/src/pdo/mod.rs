@@ -1,0 +1,171 @@
+//! Process data objects (CHECKLIST PDO-01..PDO-40): communication and mapping parameters, the RPDO and TPDO
+//! state machines, and the resolved mappings that move process data without searching the dictionary.
+//!
+//! - [`PdoComm`] / [`PdoMapParams`] are the values of 1400h–15FFh / 1800h–19FFh and 1600h–17FFh /
+//!   1A00h–1BFFh, kept in [`CommParams`](crate::comm::CommParams) and served through the
+//!   [`CommProfile`](crate::od::comm::CommProfile) with the spec's change rules;
+//! - [`PdoDefault`] is how a [`NodeConfig`](crate::comm::NodeConfig) gives each PDO its defaults;
+//! - [`rpdo::Rpdo`] / [`tpdo::Tpdo`] are the run-time state machines the `Node` drives;
+//! - [`mapping`] resolves and packs mappings.
+//!
+//! Not implemented: MPDO (MPDO-01..05, optional), more than [`mapping::MAX_ENTRIES`] entries per mapping.
+
+pub mod mapping;
+pub mod rpdo;
+pub mod tpdo;
+
+use crate::cob::CobIdEntry;
+
+/// The communication parameter record of one PDO (1400h+k / 1800h+k, PDO-06..PDO-26).
+///
+/// ```
+/// use canopen_core::pdo::PdoComm;
+/// let c = PdoComm { cob_id: 0x0000_0185, transmission_type: 254, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 };
+/// assert!(c.is_valid());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PdoComm {
+    /// Sub 01h COB-ID: bit 31 = 1 not valid, bit 30 (TPDO) = 1 no RTR allowed, bits 10–0 CAN-ID.
+    pub cob_id: u32,
+    /// Sub 02h transmission type.
+    pub transmission_type: u8,
+    /// Sub 03h inhibit time, 100 µs.
+    pub inhibit_100us: u16,
+    /// Sub 05h event timer, ms.
+    pub event_timer_ms: u16,
+    /// Sub 06h SYNC start value (TPDO only).
+    pub sync_start: u8,
+}
+
+impl PdoComm {
+    /// The COB-ID entry.
+    pub const fn cob(&self) -> CobIdEntry {
+        CobIdEntry::from_raw(self.cob_id)
+    }
+
+    /// Bit 31 clear: the PDO exists (PDO-07, PDO-15).
+    pub const fn is_valid(&self) -> bool {
+        !self.cob().bit31()
+    }
+}
+
+/// The mapping parameter record of one PDO (1600h+k / 1A00h+k, PDO-30/31): raw entries and their count.
+///
+/// ```
+/// use canopen_core::pdo::PdoMapParams;
+/// let m = PdoMapParams::from_slice(&[0x6040_0010, 0x607A_0020]);
+/// assert_eq!(m.active(), &[0x6040_0010, 0x607A_0020]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PdoMapParams {
+    /// Sub 00h: number of valid entries.
+    pub count: u8,
+    /// Sub 01h..08h.
+    pub entries: [u32; mapping::MAX_ENTRIES],
+}
+
+impl PdoMapParams {
+    /// A mapping with `raw` entries (at most [`mapping::MAX_ENTRIES`] are kept).
+    pub const fn from_slice(raw: &[u32]) -> Self {
+        let mut entries = [0u32; mapping::MAX_ENTRIES];
+        let mut i = 0;
+        while i < raw.len() && i < mapping::MAX_ENTRIES {
+            entries[i] = raw[i];
+            i += 1;
+        }
+        PdoMapParams { count: i as u8, entries }
+    }
+
+    /// Entries 1..=count.
+    pub fn active(&self) -> &[u32] {
+        self.entries.get(..usize::from(self.count)).unwrap_or(&self.entries)
+    }
+}
+
+/// The defaults of one PDO in a [`NodeConfig`](crate::comm::NodeConfig).
+///
+/// ```
+/// use canopen_core::pdo::PdoDefault;
+/// const TPDO1: PdoDefault = PdoDefault { mapping: &[0x6000_0108], ..PdoDefault::EVENT };
+/// assert_eq!(TPDO1.transmission_type, 254);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PdoDefault {
+    /// Whether the PDO starts valid (bit 31 = 0).
+    pub valid: bool,
+    /// The CAN-ID; `None` = the pre-defined connection set for PDOs 1–4 (COB-05/06), else 0 and invalid.
+    pub can_id: Option<u16>,
+    /// Default transmission type.
+    pub transmission_type: u8,
+    /// Default inhibit time, 100 µs.
+    pub inhibit_100us: u16,
+    /// Default event timer, ms.
+    pub event_timer_ms: u16,
+    /// Default SYNC start value (TPDO).
+    pub sync_start: u8,
+    /// Default mapping entries (raw UNSIGNED32, at most [`mapping::MAX_ENTRIES`]).
+    pub mapping: &'static [u32],
+}
+
+impl PdoDefault {
+    /// Valid, event-driven (FEh), pre-defined COB-ID, no mapping.
+    pub const EVENT: PdoDefault = PdoDefault {
+        valid: true,
+        can_id: None,
+        transmission_type: 254,
+        inhibit_100us: 0,
+        event_timer_ms: 0,
+        sync_start: 0,
+        mapping: &[],
+    };
+    /// Not valid, event-driven, pre-defined COB-ID, no mapping: a PDO without a configured default.
+    pub const UNUSED: PdoDefault = PdoDefault { valid: false, ..Self::EVENT };
+
+    /// The default parameters of PDO number `k` (0-based) for `node_id`; `base` is 180h (TPDO) or 200h (RPDO).
+    ///
+    /// ```
+    /// use canopen_core::pdo::PdoDefault;
+    /// let (c, _) = PdoDefault::EVENT.params(2, 0x180, 5);
+    /// assert_eq!(c.cob_id, 0x385); // COB-05: TPDO3 = 380h + node
+    /// let (c, _) = PdoDefault::UNUSED.params(4, 0x200, 5);
+    /// assert_eq!(c.cob_id, 0x8000_0000); // PDO-08: beyond 4, no pre-defined ID, invalid
+    /// ```
+    pub const fn params(&self, k: usize, base: u16, node_id: u8) -> (PdoComm, PdoMapParams) {
+        let id = match self.can_id {
+            Some(id) => id,
+            None if k < 4 => base + 0x100 * k as u16 + node_id as u16,
+            None => 0,
+        };
+        let valid = self.valid && id != 0;
+        let cob_id = if valid { id as u32 } else { CobIdEntry::BIT31 | id as u32 };
+        let comm = PdoComm {
+            cob_id,
+            transmission_type: self.transmission_type,
+            inhibit_100us: self.inhibit_100us,
+            event_timer_ms: self.event_timer_ms,
+            sync_start: self.sync_start,
+        };
+        (comm, PdoMapParams::from_slice(self.mapping))
+    }
+}
+
+/// RPDO transmission types (PDO-09): 00h–F0h synchronous, FEh/FFh event-driven.
+///
+/// ```
+/// assert!(canopen_core::pdo::rpdo_type_ok(0xF0));
+/// assert!(!canopen_core::pdo::rpdo_type_ok(0xFC)); // V-MAP-05
+/// ```
+pub const fn rpdo_type_ok(t: u8) -> bool {
+    t <= 240 || t >= 254
+}
+
+/// TPDO transmission types (PDO-18): 00h–F0h, FCh–FFh.
+///
+/// ```
+/// assert!(canopen_core::pdo::tpdo_type_ok(0xFC));
+/// assert!(!canopen_core::pdo::tpdo_type_ok(0xF1));
+/// ```
+pub const fn tpdo_type_ok(t: u8) -> bool {
+    t <= 240 || t >= 252
+}

@@ -1,0 +1,140 @@
+//! The RPDO state machine (CHECKLIST PDO-06..PDO-13, PDO-38..PDO-40).
+//!
+//! - 00h–F0h (synchronous): the received data is kept and handed to the application at the next SYNC; a
+//!   frame that arrives after the synchronous window (1007h) closed is discarded (SYNC-09, PDO-40).
+//! - FEh/FFh: applied at once.
+//! - Length (PDO-38/39): shorter than the mapping → not applied, EMCY 8210h; longer → the leading bytes are
+//!   applied, EMCY 8220h.
+//! - Event timer (PDO-12): deadline monitoring armed by each received frame; expiry → EMCY 8250h.
+
+use super::mapping::ResolvedMap;
+use super::PdoComm;
+use crate::cob::CobIdEntry;
+use crate::time::{Duration, Instant};
+
+/// What to do with a received RPDO frame.
+///
+/// ```
+/// use canopen_core::pdo::rpdo::RxOutcome;
+/// assert_ne!(RxOutcome::TooShort, RxOutcome::Apply { exceeded: false });
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RxOutcome {
+    /// Shorter than the mapping: discarded (EMCY 8210h).
+    TooShort,
+    /// Apply the first [`ResolvedMap::bytes`] bytes now; `exceeded` when the frame was longer (EMCY 8220h).
+    Apply {
+        /// The frame was longer than the mapping.
+        exceeded: bool,
+    },
+    /// Kept for the next SYNC; `exceeded` as above.
+    Buffered {
+        /// The frame was longer than the mapping.
+        exceeded: bool,
+    },
+}
+
+/// One RPDO.
+///
+/// ```
+/// use canopen_core::{pdo::{rpdo::{Rpdo, RxOutcome}, PdoComm, mapping::ResolvedMap}, Instant};
+/// let mut r = Rpdo::new(&PdoComm { cob_id: 0x201, transmission_type: 255, ..PdoComm::default() }, ResolvedMap::EMPTY);
+/// assert_eq!(r.receive(Instant::ZERO, &[1]), RxOutcome::Apply { exceeded: true });
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Rpdo {
+    cob: CobIdEntry,
+    ttype: u8,
+    event_timer: Duration,
+    /// The resolved mapping.
+    pub map: ResolvedMap,
+    pending: Option<[u8; 8]>,
+    deadline: Option<Instant>,
+    /// A length error is active (cleared by the next correct frame).
+    pub length_error: bool,
+    /// The event timer expired (cleared by the next frame).
+    pub timed_out: bool,
+}
+
+impl Rpdo {
+    /// An RPDO with the given parameters and mapping.
+    pub const fn new(comm: &PdoComm, map: ResolvedMap) -> Self {
+        Rpdo {
+            cob: comm.cob(),
+            ttype: comm.transmission_type,
+            event_timer: Duration::from_millis(comm.event_timer_ms as u64),
+            map,
+            pending: None,
+            deadline: None,
+            length_error: false,
+            timed_out: false,
+        }
+    }
+
+    /// Whether the RPDO exists (bit 31 = 0).
+    pub const fn is_valid(&self) -> bool {
+        !self.cob.bit31()
+    }
+
+    /// The CAN-ID.
+    pub const fn can_id(&self) -> u16 {
+        self.cob.can_id()
+    }
+
+    /// Whether the data waits for the next SYNC (types 00h–F0h).
+    pub const fn is_synchronous(&self) -> bool {
+        self.ttype <= 240
+    }
+
+    /// A frame arrived at `now` (in Operational).
+    pub fn receive(&mut self, now: Instant, data: &[u8]) -> RxOutcome {
+        let need = self.map.bytes();
+        if data.len() < need {
+            return RxOutcome::TooShort;
+        }
+        let exceeded = data.len() > need;
+        if !self.event_timer.is_zero() {
+            self.deadline = Some(now + self.event_timer);
+        }
+        if self.is_synchronous() {
+            let mut buf = [0u8; 8];
+            let n = data.len().min(8);
+            buf[..n].copy_from_slice(&data[..n]);
+            self.pending = Some(buf);
+            RxOutcome::Buffered { exceeded }
+        } else {
+            RxOutcome::Apply { exceeded }
+        }
+    }
+
+    /// A SYNC: the data received since the last one, if any.
+    pub fn take_pending(&mut self) -> Option<[u8; 8]> {
+        self.pending.take()
+    }
+
+    /// Drops buffered data (the synchronous window closed, or the node left Operational).
+    pub fn discard(&mut self) {
+        self.pending = None;
+    }
+
+    /// Leaving Operational: no deadline monitoring, nothing buffered.
+    pub fn stop(&mut self) {
+        self.pending = None;
+        self.deadline = None;
+    }
+
+    /// The event-timer deadline.
+    pub const fn poll_timeout(&self) -> Option<Instant> {
+        self.deadline
+    }
+
+    /// Returns true once when the deadline passed (EMCY 8250h).
+    pub fn handle_timeout(&mut self, now: Instant) -> bool {
+        if self.deadline.is_some_and(|t| t <= now) {
+            self.deadline = None;
+            self.timed_out = true;
+            return true;
+        }
+        false
+    }
+}

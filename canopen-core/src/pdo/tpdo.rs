@@ -1,0 +1,275 @@
+//! The TPDO state machine (CHECKLIST PDO-15..PDO-29).
+//!
+//! - 00h (PDO-19): an application event marks the TPDO; the next SYNC samples and sends it.
+//! - 01h–F0h (PDO-20): sent on every n-th SYNC; with a SYNC start value (PDO-26/27) and the SYNC counter on,
+//!   counting starts at the SYNC whose counter equals the start value (sent on that SYNC, then every n-th).
+//! - FCh (PDO-21): sampled at every SYNC, sent on RTR; FDh (PDO-22): sampled and sent on RTR.
+//! - FEh/FFh (PDO-23..25, PDO-28): sent on an application event ([`Tpdo::trigger`]), on event-timer expiry,
+//!   and right after entering Operational; the inhibit time holds a transmission back (the TPDO stays
+//!   pending and is sampled when the inhibit time ends, so the latest value goes out, PDO-24).
+//! - The event timer restarts at every transmission of the TPDO (the CANopenNode choice; the CiA text does
+//!   not say, ERRATA §0), so "no data change" gives one TPDO per event-timer period (V-PDO-08).
+//! - RTR (PDO-29): any valid TPDO with COB-ID bit 30 = 0 answers a remote frame.
+//!
+//! The state machine decides *when*; the `Node` samples the mapped objects and queues the frame.
+
+use super::mapping::ResolvedMap;
+use super::PdoComm;
+use crate::cob::CobIdEntry;
+use crate::time::{earliest, Duration, Instant};
+
+/// What a SYNC means for a TPDO.
+///
+/// ```
+/// use canopen_core::pdo::tpdo::SyncAction;
+/// assert_ne!(SyncAction::Send, SyncAction::Sample);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SyncAction {
+    /// Nothing.
+    None,
+    /// Sample and send now.
+    Send,
+    /// Sample into the RTR buffer (type FCh).
+    Sample,
+}
+
+/// One TPDO.
+///
+/// ```
+/// use canopen_core::{pdo::{tpdo::{Tpdo, SyncAction}, PdoComm, mapping::ResolvedMap}, Instant};
+/// let mut t = Tpdo::new(&PdoComm { cob_id: 0x181, transmission_type: 2, ..PdoComm::default() }, ResolvedMap::EMPTY);
+/// assert_eq!(t.on_sync(None), SyncAction::None);
+/// assert_eq!(t.on_sync(None), SyncAction::Send); // every 2nd SYNC
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Tpdo {
+    cob: CobIdEntry,
+    ttype: u8,
+    inhibit: Duration,
+    event_timer: Duration,
+    sync_start: u8,
+    /// The resolved mapping.
+    pub map: ResolvedMap,
+    sync_count: u8,
+    started: bool,
+    pending: bool,
+    inhibit_until: Option<Instant>,
+    timer_due: Option<Instant>,
+    /// Data sampled at the last SYNC for type FCh.
+    pub rtr_buffer: Option<([u8; 8], u8)>,
+    /// The payload last sent, for change-of-value detection.
+    pub last_sent: Option<([u8; 8], u8)>,
+}
+
+impl Tpdo {
+    /// A TPDO with the given parameters and mapping.
+    pub const fn new(comm: &PdoComm, map: ResolvedMap) -> Self {
+        Tpdo {
+            cob: comm.cob(),
+            ttype: comm.transmission_type,
+            inhibit: Duration::from_100us(comm.inhibit_100us as u64),
+            event_timer: Duration::from_millis(comm.event_timer_ms as u64),
+            sync_start: comm.sync_start,
+            map,
+            sync_count: 0,
+            started: false,
+            pending: false,
+            inhibit_until: None,
+            timer_due: None,
+            rtr_buffer: None,
+            last_sent: None,
+        }
+    }
+
+    /// Whether the TPDO exists (COB-ID bit 31 = 0).
+    pub const fn is_valid(&self) -> bool {
+        !self.cob.bit31()
+    }
+
+    /// The CAN-ID.
+    pub const fn can_id(&self) -> u16 {
+        self.cob.can_id()
+    }
+
+    /// Whether a remote request is served (bit 30 = 0, PDO-29).
+    pub const fn rtr_allowed(&self) -> bool {
+        self.is_valid() && !self.cob.bit30()
+    }
+
+    /// The transmission type.
+    pub const fn transmission_type(&self) -> u8 {
+        self.ttype
+    }
+
+    const fn event_driven(&self) -> bool {
+        self.ttype >= 254
+    }
+
+    /// Entering Operational (PDO-27, PDO-28): SYNC counting restarts; an event-driven TPDO is due at
+    /// once.
+    pub fn start(&mut self) -> bool {
+        self.sync_count = 0;
+        self.started = false;
+        self.pending = false;
+        self.inhibit_until = None;
+        self.rtr_buffer = None;
+        self.last_sent = None;
+        self.timer_due = None;
+        self.is_valid() && self.event_driven()
+    }
+
+    /// Leaving Operational: no timers.
+    pub fn stop(&mut self) {
+        self.pending = false;
+        self.timer_due = None;
+        self.inhibit_until = None;
+    }
+
+    /// A SYNC with `counter` (`None` when the SYNC counter is off).
+    pub fn on_sync(&mut self, counter: Option<u8>) -> SyncAction {
+        if !self.is_valid() {
+            return SyncAction::None;
+        }
+        match self.ttype {
+            0 => {
+                if core::mem::take(&mut self.pending) {
+                    SyncAction::Send
+                } else {
+                    SyncAction::None
+                }
+            }
+            n @ 1..=240 => {
+                if !self.started {
+                    match (self.sync_start, counter) {
+                        (s, Some(c)) if s != 0 => {
+                            if c != s {
+                                return SyncAction::None;
+                            }
+                            self.started = true;
+                            self.sync_count = 0;
+                            return SyncAction::Send;
+                        }
+                        _ => self.started = true,
+                    }
+                }
+                self.sync_count += 1;
+                if self.sync_count >= n {
+                    self.sync_count = 0;
+                    SyncAction::Send
+                } else {
+                    SyncAction::None
+                }
+            }
+            252 => SyncAction::Sample,
+            _ => SyncAction::None,
+        }
+    }
+
+    /// An application event at `now` (PDO-19, PDO-23): returns whether to send now. Type 00h sends at the
+    /// next SYNC; FEh/FFh now unless the inhibit time runs (then when it ends); RTR-only types ignore it.
+    pub fn trigger(&mut self, now: Instant) -> bool {
+        if !self.is_valid() {
+            return false;
+        }
+        match self.ttype {
+            0 => {
+                self.pending = true;
+                false
+            }
+            254 | 255 => {
+                if self.inhibit_until.is_some_and(|t| now < t) {
+                    self.pending = true;
+                    false
+                } else {
+                    true
+                }
+            }
+            _ => false,
+        }
+    }
+
+    /// The TPDO was sent at `now`: the inhibit time and the event timer start.
+    pub fn sent(&mut self, now: Instant) {
+        if self.ttype != 0 {
+            self.pending = false;
+        }
+        self.inhibit_until = (!self.inhibit.is_zero()).then(|| now + self.inhibit);
+        self.timer_due = (self.event_driven() && !self.event_timer.is_zero()).then(|| now + self.event_timer);
+    }
+
+    /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        let inhibit_end = if self.pending && self.event_driven() { self.inhibit_until } else { None };
+        earliest(inhibit_end, self.timer_due)
+    }
+
+    /// Time passed: returns whether to send now (a held-back event at the end of the inhibit time, or the
+    /// event timer, which itself waits for the inhibit time).
+    pub fn handle_timeout(&mut self, now: Instant) -> bool {
+        if !self.is_valid() || !self.event_driven() {
+            return false;
+        }
+        if self.timer_due.is_some_and(|t| t <= now) {
+            self.timer_due = None;
+            self.pending = true;
+        }
+        if self.pending && self.inhibit_until.is_none_or(|t| t <= now) {
+            self.inhibit_until = None;
+            return true;
+        }
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tpdo(ttype: u8, start: u8) -> Tpdo {
+        Tpdo::new(
+            &PdoComm { cob_id: 0x181, transmission_type: ttype, sync_start: start, ..PdoComm::default() },
+            ResolvedMap::EMPTY,
+        )
+    }
+
+    /// V-PDO-06: type 2, start value 2, counter 1..4 → after counters 2, 4, 2, 4.
+    #[test]
+    fn sync_start_value() {
+        let mut t = tpdo(2, 2);
+        let sent: std::vec::Vec<u8> =
+            [1u8, 2, 3, 4, 1, 2, 3, 4].iter().filter(|&&c| t.on_sync(Some(c)) == SyncAction::Send).copied().collect();
+        assert_eq!(sent, [2, 4, 2, 4]);
+        // Counter off: the start value is ignored (PDO-26).
+        let mut t = tpdo(3, 2);
+        let n: std::vec::Vec<usize> = (1..=9).filter(|_| t.on_sync(None) == SyncAction::Send).collect();
+        assert_eq!(n, [3, 6, 9]); // V-PDO-04
+    }
+
+    extern crate std;
+
+    /// V-PDO-05: type 0 sends once after the SYNC that follows an event.
+    #[test]
+    fn acyclic_sync() {
+        let mut t = tpdo(0, 0);
+        assert_eq!(t.on_sync(None), SyncAction::None);
+        assert!(!t.trigger(Instant::ZERO));
+        assert_eq!(t.on_sync(None), SyncAction::Send);
+        assert_eq!(t.on_sync(None), SyncAction::None);
+    }
+
+    /// V-PDO-07: the inhibit time holds an event back, it is not lost.
+    #[test]
+    fn inhibit_holds_back() {
+        let mut t = Tpdo::new(
+            &PdoComm { cob_id: 0x181, transmission_type: 254, inhibit_100us: 200, ..PdoComm::default() },
+            ResolvedMap::EMPTY,
+        );
+        assert!(t.trigger(Instant::ZERO));
+        t.sent(Instant::ZERO);
+        assert!(!t.trigger(Instant::from_millis(5)));
+        assert_eq!(t.poll_timeout(), Some(Instant::from_millis(20)));
+        assert!(!t.handle_timeout(Instant::from_millis(19)));
+        assert!(t.handle_timeout(Instant::from_millis(20)));
+    }
+}

@@ -1,0 +1,114 @@
+//! PDO mapping entry (CHECKLIST PDO-31, PDO-34): an UNSIGNED32 in 1600h–17FFh / 1A00h–1BFFh sub 01h–40h,
+//! bits 31–16 index, bits 15–8 sub-index, bits 7–0 length in bits; on the bus (SDO) little-endian.
+
+use super::WireError;
+
+/// One mapping entry.
+///
+/// ```
+/// use canopen_core::wire::pdo_mapping::MappingEntry;
+/// // V-ENC-15: 6040h:00, 16 bit.
+/// let e = MappingEntry::from_raw(0x6040_0010);
+/// assert_eq!((e.index, e.sub, e.bits), (0x6040, 0, 16));
+/// assert_eq!(e.emit(), [0x10, 0x00, 0x40, 0x60]);
+/// assert_eq!(MappingEntry::parse(&[0x10, 0x00, 0x40, 0x60]), Ok(e));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct MappingEntry {
+    /// Index of the mapped object (or a data-type index 0001h–001Bh for a dummy entry).
+    pub index: u16,
+    /// Sub-index of the mapped object.
+    pub sub: u8,
+    /// Length in bits.
+    pub bits: u8,
+}
+
+impl MappingEntry {
+    /// Decodes the UNSIGNED32 value.
+    pub const fn from_raw(raw: u32) -> Self {
+        MappingEntry { index: (raw >> 16) as u16, sub: (raw >> 8) as u8, bits: raw as u8 }
+    }
+
+    /// Encodes as the UNSIGNED32 value.
+    ///
+    /// ```
+    /// # use canopen_core::wire::pdo_mapping::MappingEntry;
+    /// assert_eq!(MappingEntry { index: 0x2003, sub: 3, bits: 16 }.raw(), 0x2003_0310); // V-ENC-19
+    /// ```
+    pub const fn raw(self) -> u32 {
+        ((self.index as u32) << 16) | ((self.sub as u32) << 8) | self.bits as u32
+    }
+
+    /// Parses the 4 bytes of an SDO download (exactly 4, CAN-07).
+    pub fn parse(data: &[u8]) -> Result<Self, WireError> {
+        let b: [u8; 4] = data.try_into().map_err(|_| WireError::Length)?;
+        Ok(Self::from_raw(u32::from_le_bytes(b)))
+    }
+
+    /// The 4 bytes on the bus.
+    pub const fn emit(self) -> [u8; 4] {
+        self.raw().to_le_bytes()
+    }
+
+    /// Whether the entry is a dummy entry (PDO-34): a data-type index 0001h–0007h, 0010h, 0012h–0016h or
+    /// 0018h–001Bh with sub-index 0, usable in RPDOs to skip received bits.
+    ///
+    /// ```
+    /// # use canopen_core::wire::pdo_mapping::MappingEntry;
+    /// assert!(MappingEntry::from_raw(0x0005_0008).is_dummy());
+    /// assert!(!MappingEntry::from_raw(0x0008_0020).is_dummy()); // REAL32 is not a dummy type
+    /// ```
+    pub const fn is_dummy(self) -> bool {
+        self.sub == 0 && matches!(self.index, 0x0001..=0x0007 | 0x0010 | 0x0012..=0x0016 | 0x0018..=0x001B)
+    }
+
+    /// The size in bits of the dummy data type (`None` if not a dummy entry).
+    ///
+    /// ```
+    /// # use canopen_core::wire::pdo_mapping::MappingEntry;
+    /// assert_eq!(MappingEntry::from_raw(0x0007_0020).dummy_bits(), Some(32));
+    /// assert_eq!(MappingEntry::from_raw(0x0001_0001).dummy_bits(), Some(1));
+    /// ```
+    pub const fn dummy_bits(self) -> Option<u8> {
+        if !self.is_dummy() {
+            return None;
+        }
+        Some(match self.index {
+            0x0001 => 1, // BOOLEAN: one bit in a PDO
+            0x0002 | 0x0005 => 8,
+            0x0003 | 0x0006 => 16,
+            0x0010 | 0x0016 => 24,
+            0x0004 | 0x0007 => 32,
+            0x0012 | 0x0018 => 40,
+            0x0013 | 0x0019 => 48,
+            0x0014 | 0x001A => 56,
+            _ => 64,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// V-ENC-15..V-ENC-19.
+    #[test]
+    fn mapping_entry_vectors() {
+        let cases: [(u32, [u8; 4]); 7] = [
+            (0x6040_0010, [0x10, 0x00, 0x40, 0x60]),
+            (0x607A_0020, [0x20, 0x00, 0x7A, 0x60]),
+            (0x6041_0010, [0x10, 0x00, 0x41, 0x60]),
+            (0x6064_0020, [0x20, 0x00, 0x64, 0x60]),
+            (0x2000_0108, [0x08, 0x01, 0x00, 0x20]),
+            (0x2003_0310, [0x10, 0x03, 0x03, 0x20]),
+            (0x2003_0108, [0x08, 0x01, 0x03, 0x20]),
+        ];
+        for (raw, bytes) in cases {
+            assert_eq!(MappingEntry::from_raw(raw).emit(), bytes);
+            assert_eq!(MappingEntry::parse(&bytes).map(MappingEntry::raw), Ok(raw));
+        }
+        assert_eq!(MappingEntry::parse(&[1, 2, 3]), Err(WireError::Length));
+        assert!(!MappingEntry::from_raw(0x0005_0108).is_dummy());
+        assert_eq!(MappingEntry::from_raw(0x0008_0020).dummy_bits(), None);
+    }
+}
