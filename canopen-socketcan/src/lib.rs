@@ -38,6 +38,9 @@ use std::time::Duration as StdDuration;
 
 use canopen_core::{CanFrame, Event, Instant};
 
+/// The `socketcan` crate this adapter is built on (for raw sockets in tests and tools).
+pub use socketcan;
+
 pub mod blocking;
 pub mod master;
 pub mod tokio_runner;
