@@ -94,6 +94,15 @@ fn pattern(n: usize, seed: u32) -> Vec<u8> {
         .collect()
 }
 
+/// Stops a helper thread when the test ends, also by a panic.
+struct StopOnDrop(Arc<AtomicBool>);
+
+impl Drop for StopOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+}
+
 const BLOCK_CRC: Mode = Mode::Block { crc: true, blksize: 127, pst: 0 };
 const BLOCK_NO_CRC: Mode = Mode::Block { crc: false, blksize: 127, pst: 0 };
 
@@ -160,29 +169,52 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
                     }
                     Err(_) => std::thread::sleep(Duration::from_micros(200)),
                 }
-                // Roughly a busy bus, without starving the single VM CPU.
-                if x % 4 == 0 {
-                    std::thread::yield_now();
+                // About 4000 frames/s (half of a 1 Mbit/s bus): 20 frames every 5 ms.
+                if flooded.load(Ordering::Relaxed) % 20 == 0 {
+                    std::thread::sleep(Duration::from_millis(5));
                 }
             }
         })
     };
+    let _stop_flood = StopOnDrop(stop.clone());
     let mut m = Master::new(BlockingBus::open(IFACE).unwrap(), NodeId::new(32).unwrap()).unwrap();
     m.set_timeout(Duration::from_secs(3));
     let start = StdInstant::now();
     let budget = Duration::from_secs(25);
-    let mut transfers = 0;
-    let mut bytes = 0;
+    let (mut completed, mut aborted, mut bytes) = (0, 0, 0);
+    let mut committed: Vec<u8> = Vec::new();
     let mut seed = 100;
-    while start.elapsed() < budget && transfers < 12 {
+    while start.elapsed() < budget && completed < 12 {
         let n = 8192 + (seed as usize * 977) % 8192;
         let data = pattern(n, seed);
-        m.download(0x2005, 0, &data, BLOCK_CRC).unwrap_or_else(|e| panic!("download {transfers}: {e}"));
-        let back = m.upload(0x2005, 0, BLOCK_CRC, 65_536).unwrap_or_else(|e| panic!("upload {transfers}: {e}"));
-        assert!(back == data, "transfer {transfers} corrupted");
-        transfers += 2;
-        bytes += 2 * n;
         seed += 1;
+        // A transfer may be aborted (a frame lost in an overflowing receive buffer ends a block transfer by
+        // time-out, as the protocol says); it must never complete with wrong data.
+        match m.download(0x2005, 0, &data, BLOCK_CRC) {
+            Ok(()) => {
+                completed += 1;
+                bytes += n;
+                committed = data;
+            }
+            Err(e) => {
+                eprintln!("download aborted: {e}");
+                aborted += 1;
+            }
+        }
+        match m.upload(0x2005, 0, BLOCK_CRC, 65_536) {
+            Ok(back) => {
+                assert!(
+                    back == committed,
+                    "upload after transfer {completed}: content differs from the last committed download"
+                );
+                completed += 1;
+                bytes += back.len();
+            }
+            Err(e) => {
+                eprintln!("upload aborted: {e}");
+                aborted += 1;
+            }
+        }
     }
     // The node still answers and still produces its heartbeat.
     assert_eq!(m.wait_heartbeat(Duration::from_secs(2)).unwrap(), Some(0x7F));
@@ -190,10 +222,10 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     flood.join().unwrap();
     let frames = flooded.load(Ordering::Relaxed);
     eprintln!(
-        "load: {transfers} block transfers ({bytes} bytes) byte-exact in {:.1?} while {frames} flood frames were sent",
+        "load: {completed} block transfers ({bytes} bytes) byte-exact, {aborted} aborted cleanly, in {:.1?} while {frames} flood frames were sent",
         start.elapsed()
     );
-    assert!(transfers >= 4, "too few transfers in the time budget: {transfers}");
+    assert!(completed >= 4, "too few transfers completed in the time budget: {completed} ({aborted} aborted)");
     assert!(frames > 1000, "the flood did not run: {frames} frames");
     assert_eq!(node.shared.with(|n| n.tx_dropped()), 0);
     drop(node);
