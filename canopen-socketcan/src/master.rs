@@ -57,6 +57,9 @@ impl MasterError {
     }
 }
 
+/// How long the line must be quiet after a failed transfer before the next one starts.
+pub const QUIET: StdDuration = StdDuration::from_millis(50);
+
 /// Upload data into a growable buffer of at most `cap` bytes.
 struct VecData<'a> {
     buf: &'a mut Vec<u8>,
@@ -209,8 +212,23 @@ impl Master {
                 }
                 Some(ClientEvent::Failed(e)) => {
                     self.flush_client(data)?;
+                    self.drain()?;
                     return Err(MasterError::Sdo(e));
                 }
+            }
+        }
+    }
+
+    /// After a failed transfer: discards what the server still sends for it (late responses, the rest of a
+    /// sub-block) until the line is quiet for [`QUIET`], so that the next transfer does not take a stale
+    /// frame for its answer.
+    fn drain(&mut self) -> io::Result<()> {
+        loop {
+            let until = Instant::from_micros(self.bus.now().as_micros() + QUIET.as_micros() as u64);
+            match self.bus.recv_until(Some(until))? {
+                Rx::Timeout => return Ok(()),
+                Rx::Adapter(e) => self.events.push(e),
+                Rx::Frame(_) => {}
             }
         }
     }

@@ -1,4 +1,4 @@
-//! The tokio adapter: the core's executor-agnostic [`driver`](canopen_core::driver) on a tokio
+//! The tokio adapter: the core's executor-agnostic [`driver`] on a tokio
 //! `AsyncFd` CAN socket.
 //!
 //! - [`TokioBus`] owns the socket; [`TokioBus::split`] gives a receive half ([`CanRx`], cancel-safe: a frame
@@ -8,7 +8,7 @@
 //! - [`MutexShared`] holds the node (a `std::sync::Mutex`: the driver never holds it across an `.await`)
 //!   and [`NotifyWake`] (a `tokio::sync::Notify`) lets another task wake the driver after it changed the
 //!   node.
-//! - [`run_tokio`] is the supervisor: it runs [`driver::run`](canopen_core::driver::run) and, when the
+//! - [`run_tokio`] is the supervisor: it runs [`driver::run`] and, when the
 //!   interface goes down, waits for it, reopens the socket and runs the driver again on the same node.
 //!
 //! ```no_run
