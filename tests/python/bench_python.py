@@ -44,8 +44,10 @@ def main():
                 back = f.read()
             assert back == data, "upload differs"
         secs, cpu = time.perf_counter() - t0, cpu_seconds(pid) - cpu0
-        # Frames the node handled: what it sent (counted) + what it received (~size/7 segments one way).
-        frames = rx.n + (size + 6) // 7 + 4
+        # Frames the node handled: what it sent (counted) + what it received (the segments when downloading,
+        # the initiate/ack/end requests when uploading: one ack per 127-segment sub-block).
+        segments = (size + 6) // 7
+        frames = rx.n + (segments + 4 if direction == "download" else segments // 127 + 4)
         print(f"python block+CRC {direction}: {size} bytes in {secs:.3f} s = {size / 1024 / secs:.1f} KiB/s, "
               f"~{frames} frames, node CPU {cpu:.2f} s = {cpu * 1e6 / frames:.2f} us/frame")
     if node.sdo.upload(0x2005, 0) != data:
