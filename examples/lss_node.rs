@@ -12,7 +12,7 @@
 //! The store request is answered after the file is written: the runner returns from `run_blocking` when
 //! the node reports `LssEvent::StoreRequested`, stores through [`LssStore`], and runs on.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant as StdInstant};
@@ -96,7 +96,7 @@ fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
 
 fn main() -> ExitCode {
     let args = Args::parse();
-    let bus = match BlockingBus::open(&args.iface) {
+    let mut bus = match BlockingBus::open(&args.iface) {
         Ok(bus) => bus,
         Err(e) => {
             eprintln!("lss_node: {e}");
@@ -121,16 +121,19 @@ fn main() -> ExitCode {
 
     let started = StdInstant::now();
     let limit = args.run_for.map(Duration::from_secs_f64);
+    let iface = bus.iface().to_owned();
+    let node = RefCell::new(node);
     loop {
         let store_requested = Cell::new(false);
         let result = run_blocking(
-            &mut node,
-            &bus,
+            &node,
+            &mut bus,
             |o| {
                 let t = started.elapsed().as_secs_f64();
                 match o {
-                    Observed::Received(f) => println!("({t:10.6}) {}  rx  {f}", bus.iface()),
-                    Observed::Sent(f) => println!("({t:10.6}) {}  tx  {f}", bus.iface()),
+                    Observed::Received(f) => println!("({t:10.6}) {iface}  rx  {f}"),
+                    Observed::Sent(f) => println!("({t:10.6}) {iface}  tx  {f}"),
+                    Observed::Adapter(a) => println!("({t:10.6}) {iface}  {a:?}"),
                     Observed::Event(e) => {
                         println!("({t:10.6}) event {e:?}");
                         if matches!(e, Event::Lss(LssEvent::StoreRequested { .. })) {
@@ -149,6 +152,6 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         // The 17h answer goes out on the next pass of run_blocking.
-        node.complete_lss_store(&mut store);
+        node.borrow_mut().complete_lss_store(&mut store);
     }
 }

@@ -1,25 +1,47 @@
-//! A CANopen node on a SocketCAN interface.
+//! A CANopen node on a SocketCAN interface: a CiA 401-style I/O module (`examples/common/io_module.rs`).
 //!
 //! ```text
-//! cargo run --example node                         # node 5 on vcan0
+//! cargo run --example node                                   # node 5 on vcan0, tokio runner
 //! cargo run --example node -- --iface vcan0 --node-id 5 --heartbeat 1000
+//! cargo run --example node -- --blocking                     # the blocking runner instead of tokio
+//! cargo run --example node -- --eds io_module.eds            # write the node's EDS and exit
+//! cargo run --example node -- --help
 //! ```
 //!
-//! It prints what happens on the bus, candump-like, and the node's events. Where there is no SocketCAN
-//! interface it says so in one line, with the commands that create a virtual one.
+//! It prints what happens, candump-like: every frame received and sent (unless `--quiet`), NMT state
+//! changes, SDO writes with the new value, aborts, and what the adapter saw (error frames, bus-off, the
+//! interface going down and coming back). Where there is no SocketCAN interface it says so in one line, with
+//! the commands that create a virtual one.
+//!
+//! While it runs, another task (tokio) or thread (`--blocking`) updates 2006h (uptime in ms), the digital
+//! inputs 6000h (a walking bit, once a second) and the analogue inputs 6401h: the node lives in a
+//! `MutexShared` cell, the task changes it under the lock and signals a `NotifyWake` so the driver acts on
+//! the change at once (event-driven TPDOs will use exactly this path once PDOs merge).
+//!
+//! **NMT reset node on Linux**: the node resets *in-process*. The core sends the boot-up frame and sets the
+//! communication parameters back to their power-on values; on `Event::ResetApplication` the example sets
+//! the application values (2000h–2005h, 2100h, 6200h, 6411h) back to their defaults. The process, its socket
+//! and 2006h uptime continue. A master sees the boot-up either way; restarting the process would lose the
+//! socket and make a supervisor part of the protocol for no gain.
+//!
+//! Not wired yet (say so rather than pretend): `--store FILE` is accepted, but storing to a file needs the
+//! core's `Storage` trait (1010h/1011h), which lands with the PDO/EMCY/store work; writing 2100h records the
+//! requested error code, and raising it as an EMCY frame is wired after the EMCY producer merges.
+
+#[path = "common/io_module.rs"]
+mod io_module;
 
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::{Duration, Instant as StdInstant};
 
-use canopen::core::{
-    comm::{Identity, NodeConfig},
-    node::{NoApplication, Node},
-    NodeId,
-};
-use canopen_socketcan::{run_blocking, BlockingBus, Observed};
+use canopen_core::od::ObjectDictionary;
+use canopen_core::{Event, NmtState, NodeId};
+use canopen_socketcan::{run_blocking, run_tokio, AdapterEvent, BlockingBus, MutexShared, NotifyWake, Observed};
 use clap::Parser;
+use io_module::{IoNode, CONFIG};
 
-/// A CiA 301 CANopen node on SocketCAN.
+/// A CiA 301 CANopen node (a CiA 401-style I/O module) on SocketCAN.
 #[derive(Parser, Debug)]
 #[command(version, about)]
 struct Args {
@@ -35,52 +57,68 @@ struct Args {
     /// Stop after this many seconds (default: run until killed).
     #[arg(long)]
     run_for: Option<f64>,
+    /// Write the node's EDS (CiA 306) to FILE and exit.
+    #[arg(long, value_name = "FILE")]
+    eds: Option<String>,
+    /// Parameter storage file (1010h/1011h). Accepted but NOT wired yet: needs the core's Storage trait.
+    #[arg(long, value_name = "FILE")]
+    store: Option<String>,
+    /// Use the blocking runner instead of tokio.
+    #[arg(long)]
+    blocking: bool,
+    /// Do not print every frame (events and adapter reports are still printed).
+    #[arg(long)]
+    quiet: bool,
 }
 
-const CONFIG: NodeConfig = NodeConfig {
-    device_type: 0x000F_0191,
-    identity: Identity { vendor_id: 0, product_code: 0x0000_0001, revision: 0x0001_0000, serial: 1 },
-    device_name: "canopen example node",
-    hardware_version: "vcan",
-    software_version: env!("CARGO_PKG_VERSION"),
-    heartbeat_time_ms: 1000,
-    guard_time_ms: 0,
-    life_time_factor: 0,
-    ..NodeConfig::DEFAULT
-};
+type SharedNode = MutexShared<IoNode>;
 
 fn main() -> ExitCode {
     let args = Args::parse();
-    let bus = match BlockingBus::open(&args.iface) {
-        Ok(bus) => bus,
-        Err(e) => {
-            eprintln!("node: {e}");
-            return ExitCode::from(2);
-        }
-    };
+    let config = canopen_core::comm::NodeConfig { heartbeat_time_ms: args.heartbeat, ..CONFIG };
+    if let Some(path) = &args.eds {
+        return match std::fs::write(path, io_module::eds_text(config)) {
+            Ok(()) => {
+                println!("node: EDS written to {path}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("node: cannot write {path}: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if let Some(path) = &args.store {
+        println!(
+            "node: --store {path}: accepted but not wired yet (file storage needs the core's Storage trait, \
+             1010h/1011h); parameters are NOT stored"
+        );
+    }
     let Some(node_id) = NodeId::new(args.node_id) else {
         eprintln!("node: node-ID must be 1..=127");
         return ExitCode::from(2);
     };
-    let config = NodeConfig { heartbeat_time_ms: args.heartbeat, ..CONFIG };
-    let mut node: Node<NoApplication> = Node::new(node_id, config, NoApplication);
-    println!("node {} on {} (heartbeat {} ms); Ctrl-C to stop", node_id.get(), bus.iface(), args.heartbeat);
-
+    // Fail with one clear line when the interface is missing, before starting anything.
+    if let Err(e) = BlockingBus::open(&args.iface) {
+        eprintln!("node: {e}");
+        return ExitCode::from(2);
+    }
+    let shared = Arc::new(MutexShared::new(io_module::new_node(node_id, config)));
+    println!(
+        "node {} on {} (heartbeat {} ms, {} runner); Ctrl-C to stop",
+        node_id.get(),
+        args.iface,
+        args.heartbeat,
+        if args.blocking { "blocking" } else { "tokio" }
+    );
     let started = StdInstant::now();
     let limit = args.run_for.map(Duration::from_secs_f64);
-    let result = run_blocking(
-        &mut node,
-        &bus,
-        |o| {
-            let t = started.elapsed().as_secs_f64();
-            match o {
-                Observed::Received(f) => println!("({t:10.6}) {}  rx  {f}", bus.iface()),
-                Observed::Sent(f) => println!("({t:10.6}) {}  tx  {f}", bus.iface()),
-                Observed::Event(e) => println!("({t:10.6}) event {e:?}"),
-            }
-        },
-        || limit.is_none_or(|l| started.elapsed() < l),
-    );
+    let printer = Printer { shared: shared.clone(), started, iface: args.iface.clone(), quiet: args.quiet };
+    let result = if args.blocking {
+        run_on_threads(&args, &shared, &printer, limit)
+    } else {
+        run_on_tokio(&args, &shared, &printer, limit)
+    };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -88,4 +126,141 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+fn run_on_tokio(
+    args: &Args,
+    shared: &Arc<SharedNode>,
+    printer: &Printer,
+    limit: Option<Duration>,
+) -> std::io::Result<()> {
+    let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
+    rt.block_on(async {
+        let wake = Arc::new(NotifyWake::new());
+        // The application task: process values change while the node runs.
+        let (s, w, t0) = (shared.clone(), wake.clone(), printer.started);
+        tokio::spawn(async move {
+            let mut tick = tokio::time::interval(Duration::from_millis(100));
+            loop {
+                tick.tick().await;
+                s.with(|n| update_process_values(n, t0));
+                w.signal();
+            }
+        });
+        let observe = |o: Observed<'_>| printer.print(o);
+        let run = run_tokio(&**shared, &args.iface, &*wake, &observe);
+        match limit {
+            Some(l) => match tokio::time::timeout(l, run).await {
+                Ok(Err(e)) => Err(e),
+                Ok(Ok(never)) => match never {},
+                Err(_elapsed) => Ok(()),
+            },
+            None => run.await.map(|never| match never {}),
+        }
+    })
+}
+
+fn run_on_threads(
+    args: &Args,
+    shared: &Arc<SharedNode>,
+    printer: &Printer,
+    limit: Option<Duration>,
+) -> std::io::Result<()> {
+    let mut bus = BlockingBus::open(&args.iface)?;
+    let (s, t0) = (shared.clone(), printer.started);
+    std::thread::spawn(move || loop {
+        std::thread::sleep(Duration::from_millis(100));
+        s.with(|n| update_process_values(n, t0));
+    });
+    run_blocking(&**shared, &mut bus, |o| printer.print(o), || limit.is_none_or(|l| printer.started.elapsed() < l))
+}
+
+/// What the application task does every 100 ms.
+fn update_process_values(node: &mut IoNode, started: StdInstant) {
+    let ms = started.elapsed().as_millis() as u64;
+    let app = node.app_mut();
+    app.uptime_ms = ms;
+    let second = (ms / 1000) as usize;
+    for (i, input) in app.digital_inputs.iter_mut().enumerate() {
+        *input = u8::from(i == second % 8);
+    }
+    for (i, input) in app.analog_inputs.iter_mut().enumerate() {
+        // A slow triangle wave per channel.
+        let phase = ((ms / 10) as i64 + 250 * i as i64) % 2000;
+        *input = (if phase < 1000 { phase } else { 2000 - phase } - 500) as i16;
+    }
+}
+
+/// Prints frames and events, candump-like.
+struct Printer {
+    shared: Arc<SharedNode>,
+    started: StdInstant,
+    iface: String,
+    quiet: bool,
+}
+
+impl Printer {
+    fn print(&self, o: Observed<'_>) {
+        let t = self.started.elapsed().as_secs_f64();
+        match o {
+            Observed::Received(f) if !self.quiet => println!("({t:10.6}) {}  rx  {f}", self.iface),
+            Observed::Sent(f) if !self.quiet => println!("({t:10.6}) {}  tx  {f}", self.iface),
+            Observed::Received(_) | Observed::Sent(_) => {}
+            Observed::Event(e) => self.event(t, e),
+            Observed::Adapter(a) => {
+                println!("({t:10.6}) adapter {a}");
+                if *a == AdapterEvent::BusOff {
+                    // ERR-13/ERR-12: bus-off is a communication error: Operational -> Pre-operational
+                    // (the 1029h default behaviour).
+                    self.shared.with(|n| {
+                        if n.state() == NmtState::Operational {
+                            n.enter_state(NmtState::PreOperational);
+                        }
+                    });
+                }
+            }
+        }
+    }
+
+    fn event(&self, t: f64, e: &Event) {
+        match e {
+            Event::StateChanged { from, to } => println!("({t:10.6}) NMT {from:?} -> {to:?}"),
+            Event::ResetApplication => {
+                self.shared.with(|n| n.app_mut().restore_power_on_values());
+                println!("({t:10.6}) NMT reset application: application values back to their defaults");
+            }
+            Event::ResetCommunication => println!("({t:10.6}) NMT reset communication"),
+            Event::ObjectWritten { index, sub } => {
+                let (value, injected) = self.shared.with(|n| {
+                    let mut buf = [0u8; 32];
+                    let value = n.dictionary().read(*index, *sub, 0, &mut buf).map(|len| buf[..len].to_vec());
+                    (value, n.app().injected.last().copied())
+                });
+                match value {
+                    Ok(v) if *index == 0x2005 => {
+                        let len = self.shared.with(|n| n.app().data_block.as_bytes().len());
+                        println!("({t:10.6}) SDO wrote {index:04X}h:{sub:02X} ({len} bytes, starts {})", hex(&v))
+                    }
+                    Ok(v) => println!("({t:10.6}) SDO wrote {index:04X}h:{sub:02X} = {}", hex(&v)),
+                    Err(code) => println!("({t:10.6}) SDO wrote {index:04X}h:{sub:02X} (unreadable: {code:?})"),
+                }
+                if *index == 0x2100 {
+                    println!(
+                        "({t:10.6}) error injection: code {:04X}h recorded (EMCY raising is wired after the EMCY \
+                         work merges)",
+                        injected.unwrap_or(0)
+                    );
+                }
+            }
+            Event::SdoAborted { index, sub, code, by_client } => println!(
+                "({t:10.6}) SDO {index:04X}h:{sub:02X} aborted by the {} with {code:08X}h",
+                if *by_client { "client" } else { "node" }
+            ),
+            other => println!("({t:10.6}) event {other:?}"),
+        }
+    }
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02X}")).collect::<Vec<_>>().join(" ")
 }

@@ -1,156 +1,116 @@
-//! Linux SocketCAN adapter for `canopen-core`.
+//! Linux SocketCAN adapter for `canopen-core`: the node on a real (or virtual) CAN interface, driven by
+//! tokio ([`tokio_runner`]) or by a plain blocking loop ([`blocking`]), plus a blocking SDO/NMT master
+//! ([`master`]) on the core's sans-IO SDO client.
 //!
-//! [`BlockingBus`] wraps a raw CAN socket: it converts frames through `embedded-can`, keeps the node's clock
-//! (a monotonic [`std::time::Instant`] mapped to the core's microsecond [`canopen_core::Instant`]), waits for a
-//! frame *or* the node's next deadline (no fixed tick), and retries a send when the socket's buffer is full
-//! (`ENOBUFS`) instead of dropping the frame. [`run_blocking`] is the whole runner loop for a [`Node`].
+//! Both runners are thin: the core's [`Node`](canopen_core::Node) does the protocol work, the adapter moves
+//! frames (through `embedded-can`, so [`canopen_core::CanFrame`] never sees a socket type), keeps the
+//! node's clock (a monotonic [`std::time::Instant`] mapped to the core's microsecond
+//! [`canopen_core::Instant`]) and sleeps exactly until the node's next deadline.
 //!
-//! The async (tokio) variant, error-frame and bus-off reporting, and store/restore to a file are built on
-//! the same pieces (SocketCAN issue).
+//! # What the adapter reports and recovers from
+//!
+//! Everything that happens below the node is reported to the observer as an [`AdapterEvent`]
+//! ([`Observed::Adapter`]), never swallowed:
+//!
+//! - **Error frames** (the socket accepts all error classes): [`AdapterEvent::ErrorFrame`]; the two that
+//!   matter to CANopen are decoded as [`AdapterEvent::BusOff`] and [`AdapterEvent::Restarted`]. Bus-off is
+//!   a communication error (ERR-13): the application decides what the node does (the example enters
+//!   Pre-operational, the 1029h default). The controller restarts itself (`ip link set canX type can
+//!   restart-ms N`); the runner keeps going.
+//! - **Interface down or removed** (`ENETDOWN`, `ENODEV`, `ENXIO` on a read or write):
+//!   [`AdapterEvent::InterfaceDown`]; the runner waits until the interface is up again (it polls
+//!   `/sys/class/net/<iface>/flags` every 100 ms), opens a fresh socket (the interface index may have
+//!   changed) and reports [`AdapterEvent::Reopened`]. The node lives outside the socket (in a
+//!   [`Shared`](canopen_core::driver::Shared) cell), so its state (NMT state, parameters, an SDO transfer)
+//!   survives; its deadlines that passed meanwhile fire on the first call after the reopen.
+//! - **Full socket send buffer** (`ENOBUFS`, the interface's queue is full): the send waits
+//!   [`ENOBUFS_BACKOFF`] and retries, reporting [`AdapterEvent::TxBufferFull`] once per stall. A frame that
+//!   still cannot be sent after [`TX_STALL_LIMIT`] (no other node acknowledges, the controller is stuck) is
+//!   dropped and reported as [`AdapterEvent::TxDropped`], so a dead bus cannot freeze the receive side.
+//!
+//! 29-bit (extended) frames are ignored (CAN-01: CANopen uses 11-bit identifiers).
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
 
 use std::io;
 use std::time::Duration as StdDuration;
 
-use canopen_core::od::ObjectDictionary;
-use canopen_core::{CanFrame, Event, Instant, Node};
-use socketcan::{CanSocket, EmbeddedFrame, Socket};
+use canopen_core::{CanFrame, Event, Instant};
 
-/// How long to wait before retrying a send that failed because the socket buffer was full.
-const ENOBUFS_BACKOFF: StdDuration = StdDuration::from_micros(200);
+/// The `socketcan` crate this adapter is built on (for raw sockets in tests and tools).
+pub use socketcan;
 
-/// A blocking CAN socket bound to one interface, with the node's clock.
+pub mod blocking;
+pub mod master;
+pub mod tokio_runner;
+
+pub use blocking::{run_blocking, BlockingBus, Rx};
+pub use master::{Master, MasterError, MasterStats};
+pub use tokio_runner::{run_tokio, MutexShared, NotifyWake, TokioBus, TokioTimer};
+
+/// How long a send waits before retrying when the socket buffer is full (`ENOBUFS`).
+pub const ENOBUFS_BACKOFF: StdDuration = StdDuration::from_micros(200);
+
+/// How long a send keeps retrying on `ENOBUFS` before the frame is dropped and reported.
+pub const TX_STALL_LIMIT: StdDuration = StdDuration::from_secs(1);
+
+/// How often a runner looks whether a downed interface is up again.
+pub const REOPEN_POLL: StdDuration = StdDuration::from_millis(100);
+
+/// Something the adapter saw below the node (see the [crate docs](crate)).
 ///
-/// ```no_run
-/// use canopen_socketcan::BlockingBus;
-/// let bus = BlockingBus::open("vcan0")?;
-/// let now = bus.now();
-/// # Ok::<(), std::io::Error>(())
 /// ```
-pub struct BlockingBus {
-    socket: CanSocket,
-    epoch: std::time::Instant,
-    iface: String,
+/// use canopen_socketcan::AdapterEvent;
+/// let e = AdapterEvent::InterfaceDown { iface: "vcan0".into(), error: "Network is down".into() };
+/// assert!(e.to_string().contains("vcan0"));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AdapterEvent {
+    /// An error frame from the controller, decoded by `socketcan`.
+    ErrorFrame(String),
+    /// The controller went bus-off (an error frame with `CAN_ERR_BUSOFF`).
+    BusOff,
+    /// The controller restarted after bus-off (`CAN_ERR_RESTARTED`).
+    Restarted,
+    /// The interface went down or disappeared; the runner waits for it.
+    InterfaceDown {
+        /// Interface name.
+        iface: String,
+        /// The error the socket returned.
+        error: String,
+    },
+    /// A fresh socket is open on the interface again; the node resumes.
+    Reopened {
+        /// Interface name.
+        iface: String,
+    },
+    /// The socket's send buffer was full (`ENOBUFS`); the send waits and retries.
+    TxBufferFull,
+    /// A frame could not be sent within [`TX_STALL_LIMIT`] and was dropped.
+    TxDropped(CanFrame),
 }
 
-impl BlockingBus {
-    /// Opens `iface` (e.g. `vcan0`). The error says how to create a virtual interface when it is missing.
-    pub fn open(iface: &str) -> io::Result<Self> {
-        let socket = CanSocket::open(iface).map_err(|e| {
-            io::Error::new(
-                e.kind(),
-                format!(
-                    "no SocketCAN interface '{iface}' ({e}); create one with: sudo modprobe vcan && sudo ip link add dev {iface} type vcan && sudo ip link set up {iface}"
-                ),
-            )
-        })?;
-        Ok(BlockingBus { socket, epoch: std::time::Instant::now(), iface: iface.to_owned() })
-    }
-
-    /// The interface name.
-    pub fn iface(&self) -> &str {
-        &self.iface
-    }
-
-    /// The current time on the node's clock.
-    pub fn now(&self) -> Instant {
-        Instant::from_micros(self.epoch.elapsed().as_micros() as u64)
-    }
-
-    /// Sends one frame, retrying while the socket buffer is full (`ENOBUFS`).
-    pub fn send(&self, frame: &CanFrame) -> io::Result<()> {
-        let out: socketcan::CanFrame =
-            frame.to_frame().ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "frame not representable"))?;
-        loop {
-            match self.socket.write_frame(&out) {
-                Err(e) if e.raw_os_error() == Some(libc_enobufs()) => std::thread::sleep(ENOBUFS_BACKOFF),
-                other => return other,
+impl std::fmt::Display for AdapterEvent {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            AdapterEvent::ErrorFrame(e) => write!(f, "error frame: {e}"),
+            AdapterEvent::BusOff => write!(f, "bus-off"),
+            AdapterEvent::Restarted => write!(f, "controller restarted after bus-off"),
+            AdapterEvent::InterfaceDown { iface, error } => {
+                write!(f, "interface {iface} down ({error}); waiting for it to come back")
             }
-        }
-    }
-
-    /// Waits for a frame until `deadline` (forever if `None`). Returns `Ok(None)` when the deadline passed.
-    /// 29-bit and error frames are skipped (CAN-01; error frames are reported by the full adapter).
-    pub fn recv_until(&self, deadline: Option<Instant>) -> io::Result<Option<CanFrame>> {
-        loop {
-            let read = match deadline {
-                Some(d) => {
-                    let wait = d.as_micros().saturating_sub(self.now().as_micros());
-                    if wait == 0 {
-                        return Ok(None);
-                    }
-                    self.socket.read_frame_timeout(StdDuration::from_micros(wait))
-                }
-                None => self.socket.read_frame(),
-            };
-            match read {
-                Ok(f) if f.is_extended() || matches!(f, socketcan::CanFrame::Error(_)) => continue,
-                Ok(f) => {
-                    if let Some(frame) = CanFrame::from_frame(&f) {
-                        return Ok(Some(frame));
-                    }
-                }
-                Err(e) if e.kind() == io::ErrorKind::TimedOut || e.kind() == io::ErrorKind::WouldBlock => {
-                    return Ok(None)
-                }
-                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
-                Err(e) => return Err(e),
+            AdapterEvent::Reopened { iface } => write!(f, "interface {iface} up again; socket reopened, node resumes"),
+            AdapterEvent::TxBufferFull => write!(f, "socket send buffer full (ENOBUFS); retrying"),
+            AdapterEvent::TxDropped(frame) => {
+                write!(f, "frame {frame} dropped: not sent within {} ms", TX_STALL_LIMIT.as_millis())
             }
         }
     }
 }
 
-fn libc_enobufs() -> i32 {
-    105 // ENOBUFS on Linux
-}
-
-/// Runs `node` on `bus` until `keep_running` returns false: waits for a frame or the next deadline, feeds
-/// the node, sends what it produces, and hands every event and every frame on the wire to `observe`.
-///
-/// ```no_run
-/// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, NodeId};
-/// use canopen_socketcan::{run_blocking, BlockingBus, Observed};
-/// let bus = BlockingBus::open("vcan0")?;
-/// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
-/// run_blocking(&mut node, &bus, |o| println!("{o:?}"), || true)?;
-/// # Ok::<(), std::io::Error>(())
-/// ```
-pub fn run_blocking<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize>(
-    node: &mut Node<A, HB, TXQ, EVQ>,
-    bus: &BlockingBus,
-    mut observe: impl FnMut(Observed<'_>),
-    mut keep_running: impl FnMut() -> bool,
-) -> io::Result<()> {
-    while keep_running() {
-        node.handle_timeout(bus.now());
-        flush(node, bus, &mut observe)?;
-        // Wake at the next deadline, but at least every 100 ms so that `keep_running` is polled.
-        let cap = Instant::from_micros(bus.now().as_micros() + 100_000);
-        let deadline = node.poll_timeout().map_or(cap, |d| d.min(cap));
-        if let Some(frame) = bus.recv_until(Some(deadline))? {
-            observe(Observed::Received(&frame));
-            node.handle_frame(bus.now(), &frame);
-        }
-        flush(node, bus, &mut observe)?;
-    }
-    Ok(())
-}
-
-fn flush<A: ObjectDictionary, const HB: usize, const TXQ: usize, const EVQ: usize>(
-    node: &mut Node<A, HB, TXQ, EVQ>,
-    bus: &BlockingBus,
-    observe: &mut impl FnMut(Observed<'_>),
-) -> io::Result<()> {
-    while let Some(frame) = node.poll_transmit() {
-        bus.send(&frame)?;
-        observe(Observed::Sent(&frame));
-    }
-    while let Some(event) = node.poll_event() {
-        observe(Observed::Event(&event));
-    }
-    Ok(())
-}
-
-/// What [`run_blocking`] reports to its observer.
+/// What a runner reports to its observer.
 ///
 /// ```
 /// use canopen_socketcan::Observed;
@@ -165,4 +125,139 @@ pub enum Observed<'a> {
     Sent(&'a CanFrame),
     /// An event of the node.
     Event(&'a Event),
+    /// Something the adapter saw below the node.
+    Adapter(&'a AdapterEvent),
+}
+
+/// The node's monotonic clock: microseconds since the runner started. It survives a reopened socket.
+///
+/// ```
+/// let c = canopen_socketcan::Clock::new();
+/// assert!(c.now() <= c.now());
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct Clock {
+    epoch: std::time::Instant,
+}
+
+impl Clock {
+    /// A clock whose zero is now.
+    pub fn new() -> Self {
+        Clock { epoch: std::time::Instant::now() }
+    }
+
+    /// The current instant.
+    pub fn now(&self) -> Instant {
+        Instant::from_micros(self.epoch.elapsed().as_micros() as u64)
+    }
+
+    /// The standard-library instant of `t`.
+    pub fn to_std(&self, t: Instant) -> std::time::Instant {
+        self.epoch + StdDuration::from_micros(t.as_micros())
+    }
+}
+
+impl Default for Clock {
+    fn default() -> Self {
+        Clock::new()
+    }
+}
+
+/// How a socket error is handled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ErrorClass {
+    /// The interface is down or gone: wait, reopen, resume.
+    Down,
+    /// The send buffer is full: wait and retry.
+    NoBufs,
+    /// A read timed out or would block.
+    Timeout,
+    /// A signal interrupted the call: retry.
+    Interrupted,
+    /// Anything else: the runner stops with it.
+    Fatal,
+}
+
+pub(crate) fn classify(e: &io::Error) -> ErrorClass {
+    match e.raw_os_error() {
+        Some(libc::ENETDOWN) | Some(libc::ENODEV) | Some(libc::ENXIO) | Some(libc::ENETUNREACH) => ErrorClass::Down,
+        Some(libc::ENOBUFS) => ErrorClass::NoBufs,
+        _ => match e.kind() {
+            io::ErrorKind::TimedOut | io::ErrorKind::WouldBlock => ErrorClass::Timeout,
+            io::ErrorKind::Interrupted => ErrorClass::Interrupted,
+            _ => ErrorClass::Fatal,
+        },
+    }
+}
+
+/// Whether `iface` exists and is administratively up (`IFF_UP` in `/sys/class/net/<iface>/flags`).
+///
+/// ```
+/// assert!(!canopen_socketcan::interface_is_up("no-such-if0"));
+/// ```
+pub fn interface_is_up(iface: &str) -> bool {
+    std::fs::read_to_string(format!("/sys/class/net/{iface}/flags"))
+        .ok()
+        .and_then(|s| u32::from_str_radix(s.trim().trim_start_matches("0x"), 16).ok())
+        .is_some_and(|flags| flags & 0x1 != 0)
+}
+
+/// The error [`BlockingBus::open`] and [`TokioBus::open`] return for a missing interface: one line that says
+/// how to create a virtual one.
+pub(crate) fn open_error(iface: &str, e: io::Error) -> io::Error {
+    io::Error::new(
+        e.kind(),
+        format!(
+            "no SocketCAN interface '{iface}' ({e}); create one with: sudo modprobe vcan && sudo ip link add dev {iface} type vcan && sudo ip link set up {iface}"
+        ),
+    )
+}
+
+/// Maps a received socket frame: data and remote frames with an 11-bit identifier become a core frame;
+/// 29-bit frames are ignored (`None`); error frames become an [`AdapterEvent`].
+pub(crate) fn map_received(frame: &socketcan::CanFrame) -> Option<Result<CanFrame, AdapterEvent>> {
+    use socketcan::{CanError, EmbeddedFrame};
+    match frame {
+        socketcan::CanFrame::Error(err) => Some(Err(match err.into_error() {
+            CanError::BusOff => AdapterEvent::BusOff,
+            CanError::Restarted => AdapterEvent::Restarted,
+            other => AdapterEvent::ErrorFrame(other.to_string()),
+        })),
+        f if f.is_extended() => None,
+        f => CanFrame::from_frame(f).map(Ok),
+    }
+}
+
+/// Maps a core frame to a socket frame.
+pub(crate) fn to_socket_frame(frame: &CanFrame) -> io::Result<socketcan::CanFrame> {
+    frame.to_frame().ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "frame not representable"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use socketcan::{EmbeddedFrame, ExtendedId, Frame, StandardId};
+
+    #[test]
+    fn frames_map_through_embedded_can() {
+        let data = socketcan::CanFrame::new(StandardId::new(0x605).unwrap(), &[0x40, 0x00, 0x10, 0x00]).unwrap();
+        assert_eq!(map_received(&data), Some(Ok(CanFrame::new(0x605, &[0x40, 0x00, 0x10, 0x00]).unwrap())));
+        let rtr = socketcan::CanFrame::new_remote(StandardId::new(0x705).unwrap(), 1).unwrap();
+        assert_eq!(map_received(&rtr), Some(Ok(CanFrame::new_rtr(0x705, 1).unwrap())));
+        let ext = socketcan::CanFrame::new(ExtendedId::new(0x605).unwrap(), &[1]).unwrap();
+        assert_eq!(map_received(&ext), None);
+        let busoff = socketcan::CanFrame::Error(socketcan::CanErrorFrame::new_error(0x40, &[]).unwrap());
+        assert_eq!(map_received(&busoff), Some(Err(AdapterEvent::BusOff)));
+        let out = to_socket_frame(&CanFrame::new(0x185, &[1, 2, 3]).unwrap()).unwrap();
+        assert_eq!((out.raw_id(), out.data()), (0x185, &[1u8, 2, 3][..]));
+    }
+
+    #[test]
+    fn errors_are_classified() {
+        assert_eq!(classify(&io::Error::from_raw_os_error(libc::ENETDOWN)), ErrorClass::Down);
+        assert_eq!(classify(&io::Error::from_raw_os_error(libc::ENODEV)), ErrorClass::Down);
+        assert_eq!(classify(&io::Error::from_raw_os_error(libc::ENOBUFS)), ErrorClass::NoBufs);
+        assert_eq!(classify(&io::Error::from_raw_os_error(libc::EAGAIN)), ErrorClass::Timeout);
+        assert_eq!(classify(&io::Error::from_raw_os_error(libc::EACCES)), ErrorClass::Fatal);
+    }
 }

@@ -1,0 +1,276 @@
+//! The tokio adapter: the core's executor-agnostic [`driver`] on a tokio
+//! `AsyncFd` CAN socket.
+//!
+//! - [`TokioBus`] owns the socket; [`TokioBus::split`] gives a receive half ([`CanRx`], cancel-safe: a frame
+//!   is only taken from the socket when the read completes) and a transmit half ([`CanTx`], waits and
+//!   retries on `ENOBUFS`).
+//! - [`TokioTimer`] is the node's clock on `tokio::time`.
+//! - [`MutexShared`] holds the node (a `std::sync::Mutex`: the driver never holds it across an `.await`)
+//!   and [`NotifyWake`] (a `tokio::sync::Notify`) lets another task wake the driver after it changed the
+//!   node.
+//! - [`run_tokio`] is the supervisor: it runs [`driver::run`] and, when the
+//!   interface goes down, waits for it, reopens the socket and runs the driver again on the same node.
+//!
+//! ```no_run
+//! use std::sync::Arc;
+//! use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, NodeId};
+//! use canopen_socketcan::{run_tokio, MutexShared, NotifyWake};
+//! # async fn demo() -> std::io::Result<()> {
+//! let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+//! let shared = Arc::new(MutexShared::new(node));
+//! let wake = Arc::new(NotifyWake::new());
+//! // Another task changes the node, then wakes the driver:
+//! let (s, w) = (shared.clone(), wake.clone());
+//! tokio::spawn(async move {
+//!     s.with(|n| n.enter_state(canopen_core::NmtState::Operational)); // local control (NMT-16)
+//!     w.signal();
+//! });
+//! run_tokio(&*shared, "vcan0", &*wake, &|o| println!("{o:?}")).await?;
+//! # Ok(()) }
+//! ```
+
+use std::convert::Infallible;
+use std::future::Future;
+use std::io;
+use std::sync::Mutex;
+
+use canopen_core::driver::{self, CanRx, CanTx, DriverError, Shared, Timer, Wake};
+use canopen_core::node::SansIo;
+use canopen_core::{CanFrame, Instant};
+use socketcan::SocketOptions;
+use tokio::sync::Notify;
+
+use crate::{classify, map_received, open_error, to_socket_frame, AdapterEvent, Clock, ErrorClass, Observed};
+
+/// The observer the tokio runner reports to (shared by the receive half, the transmit half and the driver's
+/// event callback).
+pub type Observer<'a> = &'a (dyn Fn(Observed<'_>) + Sync);
+
+/// A tokio CAN socket on one interface.
+pub struct TokioBus {
+    socket: socketcan::tokio::CanSocket,
+    iface: String,
+}
+
+impl TokioBus {
+    /// Opens `iface` and accepts every error frame class. Must be called inside a tokio runtime. The error
+    /// says how to create a virtual interface when it is missing.
+    pub fn open(iface: &str) -> io::Result<Self> {
+        let socket = socketcan::tokio::CanSocket::open(iface).map_err(|e| open_error(iface, e))?;
+        socket.set_error_filter_accept_all()?;
+        Ok(TokioBus { socket, iface: iface.to_owned() })
+    }
+
+    /// The interface name.
+    pub fn iface(&self) -> &str {
+        &self.iface
+    }
+
+    /// Receive only frames matching one of `(id, mask)` (error frames still come through).
+    pub fn set_filters(&self, filters: &[(u32, u32)]) -> io::Result<()> {
+        crate::blocking::apply_filters(&self.socket, filters)
+    }
+
+    /// The receive and transmit halves, both reporting to `observe`.
+    pub fn split<'a>(&'a self, observe: Observer<'a>) -> (TokioRx<'a>, TokioTx<'a>) {
+        (TokioRx { bus: self, observe }, TokioTx { bus: self, observe })
+    }
+
+    /// Sends one frame, waiting for room: `ENOBUFS` is retried every
+    /// [`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF) (reported once as [`AdapterEvent::TxBufferFull`]); after
+    /// [`TX_STALL_LIMIT`](crate::TX_STALL_LIMIT) the frame is dropped and reported.
+    pub async fn send(&self, frame: &CanFrame, observe: Observer<'_>) -> io::Result<()> {
+        let out = to_socket_frame(frame)?;
+        let mut stalled: Option<std::time::Instant> = None;
+        loop {
+            match self.socket.write_frame(out).await {
+                Ok(()) => return Ok(()),
+                Err(e) => match classify(&e) {
+                    ErrorClass::NoBufs => {
+                        let since = *stalled.get_or_insert_with(|| {
+                            observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
+                            std::time::Instant::now()
+                        });
+                        if since.elapsed() >= crate::TX_STALL_LIMIT {
+                            observe(Observed::Adapter(&AdapterEvent::TxDropped(*frame)));
+                            return Ok(());
+                        }
+                        tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
+                    }
+                    ErrorClass::Interrupted | ErrorClass::Timeout => {}
+                    ErrorClass::Down | ErrorClass::Fatal => return Err(e),
+                },
+            }
+        }
+    }
+
+    /// Waits for the next 11-bit frame; error frames are reported to `observe` and skipped, 29-bit frames
+    /// are skipped. Cancel-safe.
+    pub async fn recv(&self, observe: Observer<'_>) -> io::Result<CanFrame> {
+        loop {
+            match self.socket.read_frame().await {
+                Ok(f) => match map_received(&f) {
+                    Some(Ok(frame)) => return Ok(frame),
+                    Some(Err(event)) => observe(Observed::Adapter(&event)),
+                    None => {}
+                },
+                Err(e) if matches!(classify(&e), ErrorClass::Interrupted | ErrorClass::Timeout) => {}
+                Err(e) => return Err(e),
+            }
+        }
+    }
+}
+
+/// The receive half of a [`TokioBus`]: reports every frame it hands to the node as [`Observed::Received`].
+pub struct TokioRx<'a> {
+    bus: &'a TokioBus,
+    observe: Observer<'a>,
+}
+
+impl CanRx for TokioRx<'_> {
+    type Error = io::Error;
+    async fn receive(&mut self) -> io::Result<CanFrame> {
+        let frame = self.bus.recv(self.observe).await?;
+        (self.observe)(Observed::Received(&frame));
+        Ok(frame)
+    }
+}
+
+/// The transmit half of a [`TokioBus`]: reports every frame it sent as [`Observed::Sent`].
+pub struct TokioTx<'a> {
+    bus: &'a TokioBus,
+    observe: Observer<'a>,
+}
+
+impl CanTx for TokioTx<'_> {
+    type Error = io::Error;
+    async fn transmit(&mut self, frame: &CanFrame) -> io::Result<()> {
+        self.bus.send(frame, self.observe).await?;
+        (self.observe)(Observed::Sent(frame));
+        Ok(())
+    }
+}
+
+/// The node's clock on `tokio::time` (so a paused tokio clock in tests pauses the node too).
+///
+/// ```
+/// let t = canopen_socketcan::TokioTimer::new(canopen_socketcan::Clock::new());
+/// use canopen_core::driver::Timer;
+/// assert!(t.now() <= t.now());
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct TokioTimer {
+    clock: Clock,
+}
+
+impl TokioTimer {
+    /// A timer on `clock`.
+    pub fn new(clock: Clock) -> Self {
+        TokioTimer { clock }
+    }
+}
+
+impl Timer for TokioTimer {
+    fn now(&self) -> Instant {
+        self.clock.now()
+    }
+    fn sleep_until(&mut self, deadline: Instant) -> impl Future<Output = ()> {
+        tokio::time::sleep_until(tokio::time::Instant::from_std(self.clock.to_std(deadline)))
+    }
+}
+
+/// The node in a `std::sync::Mutex`, shared between the driver and application tasks. A poisoned lock
+/// (a panic in another task while it held the node) is taken over: the node's state machines never
+/// leave a half-updated state visible across calls.
+///
+/// ```
+/// use canopen_core::driver::Shared;
+/// let s = canopen_socketcan::MutexShared::new(5u32);
+/// s.with(|v| *v += 1);
+/// assert_eq!(s.lock(|v| *v), 6);
+/// ```
+#[derive(Debug, Default)]
+pub struct MutexShared<N>(Mutex<N>);
+
+impl<N> MutexShared<N> {
+    /// Wraps `node`.
+    pub fn new(node: N) -> Self {
+        MutexShared(Mutex::new(node))
+    }
+
+    /// Runs `f` with the node locked (the same as [`Shared::lock`], without importing the trait).
+    pub fn with<R>(&self, f: impl FnOnce(&mut N) -> R) -> R {
+        let mut guard = self.0.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        f(&mut guard)
+    }
+}
+
+impl<N> Shared<N> for MutexShared<N> {
+    fn lock<R>(&self, f: impl FnOnce(&mut N) -> R) -> R {
+        self.with(f)
+    }
+}
+
+/// A wake-up the application signals after it changed the node from another task. A signal given while
+/// the driver is busy is kept (one permit) and wakes the next wait.
+///
+/// ```
+/// let w = canopen_socketcan::NotifyWake::new();
+/// w.signal();
+/// ```
+#[derive(Debug, Default)]
+pub struct NotifyWake(Notify);
+
+impl NotifyWake {
+    /// A wake-up source with no pending signal.
+    pub fn new() -> Self {
+        NotifyWake(Notify::new())
+    }
+
+    /// Wakes the driver.
+    pub fn signal(&self) {
+        self.0.notify_one();
+    }
+}
+
+impl Wake for NotifyWake {
+    fn wait(&self) -> impl Future<Output = ()> {
+        self.0.notified()
+    }
+}
+
+/// Runs the node in `shared` on `iface` with tokio until a socket error that is not an interface going
+/// down (that is returned). Every frame, node event and [`AdapterEvent`] goes to `observe`. Stop it by
+/// dropping the future (`tokio::select!`, `tokio::time::timeout`).
+pub async fn run_tokio<N: SansIo, S: Shared<N>, W: Wake>(
+    shared: &S,
+    iface: &str,
+    wake: &W,
+    observe: Observer<'_>,
+) -> io::Result<Infallible> {
+    let mut timer = TokioTimer::new(Clock::new());
+    let mut bus = TokioBus::open(iface)?;
+    loop {
+        let result = {
+            let (mut rx, mut tx) = bus.split(observe);
+            driver::run(shared, &mut rx, &mut tx, &mut timer, wake, |e| observe(Observed::Event(&e))).await
+        };
+        let e = match result {
+            Ok(never) => match never {},
+            Err(DriverError::Receive(e)) | Err(DriverError::Transmit(e)) => e,
+        };
+        if classify(&e) != ErrorClass::Down {
+            return Err(e);
+        }
+        observe(Observed::Adapter(&AdapterEvent::InterfaceDown { iface: iface.to_owned(), error: e.to_string() }));
+        bus = loop {
+            if crate::interface_is_up(iface) {
+                if let Ok(b) = TokioBus::open(iface) {
+                    break b;
+                }
+            }
+            tokio::time::sleep(crate::REOPEN_POLL).await;
+        };
+        observe(Observed::Adapter(&AdapterEvent::Reopened { iface: iface.to_owned() }));
+    }
+}

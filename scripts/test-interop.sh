@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Interop and SocketCAN tests on a real vcan interface, inside ONE ../shared/vcan/with-vcan VM:
+#   1. canopen-socketcan's own tests on vcan0/vcan1 (send/receive, RTR, 29-bit ignored, error frames,
+#      missing interface, interface down/up recovery of both runners, tokio wake);
+#   2. tests/vcan_node.rs: OUR SDO client moves 64 KiB through the example node's DOMAIN (segmented, block
+#      with and without CRC, byte-exact) and the bounded load test (block transfers under a COB-ID flood);
+#   3. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
+#      node, on the EDS the node wrote with --eds.
+# Usage: scripts/test-interop.sh   (SKIP_PIP=1 skips the pip install). Fails (non-zero) if the VM cannot start.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+SHARED=${SHARED:-$ROOT/../shared}
+
+if [[ "${SKIP_PIP:-0}" != 1 ]]; then
+    python3 -m pip install --quiet -r tests/python/requirements.txt
+fi
+
+echo "== build on the host (the VM compiles ~14x slower)"
+cargo build --examples
+cargo test --no-run -p canopen-socketcan --test vcan
+cargo test --no-run --test vcan_node
+
+cat > target/interop-in-vm.sh <<'INNER'
+set -euo pipefail
+export CANOPEN_REQUIRE_VCAN=1
+echo "== [vm] canopen-socketcan on vcan0/vcan1"
+cargo test -q -p canopen-socketcan --test vcan
+echo "== [vm] our SDO client + load test on the example node"
+cargo test -q --test vcan_node -- --nocapture --test-threads 1
+echo "== [vm] python canopen as the master"
+NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
+    python3 -m pytest -q -rs tests/python/test_interop.py
+INNER
+
+echo "== run inside with-vcan"
+status=0
+"$SHARED/vcan/with-vcan" --ifaces vcan0,vcan1 -- bash target/interop-in-vm.sh || status=$?
+if [[ $status == 125 ]]; then
+    echo "test-interop: the with-vcan VM could not start (exit 125): FAILED, not skipped" >&2
+    exit 1
+fi
+if [[ $status != 0 ]]; then
+    echo "test-interop: FAILED (exit $status); node log: target/interop-node.log" >&2
+    exit "$status"
+fi
+echo "test-interop: all passed"

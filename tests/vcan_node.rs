@@ -1,0 +1,239 @@
+//! The example node's dictionary (`examples/common/io_module.rs`) on real SocketCAN, driven by OUR master
+//! (`canopen_socketcan::Master` on the core's SDO client), plus a bounded load test. Run inside the VM:
+//! `../shared/vcan/with-vcan -- cargo test --test vcan_node` (scripts/test-interop.sh does, with
+//! `CANOPEN_REQUIRE_VCAN=1`). On a host without `vcan0` the tests print why and return.
+//!
+//! - 64 KiB into and out of the 2005h DOMAIN, segmented and block with CRC (and block without CRC),
+//!   byte-exact;
+//! - load: back-to-back block transfers both ways while another socket floods COB-IDs the node does not
+//!   use (11-bit and 29-bit): nothing panics, every transfer is byte-exact, the node keeps its heartbeat.
+//!   TPDOs at 1 ms join this test after the PDO work merges.
+
+#[path = "../examples/common/io_module.rs"]
+mod io_module;
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant as StdInstant};
+
+use canopen_core::sdo::client::Mode;
+use canopen_core::NodeId;
+use canopen_socketcan::socketcan;
+use canopen_socketcan::{run_tokio, BlockingBus, Master, MutexShared, NotifyWake, Observed};
+use io_module::{IoNode, CONFIG};
+
+const IFACE: &str = "vcan0";
+
+fn have_vcan() -> bool {
+    if std::path::Path::new(&format!("/sys/class/net/{IFACE}")).exists() {
+        return true;
+    }
+    if std::env::var("CANOPEN_REQUIRE_VCAN").as_deref() == Ok("1") {
+        panic!("{IFACE} is missing but CANOPEN_REQUIRE_VCAN=1");
+    }
+    eprintln!("skipped: no SocketCAN interface {IFACE} (run inside ../shared/vcan/with-vcan)");
+    false
+}
+
+/// A node on its own thread (tokio runner), stopped when dropped.
+struct RunningNode {
+    shared: Arc<MutexShared<IoNode>>,
+    stop: Arc<AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl RunningNode {
+    fn start(id: u8) -> Self {
+        let config = canopen_core::comm::NodeConfig { heartbeat_time_ms: 100, ..CONFIG };
+        let shared = Arc::new(MutexShared::new(io_module::new_node(NodeId::new(id).unwrap(), config)));
+        let stop = Arc::new(AtomicBool::new(false));
+        let thread = {
+            let (shared, stop) = (shared.clone(), stop.clone());
+            std::thread::spawn(move || {
+                let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
+                rt.block_on(async {
+                    let wake = NotifyWake::new();
+                    let observe = |o: Observed<'_>| {
+                        if let Observed::Adapter(a) = o {
+                            eprintln!("node adapter: {a}");
+                        }
+                    };
+                    tokio::select! {
+                        r = run_tokio(&*shared, IFACE, &wake, &observe) => panic!("node runner stopped: {r:?}"),
+                        _ = async { while !stop.load(Ordering::Relaxed) { tokio::time::sleep(Duration::from_millis(20)).await } } => {}
+                    }
+                })
+            })
+        };
+        std::thread::sleep(Duration::from_millis(200));
+        RunningNode { shared, stop, thread: Some(thread) }
+    }
+}
+
+impl Drop for RunningNode {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::Relaxed);
+        if let Some(t) = self.thread.take() {
+            let r = t.join();
+            if !std::thread::panicking() {
+                r.expect("node thread panicked");
+            }
+        }
+    }
+}
+
+fn pattern(n: usize, seed: u32) -> Vec<u8> {
+    let mut x = seed.wrapping_mul(2_654_435_761) | 1;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as u8
+        })
+        .collect()
+}
+
+/// Stops a helper thread when the test ends, also by a panic.
+struct StopOnDrop(Arc<AtomicBool>);
+
+impl Drop for StopOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+}
+
+const BLOCK_CRC: Mode = Mode::Block { crc: true, blksize: 127, pst: 0 };
+const BLOCK_NO_CRC: Mode = Mode::Block { crc: false, blksize: 127, pst: 0 };
+
+#[test]
+fn our_client_moves_64k_through_the_domain_segmented_and_block() {
+    if !have_vcan() {
+        return;
+    }
+    let node = RunningNode::start(31);
+    let mut m = Master::new(BlockingBus::open(IFACE).unwrap(), NodeId::new(31).unwrap()).unwrap();
+    assert_eq!(m.upload(0x1008, 0, Mode::Auto, 64).unwrap(), b"canopen example node");
+    for (i, (down, up)) in
+        [(Mode::Segmented, Mode::Auto), (BLOCK_CRC, BLOCK_CRC), (BLOCK_NO_CRC, BLOCK_NO_CRC)].into_iter().enumerate()
+    {
+        let data = pattern(65_536, i as u32 + 1);
+        let t = StdInstant::now();
+        m.download(0x2005, 0, &data, down).unwrap();
+        let t_down = t.elapsed();
+        assert!(node.shared.with(|n| n.app().data_block.as_bytes() == data), "{down:?}: node content");
+        let t = StdInstant::now();
+        let back = m.upload(0x2005, 0, up, 65_536).unwrap();
+        eprintln!("64 KiB {down:?}: down {t_down:.2?}, up {:.2?}", t.elapsed());
+        assert!(back == data, "{up:?}: uploaded bytes differ");
+    }
+    // 65,537 bytes do not fit: refused before any data moves, old content kept.
+    let err = m.download(0x2005, 0, &pattern(65_537, 9), BLOCK_CRC).unwrap_err();
+    assert_eq!(err.abort_code(), Some(0x0607_0012));
+    assert_eq!(m.upload(0x2005, 0, BLOCK_CRC, 65_536).unwrap(), pattern(65_536, 3));
+}
+
+#[test]
+fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
+    if !have_vcan() {
+        return;
+    }
+    let node = RunningNode::start(32);
+    let stop = Arc::new(AtomicBool::new(false));
+    let flooded = Arc::new(AtomicU64::new(0));
+    let flood = {
+        let (stop, flooded) = (stop.clone(), flooded.clone());
+        std::thread::spawn(move || {
+            let raw = socketcan::CanSocket::open(IFACE).unwrap();
+            use socketcan::{EmbeddedFrame, ExtendedId, Socket, StandardId};
+            let mut x = 0x1234_5678u32;
+            while !stop.load(Ordering::Relaxed) {
+                x ^= x << 13;
+                x ^= x >> 17;
+                x ^= x << 5;
+                // COB-IDs 080h..7FFh that are not node 32's, not NMT (000h); every 8th frame 29-bit.
+                let mut id = 0x080 + (x % 0x780) as u16;
+                if id & 0x7F == 32 {
+                    id ^= 1;
+                }
+                let data = x.to_le_bytes();
+                let frame = if x % 8 == 0 {
+                    socketcan::CanFrame::new(ExtendedId::new(x & 0x1FFF_FFFF).unwrap(), &data)
+                } else {
+                    socketcan::CanFrame::new(StandardId::new(id).unwrap(), &data)
+                }
+                .unwrap();
+                match raw.write_frame(&frame) {
+                    Ok(()) => {
+                        flooded.fetch_add(1, Ordering::Relaxed);
+                    }
+                    Err(_) => std::thread::sleep(Duration::from_micros(200)),
+                }
+                // About 2000 frames/s (half of a 500 kbit/s bus): 10 frames every 5 ms. At 4000 frames/s the
+                // debug node in the VM (one CPU shared with the flood and the master) falls behind, its
+                // socket's receive buffer overflows and most block downloads end by time-out.
+                if flooded.load(Ordering::Relaxed) % 10 == 0 {
+                    std::thread::sleep(Duration::from_millis(5));
+                }
+            }
+        })
+    };
+    let _stop_flood = StopOnDrop(stop.clone());
+    let mut m = Master::new(BlockingBus::open(IFACE).unwrap(), NodeId::new(32).unwrap()).unwrap();
+    m.set_timeout(Duration::from_secs(3));
+    let start = StdInstant::now();
+    let budget = Duration::from_secs(25);
+    let (mut completed, mut aborted, mut bytes, mut downloads) = (0, 0, 0, 0);
+    let mut committed: Vec<u8> = Vec::new();
+    let mut seed = 100;
+    while start.elapsed() < budget && completed < 24 {
+        let n = 8192 + (seed as usize * 977) % 8192;
+        let data = pattern(n, seed);
+        seed += 1;
+        // A transfer may be aborted (a frame lost in an overflowing receive buffer ends a block transfer by
+        // time-out, as the protocol says); it must never complete with wrong data.
+        match m.download(0x2005, 0, &data, BLOCK_CRC) {
+            Ok(()) => {
+                completed += 1;
+                downloads += 1;
+                bytes += n;
+                committed = data;
+            }
+            Err(e) => {
+                eprintln!("download aborted: {e}");
+                aborted += 1;
+            }
+        }
+        match m.upload(0x2005, 0, BLOCK_CRC, 65_536) {
+            Ok(back) => {
+                assert!(
+                    back == committed,
+                    "upload after transfer {completed}: content differs from the last committed download"
+                );
+                completed += 1;
+                bytes += back.len();
+            }
+            Err(e) => {
+                eprintln!("upload aborted: {e}");
+                aborted += 1;
+            }
+        }
+    }
+    // The node still answers and still produces its heartbeat.
+    assert_eq!(m.wait_heartbeat(Duration::from_secs(2)).unwrap(), Some(0x7F));
+    stop.store(true, Ordering::Relaxed);
+    flood.join().unwrap();
+    let frames = flooded.load(Ordering::Relaxed);
+    eprintln!(
+        "load: {completed} block transfers ({downloads} downloads, {bytes} bytes) byte-exact, {aborted} aborted cleanly, in {:.1?} while {frames} flood frames were sent",
+        start.elapsed()
+    );
+    assert!(completed >= 4, "too few transfers completed in the time budget: {completed} ({aborted} aborted)");
+    assert!(downloads >= 2, "too few block downloads completed under the flood: {downloads} ({aborted} aborted)");
+    assert!(frames > 1000, "the flood did not run: {frames} frames");
+    // Known core issue (reported, node.rs is not ours): a block upload fills the transmit queue to the brim
+    // (`pump_sdo`), so a heartbeat due at that moment finds it full and is dropped and counted. Reported here,
+    // not asserted, until the node keeps room for its own frames.
+    eprintln!("load: node transmit-queue drops: {}", node.shared.with(|n| n.tx_dropped()));
+    drop(node);
+}
