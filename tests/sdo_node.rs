@@ -188,3 +188,42 @@ fn reset_node_restores_application_defaults() {
     bus.inject(frame("000 [2] 81 05")); // reset node
     assert_eq!(bus.stations[0].app().byte, 0);
 }
+
+/// A heartbeat that falls due while a block upload fills the transmit queue is queued, not dropped: block
+/// upload segments never take the last `TX_RESERVE` slots (HB-03 under SDO load).
+#[test]
+fn block_upload_leaves_room_for_the_heartbeat() {
+    let mut bus = Bus::new(vec![node(5)]);
+    bus.run_until(ms(0));
+    let mut client = SdoClient::new(SdoClientParams::for_server(NodeId::new(5).unwrap()));
+    let mut blob: Vec<u8> = (0..4096u32).map(|i| i as u8).collect();
+    client.start_download(bus.now, Multiplexer::new(0x2005, 0), blob.len(), Mode::Auto).unwrap();
+    assert_eq!(
+        sdo_transfer(&mut bus, &mut client, &mut SliceData::download(&mut blob)),
+        ClientEvent::Done { len: 4096 }
+    );
+    bus.take_master_rx();
+    // From here on the test is the driver, and it does not drain the queue while the sub-block goes out.
+    let n = &mut bus.stations[0];
+    let t = ms(100);
+    n.set_heartbeat_time(t, 10);
+    n.handle_frame(t, &frame("605 [8] A4 05 20 00 7F 00 00 00")); // block upload, CRC, blksize 127
+    assert_eq!(n.poll_transmit(), Some(frame("585 [8] C6 05 20 00 00 10 00 00")));
+    n.handle_frame(t, &frame("605 [8] A3 00 00 00 00 00 00 00")); // start: segments fill the queue
+    n.handle_timeout(ms(110)); // the heartbeat falls due with the queue full of segments
+    assert_eq!(n.tx_dropped(), 0);
+    let mut heartbeat_seen = false;
+    let mut segments = 0;
+    while let Some(f) = n.poll_transmit() {
+        match f.cob_id() {
+            0x705 => heartbeat_seen = true,
+            0x585 => segments += 1,
+            other => panic!("unexpected frame on {other:03X}"),
+        }
+        if segments > 200 {
+            break;
+        }
+    }
+    assert!(heartbeat_seen);
+    assert_eq!(segments, 127, "the whole first sub-block still goes out, paced by the queue");
+}

@@ -171,6 +171,11 @@ impl<
     }
 }
 
+/// Transmit-queue slots that block-upload segments never take, so that a heartbeat, an EMCY or a PDO due
+/// during a block upload is queued rather than dropped (a queue of `TXQ` frames gives block upload at least
+/// one slot).
+pub const TX_RESERVE: usize = 3;
+
 /// An empty application dictionary, for nodes that only use the communication profile.
 ///
 /// ```
@@ -493,9 +498,10 @@ impl<
     }
 
     /// Moves block-upload segments from the SDO server into the transmit queue while it has room, so a
-    /// sub-block of up to 127 frames never needs a queue of that size.
+    /// sub-block of up to 127 frames never needs a queue of that size. [`TX_RESERVE`] slots stay free for
+    /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
     fn pump_sdo(&mut self) {
-        while self.sdo.wants_transmit() && !self.tx.is_full() {
+        while self.sdo.wants_transmit() && self.tx.len() + TX_RESERVE.min(TXQ - 1) < TXQ {
             let mut od =
                 NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
@@ -519,6 +525,18 @@ impl<
         self.ensure_booted(now);
         self.nmt.handle_command(crate::wire::nmt::NmtCommand::ResetNode);
         self.reset(now, true);
+    }
+
+    /// Sets the SDO server's protocol time-out (SDO-31; the default is 1 s, zero disables it). A transfer
+    /// that waits longer than this for the client's next frame is aborted with 0504 0000h.
+    ///
+    /// ```
+    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, Duration, NodeId};
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// node.set_sdo_timeout(Duration::from_millis(5_000));
+    /// ```
+    pub fn set_sdo_timeout(&mut self, timeout: crate::time::Duration) {
+        self.sdo.set_timeout(timeout);
     }
 
     /// Writes 1017h producer heartbeat time (HB-01, HB-04: effective at once).

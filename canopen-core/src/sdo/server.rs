@@ -399,6 +399,20 @@ impl SdoServer {
         self
     }
 
+    /// Changes the protocol time-out (SDO-31) of a server in use; zero disables it. A transfer under way keeps
+    /// the deadline it has and uses the new time-out from its next frame on.
+    ///
+    /// ```
+    /// # use canopen_core::sdo::{SdoServer, SdoServerParams};
+    /// # use canopen_core::Duration;
+    /// let mut s = SdoServer::new(SdoServerParams::DISABLED);
+    /// s.set_timeout(Duration::from_millis(250));
+    /// assert!(s.is_idle());
+    /// ```
+    pub fn set_timeout(&mut self, timeout: Duration) {
+        self.timeout = timeout;
+    }
+
     /// Sets the block size the server asks for in block download (clamped to 1..=127, SDO-36).
     ///
     /// ```
