@@ -257,6 +257,31 @@ impl Master {
         }
     }
 
+    /// Waits until a heartbeat of the node reports `state` (04h, 05h, 7Fh; 00h for a boot-up), skipping
+    /// heartbeats with other states, which may have been sent before the node acted on a command.
+    /// Returns `false` when `timeout` passes first.
+    ///
+    /// ```no_run
+    /// use std::time::Duration;
+    /// use canopen_core::{wire::nmt::NmtCommand, NodeId};
+    /// use canopen_socketcan::{BlockingBus, Master};
+    /// let mut m = Master::new(BlockingBus::open("vcan0")?, NodeId::new(5).unwrap())?;
+    /// m.nmt(NmtCommand::Start, false)?;
+    /// assert!(m.wait_state(0x05, Duration::from_secs(2))?);
+    /// # Ok::<(), std::io::Error>(())
+    /// ```
+    pub fn wait_state(&mut self, state: u8, timeout: StdDuration) -> io::Result<bool> {
+        let start = std::time::Instant::now();
+        while let Some(left) = timeout.checked_sub(start.elapsed()) {
+            match self.wait_heartbeat(left)? {
+                Some(s) if s == state => return Ok(true),
+                Some(_) => {}
+                None => return Ok(false),
+            }
+        }
+        Ok(false)
+    }
+
     /// The underlying bus.
     pub fn bus(&self) -> &BlockingBus {
         &self.bus
