@@ -736,9 +736,12 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 /// The entry-table slot of a PDO handle, if the handle belongs to this dictionary.
                 #[inline]
                 fn __od_slot(handle: &#core::od::PdoHandle) -> ::core::option::Option<usize> {
+                    // The compact key table, not OD_ENTRIES: one u32 compare, and the PDO path does not keep the
+                    // entry descriptions (names, defaults, limits) alive in a firmware.
                     let pos = usize::from(handle.slot);
-                    match Self::OD_ENTRIES.get(pos) {
-                        ::core::option::Option::Some(e) if e.index == handle.index && e.sub == handle.sub => ::core::option::Option::Some(pos),
+                    let key = ((handle.index as u32) << 8) | handle.sub as u32;
+                    match Self::OD_KEYS.get(pos) {
+                        ::core::option::Option::Some(&k) if k == key => ::core::option::Option::Some(pos),
                         _ => ::core::option::Option::None,
                     }
                 }

@@ -135,6 +135,19 @@ pub fn copy_at(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
     n
 }
 
+/// [`copy_at`] for a fixed-size encoding: the whole value at once (PDO packing, expedited SDO) is one
+/// load/store of `N` bytes instead of a call to `memcpy`.
+#[inline]
+fn read_fixed<const N: usize>(b: [u8; N], offset: usize, buf: &mut [u8]) -> usize {
+    match buf.get_mut(..N) {
+        Some(dst) if offset == 0 => {
+            dst.copy_from_slice(&b);
+            N
+        }
+        _ => copy_at(&b, offset, buf),
+    }
+}
+
 /// Checks that `data` has exactly `size` bytes (0607 0012h / 0607 0013h otherwise).
 ///
 /// ```
@@ -207,7 +220,7 @@ macro_rules! native_int {
                 Self::MAX_SIZE
             }
             fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
-                copy_at(&self.to_le_bytes(), offset, buf)
+                read_fixed(self.to_le_bytes(), offset, buf)
             }
             fn decode(data: &[u8]) -> Result<Self, AbortCode> {
                 check_len(data, Self::MAX_SIZE)?;
@@ -265,7 +278,7 @@ macro_rules! native_real {
                 $n
             }
             fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
-                copy_at(&self.to_le_bytes(), offset, buf)
+                read_fixed(self.to_le_bytes(), offset, buf)
             }
             fn decode(data: &[u8]) -> Result<Self, AbortCode> {
                 check_len(data, $n)?;
