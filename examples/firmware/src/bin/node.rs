@@ -70,8 +70,10 @@ struct Device {
 }
 
 /// NMT + heartbeat producer + 4 heartbeat consumers + SDO server (with block transfer) + 4 RPDOs + 4 TPDOs,
-/// transmit and event queues of 16.
-type DeviceNode = Node<Device, 4, 16, 16, 4, 4>;
+/// transmit and event queues of 8: the driver drains both after every frame and every deadline, and the
+/// largest burst one step makes is entering Operational or a SYNC (4 TPDOs, plus an EMCY or an SDO
+/// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 20 B of events).
+type DeviceNode = Node<Device, 4, 8, 8, 4, 4>;
 
 const NODE_ID: u8 = 5;
 const BITRATE: u32 = 250_000;
