@@ -45,7 +45,8 @@ pub enum RxOutcome {
 pub struct Rpdo {
     cob: CobIdEntry,
     ttype: u8,
-    event_timer: Duration,
+    /// Event timer, ms (the 1400h sub 05h value: 2 bytes kept instead of an 8-byte `Duration`).
+    event_timer_ms: u16,
     /// The resolved mapping.
     pub map: ResolvedMap,
     pending: Option<[u8; 8]>,
@@ -62,7 +63,7 @@ impl Rpdo {
         Rpdo {
             cob: comm.cob(),
             ttype: comm.transmission_type,
-            event_timer: Duration::from_millis(comm.event_timer_ms as u64),
+            event_timer_ms: comm.event_timer_ms,
             map,
             pending: None,
             deadline: None,
@@ -93,8 +94,8 @@ impl Rpdo {
             return RxOutcome::TooShort;
         }
         let exceeded = data.len() > need;
-        if !self.event_timer.is_zero() {
-            self.deadline = Some(now + self.event_timer);
+        if self.event_timer_ms != 0 {
+            self.deadline = Some(now + Duration::from_millis(self.event_timer_ms.into()));
         }
         if self.is_synchronous() {
             let mut buf = [0u8; 8];

@@ -46,8 +46,10 @@ pub enum SyncAction {
 pub struct Tpdo {
     cob: CobIdEntry,
     ttype: u8,
-    inhibit: Duration,
-    event_timer: Duration,
+    /// Inhibit time, 100 µs (the 1800h sub 03h value: 2 bytes kept instead of an 8-byte `Duration`).
+    inhibit_100us: u16,
+    /// Event timer, ms (sub 05h).
+    event_timer_ms: u16,
     sync_start: u8,
     /// The resolved mapping.
     pub map: ResolvedMap,
@@ -68,8 +70,8 @@ impl Tpdo {
         Tpdo {
             cob: comm.cob(),
             ttype: comm.transmission_type,
-            inhibit: Duration::from_100us(comm.inhibit_100us as u64),
-            event_timer: Duration::from_millis(comm.event_timer_ms as u64),
+            inhibit_100us: comm.inhibit_100us,
+            event_timer_ms: comm.event_timer_ms,
             sync_start: comm.sync_start,
             map,
             sync_count: 0,
@@ -194,8 +196,9 @@ impl Tpdo {
         if self.ttype != 0 {
             self.pending = false;
         }
-        self.inhibit_until = (!self.inhibit.is_zero()).then(|| now + self.inhibit);
-        self.timer_due = (self.event_driven() && !self.event_timer.is_zero()).then(|| now + self.event_timer);
+        let (inhibit, timer) = (self.inhibit_100us, self.event_timer_ms);
+        self.inhibit_until = (inhibit != 0).then(|| now + Duration::from_100us(inhibit.into()));
+        self.timer_due = (self.event_driven() && timer != 0).then(|| now + Duration::from_millis(timer.into()));
     }
 
     /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work.
