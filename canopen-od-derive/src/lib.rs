@@ -793,6 +793,17 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                         match pos { #(#abort_arms)* _ => {} }
                     }
                 }
+                fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> ::core::result::Result<(usize, usize), __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    if !e.access.readable() {
+                        return ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly);
+                    }
+                    let size = self.__od_size(pos);
+                    match buf.get_mut(..size) {
+                        ::core::option::Option::Some(dst) if size > 0 => ::core::result::Result::Ok((size, self.__od_read(pos, 0, dst)?)),
+                        _ => ::core::result::Result::Ok((size, 0)),
+                    }
+                }
                 fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
                     let info = #core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: 0 };

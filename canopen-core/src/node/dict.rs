@@ -122,6 +122,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDictionary,
     fn abort_write(&mut self, index: u16, sub: u8) {
         route!(mut self, index, od => od.abort_write(index, sub))
     }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        route!(self, index, od => od.read_expedited(index, sub, buf))
+    }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         route!(self, index, od => od.pdo_resolve(index, sub, dir))
     }

@@ -595,6 +595,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
         self.0.read(index, sub, offset, buf)
     }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        self.0.read_expedited(index, sub, buf)
+    }
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         self.0.load_value(index, sub, data)
     }
@@ -626,6 +629,36 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         self.write_checked(index, sub, data, true)
+    }
+
+    /// One `meta` lookup instead of two (`info`, then `read`); every entry here is readable.
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        let (data_type, _, _) = Self::meta(index, sub)?;
+        if let Some(len) = self.current_size(index) {
+            return match buf.get_mut(..len) {
+                Some(dst) if len > 0 => Ok((len, self.read(index, sub, 0, dst)?)),
+                _ => Ok((len, 0)),
+            };
+        }
+        let v = self.value(index, sub)?.to_le_bytes();
+        Ok(match data_type.size() {
+            Some(1) => {
+                buf[0] = v[0];
+                (1, 1)
+            }
+            Some(2) => {
+                buf[..2].copy_from_slice(&v[..2]);
+                (2, 2)
+            }
+            Some(3) => {
+                buf[..3].copy_from_slice(&v[..3]);
+                (3, 3)
+            }
+            _ => {
+                *buf = v;
+                (4, 4)
+            }
+        })
     }
 
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {

@@ -332,6 +332,22 @@ pub trait ObjectDictionary {
     /// the application dictionary. The default does nothing, for dictionaries without defaults.
     fn restore_defaults(&mut self) {}
 
+    /// The first step of an SDO upload with one lookup: the current size of a readable entry and, when that
+    /// size is 1..=4 (an expedited upload), its bytes in `buf`; returns (size, bytes copied). Errors are
+    /// those of [`info`](Self::info), then 0601 0001h for a write-only entry, then those of
+    /// [`read`](Self::read). The provided method is `info` then `read`; the derived dictionaries and the
+    /// communication profile override it so the entry is looked up once.
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        let info = self.info(index, sub)?;
+        if !info.access.readable() {
+            return Err(AbortCode::ReadOfWriteOnly);
+        }
+        match buf.get_mut(..info.size) {
+            Some(dst) if info.size > 0 => Ok((info.size, self.read(index, sub, 0, dst)?)),
+            _ => Ok((info.size, 0)),
+        }
+    }
+
     /// Resolves a mapping target once: checks it exists (0602 0000h / 0609 0011h), is mappable in `dir`
     /// (0604 0041h: PDO mapping attribute, readable for a TPDO, writable for an RPDO) and has a fixed size.
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
@@ -429,6 +445,9 @@ impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
     }
     fn restore_defaults(&mut self) {
         (**self).restore_defaults()
+    }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        (**self).read_expedited(index, sub, buf)
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         (**self).pdo_resolve(index, sub, dir)

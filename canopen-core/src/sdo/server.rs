@@ -798,10 +798,10 @@ impl SdoServer {
         mux: Multiplexer,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        let size = readable_size(mux, od)?;
+        let mut d = [0u8; 4];
+        let (size, n) = od.read_expedited(mux.index, mux.sub, &mut d)?;
+        let size = u32::try_from(size).map_err(|_| AbortCode::OutOfMemory)?;
         if (1..=4).contains(&size) {
-            let mut d = [0u8; 4];
-            let n = od.read(mux.index, mux.sub, 0, &mut d[..size as usize])?;
             let e = Expedited::new(d.get(..n).unwrap_or(&[])).ok_or(AbortCode::GeneralError)?;
             return Ok(Response::send(ServerResponse::InitiateUpload { mux, data: InitiateData::Expedited(e) }.emit()));
         }
