@@ -804,6 +804,22 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                         _ => ::core::result::Result::Ok((size, 0)),
                     }
                 }
+                fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    if !e.access.writable() {
+                        return ::core::result::Result::Err(__AbortCode::WriteOfReadOnly);
+                    }
+                    match e.data_type.size() {
+                        ::core::option::Option::Some(n) => {
+                            let bytes = data.get(..len.unwrap_or(n.min(4))).unwrap_or(data);
+                            self.__od_write(pos, bytes)
+                        }
+                        ::core::option::Option::None => {
+                            let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
+                            #core::od::write_whole_stream(self, index, sub, bytes)
+                        }
+                    }
+                }
                 fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
                     let info = #core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: 0 };
