@@ -50,7 +50,10 @@ pub struct Rpdo {
     /// The resolved mapping.
     pub map: ResolvedMap,
     pending: Option<[u8; 8]>,
-    deadline: Option<Instant>,
+    // The event-timer deadline as an instant and a flag (not `Option<Instant>`, 16 B with its padding); an
+    // unset instant is kept at 0, so equality is unchanged.
+    deadline_at: Instant,
+    deadline_set: bool,
     /// A length error is active (cleared by the next correct frame).
     pub length_error: bool,
     /// The event timer expired (cleared by the next frame).
@@ -66,7 +69,8 @@ impl Rpdo {
             event_timer_ms: comm.event_timer_ms,
             map,
             pending: None,
-            deadline: None,
+            deadline_at: Instant::ZERO,
+            deadline_set: false,
             length_error: false,
             timed_out: false,
         }
@@ -95,7 +99,7 @@ impl Rpdo {
         }
         let exceeded = data.len() > need;
         if self.event_timer_ms != 0 {
-            self.deadline = Some(now + Duration::from_millis(self.event_timer_ms.into()));
+            self.set_deadline(Some(now + Duration::from_millis(self.event_timer_ms.into())));
         }
         if self.is_synchronous() {
             let mut buf = [0u8; 8];
@@ -121,18 +125,27 @@ impl Rpdo {
     /// Leaving Operational: no deadline monitoring, nothing buffered.
     pub fn stop(&mut self) {
         self.pending = None;
-        self.deadline = None;
+        self.set_deadline(None);
     }
 
     /// The event-timer deadline.
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        self.deadline
+        if self.deadline_set {
+            Some(self.deadline_at)
+        } else {
+            None
+        }
+    }
+
+    fn set_deadline(&mut self, t: Option<Instant>) {
+        self.deadline_set = t.is_some();
+        self.deadline_at = t.unwrap_or(Instant::ZERO);
     }
 
     /// Returns true once when the deadline passed (EMCY 8250h).
     pub fn handle_timeout(&mut self, now: Instant) -> bool {
-        if self.deadline.is_some_and(|t| t <= now) {
-            self.deadline = None;
+        if self.poll_timeout().is_some_and(|t| t <= now) {
+            self.set_deadline(None);
             self.timed_out = true;
             return true;
         }
