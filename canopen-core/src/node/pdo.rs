@@ -356,5 +356,13 @@ impl<
 /// entries.
 fn insert_sorted<const N: usize>(table: &mut Vec<(u16, u16), N>, e: (u16, u16)) {
     let at = table.iter().position(|x| x.0 > e.0).unwrap_or(table.len());
-    let _ = table.insert(at, e);
+    // push and swap down rather than Vec::insert, whose ptr::copy links compiler_builtins' memmove.
+    if table.push(e).is_err() {
+        return;
+    }
+    let mut i = table.len() - 1;
+    while i > at {
+        table.swap(i, i - 1);
+        i -= 1;
+    }
 }
