@@ -118,11 +118,14 @@ impl Expedited {
     /// assert!(Expedited::new(&[9; 5]).is_none());
     /// ```
     pub fn new(bytes: &[u8]) -> Option<Self> {
-        if bytes.is_empty() || bytes.len() > 4 {
-            return None;
-        }
-        let mut data = [0u8; 4];
-        data[..bytes.len()].copy_from_slice(bytes);
+        // By length, not copy_from_slice: a 1-4 byte copy of unknown length is a memcpy call.
+        let data = match *bytes {
+            [a] => [a, 0, 0, 0],
+            [a, b] => [a, b, 0, 0],
+            [a, b, c] => [a, b, c, 0],
+            [a, b, c, d] => [a, b, c, d],
+            _ => return None,
+        };
         Some(Expedited { data, len: bytes.len() as u8, size_indicated: true })
     }
 
@@ -181,8 +184,9 @@ impl InitiateData {
             InitiateData::Expedited(e) if e.size_indicated => {
                 let len = e.len.clamp(1, 4);
                 b[0] |= ((4 - len) << 2) | 0x03;
-                let n = usize::from(len);
-                b[4..4 + n].copy_from_slice(&e.data[..n]);
+                // The first `len` bytes, the rest stays 0: a masked 4-byte store, not a memcpy of 1-4 bytes.
+                let keep = u32::MAX >> (8 * (4 - u32::from(len)));
+                b[4..8].copy_from_slice(&(u32::from_le_bytes(e.data) & keep).to_le_bytes());
             }
             InitiateData::Expedited(e) => {
                 b[0] |= 0x02;
