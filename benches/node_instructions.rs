@@ -1,13 +1,19 @@
-//! Instruction-count workload for the whole node (DESIGN.md "Performance"): one `handle_frame` plus the
-//! drain of `poll_transmit` per received frame, nothing else.
+//! Instruction-count workload for the whole node (DESIGN.md "Performance"): one main-loop pass per received
+//! frame, i.e. one `handle_frame` plus the drain of `poll_transmit` and `poll_event` (what
+//! `canopen_core::driver` does for a frame), nothing else.
 //!
 //! `node_instructions <scenario> <iterations>` runs a scenario `iterations` times and prints how many frames
-//! the node received; `scripts/bench-node.sh` runs it under callgrind with N and with 0 iterations and
-//! divides the difference by the number of frames, so set-up and process start-up cancel out.
+//! the node received and sent; `scripts/bench-node.sh` runs it under callgrind with N and with 0 iterations
+//! and divides the difference by the number of frames, so set-up and process start-up cancel out.
 //!
-//! The client's frames are recorded once with our SDO client before the measured part and then replayed, so
-//! the client's own work is not counted. Scenarios: `expedited_upload` (1000h), `expedited_download` (a U32),
-//! `segmented_upload` (a 64-byte VISIBLE_STRING), `block_download` (889·8 bytes with CRC into a DOMAIN).
+//! The SDO client's frames are recorded once with our SDO client before the measured part and then
+//! replayed, so the client's own work is not counted. Scenarios, all on a `Node<_, 4, 16, 16, 4, 4>`:
+//!
+//! - `expedited_upload` (1000h), `expedited_download` (a U32), `segmented_upload` (a 64-byte
+//!   VISIBLE_STRING), `block_download` (889·8 bytes with CRC into a DOMAIN), node Pre-operational;
+//! - `rpdo_4_objects`: one 8-byte RPDO (FFh) mapped to 4 UNSIGNED16 objects, node Operational;
+//! - `sync_4_tpdos`: one SYNC that makes 4 synchronous (01h) TPDOs of 8 bytes, each mapped to 4 UNSIGNED16,
+//!   node Operational (5 bus frames per received frame).
 
 use std::hint::black_box;
 
@@ -15,10 +21,11 @@ use canopen::core::{
     comm::NodeConfig,
     node::Node,
     od::{DomainBuf, VisibleString},
+    pdo::PdoDefault,
     sdo::client::{ClientEvent, Mode, SdoClient, SliceData},
     sdo::SdoClientParams,
     wire::sdo::Multiplexer,
-    CanFrame, Instant, NodeId,
+    CanFrame, Instant, NmtState, NodeId,
 };
 use canopen::ObjectDictionary;
 
@@ -36,7 +43,7 @@ struct App {
     blob: DomainBuf<BLOCK_LEN>,
 }
 
-type BenchNode = Node<App, 4, 16, 16>;
+type BenchNode = Node<App, 4, 16, 16, 4, 4>;
 
 fn new_node() -> BenchNode {
     let app = App::default(); // power-on (Reset Application) gives every entry its `default =` value
@@ -46,6 +53,61 @@ fn new_node() -> BenchNode {
     while node.poll_transmit().is_some() {}
     while node.poll_event().is_some() {}
     node
+}
+
+/// The process data of the PDO scenarios: 4 UNSIGNED16 objects mappable both ways.
+#[derive(ObjectDictionary, Default)]
+#[od(crate = "canopen::core")]
+struct Process {
+    #[od(index = 0x6000, access = "rww", pdo = "both")]
+    a: u16,
+    #[od(index = 0x6001, access = "rww", pdo = "both")]
+    b: u16,
+    #[od(index = 0x6002, access = "rww", pdo = "both")]
+    c: u16,
+    #[od(index = 0x6003, access = "rww", pdo = "both")]
+    d: u16,
+    #[od(index = 0x6010, access = "rw", default = 7)]
+    unmapped: u32,
+}
+
+const MAP: &[u32] = &[0x6000_0010, 0x6001_0010, 0x6002_0010, 0x6003_0010];
+const RPDO: PdoDefault = PdoDefault { transmission_type: 255, mapping: MAP, ..PdoDefault::EVENT };
+const TPDO: PdoDefault = PdoDefault { transmission_type: 1, mapping: MAP, ..PdoDefault::EVENT };
+const PDO_CFG: NodeConfig = NodeConfig { rpdo: &[RPDO], tpdo: &[TPDO, TPDO, TPDO, TPDO], ..NodeConfig::DEFAULT };
+
+/// A node with one RPDO and four synchronous TPDOs, Operational, queues drained.
+fn pdo_node() -> Node<Process, 4, 16, 16, 4, 4> {
+    let mut node = Node::new(NodeId::new(5).unwrap(), PDO_CFG, Process::default());
+    node.handle_timeout(Instant::ZERO);
+    node.enter_state(NmtState::Operational);
+    while node.poll_transmit().is_some() {}
+    while node.poll_event().is_some() {}
+    node
+}
+
+/// Replays `script` `iterations` times, one main-loop pass per frame; returns (received, sent) frames.
+fn run<A: canopen::core::od::ObjectDictionary + canopen::core::od::OdDescribe>(
+    node: &mut Node<A, 4, 16, 16, 4, 4>,
+    script: &[CanFrame],
+    iterations: usize,
+) -> (usize, usize) {
+    let (mut frames, mut sent) = (0usize, 0usize);
+    for _ in 0..iterations {
+        for f in script {
+            node.handle_frame(Instant::ZERO, black_box(f));
+            while let Some(out) = node.poll_transmit() {
+                black_box(out);
+                sent += 1;
+            }
+            while let Some(e) = node.poll_event() {
+                black_box(e);
+            }
+            frames += 1;
+        }
+    }
+    assert_eq!(node.tx_dropped(), 0);
+    (frames, sent)
 }
 
 /// Runs one transfer with our client against a node and records the client's frames.
@@ -79,30 +141,38 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let scenario = args.next().unwrap_or_default();
     let iterations: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(1);
-    let script = match scenario.as_str() {
-        "expedited_upload" => record(Multiplexer::new(0x1000, 0), Mode::Auto, None),
-        "expedited_download" => record(Multiplexer::new(0x2002, 0), Mode::Auto, Some(vec![1, 2, 3, 4])),
-        "segmented_upload" => record(Multiplexer::new(0x2004, 0), Mode::Auto, None),
-        "block_download" => {
-            let data: Vec<u8> = (0..BLOCK_LEN).map(|i| (i * 31 + 7) as u8).collect();
-            record(Multiplexer::new(0x2005, 0), Mode::Block { crc: true, blksize: 127, pst: 0 }, Some(data))
+    let (frames, sent) = match scenario.as_str() {
+        "rpdo_4_objects" | "sync_4_tpdos" => {
+            let mut node = pdo_node();
+            let frame = match scenario.as_str() {
+                "rpdo_4_objects" => CanFrame::new(0x205, &[1, 2, 3, 4, 5, 6, 7, 8]).unwrap(),
+                _ => CanFrame::new(0x080, &[]).unwrap(),
+            };
+            let r = run(&mut node, &[frame], iterations);
+            if scenario == "rpdo_4_objects" && iterations > 0 {
+                assert_eq!(node.app().d, 0x0807);
+            }
+            if scenario == "sync_4_tpdos" {
+                assert_eq!(r.1, 4 * iterations);
+            }
+            r
         }
-        other => {
-            eprintln!("unknown scenario {other:?}");
-            std::process::exit(2);
+        _ => {
+            let script = match scenario.as_str() {
+                "expedited_upload" => record(Multiplexer::new(0x1000, 0), Mode::Auto, None),
+                "expedited_download" => record(Multiplexer::new(0x2002, 0), Mode::Auto, Some(vec![1, 2, 3, 4])),
+                "segmented_upload" => record(Multiplexer::new(0x2004, 0), Mode::Auto, None),
+                "block_download" => {
+                    let data: Vec<u8> = (0..BLOCK_LEN).map(|i| (i * 31 + 7) as u8).collect();
+                    record(Multiplexer::new(0x2005, 0), Mode::Block { crc: true, blksize: 127, pst: 0 }, Some(data))
+                }
+                other => {
+                    eprintln!("unknown scenario {other:?}");
+                    std::process::exit(2);
+                }
+            };
+            run(&mut new_node(), &script, iterations)
         }
     };
-    let mut node = new_node();
-    let mut frames = 0usize;
-    let mut replies = 0usize;
-    for _ in 0..iterations {
-        for f in &script {
-            node.handle_frame(Instant::ZERO, black_box(f));
-            while let Some(out) = node.poll_transmit() {
-                replies += black_box(out).dlc() as usize;
-            }
-            frames += 1;
-        }
-    }
-    println!("{scenario}: {frames} frames, {replies} reply bytes");
+    println!("{scenario}: {frames} frames, {sent} sent");
 }

@@ -1,4 +1,5 @@
-//! Instruction-count workload for the SDO server (server side only; the lead measures the whole node later).
+//! Instruction-count workload for the SDO server alone (no Node, a minimal hand-written dictionary): the
+//! protocol machine's share of the whole-node figures of `scripts/bench-node.sh`.
 //!
 //! `sdo_instructions <scenario> <iterations>` runs one scenario `iterations` times and prints the number of
 //! frames the server handled. `scripts/bench-instructions.sh` runs it under callgrind twice (N and 0

@@ -159,7 +159,13 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
                 self.history.pop();
             }
             let info = u32::from(u16::from_le_bytes([manufacturer[0], manufacturer[1]])) << 16;
-            let _ = self.history.insert(0, info | u32::from(code));
+            // Vec::insert(0, ..) would be a ptr::copy, i.e. the only users of memmove in a firmware with
+            // insert_sorted (1.5 KB of compiler_builtins); push and rotate the (at most HIST) entries instead.
+            if self.history.push(info | u32::from(code)).is_ok() {
+                for i in (1..self.history.len()).rev() {
+                    self.history.swap(i, i - 1);
+                }
+            }
         }
         self.queue(Emergency { code, register: self.register(), manufacturer });
         true

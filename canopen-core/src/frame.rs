@@ -69,6 +69,7 @@ impl CanFrame {
     /// let f = CanFrame::from_parts(0x585, [0x60, 0x17, 0x10, 0, 0, 0, 0, 0], 8);
     /// assert_eq!(f.dlc(), 8);
     /// ```
+    #[inline]
     pub const fn from_parts(cob_id: u16, data: [u8; 8], len: u8) -> Self {
         let len = if len > 8 { 8 } else { len };
         CanFrame { id: cob_id & MAX_STANDARD_ID, len, rtr: false, data }
@@ -80,6 +81,7 @@ impl CanFrame {
     /// # use canopen_core::CanFrame;
     /// assert_eq!(CanFrame::new(0x80, &[]).unwrap().cob_id(), 0x80);
     /// ```
+    #[inline]
     pub const fn cob_id(&self) -> u16 {
         self.id
     }
@@ -90,6 +92,7 @@ impl CanFrame {
     /// # use canopen_core::CanFrame;
     /// assert!(!CanFrame::new(0x80, &[]).unwrap().is_rtr());
     /// ```
+    #[inline]
     pub const fn is_rtr(&self) -> bool {
         self.rtr
     }
@@ -100,6 +103,7 @@ impl CanFrame {
     /// # use canopen_core::CanFrame;
     /// assert_eq!(CanFrame::new(0x80, &[1, 2]).unwrap().dlc(), 2);
     /// ```
+    #[inline]
     pub const fn dlc(&self) -> u8 {
         self.len
     }
@@ -110,6 +114,7 @@ impl CanFrame {
     /// # use canopen_core::CanFrame;
     /// assert_eq!(CanFrame::new(0x80, &[1, 2]).unwrap().data(), &[1, 2]);
     /// ```
+    #[inline]
     pub fn data(&self) -> &[u8] {
         if self.rtr {
             &[]
@@ -124,6 +129,7 @@ impl CanFrame {
     /// # use canopen_core::CanFrame;
     /// assert_eq!(CanFrame::new(0x80, &[1]).unwrap().padded(), [1, 0, 0, 0, 0, 0, 0, 0]);
     /// ```
+    #[inline]
     pub const fn padded(&self) -> [u8; 8] {
         self.data
     }

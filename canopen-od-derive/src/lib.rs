@@ -582,6 +582,16 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             }
         }
     });
+    // What the SDO/PDO paths need of an entry (data type, access, mapping), in a table of its own: the full
+    // OD_ENTRIES (names, defaults, limits; 72 B per entry on a 32-bit target) is then only kept alive by
+    // OdDescribe (EDS writer, store/restore), and a firmware without those links 8 B per entry instead.
+    let infos = rows.iter().map(|r| {
+        let dt = Ident::new(r.dt, Span::call_site());
+        let (access, pdo) = (&r.access, &r.pdo);
+        quote! {
+            #core::od::SubInfo { data_type: #core::od::DataType::#dt, access: #access, pdo: #pdo, size: 0 }
+        }
+    });
     let object_descs = objects.iter().map(|o| {
         let first = rows.iter().position(|r| r.index == o.index).unwrap_or(0) as u16;
         let subs = rows.iter().filter(|r| r.index == o.index).count() as u16;
@@ -691,6 +701,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             impl #ident {
                 /// The object-dictionary entries of this struct, sorted by (index, sub-index).
                 pub const OD_ENTRIES: &'static [#core::od::EntryDesc] = &[#(#entries),*];
+                /// Data type, access and PDO mapping of each entry of `OD_ENTRIES` (`size` unused).
+                const __OD_INFO: &'static [#core::od::SubInfo] = &[#(#infos),*];
                 /// The objects of this struct, sorted by index.
                 pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
                 /// The keys `index << 8 | sub` of `OD_ENTRIES`, for a cache-friendly binary search.
@@ -720,9 +732,9 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     match pos { #(#write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
                 #[inline]
-                fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::EntryDesc), __AbortCode> {
+                fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
                     let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub)?;
-                    let e = Self::OD_ENTRIES.get(pos).ok_or(__AbortCode::ObjectDoesNotExist)?;
+                    let e = Self::__OD_INFO.get(pos).ok_or(__AbortCode::ObjectDoesNotExist)?;
                     ::core::result::Result::Ok((pos, e))
                 }
                 #[inline]
@@ -736,9 +748,12 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 /// The entry-table slot of a PDO handle, if the handle belongs to this dictionary.
                 #[inline]
                 fn __od_slot(handle: &#core::od::PdoHandle) -> ::core::option::Option<usize> {
+                    // The compact key table, not OD_ENTRIES: one u32 compare, and the PDO path does not keep the
+                    // entry descriptions (names, defaults, limits) alive in a firmware.
                     let pos = usize::from(handle.slot);
-                    match Self::OD_ENTRIES.get(pos) {
-                        ::core::option::Option::Some(e) if e.index == handle.index && e.sub == handle.sub => ::core::option::Option::Some(pos),
+                    let key = ((handle.index as u32) << 8) | handle.sub as u32;
+                    match Self::OD_KEYS.get(pos) {
+                        ::core::option::Option::Some(&k) if k == key => ::core::option::Option::Some(pos),
                         _ => ::core::option::Option::None,
                     }
                 }
@@ -746,6 +761,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
 
             const _: () = assert!(#core::od::is_sorted(#ident::OD_ENTRIES));
             const _: () = assert!(#ident::OD_ENTRIES.len() == #n_entries && #ident::OD_KEYS.len() == #n_entries);
+            const _: () = assert!(#ident::__OD_INFO.len() == #n_entries);
 
             #[automatically_derived]
             impl #core::od::ObjectDictionary for #ident {
@@ -790,6 +806,33 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                         match pos { #(#abort_arms)* _ => {} }
                     }
                 }
+                fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> ::core::result::Result<(usize, usize), __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    if !e.access.readable() {
+                        return ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly);
+                    }
+                    let size = self.__od_size(pos);
+                    match buf.get_mut(..size) {
+                        ::core::option::Option::Some(dst) if size > 0 => ::core::result::Result::Ok((size, self.__od_read(pos, 0, dst)?)),
+                        _ => ::core::result::Result::Ok((size, 0)),
+                    }
+                }
+                fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                    let (pos, e) = self.__od_pos(index, sub)?;
+                    if !e.access.writable() {
+                        return ::core::result::Result::Err(__AbortCode::WriteOfReadOnly);
+                    }
+                    match e.data_type.size() {
+                        ::core::option::Option::Some(n) => {
+                            let bytes = data.get(..len.unwrap_or(n.min(4))).unwrap_or(data);
+                            self.__od_write(pos, bytes)
+                        }
+                        ::core::option::Option::None => {
+                            let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
+                            #core::od::write_whole_stream(self, index, sub, bytes)
+                        }
+                    }
+                }
                 fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
                     let info = #core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: 0 };
@@ -818,7 +861,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     Self::OD_OBJECTS.get(n).copied()
                 }
                 fn entry(&self, index: u16, sub: u8) -> ::core::option::Option<#core::od::EntryDesc> {
-                    self.__od_pos(index, sub).ok().map(|(_, e)| *e)
+                    let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub).ok()?;
+                    Self::OD_ENTRIES.get(pos).copied()
                 }
             }
         };

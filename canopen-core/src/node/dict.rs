@@ -122,6 +122,18 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDictionary,
     fn abort_write(&mut self, index: u16, sub: u8) {
         route!(mut self, index, od => od.abort_write(index, sub))
     }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        route!(self, index, od => od.read_expedited(index, sub, buf))
+    }
+    fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
+        // The communication profile through this view's own `info`/`write` (which intercepts store/restore
+        // and mappings; one instantiation for all of it), the application with its single lookup.
+        if is_comm(index) {
+            crate::od::expedited_download(self, index, sub, data, len)
+        } else {
+            self.app.write_expedited(index, sub, data, len)
+        }
+    }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         route!(self, index, od => od.pdo_resolve(index, sub, dir))
     }

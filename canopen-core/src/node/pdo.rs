@@ -15,6 +15,7 @@ use crate::storage::Storage;
 use crate::sync::SyncInput;
 use crate::time::{earliest, Instant};
 use crate::wire::time_stamp::TimeStamp;
+use heapless::Vec;
 
 impl<
         A: ObjectDictionary,
@@ -45,10 +46,9 @@ impl<
         self.rx_table.clear();
         for (i, r) in self.rpdos.iter().enumerate() {
             if r.is_valid() {
-                let _ = self.rx_table.push((r.can_id(), i as u16));
+                insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
             }
         }
-        self.rx_table.sort_unstable_by_key(|e| e.0);
     }
 
     /// Rebuilds TPDO `k` from 1800h+k / 1A00h+k (see [`configure_rpdo`](Self::configure_rpdo)).
@@ -69,10 +69,9 @@ impl<
         self.rtr_table.clear();
         for (i, t) in self.tpdos.iter().enumerate() {
             if t.rtr_allowed() {
-                let _ = self.rtr_table.push((t.can_id(), i as u16));
+                insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
             }
         }
-        self.rtr_table.sort_unstable_by_key(|e| e.0);
     }
 
     /// Entering Operational: event-driven TPDOs go out at once (PDO-28, V-PDO-09).
@@ -348,5 +347,22 @@ impl<
         data[..6].copy_from_slice(&b);
         self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));
         true
+    }
+}
+
+/// Inserts `e` after every entry whose CAN-ID is not greater, so the table stays sorted by CAN-ID with equal
+/// IDs in PDO order (what the stable small-slice path of `sort_unstable_by_key` gave). A plain insertion:
+/// `sort_unstable_by_key` linked about 4 KB of quicksort into a Cortex-M firmware for tables of at most a few
+/// entries.
+fn insert_sorted<const N: usize>(table: &mut Vec<(u16, u16), N>, e: (u16, u16)) {
+    let at = table.iter().position(|x| x.0 > e.0).unwrap_or(table.len());
+    // push and swap down rather than Vec::insert, whose ptr::copy links compiler_builtins' memmove.
+    if table.push(e).is_err() {
+        return;
+    }
+    let mut i = table.len() - 1;
+    while i > at {
+        table.swap(i, i - 1);
+        i -= 1;
     }
 }

@@ -170,6 +170,61 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
         }
     }
 
+    /// Data type, access and PDO mapping of one sub-entry, or the OD-16 abort code: what `info`, `read` and
+    /// `write` need, without building the full [`EntryDesc`] (name, default) that only [`OdDescribe`] and
+    /// the EDS writer use. It must agree with `desc` (the test `meta_agrees_with_desc` checks every
+    /// index and sub-index).
+    fn meta(index: u16, sub: u8) -> Result<(DataType, Access, PdoMapping), AbortCode> {
+        use Access::*;
+        use DataType::*;
+        const NO: PdoMapping = PdoMapping::No;
+        let var = |dt, access| if sub == 0 { Ok((dt, access, NO)) } else { Err(AbortCode::SubIndexDoesNotExist) };
+        // ARRAY/RECORD: sub 00h is the const count (OD-04), subs 1..=n are `dt`/`access`.
+        let arr = |n: usize, dt, access| match sub {
+            0 => Ok((Unsigned8, Const, NO)),
+            s if usize::from(s) <= n => Ok((dt, access, NO)),
+            _ => Err(AbortCode::SubIndexDoesNotExist),
+        };
+        if let Some(obj) = Self::pdo_obj(index) {
+            return match obj {
+                PdoObj::RpdoComm(_) | PdoObj::TpdoComm(_) => {
+                    let tx = matches!(obj, PdoObj::TpdoComm(_));
+                    match sub {
+                        0 => Ok((Unsigned8, Const, NO)),
+                        1 => Ok((Unsigned32, Rw, NO)),
+                        2 => Ok((Unsigned8, Rw, NO)),
+                        3 | 5 => Ok((Unsigned16, Rw, NO)),
+                        6 if tx => Ok((Unsigned8, Rw, NO)),
+                        _ => Err(AbortCode::SubIndexDoesNotExist),
+                    }
+                }
+                PdoObj::RpdoMap(_) | PdoObj::TpdoMap(_) => match usize::from(sub) {
+                    0 => Ok((Unsigned8, Rw, NO)),
+                    s if s <= MAX_ENTRIES => Ok((Unsigned32, Rw, NO)),
+                    _ => Err(AbortCode::SubIndexDoesNotExist),
+                },
+            };
+        }
+        match index {
+            0x1000 => var(Unsigned32, Ro),
+            0x1001 => var(Unsigned8, Ro).map(|(dt, a, _)| (dt, a, PdoMapping::Tpdo)),
+            0x1003 => match sub {
+                0 => Ok((Unsigned8, Rw, NO)),
+                s if usize::from(s) <= HISTORY => Ok((Unsigned32, Ro, NO)),
+                _ => Err(AbortCode::SubIndexDoesNotExist),
+            },
+            0x1005..=0x1007 | 0x1012 | 0x1014 | 0x1F80 => var(Unsigned32, Rw),
+            0x1008..=0x100A => var(VisibleString, Const),
+            0x100C | 0x1015 | 0x1017 => var(Unsigned16, Rw),
+            0x100D | 0x1019 => var(Unsigned8, Rw),
+            0x1010 | 0x1011 => arr(3, Unsigned32, Rw),
+            0x1016 if HB > 0 => arr(HB, Unsigned32, Rw),
+            0x1018 => arr(4, Unsigned32, Ro),
+            0x1029 => arr(1, Unsigned8, Rw),
+            _ => Err(AbortCode::ObjectDoesNotExist),
+        }
+    }
+
     /// The description of one sub-entry, or the OD-16 abort code.
     fn desc(&self, index: u16, sub: u8) -> Result<EntryDesc, AbortCode> {
         use Access::*;
@@ -489,11 +544,11 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool)
 
 impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO, TPDO> {
     fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
-        let d = self.desc(index, sub)?;
-        if !d.access.writable() {
+        let (data_type, access, _) = Self::meta(index, sub)?;
+        if !access.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
-        let size = d.data_type.size().ok_or(AbortCode::UnsupportedAccess)?;
+        let size = data_type.size().ok_or(AbortCode::UnsupportedAccess)?;
         let v = match (size, data.len()) {
             (_, n) if n > size => return Err(AbortCode::LengthTooHigh),
             (_, n) if n < size => return Err(AbortCode::LengthTooLow),
@@ -540,6 +595,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
         self.0.read(index, sub, offset, buf)
     }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        self.0.read_expedited(index, sub, buf)
+    }
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         self.0.load_value(index, sub, data)
     }
@@ -547,13 +605,16 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
 
 impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for CommProfile<HB, RPDO, TPDO> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
-        let d = self.desc(index, sub)?;
-        let size = self.current_size(index).unwrap_or(d.max_size);
-        Ok(SubInfo { data_type: d.data_type, access: d.access, pdo: d.pdo, size })
+        let (data_type, access, pdo) = Self::meta(index, sub)?;
+        let size = match self.current_size(index) {
+            Some(n) => n,
+            None => data_type.size().unwrap_or(usize::MAX),
+        };
+        Ok(SubInfo { data_type, access, pdo, size })
     }
 
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        let d = self.desc(index, sub)?;
+        let (data_type, _, _) = Self::meta(index, sub)?;
         let c = &self.config;
         match index {
             0x1008 => return Ok(copy_at(c.device_name.as_bytes(), offset, buf)),
@@ -562,7 +623,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
             _ => {}
         }
         let v = self.value(index, sub)?.to_le_bytes();
-        let n = d.data_type.size().unwrap_or(4).min(4);
+        let n = data_type.size().unwrap_or(4).min(4);
         Ok(copy_at(&v[..n], offset, buf))
     }
 
@@ -570,10 +631,40 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
         self.write_checked(index, sub, data, true)
     }
 
+    /// One `meta` lookup instead of two (`info`, then `read`); every entry here is readable.
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        let (data_type, _, _) = Self::meta(index, sub)?;
+        if let Some(len) = self.current_size(index) {
+            return match buf.get_mut(..len) {
+                Some(dst) if len > 0 => Ok((len, self.read(index, sub, 0, dst)?)),
+                _ => Ok((len, 0)),
+            };
+        }
+        let v = self.value(index, sub)?.to_le_bytes();
+        Ok(match data_type.size() {
+            Some(1) => {
+                buf[0] = v[0];
+                (1, 1)
+            }
+            Some(2) => {
+                buf[..2].copy_from_slice(&v[..2]);
+                (2, 2)
+            }
+            Some(3) => {
+                buf[..3].copy_from_slice(&v[..3]);
+                (3, 3)
+            }
+            _ => {
+                *buf = v;
+                (4, 4)
+            }
+        })
+    }
+
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
         let _ = size;
-        let d = self.desc(index, sub)?;
-        if !d.access.writable() {
+        let (_, access, _) = Self::meta(index, sub)?;
+        if !access.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
         Err(AbortCode::UnsupportedAccess)
@@ -668,6 +759,29 @@ mod tests {
         od.reset_communication();
         assert_eq!(od.params.heartbeat_time_ms, 250);
         assert_eq!(od.params.heartbeat_consumers, [0; 4]);
+    }
+
+    /// `meta` (the SDO/PDO path) and `desc` (the EDS path) describe every sub-entry the same way.
+    fn check_meta<const HB: usize, const RPDO: usize, const TPDO: usize>() {
+        let od: CommProfile<HB, RPDO, TPDO> = CommProfile::new(CFG);
+        for index in (0x1000..=0x1BFF).chain(0x1F00..=0x1FFF) {
+            for sub in 0..=255u8 {
+                let m = CommProfile::<HB, RPDO, TPDO>::meta(index, sub);
+                let d = od.desc(index, sub).map(|d| (d.data_type, d.access, d.pdo));
+                assert_eq!(m, d, "{index:04X}h sub {sub}");
+                if let Ok(d) = od.desc(index, sub) {
+                    let info = od.info(index, sub).unwrap();
+                    assert_eq!(info.size, od.current_size(index).unwrap_or(d.max_size), "{index:04X}h sub {sub}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn meta_agrees_with_desc() {
+        check_meta::<4, 4, 4>();
+        check_meta::<0, 2, 3>();
+        check_meta::<1, 0, 0>();
     }
 
     #[test]

@@ -79,6 +79,12 @@ impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A>
     fn abort_write(&mut self, index: u16, sub: u8) {
         route!(mut self, index, od => od.abort_write(index, sub))
     }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        route!(self, index, od => od.read_expedited(index, sub, buf))
+    }
+    fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
+        route!(mut self, index, od => od.write_expedited(index, sub, data, len))
+    }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         route!(self, index, od => od.pdo_resolve(index, sub, dir))
     }

@@ -332,6 +332,31 @@ pub trait ObjectDictionary {
     /// the application dictionary. The default does nothing, for dictionaries without defaults.
     fn restore_defaults(&mut self) {}
 
+    /// The first step of an SDO upload with one lookup: the current size of a readable entry and, when that
+    /// size is 1..=4 (an expedited upload), its bytes in `buf`; returns (size, bytes copied). Errors are
+    /// those of [`info`](Self::info), then 0601 0001h for a write-only entry, then those of
+    /// [`read`](Self::read). The provided method is `info` then `read`; the derived dictionaries and the
+    /// communication profile override it so the entry is looked up once.
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        let info = self.info(index, sub)?;
+        if !info.access.readable() {
+            return Err(AbortCode::ReadOfWriteOnly);
+        }
+        match buf.get_mut(..info.size) {
+            Some(dst) if info.size > 0 => Ok((info.size, self.read(index, sub, 0, dst)?)),
+            _ => Ok((info.size, 0)),
+        }
+    }
+
+    /// An expedited SDO download with one lookup: `data` holds the frame's 4 data bytes, `len` the indicated
+    /// size (`None`: not indicated, then the entry's fixed size up to 4 bytes, else 4; SDO-13). Errors are
+    /// those of [`info`](Self::info), then 0601 0002h for a read-only entry, then those of
+    /// [`write`](Self::write) (fixed-size entries) or of the streamed write. The provided method is
+    /// [`expedited_download`]; the derived dictionaries override it so the entry is looked up once.
+    fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
+        expedited_download(self, index, sub, data, len)
+    }
+
     /// Resolves a mapping target once: checks it exists (0602 0000h / 0609 0011h), is mappable in `dir`
     /// (0604 0041h: PDO mapping attribute, readable for a TPDO, writable for an RPDO) and has a fixed size.
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
@@ -362,6 +387,45 @@ pub enum PdoDir {
     Tpdo,
     /// Received by this node (the entry is written).
     Rpdo,
+}
+
+/// The provided [`ObjectDictionary::write_expedited`]: `info`, the access check, then `write` for a
+/// fixed-size entry or [`write_whole_stream`] for the others.
+pub fn expedited_download<O: ObjectDictionary + ?Sized>(
+    od: &mut O,
+    index: u16,
+    sub: u8,
+    data: &[u8; 4],
+    len: Option<usize>,
+) -> Result<(), AbortCode> {
+    let info = od.info(index, sub)?;
+    if !info.access.writable() {
+        return Err(AbortCode::WriteOfReadOnly);
+    }
+    let fixed = info.data_type.size();
+    let n = len.unwrap_or(fixed.filter(|&n| n <= 4).unwrap_or(4));
+    let bytes = data.get(..n).unwrap_or(data);
+    match fixed {
+        Some(_) => od.write(index, sub, bytes),
+        None => write_whole_stream(od, index, sub, bytes),
+    }
+}
+
+/// Writes a variable-size entry (string, DOMAIN) in one streamed step: `begin_write`, `write_chunk`,
+/// `end_write`, and `abort_write` if a step after the first fails.
+pub fn write_whole_stream<O: ObjectDictionary + ?Sized>(
+    od: &mut O,
+    index: u16,
+    sub: u8,
+    bytes: &[u8],
+) -> Result<(), AbortCode> {
+    od.begin_write(index, sub, Some(bytes.len()))?;
+    let r = od.write_chunk(index, sub, 0, bytes).and_then(|()| od.end_write(index, sub, bytes.len()));
+    if let Err(code) = r {
+        od.abort_write(index, sub);
+        return Err(code);
+    }
+    Ok(())
 }
 
 /// A resolved PDO mapping target: enough to move its bytes without searching the dictionary again.
@@ -429,6 +493,12 @@ impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
     }
     fn restore_defaults(&mut self) {
         (**self).restore_defaults()
+    }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        (**self).read_expedited(index, sub, buf)
+    }
+    fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
+        (**self).write_expedited(index, sub, data, len)
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         (**self).pdo_resolve(index, sub, dir)

@@ -128,11 +128,25 @@ pub trait OdValue: Sized {
 /// assert_eq!(buf, [2, 3]);
 /// assert_eq!(copy_at(&[1, 2, 3], 9, &mut buf), 0);
 /// ```
+#[inline]
 pub fn copy_at(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
     let src = src.get(offset..).unwrap_or(&[]);
     let n = src.len().min(buf.len());
     buf[..n].copy_from_slice(&src[..n]);
     n
+}
+
+/// [`copy_at`] for a fixed-size encoding: the whole value at once (PDO packing, expedited SDO) is one
+/// load/store of `N` bytes instead of a call to `memcpy`.
+#[inline]
+fn read_fixed<const N: usize>(b: [u8; N], offset: usize, buf: &mut [u8]) -> usize {
+    match buf.get_mut(..N) {
+        Some(dst) if offset == 0 => {
+            dst.copy_from_slice(&b);
+            N
+        }
+        _ => copy_at(&b, offset, buf),
+    }
 }
 
 /// Checks that `data` has exactly `size` bytes (0607 0012h / 0607 0013h otherwise).
@@ -143,6 +157,7 @@ pub fn copy_at(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
 /// assert_eq!(check_len(&[1, 2, 3], 2), Err(AbortCode::LengthTooHigh));
 /// assert_eq!(check_len(&[1], 2), Err(AbortCode::LengthTooLow));
 /// ```
+#[inline]
 pub fn check_len(data: &[u8], size: usize) -> Result<(), AbortCode> {
     match data.len().cmp(&size) {
         Ordering::Greater => Err(AbortCode::LengthTooHigh),
@@ -203,12 +218,15 @@ macro_rules! native_int {
             const DATA_TYPE: DataType = DataType::$dt;
             const MAX_SIZE: usize = core::mem::size_of::<$t>();
             const MAPPABLE: bool = true;
+            #[inline]
             fn size(&self) -> usize {
                 Self::MAX_SIZE
             }
+            #[inline]
             fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
-                copy_at(&self.to_le_bytes(), offset, buf)
+                read_fixed(self.to_le_bytes(), offset, buf)
             }
+            #[inline]
             fn decode(data: &[u8]) -> Result<Self, AbortCode> {
                 check_len(data, Self::MAX_SIZE)?;
                 let mut b = [0u8; core::mem::size_of::<$t>()];
@@ -236,12 +254,15 @@ impl OdValue for bool {
     const DATA_TYPE: DataType = DataType::Boolean;
     const MAX_SIZE: usize = 1;
     const MAPPABLE: bool = true;
+    #[inline]
     fn size(&self) -> usize {
         1
     }
+    #[inline]
     fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
         copy_at(&[u8::from(*self)], offset, buf)
     }
+    #[inline]
     fn decode(data: &[u8]) -> Result<Self, AbortCode> {
         check_len(data, 1)?;
         match data[0] {
@@ -261,12 +282,15 @@ macro_rules! native_real {
             const DATA_TYPE: DataType = DataType::$dt;
             const MAX_SIZE: usize = $n;
             const MAPPABLE: bool = true;
+            #[inline]
             fn size(&self) -> usize {
                 $n
             }
+            #[inline]
             fn read_bytes(&self, offset: usize, buf: &mut [u8]) -> usize {
-                copy_at(&self.to_le_bytes(), offset, buf)
+                read_fixed(self.to_le_bytes(), offset, buf)
             }
+            #[inline]
             fn decode(data: &[u8]) -> Result<Self, AbortCode> {
                 check_len(data, $n)?;
                 let mut b = [0u8; $n];

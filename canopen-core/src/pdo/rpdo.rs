@@ -45,11 +45,15 @@ pub enum RxOutcome {
 pub struct Rpdo {
     cob: CobIdEntry,
     ttype: u8,
-    event_timer: Duration,
+    /// Event timer, ms (the 1400h sub 05h value: 2 bytes kept instead of an 8-byte `Duration`).
+    event_timer_ms: u16,
     /// The resolved mapping.
     pub map: ResolvedMap,
     pending: Option<[u8; 8]>,
-    deadline: Option<Instant>,
+    // The event-timer deadline as an instant and a flag (not `Option<Instant>`, 16 B with its padding); an
+    // unset instant is kept at 0, so equality is unchanged.
+    deadline_at: Instant,
+    deadline_set: bool,
     /// A length error is active (cleared by the next correct frame).
     pub length_error: bool,
     /// The event timer expired (cleared by the next frame).
@@ -62,10 +66,11 @@ impl Rpdo {
         Rpdo {
             cob: comm.cob(),
             ttype: comm.transmission_type,
-            event_timer: Duration::from_millis(comm.event_timer_ms as u64),
+            event_timer_ms: comm.event_timer_ms,
             map,
             pending: None,
-            deadline: None,
+            deadline_at: Instant::ZERO,
+            deadline_set: false,
             length_error: false,
             timed_out: false,
         }
@@ -93,8 +98,8 @@ impl Rpdo {
             return RxOutcome::TooShort;
         }
         let exceeded = data.len() > need;
-        if !self.event_timer.is_zero() {
-            self.deadline = Some(now + self.event_timer);
+        if self.event_timer_ms != 0 {
+            self.set_deadline(Some(now + Duration::from_millis(self.event_timer_ms.into())));
         }
         if self.is_synchronous() {
             let mut buf = [0u8; 8];
@@ -120,18 +125,27 @@ impl Rpdo {
     /// Leaving Operational: no deadline monitoring, nothing buffered.
     pub fn stop(&mut self) {
         self.pending = None;
-        self.deadline = None;
+        self.set_deadline(None);
     }
 
     /// The event-timer deadline.
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        self.deadline
+        if self.deadline_set {
+            Some(self.deadline_at)
+        } else {
+            None
+        }
+    }
+
+    fn set_deadline(&mut self, t: Option<Instant>) {
+        self.deadline_set = t.is_some();
+        self.deadline_at = t.unwrap_or(Instant::ZERO);
     }
 
     /// Returns true once when the deadline passed (EMCY 8250h).
     pub fn handle_timeout(&mut self, now: Instant) -> bool {
-        if self.deadline.is_some_and(|t| t <= now) {
-            self.deadline = None;
+        if self.poll_timeout().is_some_and(|t| t <= now) {
+            self.set_deadline(None);
             self.timed_out = true;
             return true;
         }

@@ -46,16 +46,22 @@ pub enum SyncAction {
 pub struct Tpdo {
     cob: CobIdEntry,
     ttype: u8,
-    inhibit: Duration,
-    event_timer: Duration,
+    /// Inhibit time, 100 µs (the 1800h sub 03h value: 2 bytes kept instead of an 8-byte `Duration`).
+    inhibit_100us: u16,
+    /// Event timer, ms (sub 05h).
+    event_timer_ms: u16,
     sync_start: u8,
     /// The resolved mapping.
     pub map: ResolvedMap,
     sync_count: u8,
     started: bool,
     pending: bool,
-    inhibit_until: Option<Instant>,
-    timer_due: Option<Instant>,
+    // The two deadlines as an instant and a flag each, not `Option<Instant>` (16 B with its padding): the
+    // flags pack with the other small fields. Unset instants are kept at 0, so equality is unchanged.
+    inhibit_at: Instant,
+    timer_at: Instant,
+    inhibit_set: bool,
+    timer_set: bool,
     /// Data sampled at the last SYNC for type FCh.
     pub rtr_buffer: Option<([u8; 8], u8)>,
     /// The payload last sent, for change-of-value detection.
@@ -68,15 +74,17 @@ impl Tpdo {
         Tpdo {
             cob: comm.cob(),
             ttype: comm.transmission_type,
-            inhibit: Duration::from_100us(comm.inhibit_100us as u64),
-            event_timer: Duration::from_millis(comm.event_timer_ms as u64),
+            inhibit_100us: comm.inhibit_100us,
+            event_timer_ms: comm.event_timer_ms,
             sync_start: comm.sync_start,
             map,
             sync_count: 0,
             started: false,
             pending: false,
-            inhibit_until: None,
-            timer_due: None,
+            inhibit_at: Instant::ZERO,
+            timer_at: Instant::ZERO,
+            inhibit_set: false,
+            timer_set: false,
             rtr_buffer: None,
             last_sent: None,
         }
@@ -112,18 +120,18 @@ impl Tpdo {
         self.sync_count = 0;
         self.started = false;
         self.pending = false;
-        self.inhibit_until = None;
+        self.set_inhibit_until(None);
         self.rtr_buffer = None;
         self.last_sent = None;
-        self.timer_due = None;
+        self.set_timer_due(None);
         self.is_valid() && self.event_driven()
     }
 
     /// Leaving Operational: no timers.
     pub fn stop(&mut self) {
         self.pending = false;
-        self.timer_due = None;
-        self.inhibit_until = None;
+        self.set_timer_due(None);
+        self.set_inhibit_until(None);
     }
 
     /// A SYNC with `counter` (`None` when the SYNC counter is off).
@@ -178,7 +186,7 @@ impl Tpdo {
                 false
             }
             254 | 255 => {
-                if self.inhibit_until.is_some_and(|t| now < t) {
+                if self.inhibit_until().is_some_and(|t| now < t) {
                     self.pending = true;
                     false
                 } else {
@@ -189,19 +197,46 @@ impl Tpdo {
         }
     }
 
+    const fn inhibit_until(&self) -> Option<Instant> {
+        if self.inhibit_set {
+            Some(self.inhibit_at)
+        } else {
+            None
+        }
+    }
+
+    const fn timer_due(&self) -> Option<Instant> {
+        if self.timer_set {
+            Some(self.timer_at)
+        } else {
+            None
+        }
+    }
+
+    fn set_inhibit_until(&mut self, t: Option<Instant>) {
+        self.inhibit_set = t.is_some();
+        self.inhibit_at = t.unwrap_or(Instant::ZERO);
+    }
+
+    fn set_timer_due(&mut self, t: Option<Instant>) {
+        self.timer_set = t.is_some();
+        self.timer_at = t.unwrap_or(Instant::ZERO);
+    }
+
     /// The TPDO was sent at `now`: the inhibit time and the event timer start.
     pub fn sent(&mut self, now: Instant) {
         if self.ttype != 0 {
             self.pending = false;
         }
-        self.inhibit_until = (!self.inhibit.is_zero()).then(|| now + self.inhibit);
-        self.timer_due = (self.event_driven() && !self.event_timer.is_zero()).then(|| now + self.event_timer);
+        let (inhibit, timer) = (self.inhibit_100us, self.event_timer_ms);
+        self.set_inhibit_until((inhibit != 0).then(|| now + Duration::from_100us(inhibit.into())));
+        self.set_timer_due((self.event_driven() && timer != 0).then(|| now + Duration::from_millis(timer.into())));
     }
 
     /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work.
     pub fn poll_timeout(&self) -> Option<Instant> {
-        let inhibit_end = if self.pending && self.event_driven() { self.inhibit_until } else { None };
-        earliest(inhibit_end, self.timer_due)
+        let inhibit_end = if self.pending && self.event_driven() { self.inhibit_until() } else { None };
+        earliest(inhibit_end, self.timer_due())
     }
 
     /// Time passed: returns whether to send now (a held-back event at the end of the inhibit time, or the
@@ -210,12 +245,12 @@ impl Tpdo {
         if !self.is_valid() || !self.event_driven() {
             return false;
         }
-        if self.timer_due.is_some_and(|t| t <= now) {
-            self.timer_due = None;
+        if self.timer_due().is_some_and(|t| t <= now) {
+            self.set_timer_due(None);
             self.pending = true;
         }
-        if self.pending && self.inhibit_until.is_none_or(|t| t <= now) {
-            self.inhibit_until = None;
+        if self.pending && self.inhibit_until().is_none_or(|t| t <= now) {
+            self.set_inhibit_until(None);
             return true;
         }
         false

@@ -750,34 +750,22 @@ impl SdoServer {
         data: InitiateData,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        let info = od.info(mux.index, mux.sub)?;
-        if !info.access.writable() {
-            return Err(AbortCode::WriteOfReadOnly);
-        }
-        let fixed = info.data_type.size();
         match data {
             InitiateData::Expedited(e) => {
-                let len = if e.size_indicated { usize::from(e.len) } else { fixed.filter(|&n| n <= 4).unwrap_or(4) };
-                let bytes = e.data.get(..len).unwrap_or(&e.data);
-                if fixed.is_some() {
-                    od.write(mux.index, mux.sub, bytes)?;
-                } else {
-                    od.begin_write(mux.index, mux.sub, Some(bytes.len()))?;
-                    let r = od
-                        .write_chunk(mux.index, mux.sub, 0, bytes)
-                        .and_then(|()| od.end_write(mux.index, mux.sub, bytes.len()));
-                    if let Err(code) = r {
-                        od.abort_write(mux.index, mux.sub);
-                        return Err(code);
-                    }
-                }
+                // info, access, length and the write in one dictionary call (one lookup where it is derived).
+                let len = e.size_indicated.then_some(usize::from(e.len));
+                od.write_expedited(mux.index, mux.sub, &e.data, len)?;
                 Ok(Response {
                     frame: Some(ServerResponse::InitiateDownload { mux }.emit()),
                     event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
                 })
             }
             InitiateData::Segmented { size } => {
-                let sink = self.open_sink(mux, fixed, size, od)?;
+                let info = od.info(mux.index, mux.sub)?;
+                if !info.access.writable() {
+                    return Err(AbortCode::WriteOfReadOnly);
+                }
+                let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
                 self.state = State::Download { mux, toggle: false, offset: 0, size, sink };
                 Ok(Response::send(ServerResponse::InitiateDownload { mux }.emit()))
             }
@@ -812,10 +800,10 @@ impl SdoServer {
         mux: Multiplexer,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        let size = readable_size(mux, od)?;
+        let mut d = [0u8; 4];
+        let (size, n) = od.read_expedited(mux.index, mux.sub, &mut d)?;
+        let size = u32::try_from(size).map_err(|_| AbortCode::OutOfMemory)?;
         if (1..=4).contains(&size) {
-            let mut d = [0u8; 4];
-            let n = od.read(mux.index, mux.sub, 0, &mut d[..size as usize])?;
             let e = Expedited::new(d.get(..n).unwrap_or(&[])).ok_or(AbortCode::GeneralError)?;
             return Ok(Response::send(ServerResponse::InitiateUpload { mux, data: InitiateData::Expedited(e) }.emit()));
         }

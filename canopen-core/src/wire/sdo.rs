@@ -118,11 +118,14 @@ impl Expedited {
     /// assert!(Expedited::new(&[9; 5]).is_none());
     /// ```
     pub fn new(bytes: &[u8]) -> Option<Self> {
-        if bytes.is_empty() || bytes.len() > 4 {
-            return None;
-        }
-        let mut data = [0u8; 4];
-        data[..bytes.len()].copy_from_slice(bytes);
+        // By length, not copy_from_slice: a 1-4 byte copy of unknown length is a memcpy call.
+        let data = match *bytes {
+            [a] => [a, 0, 0, 0],
+            [a, b] => [a, b, 0, 0],
+            [a, b, c] => [a, b, c, 0],
+            [a, b, c, d] => [a, b, c, d],
+            _ => return None,
+        };
         Some(Expedited { data, len: bytes.len() as u8, size_indicated: true })
     }
 
@@ -181,8 +184,9 @@ impl InitiateData {
             InitiateData::Expedited(e) if e.size_indicated => {
                 let len = e.len.clamp(1, 4);
                 b[0] |= ((4 - len) << 2) | 0x03;
-                let n = usize::from(len);
-                b[4..4 + n].copy_from_slice(&e.data[..n]);
+                // The first `len` bytes, the rest stays 0: a masked 4-byte store, not a memcpy of 1-4 bytes.
+                let keep = u32::MAX >> (8 * (4 - u32::from(len)));
+                b[4..8].copy_from_slice(&(u32::from_le_bytes(e.data) & keep).to_le_bytes());
             }
             InitiateData::Expedited(e) => {
                 b[0] |= 0x02;
@@ -269,9 +273,12 @@ impl Segment {
         let mut b = [0u8; 8];
         let len = self.len.min(7);
         b[0] = (u8::from(self.toggle) << 4) | ((7 - len) << 1) | u8::from(self.last);
-        let n = usize::from(len);
-        b[1..1 + n].copy_from_slice(&self.data[..n]);
-        b
+        // All 7 data bytes in one fixed-size copy, then the bytes past `len` cleared with a mask: a copy of
+        // 0-7 bytes of runtime length would be a memcpy call per segment.
+        b[1..8].copy_from_slice(&self.data);
+        let keep = u64::MAX.checked_shr(64 - 8 * u32::from(len)).unwrap_or(0); // the low `len` bytes
+        let data = (u64::from_le_bytes(b) >> 8) & keep;
+        ((data << 8) | u64::from(b[0])).to_le_bytes()
     }
 }
 
@@ -688,6 +695,23 @@ pub fn abort_frame(mux: Multiplexer, code: u32) -> [u8; 8] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Bytes past `len` are never sent, whatever the segment holds there.
+    #[test]
+    fn segment_emit_sends_len_bytes_only() {
+        for len in 0..=7u8 {
+            let seg = Segment { toggle: true, last: false, len, data: [1, 2, 3, 4, 5, 6, 7] };
+            let b = seg.emit();
+            let mut want = [0u8; 8];
+            want[0] = 0x10 | ((7 - len) << 1);
+            want[1..1 + usize::from(len)].copy_from_slice(&seg.data[..usize::from(len)]);
+            assert_eq!(b, want, "len {len}");
+        }
+        let e = Expedited { data: [9, 8, 7, 6], len: 2, size_indicated: true };
+        let b = ServerResponse::InitiateUpload { mux: Multiplexer::new(0x1000, 0), data: InitiateData::Expedited(e) }
+            .emit();
+        assert_eq!(b[4..], [9, 8, 0, 0]);
+    }
 
     fn req(b: [u8; 8]) -> ClientRequest {
         ClientRequest::parse(&b).unwrap()

@@ -1,22 +1,26 @@
-//! A CANopen node on an STM32F446RE (bxCAN CAN1 on PA11/PA12, 250 kbit/s) with embassy: node-ID 5, NMT,
-//! heartbeat producer (1017h, 1000 ms) and a 4-entry heartbeat consumer (1016h, configured by SDO), an SDO
-//! server with block transfer, and the application dictionary as a derived struct.
+//! A CANopen node on an STM32F446RE (bxCAN CAN1 on PA11/PA12, 250 kbit/s) with embassy: node-ID 5, the
+//! reference feature set of DESIGN.md "Performance": NMT, heartbeat producer (1017h, 1000 ms) and a 4-entry
+//! heartbeat consumer (1016h, configured by SDO), an SDO server with block transfer, 4 RPDOs and 4 TPDOs with
+//! dynamic mapping (defaults below, remappable by SDO through 1600h/1A00h), the SYNC consumer (1005h = 80h),
+//! EMCY with the 1003h error history, the TIME consumer (1012h = 8000_0100h), and the application dictionary
+//! as a derived struct.
 //!
 //! Two tasks share the node (see the crate docs for the glue types):
 //!
-//! - `canopen` runs `canopen_core::driver::run` on the CAN halves and `embassy-time`;
+//! - `canopen` runs `canopen_core::driver::run` on the CAN halves and `embassy-time`; a bus error raises
+//!   EMCY 8100h (communication, generic), which is cleared when the driver runs again;
 //! - `process` samples the inputs every 10 ms, writes them into the dictionary struct under the node's lock,
-//!   drives the output from what the bus wrote (SDO today, RPDO later), and signals the driver when an input
-//!   changed, which is where an event-driven TPDO will be triggered.
+//!   drives the output from what the bus wrote (SDO or RPDO), triggers the event-driven TPDO 1 when an input
+//!   changed and signals the driver, which sends it at once.
 //!
 //! The node lives in a `static` (`StaticCell`), so its RAM is in `.bss` and counted by
-//! `scripts/footprint.sh`. The PDO, SYNC, EMCY-history and TIME parts of the reference feature set land in
-//! the core separately; the places they plug in are marked `PDO:` below.
+//! `scripts/footprint.sh`.
 #![no_std]
 #![no_main]
 
 use canopen_core::comm::{Identity, NodeConfig};
 use canopen_core::driver::{self, Shared};
+use canopen_core::pdo::PdoDefault;
 use canopen_core::{Event, NmtState, Node, NodeId};
 use canopen_firmware::{AppWake, BxCanRx, BxCanTx, EmbassyClock, NodeCell};
 use canopen_od_derive::ObjectDictionary;
@@ -38,8 +42,8 @@ bind_interrupts!(struct Irqs {
     CAN1_TX => TxInterruptHandler<CAN1>;
 });
 
-/// The application's object dictionary: the process values live here, the node serves them by SDO (and by
-/// PDO once the core has it: the `pdo =` keys already mark what is mappable).
+/// The application's object dictionary: the process values live here, the node serves them by SDO and PDO
+/// (the `pdo =` keys say what may be mapped).
 #[derive(ObjectDictionary)]
 struct Device {
     /// 6000h: digital inputs, 8 bits per sub-index.
@@ -51,17 +55,50 @@ struct Device {
     /// 2001h: a set-point with limits.
     #[od(index = 0x2001, access = "rw", pdo = "rpdo", min = -1000, max = 1000, default = 0)]
     setpoint: i16,
+    /// 2002h: LED blink period in 10 ms ticks (0 = the LED follows 6200h:01 bit 0).
+    #[od(index = 0x2002, access = "rw", pdo = "rpdo", default = 0, name = "Blink period")]
+    blink_ticks: u16,
     /// 2100h: seconds since power-on, kept by the process task.
     #[od(index = 0x2100, access = "ro", pdo = "tpdo", name = "Uptime")]
     uptime_s: u32,
+    /// 2101h: button presses since power-on.
+    #[od(index = 0x2101, access = "ro", pdo = "tpdo", name = "Button presses")]
+    presses: u16,
+    /// 2102h: milliseconds after midnight of the last TIME message received (TIME consumer).
+    #[od(index = 0x2102, access = "ro", pdo = "tpdo", name = "Time of day ms")]
+    time_ms: u32,
 }
 
-/// NMT + heartbeat producer + 4 heartbeat consumers + SDO server (with block transfer), queues of 16.
-/// PDO: the RPDO/TPDO counts become const generics here.
-type DeviceNode = Node<Device, 4, 16, 16>;
+/// NMT + heartbeat producer + 4 heartbeat consumers + SDO server (with block transfer) + 4 RPDOs + 4 TPDOs,
+/// transmit and event queues of 8: the driver drains both after every frame and every deadline, and the
+/// largest burst one step makes is entering Operational or a SYNC (4 TPDOs, plus an EMCY or an SDO
+/// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 20 B of events).
+type DeviceNode = Node<Device, 4, 8, 8, 4, 4>;
 
 const NODE_ID: u8 = 5;
 const BITRATE: u32 = 250_000;
+
+/// RPDO 1 (201h + node): 6200h:01, the outputs, applied at reception (FFh).
+const RPDO1: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x6200_0108], ..PdoDefault::EVENT };
+/// RPDO 2: 2001h set-point.
+const RPDO2: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x2001_0010], ..PdoDefault::EVENT };
+/// RPDO 3: outputs, set-point and blink period, applied at the next SYNC (synchronous, 01h).
+const RPDO3: PdoDefault =
+    PdoDefault { transmission_type: 1, mapping: &[0x6200_0108, 0x2001_0010, 0x2002_0010], ..PdoDefault::EVENT };
+/// RPDO 4: blink period; not valid until a master enables it (1403h sub 01h bit 31).
+const RPDO4: PdoDefault = PdoDefault { mapping: &[0x2002_0010], ..PdoDefault::UNUSED };
+/// TPDO 1 (181h + node): the inputs, event-driven (FEh): triggered by the process task on a change.
+const TPDO1: PdoDefault = PdoDefault { mapping: &[0x6000_0108], ..PdoDefault::EVENT };
+/// TPDO 2: uptime and button presses, every second (event timer).
+const TPDO2: PdoDefault =
+    PdoDefault { event_timer_ms: 1000, mapping: &[0x2100_0020, 0x2101_0010], ..PdoDefault::EVENT };
+/// TPDO 3: inputs, presses and the set-point in force, at every SYNC (01h).
+const TPDO3: PdoDefault =
+    PdoDefault { transmission_type: 1, mapping: &[0x6000_0108, 0x2101_0010, 0x2001_0010], ..PdoDefault::EVENT };
+/// TPDO 4: time of day and uptime, every 10th SYNC.
+const TPDO4: PdoDefault =
+    PdoDefault { transmission_type: 10, mapping: &[0x2102_0020, 0x2100_0020], ..PdoDefault::EVENT };
+
 const CONFIG: NodeConfig = NodeConfig {
     device_type: 0x0003_0191, // CiA 401, digital inputs and outputs
     identity: Identity { vendor_id: 0, product_code: 0x446, revision: 0x0001_0000, serial: 1 },
@@ -69,8 +106,13 @@ const CONFIG: NodeConfig = NodeConfig {
     hardware_version: "NUCLEO-F446RE",
     software_version: env!("CARGO_PKG_VERSION"),
     heartbeat_time_ms: 1000,
-    ..NodeConfig::DEFAULT
+    rpdo: &[RPDO1, RPDO2, RPDO3, RPDO4],
+    tpdo: &[TPDO1, TPDO2, TPDO3, TPDO4],
+    ..NodeConfig::DEFAULT // SYNC consumer on 80h, TIME consumer on 100h, EMCY on 80h + node
 };
+
+/// EMCY 8100h: communication, generic (a bus error reported by the controller).
+const EMCY_BUS_ERROR: u16 = 0x8100;
 
 static NODE: StaticCell<NodeCell<DeviceNode>> = StaticCell::new();
 static WAKE: AppWake = AppWake::new();
@@ -85,7 +127,7 @@ async fn main(spawner: Spawner) {
     can.enable().await;
 
     let Some(id) = NodeId::new(NODE_ID) else { return };
-    let device = Device { inputs: [0], outputs: [0], setpoint: 0, uptime_s: 0 };
+    let device = Device { inputs: [0], outputs: [0], setpoint: 0, blink_ticks: 0, uptime_s: 0, presses: 0, time_ms: 0 };
     let node: &'static NodeCell<DeviceNode> = NODE.init(NodeCell::new(Node::new(id, CONFIG, device)));
 
     let button = Input::new(p.PC13, Pull::None);
@@ -95,27 +137,40 @@ async fn main(spawner: Spawner) {
 }
 
 /// Runs the node. A receive error (a bus error reported by the controller) returns from `driver::run`
-/// with the node intact in `NODE`; the task waits a little and runs it again.
+/// with the node intact in `NODE`: the task raises EMCY 8100h (queued, with its 1003h history entry), waits a
+/// little and runs the driver again, which sends the EMCY; the error is cleared once the bus works again.
 #[embassy_executor::task]
 async fn canopen(mut can: Can<'static>, node: &'static NodeCell<DeviceNode>) {
     let (tx, rx) = can.split();
     let (mut tx, mut rx, mut clock) = (BxCanTx(tx), BxCanRx(rx), EmbassyClock);
     loop {
-        let Err(_error) = driver::run(node, &mut rx, &mut tx, &mut clock, &WAKE, on_event).await;
+        let Err(_error) = driver::run(node, &mut rx, &mut tx, &mut clock, &WAKE, |e| on_event(node, e)).await;
+        node.lock(|n| n.raise_error(EMCY_BUS_ERROR, [0; 5]));
         Timer::after(Duration::from_millis(10)).await;
     }
 }
 
-/// The node's events, outside the lock. PDO: an RPDO-written event lands here too.
-fn on_event(event: Event) {
+/// The node's events, outside the lock.
+fn on_event(node: &NodeCell<DeviceNode>, event: Event) {
     match event {
+        // A frame was received and handled: the bus works, so a bus error is over (EMCY 0000h if it was the
+        // last active error).
+        Event::RpdoReceived { .. } | Event::Sync { .. } => {
+            node.lock(|n| n.clear_error(EMCY_BUS_ERROR));
+        }
+        // TIME consumer: the application keeps the time of day (2102h, mappable into TPDO 4).
+        Event::Time(t) => node.lock(|n| n.app_mut().time_ms = t.ms),
+        // The outputs are applied by the process task on its next tick, whatever wrote them (SDO or RPDO);
+        // another node's EMCY, an RPDO timeout and heartbeat observations need no local reaction here.
         Event::StateChanged { to: NmtState::Operational, .. } => {}
         Event::Heartbeat(_) | Event::SdoAborted { .. } | Event::ObjectWritten { .. } => {}
+        Event::Emergency { .. } | Event::RpdoTimeout { .. } => {}
         _ => {}
     }
 }
 
-/// The application: samples the inputs into the dictionary, applies the outputs the bus wrote.
+/// The application: samples the inputs into the dictionary, applies the outputs the bus wrote, triggers the
+/// event-driven TPDO 1 when the inputs changed.
 #[embassy_executor::task]
 async fn process(node: &'static NodeCell<DeviceNode>, button: Input<'static>, mut led: Output<'static>) {
     let mut ticker = Ticker::every(Duration::from_millis(10));
@@ -126,18 +181,25 @@ async fn process(node: &'static NodeCell<DeviceNode>, button: Input<'static>, mu
         ticks = ticks.wrapping_add(1);
         let inputs = u8::from(button.is_low());
         let uptime_s = ticks / 100;
-        let (changed, outputs) = node.lock(|n| {
+        let (sent, level) = node.lock(|n| {
             let app = n.app_mut();
             let changed = app.inputs[0] != inputs;
+            if changed && inputs != 0 {
+                app.presses = app.presses.wrapping_add(1);
+            }
             app.inputs[0] = inputs;
             app.uptime_s = uptime_s;
-            // PDO: `if changed { n.trigger_tpdo(0) }` (event-driven TPDO 1 mapping 6000h:01).
-            (changed, app.outputs[0])
+            let level = match app.blink_ticks {
+                0 => app.outputs[0] & 1 != 0,
+                p => (ticks / u32::from(p)) & 1 != 0,
+            };
+            // Event-driven TPDO 1 (6000h:01): sampled and queued now, or when its inhibit time ends.
+            (changed && n.trigger_tpdo(0), level)
         });
-        if changed {
+        if sent {
             WAKE.signal(); // the driver sends what was queued now, not at the next deadline
         }
-        led.set_level(Level::from(outputs & 1 != 0));
+        led.set_level(Level::from(level));
     }
 }
 
