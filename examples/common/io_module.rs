@@ -3,7 +3,8 @@
 //! (`#[path]`-included).
 //!
 //! Objects (besides the communication profile the core provides: 1000h, 1001h, 1008h–100Ah, 100Ch, 100Dh,
-//! 1016h with 4 consumer entries, 1017h = 1000 ms, 1018h, 1200h):
+//! 1003h, 1010h/1011h (with a store), 1014h/1015h, 1016h with 4 consumer entries, 1017h = 1000 ms, 1018h, 1200h,
+//! RPDO/TPDO 1..4 at 1400h–1403h/1600h–1603h and 1800h–1803h/1A00h–1A03h):
 //!
 //! | index | type | access | what |
 //! |---|---|---|---|
