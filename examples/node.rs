@@ -5,6 +5,7 @@
 //! cargo run --example node -- --iface vcan0 --node-id 5 --heartbeat 1000
 //! cargo run --example node -- --blocking                     # the blocking runner instead of tokio
 //! cargo run --example node -- --eds io_module.eds            # write the node's EDS and exit
+//! cargo run --example node -- --store /var/tmp/node5         # 1010h/1011h in /var/tmp/node5.a and .b
 //! cargo run --example node -- --help
 //! ```
 //!
@@ -15,18 +16,23 @@
 //!
 //! While it runs, another task (tokio) or thread (`--blocking`) updates 2006h (uptime in ms), the digital
 //! inputs 6000h (a walking bit, once a second) and the analogue inputs 6401h: the node lives in a
-//! `MutexShared` cell, the task changes it under the lock and signals a `NotifyWake` so the driver acts on
-//! the change at once (event-driven TPDOs will use exactly this path once PDOs merge).
+//! `MutexShared` cell, the task changes it under the lock, calls `trigger_changed_tpdos` (the event-driven
+//! TPDO1 and TPDO2 go out when their inputs changed, spaced by their inhibit time) and signals a
+//! `NotifyWake` so the driver sends them at once. RPDO1/RPDO2 write the outputs 6200h/6411h.
 //!
-//! **NMT reset node on Linux**: the node resets *in-process*. The core sends the boot-up frame and sets the
-//! communication parameters back to their power-on values; on `Event::ResetApplication` the example sets
-//! the application values (2000h–2005h, 2100h, 6200h, 6411h) back to their defaults. The process, its socket
-//! and 2006h uptime continue. A master sees the boot-up either way; restarting the process would lose the
-//! socket and make a supervisor part of the protocol for no gain.
+//! **NMT reset node on Linux**: the node resets *in-process*. The core sends the boot-up frame, sets the
+//! application values back to their `default =` values and the communication parameters to their power-on
+//! values, then loads what 1010h stored. The process, its socket and 2006h uptime continue (the uptime
+//! reads 0 until the next 100 ms tick). A master sees the boot-up either way; restarting the process would
+//! lose the socket and make a supervisor part of the protocol for no gain.
 //!
-//! Not wired yet (say so rather than pretend): `--store FILE` is accepted, but storing to a file needs the
-//! core's `Storage` trait (1010h/1011h), which lands with the PDO/EMCY/store work; writing 2100h records the
-//! requested error code, and raising it as an EMCY frame is wired after the EMCY producer merges.
+//! **Store/restore**: with `--store FILE` the parameters go to `FILE.a`/`FILE.b`
+//! (`canopen_socketcan::FileStorage`): 1010h:01..03 = "save" writes them, they are loaded at start-up and
+//! at every reset; 1011h:01..03 = "load" brings the defaults back at the next reset (or restart). Without
+//! `--store`, 1010h/1011h answer 0606 0000h.
+//!
+//! **Error injection**: writing a non-zero code to 2100h raises it (1001h, 1003h and an EMCY frame); writing
+//! another code clears the old one first, 0 clears it.
 
 #[path = "common/io_module.rs"]
 mod io_module;
@@ -37,9 +43,11 @@ use std::time::{Duration, Instant as StdInstant};
 
 use canopen_core::od::ObjectDictionary;
 use canopen_core::{Event, NmtState, NodeId};
-use canopen_socketcan::{run_blocking, run_tokio, AdapterEvent, BlockingBus, MutexShared, NotifyWake, Observed};
+use canopen_socketcan::{
+    run_blocking, run_tokio, AdapterEvent, BlockingBus, FileStorage, MutexShared, NotifyWake, Observed,
+};
 use clap::Parser;
-use io_module::{IoNode, CONFIG};
+use io_module::{IoNode, Store, CONFIG};
 
 /// A CiA 301 CANopen node (a CiA 401-style I/O module) on SocketCAN.
 #[derive(Parser, Debug)]
@@ -60,7 +68,7 @@ struct Args {
     /// Write the node's EDS (CiA 306) to FILE and exit.
     #[arg(long, value_name = "FILE")]
     eds: Option<String>,
-    /// Parameter storage file (1010h/1011h). Accepted but NOT wired yet: needs the core's Storage trait.
+    /// Parameter storage (1010h/1011h) in FILE.a and FILE.b; also makes `--eds` announce 1010h/1011h.
     #[arg(long, value_name = "FILE")]
     store: Option<String>,
     /// Use the blocking runner instead of tokio.
@@ -77,7 +85,7 @@ fn main() -> ExitCode {
     let args = Args::parse();
     let config = canopen_core::comm::NodeConfig { heartbeat_time_ms: args.heartbeat, ..CONFIG };
     if let Some(path) = &args.eds {
-        return match std::fs::write(path, io_module::eds_text(config)) {
+        return match std::fs::write(path, io_module::eds_text(config, args.store.is_some())) {
             Ok(()) => {
                 println!("node: EDS written to {path}");
                 ExitCode::SUCCESS
@@ -88,12 +96,6 @@ fn main() -> ExitCode {
             }
         };
     }
-    if let Some(path) = &args.store {
-        println!(
-            "node: --store {path}: accepted but not wired yet (file storage needs the core's Storage trait, \
-             1010h/1011h); parameters are NOT stored"
-        );
-    }
     let Some(node_id) = NodeId::new(args.node_id) else {
         eprintln!("node: node-ID must be 1..=127");
         return ExitCode::from(2);
@@ -103,7 +105,14 @@ fn main() -> ExitCode {
         eprintln!("node: {e}");
         return ExitCode::from(2);
     }
-    let shared = Arc::new(MutexShared::new(io_module::new_node(node_id, config)));
+    let store = match &args.store {
+        Some(path) => {
+            println!("node: parameters stored in {path}.a / {path}.b (1010h/1011h)");
+            Store::File(FileStorage::new(path))
+        }
+        None => Store::None,
+    };
+    let shared = Arc::new(MutexShared::new(io_module::new_node_with_store(node_id, config, store)));
     println!(
         "node {} on {} (heartbeat {} ms, {} runner); Ctrl-C to stop",
         node_id.get(),
@@ -113,7 +122,9 @@ fn main() -> ExitCode {
     );
     let started = StdInstant::now();
     let limit = args.run_for.map(Duration::from_secs_f64);
-    let printer = Printer { shared: shared.clone(), started, iface: args.iface.clone(), quiet: args.quiet };
+    let wake = Arc::new(NotifyWake::new());
+    let printer =
+        Printer { shared: shared.clone(), started, iface: args.iface.clone(), quiet: args.quiet, wake: wake.clone() };
     let result = if args.blocking {
         run_on_threads(&args, &shared, &printer, limit)
     } else {
@@ -136,7 +147,7 @@ fn run_on_tokio(
 ) -> std::io::Result<()> {
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
     rt.block_on(async {
-        let wake = Arc::new(NotifyWake::new());
+        let wake = printer.wake.clone();
         // The application task: process values change while the node runs.
         let (s, w, t0) = (shared.clone(), wake.clone(), printer.started);
         tokio::spawn(async move {
@@ -175,7 +186,8 @@ fn run_on_threads(
     run_blocking(&**shared, &mut bus, |o| printer.print(o), || limit.is_none_or(|l| printer.started.elapsed() < l))
 }
 
-/// What the application task does every 100 ms.
+/// What the application task does every 100 ms: new input values, then the event-driven TPDOs whose
+/// inputs changed.
 fn update_process_values(node: &mut IoNode, started: StdInstant) {
     let ms = started.elapsed().as_millis() as u64;
     let app = node.app_mut();
@@ -189,6 +201,7 @@ fn update_process_values(node: &mut IoNode, started: StdInstant) {
         let phase = ((ms / 10) as i64 + 250 * i as i64) % 2000;
         *input = (if phase < 1000 { phase } else { 2000 - phase } - 500) as i16;
     }
+    node.trigger_changed_tpdos();
 }
 
 /// Prints frames and events, candump-like.
@@ -197,6 +210,9 @@ struct Printer {
     started: StdInstant,
     iface: String,
     quiet: bool,
+    /// Wakes the tokio driver when an event handler queued frames (an EMCY of 2100h), so they go out now
+    /// rather than at the next deadline (the blocking runner drains the node after every event anyway).
+    wake: Arc<NotifyWake>,
 }
 
 impl Printer {
@@ -226,15 +242,20 @@ impl Printer {
         match e {
             Event::StateChanged { from, to } => println!("({t:10.6}) NMT {from:?} -> {to:?}"),
             Event::ResetApplication => {
-                self.shared.with(|n| n.app_mut().restore_power_on_values());
-                println!("({t:10.6}) NMT reset application: application values back to their defaults");
+                println!("({t:10.6}) NMT reset application: application values back to their defaults (or stored)")
             }
-            Event::ResetCommunication => println!("({t:10.6}) NMT reset communication"),
+            Event::ResetCommunication => {
+                println!("({t:10.6}) NMT reset communication");
+                let (_, raised) = self.shared.with(io_module::error_injection_after_reset);
+                if raised != 0 {
+                    println!("({t:10.6}) error injection: code {raised:04X}h raised again (2100h)");
+                    self.wake.signal();
+                }
+            }
             Event::ObjectWritten { index, sub } => {
-                let (value, injected) = self.shared.with(|n| {
+                let value = self.shared.with(|n| {
                     let mut buf = [0u8; 32];
-                    let value = n.dictionary().read(*index, *sub, 0, &mut buf).map(|len| buf[..len].to_vec());
-                    (value, n.app().injected.last().copied())
+                    n.dictionary().read(*index, *sub, 0, &mut buf).map(|len| buf[..len].to_vec())
                 });
                 match value {
                     Ok(v) if *index == 0x2005 => {
@@ -245,11 +266,14 @@ impl Printer {
                     Err(code) => println!("({t:10.6}) SDO wrote {index:04X}h:{sub:02X} (unreadable: {code:?})"),
                 }
                 if *index == 0x2100 {
-                    println!(
-                        "({t:10.6}) error injection: code {:04X}h recorded (EMCY raising is wired after the EMCY \
-                         work merges)",
-                        injected.unwrap_or(0)
-                    );
+                    let (cleared, raised) = self.shared.with(io_module::apply_error_injection);
+                    if cleared != 0 {
+                        println!("({t:10.6}) error injection: code {cleared:04X}h cleared");
+                    }
+                    if raised != 0 {
+                        println!("({t:10.6}) error injection: code {raised:04X}h raised");
+                    }
+                    self.wake.signal();
                 }
             }
             Event::SdoAborted { index, sub, code, by_client } => println!(

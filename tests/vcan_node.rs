@@ -6,8 +6,8 @@
 //! - 64 KiB into and out of the 2005h DOMAIN, segmented and block with CRC (and block without CRC),
 //!   byte-exact;
 //! - load: back-to-back block transfers both ways while another socket floods COB-IDs the node does not
-//!   use (11-bit and 29-bit): nothing panics, every transfer is byte-exact, the node keeps its heartbeat.
-//!   TPDOs at 1 ms join this test after the PDO work merges.
+//!   use (11-bit and 29-bit) and the node, Operational, sends 4 TPDOs on 1 ms event timers: nothing panics,
+//!   every transfer is byte-exact, the node keeps its heartbeat and its TPDOs keep flowing.
 
 #[path = "../examples/common/io_module.rs"]
 mod io_module;
@@ -16,8 +16,9 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant as StdInstant};
 
+use canopen_core::pdo::PdoDefault;
 use canopen_core::sdo::client::Mode;
-use canopen_core::NodeId;
+use canopen_core::{NmtState, NodeId};
 use canopen_socketcan::socketcan;
 use canopen_socketcan::{run_tokio, BlockingBus, Master, MutexShared, NotifyWake, Observed};
 use io_module::{IoNode, CONFIG};
@@ -44,7 +45,10 @@ struct RunningNode {
 
 impl RunningNode {
     fn start(id: u8) -> Self {
-        let config = canopen_core::comm::NodeConfig { heartbeat_time_ms: 100, ..CONFIG };
+        Self::start_with(id, canopen_core::comm::NodeConfig { heartbeat_time_ms: 100, ..CONFIG })
+    }
+
+    fn start_with(id: u8, config: canopen_core::comm::NodeConfig) -> Self {
         let shared = Arc::new(MutexShared::new(io_module::new_node(NodeId::new(id).unwrap(), config)));
         let stop = Arc::new(AtomicBool::new(false));
         let thread = {
@@ -138,8 +142,41 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     if !have_vcan() {
         return;
     }
-    let node = RunningNode::start(32);
+    // 4 event-driven TPDOs whose event timers (1 ms) send them whether or not the values change.
+    const TPDOS: &[PdoDefault] = &[
+        PdoDefault { mapping: &[0x6000_0108, 0x6000_0208], event_timer_ms: 1, ..PdoDefault::EVENT },
+        PdoDefault {
+            mapping: &[0x6401_0110, 0x6401_0210, 0x6401_0310, 0x6401_0410],
+            event_timer_ms: 1,
+            ..PdoDefault::EVENT
+        },
+        PdoDefault { mapping: &[0x2006_0040], event_timer_ms: 1, ..PdoDefault::EVENT },
+        PdoDefault { mapping: &[0x6000_0308, 0x6401_0110], event_timer_ms: 1, ..PdoDefault::EVENT },
+    ];
+    let config = canopen_core::comm::NodeConfig { heartbeat_time_ms: 100, tpdo: TPDOS, ..CONFIG };
+    let node = RunningNode::start_with(32, config);
+    node.shared.with(|n| n.enter_state(NmtState::Operational)); // PDOs only in Operational (PDO-04)
     let stop = Arc::new(AtomicBool::new(false));
+    // Counts the node's TPDO frames (180h/280h/380h/480h + 32) from another socket.
+    let tpdo_frames = Arc::new([(); 4].map(|_| AtomicU64::new(0)));
+    let tpdo_counter = {
+        let (stop, counts) = (stop.clone(), tpdo_frames.clone());
+        std::thread::spawn(move || {
+            use socketcan::{EmbeddedFrame, Socket};
+            let raw = socketcan::CanSocket::open(IFACE).unwrap();
+            raw.set_read_timeout(Duration::from_millis(50)).unwrap();
+            while !stop.load(Ordering::Relaxed) {
+                if let Ok(f) = raw.read_frame() {
+                    if let socketcan::Id::Standard(id) = f.id() {
+                        let id = id.as_raw();
+                        if id & 0x7F == 32 && (0x180..0x500).contains(&(id & 0x780)) && f.data().len() <= 8 {
+                            counts[usize::from((id - 0x180) >> 8)].fetch_add(1, Ordering::Relaxed);
+                        }
+                    }
+                }
+            }
+        })
+    };
     let flooded = Arc::new(AtomicU64::new(0));
     let flood = {
         let (stop, flooded) = (stop.clone(), flooded.clone());
@@ -219,10 +256,14 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
             }
         }
     }
-    // The node still answers and still produces its heartbeat.
-    assert_eq!(m.wait_heartbeat(Duration::from_secs(2)).unwrap(), Some(0x7F));
+    // The node still answers and still produces its heartbeat (Operational).
+    assert_eq!(m.wait_heartbeat(Duration::from_secs(2)).unwrap(), Some(0x05));
     stop.store(true, Ordering::Relaxed);
     flood.join().unwrap();
+    tpdo_counter.join().unwrap();
+    let tpdos = tpdo_frames.each_ref().map(|c| c.load(Ordering::Relaxed));
+    eprintln!("load: TPDO frames seen (TPDO1..4, 1 ms event timers): {tpdos:?} in {:.1?}", start.elapsed());
+    assert!(tpdos.iter().all(|&n| n > 100), "every TPDO kept flowing during the transfers: {tpdos:?}");
     let frames = flooded.load(Ordering::Relaxed);
     eprintln!(
         "load: {completed} block transfers ({downloads} downloads, {bytes} bytes) byte-exact, {aborted} aborted cleanly, in {:.1?} while {frames} flood frames were sent",

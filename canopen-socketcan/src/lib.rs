@@ -42,10 +42,12 @@ use canopen_core::{CanFrame, Event, Instant};
 pub use socketcan;
 
 pub mod blocking;
+pub mod file_storage;
 pub mod master;
 pub mod tokio_runner;
 
 pub use blocking::{run_blocking, BlockingBus, Rx};
+pub use file_storage::FileStorage;
 pub use master::{Master, MasterError, MasterStats};
 pub use tokio_runner::{run_tokio, MutexShared, NotifyWake, TokioBus, TokioTimer};
 

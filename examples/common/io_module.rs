@@ -3,7 +3,8 @@
 //! (`#[path]`-included).
 //!
 //! Objects (besides the communication profile the core provides: 1000h, 1001h, 1008h–100Ah, 100Ch, 100Dh,
-//! 1016h with 4 consumer entries, 1017h = 1000 ms, 1018h, 1200h):
+//! 1003h, 1010h/1011h (with a store), 1014h/1015h, 1016h with 4 consumer entries, 1017h = 1000 ms, 1018h, 1200h,
+//! RPDO/TPDO 1..4 at 1400h–1403h/1600h–1603h and 1800h–1803h/1A00h–1A03h):
 //!
 //! | index | type | access | what |
 //! |---|---|---|---|
@@ -14,17 +15,25 @@
 //! | 2004h | VISIBLE_STRING | rw | a label, capacity 32 |
 //! | 2005h | DOMAIN | rw | a data block of up to 65,536 bytes ([`DataBlock`]) |
 //! | 2006h | UNSIGNED64 | ro | uptime in ms, updated by another task while the node runs |
-//! | 2100h | UNSIGNED16 | rw | error injection: the requested EMCY error code is recorded |
+//! | 2100h | UNSIGNED16 | rw | error injection: a non-zero EMCY error code is raised, 0 clears it ([`apply_error_injection`]) |
 //! | 6000h | ARRAY 8 × UNSIGNED8 | ro, TPDO | digital inputs (the example changes them over time) |
 //! | 6200h | ARRAY 8 × UNSIGNED8 | rw, RPDO | digital outputs |
 //! | 6401h | ARRAY 4 × INTEGER16 | ro, TPDO | analogue inputs |
 //! | 6411h | ARRAY 4 × INTEGER16 | rw, RPDO | analogue outputs |
+//!
+//! Default PDOs (CiA 401 style, pre-defined COB-IDs, event-driven type 255 with a 10 ms inhibit time on the
+//! TPDOs): TPDO1 ← 6000h:01..08, TPDO2 ← 6401h:01..04, RPDO1 → 6200h:01..08, RPDO2 → 6411h:01..04.
+//!
+//! Parameters are stored (1010h/1011h) in a [`Store`]: a [`FileStorage`] with `--store FILE`, else none.
 #![allow(dead_code)]
 
 use canopen_core::comm::{Identity, NodeConfig};
 use canopen_core::od::eds::EdsInfo;
 use canopen_core::od::{AbortCode, Domain, VisibleString};
+use canopen_core::pdo::PdoDefault;
+use canopen_core::storage::{Storage, StorageError};
 use canopen_od_derive::ObjectDictionary;
+use canopen_socketcan::FileStorage;
 
 /// Capacity of the 2005h DOMAIN.
 pub const DATA_BLOCK_CAPACITY: usize = 65_536;
@@ -105,7 +114,7 @@ pub struct IoModule {
     pub data_block: DataBlock,
     #[od(index = 0x2006, name = "Uptime ms", access = "ro", pdo = "tpdo")]
     pub uptime_ms: u64,
-    #[od(index = 0x2100, name = "Error injection", access = "rw", default = 0, on_write = "error_injected")]
+    #[od(index = 0x2100, name = "Error injection", access = "rw", default = 0)]
     pub error_injection: u16,
     #[od(index = 0x6000, sub = 1..=8, name = "Digital inputs", access = "ro", pdo = "tpdo")]
     pub digital_inputs: [u8; 8],
@@ -115,27 +124,14 @@ pub struct IoModule {
     pub analog_inputs: [i16; 4],
     #[od(index = 0x6411, sub = 1..=4, name = "Analog outputs", access = "rw", pdo = "rpdo")]
     pub analog_outputs: [i16; 4],
-    /// Error codes requested through 2100h, oldest first (not in the dictionary). Raising them as EMCY
-    /// frames is wired after the EMCY producer merges into the node.
-    pub injected: Vec<u16>,
+    /// The error code raised for 2100h (not in the dictionary; 0 = none).
+    pub raised: u16,
 }
 
 impl IoModule {
     /// The power-on values (the defaults the EDS announces).
     pub fn with_defaults() -> Self {
         IoModule { parameter: 0x1234_5678, gain: 1.5, label: VisibleString::literal("io module"), ..Default::default() }
-    }
-
-    /// Reset Application (NMT-04): every value back to its power-on value. The derive does not generate
-    /// this yet, so the example calls it on `Event::ResetApplication`; the uptime keeps counting (it is the
-    /// process's uptime, not a parameter).
-    pub fn restore_power_on_values(&mut self) {
-        let uptime_ms = self.uptime_ms;
-        *self = IoModule { uptime_ms, ..IoModule::with_defaults() };
-    }
-
-    fn error_injected(&mut self, _sub: u8) {
-        self.injected.push(self.error_injection);
     }
 }
 
@@ -147,8 +143,32 @@ pub const CONFIG: NodeConfig = NodeConfig {
     hardware_version: "vcan",
     software_version: "0.1.0",
     heartbeat_time_ms: 1000,
+    rpdo: &[
+        PdoDefault { mapping: &DIGITAL_OUTPUTS_MAP, transmission_type: 255, ..PdoDefault::EVENT },
+        PdoDefault { mapping: &ANALOG_OUTPUTS_MAP, transmission_type: 255, ..PdoDefault::EVENT },
+    ],
+    tpdo: &[
+        PdoDefault { mapping: &DIGITAL_INPUTS_MAP, transmission_type: 255, inhibit_100us: 100, ..PdoDefault::EVENT },
+        PdoDefault { mapping: &ANALOG_INPUTS_MAP, transmission_type: 255, inhibit_100us: 100, ..PdoDefault::EVENT },
+    ],
     ..NodeConfig::DEFAULT
 };
+
+/// Mapping entries `index:01..=N`, each `bits` wide (raw UNSIGNED32: index, sub, length in bits).
+const fn map<const N: usize>(index: u16, bits: u8) -> [u32; N] {
+    let mut m = [0u32; N];
+    let mut i = 0;
+    while i < N {
+        m[i] = (index as u32) << 16 | ((i as u32 + 1) << 8) | bits as u32;
+        i += 1;
+    }
+    m
+}
+
+const DIGITAL_INPUTS_MAP: [u32; 8] = map(0x6000, 8);
+const DIGITAL_OUTPUTS_MAP: [u32; 8] = map(0x6200, 8);
+const ANALOG_INPUTS_MAP: [u32; 4] = map(0x6401, 16);
+const ANALOG_OUTPUTS_MAP: [u32; 4] = map(0x6411, 16);
 
 /// What the EDS says beyond the dictionary.
 pub const EDS_INFO: EdsInfo = EdsInfo {
@@ -160,20 +180,86 @@ pub const EDS_INFO: EdsInfo = EdsInfo {
     ..EdsInfo::DEFAULT
 };
 
-/// The example node type: 4 heartbeat consumers, transmit queue 32, event queue 32.
-pub type IoNode = canopen_core::Node<IoModule, 4, 32, 32>;
+/// The example node type: 4 heartbeat consumers, transmit queue 32, event queue 32, 4 RPDOs, 4 TPDOs,
+/// parameters in a [`Store`].
+pub type IoNode = canopen_core::Node<IoModule, 4, 32, 32, 4, 4, Store>;
 
-/// A fresh node with `node_id` and `config`.
-pub fn new_node(node_id: canopen_core::NodeId, config: NodeConfig) -> IoNode {
-    canopen_core::Node::new(node_id, config, IoModule::with_defaults())
+/// Where the node stores its parameters (1010h/1011h).
+#[derive(Debug)]
+pub enum Store {
+    /// No storage: 1010h/1011h answer 0606 0000h.
+    None,
+    /// `--store FILE`: two slot files, see [`FileStorage`].
+    File(FileStorage),
 }
 
-/// The EDS text of the node.
-pub fn eds_text(config: NodeConfig) -> String {
-    let od = canopen_core::od::Merged {
-        comm: canopen_core::od::comm::CommProfile::<4>::new(config),
-        app: IoModule::with_defaults(),
-    };
+impl Storage for Store {
+    fn capacity(&self) -> usize {
+        match self {
+            Store::None => 0,
+            Store::File(f) => f.capacity(),
+        }
+    }
+    fn erase(&mut self, slot: u8) -> Result<(), StorageError> {
+        match self {
+            Store::None => Err(StorageError::Unsupported),
+            Store::File(f) => f.erase(slot),
+        }
+    }
+    fn write(&mut self, slot: u8, offset: usize, data: &[u8]) -> Result<(), StorageError> {
+        match self {
+            Store::None => Err(StorageError::Unsupported),
+            Store::File(f) => f.write(slot, offset, data),
+        }
+    }
+    fn read(&mut self, slot: u8, offset: usize, buf: &mut [u8]) -> Result<(), StorageError> {
+        match self {
+            Store::None => Err(StorageError::Unsupported),
+            Store::File(f) => f.read(slot, offset, buf),
+        }
+    }
+}
+
+/// A fresh node with `node_id` and `config`, without storage.
+pub fn new_node(node_id: canopen_core::NodeId, config: NodeConfig) -> IoNode {
+    new_node_with_store(node_id, config, Store::None)
+}
+
+/// A fresh node storing its parameters in `store`; stored values are loaded when it boots.
+pub fn new_node_with_store(node_id: canopen_core::NodeId, config: NodeConfig, store: Store) -> IoNode {
+    canopen_core::Node::with_storage(node_id, config, IoModule::with_defaults(), store)
+}
+
+/// 2100h error injection, called after 2100h was written (`Event::ObjectWritten`) and after a reset: the
+/// code written is raised as an error (1001h, 1003h, an EMCY frame), the previously raised one is cleared;
+/// 0 clears. Returns `(cleared, raised)` codes, 0 for none.
+pub fn apply_error_injection(node: &mut IoNode) -> (u16, u16) {
+    let (wanted, old) = (node.app().error_injection, node.app().raised);
+    if wanted == old {
+        return (0, 0);
+    }
+    if old != 0 {
+        node.clear_error(old);
+    }
+    if wanted != 0 {
+        node.raise_error(wanted, [0; 5]);
+    }
+    node.app_mut().raised = wanted;
+    (old, wanted)
+}
+
+/// After a reset: Reset Communication cleared every error (1003h, 1001h), so nothing is raised any more;
+/// 2100h may hold a default or a stored value that is raised again.
+pub fn error_injection_after_reset(node: &mut IoNode) -> (u16, u16) {
+    node.app_mut().raised = 0;
+    apply_error_injection(node)
+}
+
+/// The EDS text of the node (`storage`: whether 1010h/1011h announce that saving is supported).
+pub fn eds_text(config: NodeConfig, storage: bool) -> String {
+    let mut comm = canopen_core::od::comm::CommProfile::<4, 4, 4>::new(config);
+    comm.storage_supported = storage;
+    let od = canopen_core::od::Merged { comm, app: IoModule::with_defaults() };
     let mut text = String::new();
     canopen_core::od::eds::write_eds(&mut text, &EDS_INFO, &od).expect("formatting into a String cannot fail");
     text

@@ -2,8 +2,10 @@
 SocketCAN interface. Runs only where `vcan0` exists: inside `../shared/vcan/with-vcan` (scripts/test-interop.sh);
 elsewhere every test is skipped with the reason.
 
-The node is started once per module from NODE_BIN (default target/debug/examples/node) and writes its EDS with
-`--eds` first; the master loads that EDS. Its output goes to NODE_LOG (default a temp file) for post-mortems.
+The node is started once per module from NODE_BIN (default target/debug/examples/node) with `--store` in a fresh
+temp directory (so 1010h/1011h work and a restart of the process finds what was saved), and writes its EDS with
+`--eds` first; the master loads that EDS. Its output goes to NODE_LOG (default a temp file) for post-mortems; the
+store test restarts the process (appending to the same log).
 """
 
 import os
@@ -34,25 +36,51 @@ LIVE = {0x2006, 0x6000, 0x6401}
 
 
 @pytest.fixture(scope="module")
-def eds_path():
-    path = os.path.join(tempfile.mkdtemp(), "io_module.eds")
-    subprocess.run([NODE_BIN, "--eds", path, "--node-id", str(NODE_ID)], check=True)
-    return path
+def store_path():
+    """The node's `--store FILE` (it keeps its two slots in FILE.a and FILE.b): fresh, so nothing is stored."""
+    return os.path.join(tempfile.mkdtemp(), "node-params")
 
 
 @pytest.fixture(scope="module")
-def node_process(eds_path):
-    log_path = os.environ.get("NODE_LOG") or os.path.join(tempfile.mkdtemp(), "node.log")
-    log = open(log_path, "w")
-    proc = subprocess.Popen([NODE_BIN, "--iface", IFACE, "--node-id", str(NODE_ID), "--quiet"],
-                            stdout=log, stderr=subprocess.STDOUT)
-    time.sleep(0.5)
-    assert proc.poll() is None, f"node exited early, see {log_path}"
+def eds_path(store_path):
+    path = os.path.join(tempfile.mkdtemp(), "io_module.eds")
+    # With --store the EDS announces 1010h/1011h sub 01h..03h = 1 (saving supported), as the node answers.
+    subprocess.run([NODE_BIN, "--eds", path, "--node-id", str(NODE_ID), "--store", store_path], check=True)
+    return path
+
+
+class NodeProcess:
+    """The example node as a process, restartable with the same `--store` file."""
+
+    def __init__(self, store):
+        self.store = store
+        self.log_path = os.environ.get("NODE_LOG") or os.path.join(tempfile.mkdtemp(), "node.log")
+        self.log = open(self.log_path, "w")
+        self.proc = None
+
+    def start(self):
+        self.log.write("==== node process start\n")
+        self.log.flush()
+        self.proc = subprocess.Popen(
+            [NODE_BIN, "--iface", IFACE, "--node-id", str(NODE_ID), "--quiet", "--store", self.store],
+            stdout=self.log, stderr=subprocess.STDOUT)
+        time.sleep(0.5)
+        assert self.proc.poll() is None, f"node exited early, see {self.log_path}"
+
+    def stop(self):
+        """SIGTERM: the process ends at once (no clean-up runs), as a power loss would end it."""
+        self.proc.terminate()
+        self.proc.wait(timeout=5)
+
+
+@pytest.fixture(scope="module")
+def node_process(store_path):
+    proc = NodeProcess(store_path)
+    proc.start()
     yield proc
-    proc.terminate()
-    proc.wait(timeout=5)
-    log.close()
-    print(f"node log: {log_path}")
+    proc.stop()
+    proc.log.close()
+    print(f"node log: {proc.log_path}")
 
 
 @pytest.fixture(scope="module")
@@ -89,11 +117,11 @@ def test_read_every_readable_object_matches_the_eds(node):
     for var in variables(node.object_dictionary):
         if var.access_type == "wo":
             continue
-        if var.index == 0x1003 and var.subindex >= 1:
-            # ERR-08: an empty entry of the error history answers 0800 0024h (no data available).
+        if var.index == 0x1003 and var.subindex > 0:
+            # ERR-08, no error yet: an empty field of the error history answers 0800 0024h (no data available).
             with pytest.raises(SdoAbortedError) as e:
                 node.sdo.upload(var.index, var.subindex)
-            assert abort_code(e) == 0x08000024
+            assert abort_code(e) == 0x08000024, f"1003h:{var.subindex:02X}"
             continue
         raw = node.sdo.upload(var.index, var.subindex)
         if var.index in LIVE and var.name != "Highest sub-index supported":
@@ -331,8 +359,166 @@ def test_heartbeat_period_change(node, network):
     node.sdo[0x1017].raw = 1000
 
 
-def test_error_injection_is_recorded(node):
+# ---- EMCY through 2100h error injection -------------------------------------------------------------------
+
+def wait_until(predicate, timeout=3.0):
+    end = time.time() + timeout
+    while time.time() < end:
+        if predicate():
+            return True
+        time.sleep(0.02)
+    return predicate()
+
+
+def test_error_injection_raises_an_emcy_and_fills_1003h(node):
+    # INTEROP: node.emcy.wait() only sees EMCYs that arrive after it is called: read the log from a mark.
+    mark = len(node.emcy.log)
     node.sdo[0x2100].raw = 0x5000
-    assert node.sdo[0x2100].raw == 0x5000
-    # The EMCY frame for it is wired after the EMCY producer merges (then: node.emcy.log).
+    assert wait_until(lambda: len(node.emcy.log) > mark), "no EMCY for 2100h = 5000h"
+    emcy = node.emcy.log[mark]
+    assert emcy.code == 0x5000
+    assert emcy.register & 0x01, "1001h bit 0 (generic error) is set"
+    assert node.sdo.upload(0x1003, 0)[0] >= 1
+    assert int.from_bytes(node.sdo.upload(0x1003, 1), "little") & 0xFFFF == 0x5000
+    assert node.sdo.upload(0x1001, 0)[0] & 0x01
+
+    # Another code: the old one is cleared (an EMCY 0000h or the remaining errors), the new one raised.
+    mark = len(node.emcy.log)
+    node.sdo[0x2100].raw = 0x8110
+    assert wait_until(lambda: any(e.code == 0x8110 for e in node.emcy.log[mark:])), node.emcy.log[mark:]
+    assert int.from_bytes(node.sdo.upload(0x1003, 1), "little") & 0xFFFF == 0x8110
+
+    # 0 clears: an error-reset EMCY (code 0000h, register 0) and 1001h back to 0.
+    mark = len(node.emcy.log)
     node.sdo[0x2100].raw = 0
+    assert wait_until(lambda: any(e.code == 0 for e in node.emcy.log[mark:])), node.emcy.log[mark:]
+    assert node.emcy.log[-1].code == 0 and node.emcy.log[-1].register == 0
+    assert node.sdo.upload(0x1001, 0)[0] == 0
+
+
+# ---- PDOs through python canopen's PDO API ---------------------------------------------------------------
+
+@pytest.fixture
+def operational(node, network):
+    """The node in Operational for the test, then back to its power-on configuration (reset node)."""
+    node.nmt.state = "OPERATIONAL"
+    time.sleep(0.1)
+    yield
+    with Heartbeats(network) as hb:
+        node.nmt.state = "RESET"
+        assert hb.wait_for(0x00, 5), hb.seen
+    time.sleep(0.2)
+
+
+def test_default_pdo_mappings_read_through_the_pdo_api(node):
+    node.tpdo.read()
+    node.rpdo.read()
+    assert [v.name for v in node.tpdo[1].map] == [f"Digital inputs.Digital inputs {i}" for i in range(1, 9)]
+    assert [v.name for v in node.tpdo[2].map] == [f"Analog inputs.Analog inputs {i}" for i in range(1, 5)]
+    assert [v.name for v in node.rpdo[1].map] == [f"Digital outputs.Digital outputs {i}" for i in range(1, 9)]
+    assert [v.name for v in node.rpdo[2].map] == [f"Analog outputs.Analog outputs {i}" for i in range(1, 5)]
+    assert node.tpdo[1].cob_id == 0x180 + NODE_ID and node.tpdo[1].enabled
+    assert node.tpdo[1].trans_type == 255
+    assert node.tpdo[1].inhibit_time == 100
+    assert node.rpdo[2].cob_id == 0x300 + NODE_ID and node.rpdo[2].enabled
+
+
+def test_event_driven_tpdo_carries_the_inputs(node, operational):
+    node.tpdo.read()
+    # The walking bit in 6000h moves once a second: TPDO1 follows each change.
+    assert node.tpdo[1].wait_for_reception(3) is not None
+    bits = [node.tpdo[1][f"Digital inputs.Digital inputs {i}"].raw for i in range(1, 9)]
+    assert sorted(bits) == [0] * 7 + [1], bits
+    # The analogue inputs change every 100 ms (a triangle wave), TPDO2 follows, spaced >= its inhibit time.
+    assert node.tpdo[2].wait_for_reception(3) is not None
+    values = [node.tpdo[2][f"Analog inputs.Analog inputs {i}"].raw for i in range(1, 5)]
+    assert all(-500 <= v <= 500 for v in values), values
+
+
+def test_pdo_reconfigured_and_sync_driven(node, network, operational):
+    node.nmt.state = "PRE-OPERATIONAL"
+    node.tpdo.read()
+    tpdo = node.tpdo[1]
+    tpdo.clear()
+    tpdo.add_variable(0x6401, 1)  # INTEROP: returns None for an object not in the EDS
+    assert tpdo.add_variable(0x6000, 3) is not None
+    tpdo.trans_type = 1  # every SYNC
+    tpdo.enabled = True
+    tpdo.save()
+    assert int.from_bytes(node.sdo.upload(0x1A00, 0), "little") == 2
+    assert int.from_bytes(node.sdo.upload(0x1A00, 1), "little") == 0x64010110
+    assert node.sdo.upload(0x1800, 2) == b"\x01"
+    node.tpdo.read()  # back from the node, as saved
+    assert [v.name for v in node.tpdo[1].map] == ["Analog inputs.Analog inputs 1", "Digital inputs.Digital inputs 3"]
+    node.nmt.state = "OPERATIONAL"
+    time.sleep(0.1)
+
+    frames = []
+    node.tpdo[1].add_callback(lambda m: frames.append(m.timestamp))
+    for _ in range(5):
+        network.sync.transmit()
+        time.sleep(0.1)
+    assert wait_until(lambda: len(frames) >= 5, 2), frames
+    time.sleep(0.3)  # no SYNC, no TPDO1 (type 1 ignores input changes)
+    assert len(frames) == 5, frames
+    assert -500 <= node.tpdo[1]["Analog inputs.Analog inputs 1"].raw <= 500
+    assert node.tpdo[1]["Digital inputs.Digital inputs 3"].raw in (0, 1)
+
+
+def test_rpdos_write_the_outputs(node, operational):
+    node.rpdo.read()
+    for i in range(1, 9):
+        node.rpdo[1][f"Digital outputs.Digital outputs {i}"].raw = 0x10 + i
+    node.rpdo[1].transmit()
+    for i, v in enumerate((-1000, -1, 1, 32767), start=1):
+        node.rpdo[2][f"Analog outputs.Analog outputs {i}"].raw = v
+    node.rpdo[2].transmit()
+    assert wait_until(lambda: node.sdo[0x6200][8].raw == 0x18)
+    assert [node.sdo[0x6200][i].raw for i in range(1, 9)] == [0x10 + i for i in range(1, 9)]
+    assert wait_until(lambda: node.sdo[0x6411][4].raw == 32767)
+    assert [node.sdo[0x6411][i].raw for i in range(1, 5)] == [-1000, -1, 1, 32767]
+
+
+def test_rpdo_ignored_in_pre_operational(node):
+    node.nmt.state = "PRE-OPERATIONAL"
+    node.rpdo.read()
+    before = node.sdo[0x6200][1].raw
+    node.rpdo[1]["Digital outputs.Digital outputs 1"].raw = (before + 1) & 0xFF
+    node.rpdo[1].transmit()
+    time.sleep(0.3)
+    assert node.sdo[0x6200][1].raw == before
+
+
+# ---- store/restore across a restart of the node process --------------------------------------------------
+
+def restart(node_process, network):
+    node_process.stop()
+    with Heartbeats(network) as hb:
+        node_process.start()
+        assert hb.wait_for(0x00, 5), hb.seen  # boot-up
+
+
+def test_store_and_restore_across_a_process_restart(node, network, node_process):
+    node.sdo[0x2001].raw = 321
+    node.sdo[0x2004].raw = "stored label"
+    node.sdo[0x1017].raw = 500
+    node.sdo.download(0x1010, 1, b"save")
+    node.sdo[0x2001].raw = 5  # changed after the save: not stored
+    restart(node_process, network)
+    assert node.sdo[0x2001].raw == 321
+    assert node.sdo[0x2004].raw == "stored label"
+    assert node.sdo[0x1017].raw == 500
+
+    # 1011h "load": the defaults come back at the next reset, here the next start of the process.
+    node.sdo.download(0x1011, 1, b"load")
+    assert node.sdo[0x2001].raw == 321  # nothing changes before the reset
+    restart(node_process, network)
+    assert node.sdo[0x2001].raw == 0
+    assert node.sdo[0x2004].raw == "io module"
+    assert node.sdo[0x1017].raw == 1000
+
+
+def test_save_with_a_wrong_signature_is_refused(node):
+    with pytest.raises(SdoAbortedError) as e:
+        node.sdo.download(0x1010, 1, b"SAVE")
+    assert abort_code(e) == 0x08000020
