@@ -56,8 +56,8 @@ struct Args {
     /// SocketCAN interface.
     #[arg(long, default_value = "vcan0")]
     iface: String,
-    /// Node-ID, 1..=127.
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u8).range(1..=127))]
+    /// Node-ID, 1..=127, or 255 to start without one and wait for an LSS master (CiA 305).
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u8).range(1..=255))]
     node_id: u8,
     /// Producer heartbeat time 1017h in ms (0 = off).
     #[arg(long, default_value_t = 1000)]
@@ -96,8 +96,10 @@ fn main() -> ExitCode {
             }
         };
     }
-    let Some(node_id) = NodeId::new(args.node_id) else {
-        eprintln!("node: node-ID must be 1..=127");
+    // 255 (FFh): no node-ID; the node serves only LSS until a master configures one (CiA 305).
+    let unconfigured = args.node_id == 255;
+    let Some(node_id) = NodeId::new(if unconfigured { 1 } else { args.node_id }) else {
+        eprintln!("node: node-ID must be 1..=127, or 255 to start without one (LSS)");
         return ExitCode::from(2);
     };
     // Fail with one clear line when the interface is missing, before starting anything.
@@ -112,10 +114,14 @@ fn main() -> ExitCode {
         }
         None => Store::None,
     };
-    let shared = Arc::new(MutexShared::new(io_module::new_node_with_store(node_id, config, store)));
+    let mut node = io_module::new_node_with_store(node_id, config, store);
+    if unconfigured {
+        node = node.without_node_id();
+    }
+    let shared = Arc::new(MutexShared::new(node));
     println!(
         "node {} on {} (heartbeat {} ms, {} runner); Ctrl-C to stop",
-        node_id.get(),
+        if unconfigured { "without node-ID (LSS only)".to_owned() } else { node_id.get().to_string() },
         args.iface,
         args.heartbeat,
         if args.blocking { "blocking" } else { "tokio" }
