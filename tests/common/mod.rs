@@ -8,37 +8,8 @@
 
 use canopen::core::{node::Node, od::ObjectDictionary, storage::Storage, CanFrame, Event, Instant};
 
-/// Something that can sit on the bus.
-pub trait Station {
-    fn handle_frame(&mut self, now: Instant, frame: &CanFrame);
-    fn handle_timeout(&mut self, now: Instant);
-    fn poll_timeout(&self) -> Option<Instant>;
-    fn poll_transmit(&mut self) -> Option<CanFrame>;
-}
-
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Station for Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
-    fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
-        Node::handle_frame(self, now, frame)
-    }
-    fn handle_timeout(&mut self, now: Instant) {
-        Node::handle_timeout(self, now)
-    }
-    fn poll_timeout(&self) -> Option<Instant> {
-        Node::poll_timeout(self)
-    }
-    fn poll_transmit(&mut self) -> Option<CanFrame> {
-        Node::poll_transmit(self)
-    }
-}
+/// Something that can sit on the bus: any sans-IO node (the core's own runner contract).
+pub use canopen::core::node::SansIo as Station;
 
 /// Who put a frame on the bus.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
