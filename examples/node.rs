@@ -62,6 +62,10 @@ struct Args {
     /// Producer heartbeat time 1017h in ms (0 = off).
     #[arg(long, default_value_t = 1000)]
     heartbeat: u16,
+    /// SDO server time-out in ms (SDO-31): a transfer whose client is silent this long is aborted with
+    /// 0504 0000h.
+    #[arg(long, default_value_t = 1000)]
+    sdo_timeout: u64,
     /// Stop after this many seconds (default: run until killed).
     #[arg(long)]
     run_for: Option<f64>,
@@ -118,6 +122,7 @@ fn main() -> ExitCode {
     if unconfigured {
         node = node.without_node_id();
     }
+    node.set_sdo_timeout(canopen_core::Duration::from_millis(args.sdo_timeout));
     let shared = Arc::new(MutexShared::new(node));
     println!(
         "node {} on {} (heartbeat {} ms, {} runner); Ctrl-C to stop",

@@ -62,7 +62,10 @@ class NodeProcess:
         self.log.write("==== node process start\n")
         self.log.flush()
         self.proc = subprocess.Popen(
-            [NODE_BIN, "--iface", IFACE, "--node-id", str(NODE_ID), "--quiet", "--store", self.store],
+            [NODE_BIN, "--iface", IFACE, "--node-id", str(NODE_ID), "--quiet", "--store", self.store,
+             # Inside the VM python can stall for over a second between two frames; the node must not
+             # abort a transfer for that (a real master on real hardware is far faster).
+             "--sdo-timeout", "5000"],
             stdout=self.log, stderr=subprocess.STDOUT)
         time.sleep(0.5)
         assert self.proc.poll() is None, f"node exited early, see {self.log_path}"
