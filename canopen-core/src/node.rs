@@ -501,7 +501,7 @@ impl<
     /// sub-block of up to 127 frames never needs a queue of that size. [`TX_RESERVE`] slots stay free for
     /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
     fn pump_sdo(&mut self) {
-        while self.sdo.wants_transmit() && self.tx.len() + TX_RESERVE.min(TXQ - 1) < TXQ {
+        while self.sdo.wants_transmit() && self.tx.len() + TX_RESERVE.min(TXQ.saturating_sub(1)) < TXQ {
             let mut od =
                 NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
