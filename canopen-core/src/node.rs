@@ -699,6 +699,12 @@ impl<
         if to == NmtState::Operational {
             self.start_pdos(self.now);
         }
+        if to == NmtState::Stopped {
+            // NMT-18: no SDO in Stopped; a transfer under way is dropped, so no time-out abort follows.
+            let mut od =
+                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+            self.sdo.cancel(&mut od);
+        }
         if from == NmtState::Stopped {
             self.pump_emcy(self.now); // NMT-22: the most recent pending EMCY goes out now
         }

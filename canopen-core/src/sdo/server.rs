@@ -456,6 +456,27 @@ impl SdoServer {
         self.deadline = None;
     }
 
+    /// Drops the current transfer without a frame: the node left the states that serve SDO (NMT-18, a node
+    /// in Stopped sends no SDO frame, not even a time-out abort later). A streamed write is abandoned
+    /// ([`ObjectDictionary::abort_write`]).
+    ///
+    /// ```
+    /// # use canopen_core::sdo::{SdoServer, SdoServerParams};
+    /// # use canopen_core::od::{AbortCode, ObjectDictionary, SubInfo};
+    /// # struct Empty;
+    /// # impl ObjectDictionary for Empty {
+    /// #     fn info(&self, _: u16, _: u8) -> Result<SubInfo, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+    /// #     fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+    /// #     fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+    /// # }
+    /// let mut s = SdoServer::new(SdoServerParams::DISABLED);
+    /// s.cancel(&mut Empty);
+    /// assert!(s.is_idle() && s.poll_timeout().is_none());
+    /// ```
+    pub fn cancel<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) {
+        self.reset(od);
+    }
+
     /// The CAN-ID to receive requests on, if the channel is valid.
     ///
     /// ```
@@ -677,8 +698,12 @@ impl SdoServer {
             if !bd.ending {
                 return self.block_segment(b, od);
             }
-            // A late copy of the held last segment (CAN duplicate) is not an end frame.
-            if b[0] == 0x80 | bd.held_seqno && b[1..8] == bd.held {
+            // Waiting for "end block download" (SDO-41). Block segments carry no command specifier, so a late
+            // or repeated segment of this transfer (any seqno the sub-blocks can use, last bit or not) would
+            // read as a request: 81h–9Fh as an abort with reserved bits, 20h–7Fh as a new initiate. In this
+            // state such a frame is a late segment and is ignored (SDO-40); only the end frame and the abort
+            // 80h (handled above) are requests. A client that starts a new transfer here must abort first.
+            if !is_block_download_end(b[0]) && (1..=self.block_size).contains(&(b[0] & 0x7F)) {
                 return Response::NONE;
             }
         }
@@ -1026,6 +1051,11 @@ impl SdoServer {
         bu.phase = UploadPhase::Sending;
         Response::NONE
     }
+}
+
+/// True for the client's "end block download" command byte: ccs 6, cs 1 (C1h + 4·n, bit 1 reserved; SDO-41).
+const fn is_block_download_end(b0: u8) -> bool {
+    b0 & 0xE1 == 0xC1
 }
 
 /// Size of a readable object (SDO upload preconditions).
@@ -1583,6 +1613,38 @@ mod tests {
         exchange(&mut s, &mut od, [0x82, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x02, 0x03, 0, 0, 0, 0, 0]));
         exchange(&mut s, &mut od, [0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
         assert_eq!(od.domain(), b"ABCDEFGHIJKLMNOP");
+    }
+
+    /// SDO-40/SDO-41: while waiting for "end block download", a late segment (here the last segment again as
+    /// number 1 of a repeated sub-block, 81h) is ignored, not read as an abort with reserved bits; the end
+    /// frame still completes the transfer.
+    #[test]
+    fn late_segment_before_block_end_is_ignored() {
+        let mut s = server().with_block_size(8);
+        let mut od = TestOd::new();
+        exchange(&mut s, &mut od, [0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 8, 0, 0, 0]));
+        exchange(&mut s, &mut od, [0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], None);
+        exchange(&mut s, &mut od, [0x02, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], None);
+        exchange(&mut s, &mut od, [0x83, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x03, 0x08, 0, 0, 0, 0, 0]));
+        assert_eq!(s.state(), ServerState::BlockDownloadEnd);
+        // late copies under other sequence numbers, last bit or not: silence, still waiting for the end
+        for late in [[0x81, 0x4F, 0x50, 0, 0, 0, 0, 0], [0x82, 0x2E, 0x4D, 0x6C, 0x8B, 0xAA, 0xC9, 0], [0x02; 8]] {
+            let r = exchange(&mut s, &mut od, late, None);
+            assert_eq!(r.event, None, "{late:02X?}");
+            assert_eq!(s.state(), ServerState::BlockDownloadEnd, "{late:02X?}");
+        }
+        let mut crc = Crc16::new();
+        crc.update(b"ABCDEFGHIJKLMNOP");
+        let [c0, c1] = crc.get().to_le_bytes();
+        let r = exchange(&mut s, &mut od, [0xD5, c0, c1, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+        assert_eq!(r.event, Some(SdoEvent::Written { index: 0x2000, sub: 0 }));
+        assert_eq!(od.domain(), b"ABCDEFGHIJKLMNOP");
+        // a seqno beyond the block size cannot be a segment: 89h is an abort (reserved bits set, SDO-02)
+        exchange(&mut s, &mut od, [0xC6, 0x00, 0x20, 0x00, 0x01, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 8, 0, 0, 0]));
+        exchange(&mut s, &mut od, [0x81, 0x41, 0, 0, 0, 0, 0, 0], Some([0xA2, 0x01, 0x08, 0, 0, 0, 0, 0]));
+        let r = exchange(&mut s, &mut od, [0x89, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05], None);
+        assert!(matches!(r.event, Some(SdoEvent::AbortReceived { code: 0x0504_0000, .. })), "{:?}", r.event);
+        assert!(s.is_idle());
     }
 
     #[test]
