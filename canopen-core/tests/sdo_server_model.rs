@@ -160,12 +160,16 @@ impl Model {
                 (ANY_ABORT, S::Idle),
             ];
         }
+        // SDO-40/SDO-41: waiting for the end frame, a frame that can be a segment of the transfer (seqno
+        // 1..=blksize, a late or repeated one) is ignored; the end frame C1h + 4·n is never taken for one.
+        if st == S::BlockDownloadEnd && b[0] & 0xE1 != 0xC1 && (1..=BLKSIZE).contains(&(b[0] & 0x7F)) {
+            return vec![(R::None, st)];
+        }
         let Ok(req) = ClientRequest::parse(&b) else {
             return vec![(abort(AbortCode::InvalidCommandSpecifier), S::Idle)];
         };
         let wrong = vec![(abort(AbortCode::InvalidCommandSpecifier), S::Idle)];
         match req {
-            ClientRequest::Abort { .. } if st == S::BlockDownloadEnd => vec![(R::None, S::Idle), (R::None, st)],
             ClientRequest::Abort { .. } => vec![(R::None, S::Idle)],
             ClientRequest::InitiateDownload { data: InitiateData::Expedited(_), .. } => {
                 vec![(R::InitDownload, S::Idle), (ANY_ABORT, S::Idle)]
