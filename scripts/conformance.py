@@ -61,10 +61,16 @@ class TestFn:
     name: str
     text: str  # preceding comments/attributes, signature and body
     ids: set = field(default_factory=set)
+    ignored: str | None = None  # the reason of `#[ignore = "..."]` ("" without one); None if not ignored
 
     @property
     def label(self) -> str:
         return f"{self.path}::{self.name}"
+
+    @property
+    def counts(self) -> bool:
+        """An ignored test proves something only where CI runs it: the SocketCAN tests, inside the VM."""
+        return self.ignored is None or bool(re.search(r"vcan|socketcan", self.ignored, re.I))
 
 
 # ---------------------------------------------------------------------------------------------------------
@@ -224,6 +230,13 @@ def rust_tests(path: str, src: str) -> list[TestFn]:
             break
         if not any(TEST_ATTR.match(a) for a in attrs):
             continue
+        ignored = None
+        for a in attrs:
+            if re.match(r"#\s*\[\s*ignore\b", a):
+                pos = mask.find(a, start)
+                raw = src[pos : pos + len(a)]
+                reason = re.search(r'"((?:[^"\\]|\\.)*)"', raw)
+                ignored = reason.group(1) if reason else ""
         # The comments directly above: from the line after the previous code, the trailing run of
         # non-blank lines.
         k = start
@@ -262,7 +275,7 @@ def rust_tests(path: str, src: str) -> list[TestFn]:
             j += 1
         if body_end is None:
             continue
-        tests.append(TestFn(path, m.group(1), preceding + "\n" + src[start:body_end]))
+        tests.append(TestFn(path, m.group(1), preceding + "\n" + src[start:body_end], ignored=ignored))
     return tests
 
 
@@ -288,8 +301,10 @@ def rust_doctests(path: str, src: str) -> list[TestFn]:
         if kind == "!":
             name = "(module docs)"
         else:
-            following = "\n".join(lines[i : i + 12])
-            im = ITEM.search(following)
+            k = i
+            while k < len(lines) and (not lines[k].strip() or lines[k].strip().startswith("#[")):
+                k += 1
+            im = ITEM.search("\n".join(lines[k : k + 3])) if k < len(lines) else None
             name = (im.group(1) or im.group(2)) if im else f"line {start + 1}"
         blocks, fence, info, body = [], None, "", []
         for line in doc:
@@ -341,14 +356,38 @@ def python_tests(path: str, src: str) -> list[TestFn]:
 # Repository scan
 
 
+def excluded_members(root: str) -> set[str]:
+    """The `exclude = [...]` paths of the root Cargo.toml: separate workspaces CI does not test."""
+    path = os.path.join(root, "Cargo.toml")
+    if not os.path.exists(path):
+        return set()
+    with open(path, encoding="utf-8") as f:
+        m = re.search(r"^exclude\s*=\s*\[([^\]]*)\]", f.read(), re.M)
+    return set(re.findall(r'"([^"]+)"', m.group(1))) if m else set()
+
+
 def source_files(root: str) -> list[str]:
-    found = []
+    found, skip = [], excluded_members(root)
     for dirpath, dirnames, filenames in os.walk(root):
-        dirnames[:] = sorted(d for d in dirnames if d not in SKIP_DIRS and not d.startswith("."))
+        rel_dir = os.path.relpath(dirpath, root).replace(os.sep, "/")
+        dirnames[:] = sorted(
+            d
+            for d in dirnames
+            if d not in SKIP_DIRS and not d.startswith(".") and os.path.normpath(f"{rel_dir}/{d}") not in skip
+        )
         for f in sorted(filenames):
             if f.endswith(".rs") or (f.startswith("test_") and f.endswith(".py")):
                 found.append(os.path.relpath(os.path.join(dirpath, f), root).replace(os.sep, "/"))
     return sorted(found)
+
+
+def runs_doctests(rel: str) -> bool:
+    """rustdoc runs the doc examples of library sources only: `src/` of the root package or of a member,
+    not integration tests, examples, benches, binaries or build scripts."""
+    parts = rel.split("/")
+    if "src" not in parts[:2] or "bin" in parts or parts[-1] in ("main.rs", "build.rs"):
+        return False
+    return parts[0] not in ("tests", "examples", "benches")
 
 
 def collect_tests(root: str, prefixes: set[str]) -> list[TestFn]:
@@ -357,7 +396,7 @@ def collect_tests(root: str, prefixes: set[str]) -> list[TestFn]:
         with open(os.path.join(root, rel), encoding="utf-8") as f:
             src = f.read()
         if rel.endswith(".rs"):
-            found = rust_tests(rel, src) + rust_doctests(rel, src)
+            found = rust_tests(rel, src) + (rust_doctests(rel, src) if runs_doctests(rel) else [])
         else:
             found = python_tests(rel, src)
         for t in found:
@@ -394,9 +433,12 @@ citations; do not edit it by hand. CI runs `python3 scripts/conformance.py --che
 file is not current.
 
 A requirement is **met** when at least one test cites its ID: in the test function's name (`..._sdo_49`),
-in the comments or doc comment directly above it, or in its body. Tests are Rust `#[test]` functions
-(integration tests, `mod tests` in the sources, proptests) and the python `test_*` functions in
-`tests/python/` (run against the node over vcan by CI). An ID written anywhere else counts for nothing.
+in the comments or doc comment directly above it, or in its body. Tests are the Rust `#[test]` functions
+of the workspace (integration tests, `mod tests` in the sources, proptests), the code blocks of doc
+comments that rustdoc runs (listed as `(doctest)`), and the python `test_*` functions in `tests/python/`
+(run by CI against the node over vcan). An `#[ignore]`d test counts only when its reason says it needs
+SocketCAN/vcan, because CI runs exactly those inside its VM. An ID written anywhere else (module docs,
+item docs, helpers) counts for nothing. `SDO-12..15` cites a range, `PDO-38/39` both IDs.
 """
 
 SOURCES = """\
@@ -423,6 +465,8 @@ SOURCES = """\
 def render(reqs: list[Requirement], tests: list[TestFn], reasons: dict[str, str]) -> str:
     by_id: dict[str, list[str]] = {r.id: [] for r in reqs}
     for t in tests:
+        if not t.counts:
+            continue
         for rid in sorted(t.ids):
             if rid in by_id and t.label not in by_id[rid]:
                 by_id[rid].append(t.label)
@@ -438,7 +482,9 @@ def render(reqs: list[Requirement], tests: list[TestFn], reasons: dict[str, str]
             cells.append(f"{sum(r.id in met for r in sel)} / {len(sel)}")
         name = f"{lvl} ({LEVEL_NAMES[lvl]})" if lvl in LEVEL_NAMES else "**all**"
         out.append(f"| {name} | " + " | ".join(cells) + " |")
-    out.append(f"\n{len(tests)} test functions found, {sum(bool(t.ids) for t in tests)} of them cite at least one ID.\n")
+    doctests = sum(t.name.endswith("(doctest)") for t in tests)
+    citing = sum(bool(t.ids) and t.counts for t in tests)
+    out.append(f"\n{len(tests) - doctests} test functions and {doctests} doctests found; {citing} of them cite an ID.\n")
     out.append(SOURCES)
 
     unmet_m = [r for r in reqs if r.level == "M" and r.id not in met]
@@ -471,6 +517,14 @@ def render(reqs: list[Requirement], tests: list[TestFn], reasons: dict[str, str]
         for r in sel:
             names = ", ".join(f"`{t}`" for t in by_id[r.id])
             out.append(f"| {r.id} | {r.level} | {esc(r.clause)} | {esc(r.statement)} | {names} |")
+        out.append("")
+
+    ignored = [t for t in tests if not t.counts]
+    if ignored:
+        out.append("## Ignored tests, not counted\n")
+        out.append("CI does not run these, so their citations do not count.\n")
+        for t in ignored:
+            out.append(f"- `{t.label}`: {esc(t.ignored) or 'no reason given'}")
         out.append("")
 
     out.append("## Conditional and optional requirements without a test\n")

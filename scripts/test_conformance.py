@@ -153,6 +153,26 @@ class RustParsing(unittest.TestCase):
         self.assertEqual(mask.count("{"), mask.count("}"))
 
 
+class IgnoredAndDoctestScope(unittest.TestCase):
+    SRC = (
+        '#[test]\n#[ignore = "needs SocketCAN (vcan0)"]\nfn on_vcan() { SDO-01 }\n'
+        '#[ignore = "fails, see issue 9"]\n#[test]\nfn broken() { SDO-02 }\n'
+        "#[test]\n#[ignore]\nfn bare() {}\n#[test]\nfn plain() {}\n"
+    )
+
+    def test_ignored_reasons(self):
+        tests = {t.name: t for t in c.rust_tests("x.rs", self.SRC)}
+        self.assertEqual({n: t.ignored for n, t in tests.items()},
+                         {"on_vcan": "needs SocketCAN (vcan0)", "broken": "fails, see issue 9", "bare": "", "plain": None})
+        self.assertEqual({n for n, t in tests.items() if t.counts}, {"on_vcan", "plain"})
+
+    def test_doctest_scope(self):
+        for rel, runs in [("canopen-core/src/od/mod.rs", True), ("src/lib.rs", True), ("tests/lss.rs", False),
+                          ("examples/node.rs", False), ("canopen-socketcan/src/bin/x.rs", False),
+                          ("canopen-core/tests/a.rs", False), ("x/src/main.rs", False)]:
+            self.assertEqual(c.runs_doctests(rel), runs, rel)
+
+
 class PythonParsing(unittest.TestCase):
     def test_functions_and_methods(self):
         tests = {t.name: c.cited_ids(t.text, PREFIXES) for t in c.python_tests("t.py", PYTHON)}
@@ -184,6 +204,11 @@ class EndToEnd(unittest.TestCase):
                 f.write("LSS-01\tC\tCiA 305 «x»\tLSS.\n")
             with open(os.path.join(root, "tests", "a.rs"), "w") as f:
                 f.write("/// SDO-01\n#[test]\nfn a() {}\n")
+            os.makedirs(os.path.join(root, "fuzz", "src"))
+            with open(os.path.join(root, "Cargo.toml"), "w") as f:
+                f.write('[workspace]\nmembers = ["core"]\nexclude = ["fuzz"]\n')
+            with open(os.path.join(root, "fuzz", "src", "lib.rs"), "w") as f:
+                f.write("#[test]\nfn f() { SDO-03 }\n")  # an excluded workspace: never scanned
             with open(os.path.join(root, "target", "debug", "b.rs"), "w") as f:
                 f.write("#[test]\nfn b() { SDO-02 }\n")  # build output: never scanned
             with open(os.path.join(root, "tests", "python", "test_c.py"), "w") as f:
