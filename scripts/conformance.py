@@ -14,6 +14,9 @@ function in a `test_*.py` file. It cites an ID when the ID appears
 - in the comments, doc comments and attributes directly above it (stopping at a blank line), or
 - anywhere in its body (comments, strings, code); for Python also in its docstring and decorators.
 
+Python tests are the `test*` functions (and `Test*` class methods) of `test_*.py` files in a `tests`
+folder; rustdoc examples of library sources count as tests too (listed as `Item (doctest)`).
+
 `SDO-12..15` and `SDO-12–15` cite the whole range, `PDO-38/39` both IDs. An ID anywhere else (module docs,
 helpers, non-test code) is not a citation. Python 3 standard library only.
 """
@@ -376,7 +379,9 @@ def source_files(root: str) -> list[str]:
             if d not in SKIP_DIRS and not d.startswith(".") and os.path.normpath(f"{rel_dir}/{d}") not in skip
         )
         for f in sorted(filenames):
-            if f.endswith(".rs") or (f.startswith("test_") and f.endswith(".py")):
+            # Python tests live in a `tests` folder (tests/python/); the generator's own tests are not ones.
+            python_test = f.startswith("test_") and f.endswith(".py") and "tests" in rel_dir.split("/")
+            if f.endswith(".rs") or python_test:
                 found.append(os.path.relpath(os.path.join(dirpath, f), root).replace(os.sep, "/"))
     return sorted(found)
 

@@ -173,6 +173,15 @@ class IgnoredAndDoctestScope(unittest.TestCase):
             self.assertEqual(c.runs_doctests(rel), runs, rel)
 
 
+class Scope(unittest.TestCase):
+    def test_repository_files(self):
+        files = c.source_files(c.ROOT)
+        self.assertIn("tests/lss.rs", files)
+        self.assertIn("tests/python/test_lss.py", files)
+        self.assertNotIn("scripts/test_conformance.py", files)
+        self.assertFalse([f for f in files if f.startswith(("fuzz/", "examples/firmware/", "ci/")) or "/target/" in f])
+
+
 class PythonParsing(unittest.TestCase):
     def test_functions_and_methods(self):
         tests = {t.name: c.cited_ids(t.text, PREFIXES) for t in c.python_tests("t.py", PYTHON)}
