@@ -155,7 +155,8 @@ fn lss_events(node: &mut TestNode) -> Vec<LssEvent> {
 
 /// Fastscan finds three unconfigured nodes with different serials, one after another, and gives each a
 /// node-ID; each then boots (one boot-up frame) and answers SDO, and the stored node-IDs survive a power
-/// cycle.
+/// cycle. LSS-12 (identify non-configured), LSS-13 (fastscan), LSS-15 (silent without a node-ID, boots once
+/// it has one), LSS-05/06 (node-ID configured, active after the reset), LSS-09 (stored), LSS-16 (master).
 #[test]
 fn fastscan_commissions_three_nodes_which_boot_and_answer_sdo() {
     let serials = [0x0000_0300u32, 0x0000_0007, 0x0001_0000];
@@ -241,7 +242,8 @@ fn fastscan_commissions_three_nodes_which_boot_and_answer_sdo() {
 }
 
 /// A node-ID configured while the node has one stays pending until NMT reset communication; inquire
-/// reports the active one; LSS is served in Stopped too.
+/// reports the active one; LSS is served in Stopped too. LSS-02, LSS-04 (switch selective), LSS-05 (80h
+/// refused with 01h), LSS-06, LSS-09 (store not supported: 01h), LSS-10 (inquire node-ID).
 #[test]
 fn pending_node_id_takes_effect_at_reset_communication() {
     let mut flash = vec![Flash::default()];
@@ -278,6 +280,7 @@ fn pending_node_id_takes_effect_at_reset_communication() {
 }
 
 /// A configured node that is given FFh becomes unconfigured at reset node: no boot-up, LSS only.
+/// LSS-03 (switch global), LSS-05/06 (FFh accepted, applied at the reset), LSS-12, LSS-15.
 #[test]
 fn configured_node_can_be_made_unconfigured() {
     let mut flash = vec![Flash::default()];
@@ -300,6 +303,7 @@ fn configured_node_can_be_made_unconfigured() {
 
 /// Configure bit timing is answered 13h with 00h or 01h; activate bit timing is not answered, and is
 /// reported with both instants; the node is silent from the switch to the end of the second delay.
+/// LSS-07, LSS-08; LSS-01 (answers on 7E4h, 8 bytes); LSS-04.
 #[test]
 fn bit_timing_configure_and_activate() {
     let mut flash = vec![Flash::default()];
@@ -346,7 +350,8 @@ fn bit_timing_configure_and_activate() {
     assert!(times.contains(&1090) && times.contains(&1210) && times.contains(&1300), "{times:?}");
 }
 
-/// The store answer waits for the application and carries its error.
+/// The store answer waits for the application and carries its error (LSS-09: 02h); LSS-03, LSS-10
+/// (inquire identity and node-ID in configuration), LSS-11 (identify remote slave, ranges inclusive).
 #[test]
 fn store_errors_are_reported() {
     let mut bus = Bus::new(vec![power_up(3, 0, &Flash::default())]);
@@ -434,6 +439,9 @@ fn config_only(cs: u8) -> bool {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
 
+    /// LSS-14 (configuration services silent in waiting, malformed requests never answered), LSS-01 (one
+    /// 8-byte answer on 7E4h per request), LSS-02, LSS-05 (11h answer), LSS-12/13 (4Ch and 51h only from an
+    /// unconfigured node), LSS-15 (no other frame without a node-ID, boot-up first once it has one).
     #[test]
     fn random_lss_frames_never_panic_nor_answer_out_of_turn(
         inputs in prop::collection::vec(lss_input(), 1..300),

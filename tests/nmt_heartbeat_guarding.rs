@@ -1,5 +1,6 @@
 //! Integration tests on the in-memory bus: NMT command sequences, heartbeat timelines, node guarding.
-//! Expected frames are those of `shared/spec/VECTORS.md` §3–§5; CHECKLIST IDs are cited per test.
+//! Expected frames are those of `shared/spec/VECTORS.md` §3–§5; requirement IDs (`docs/CONFORMANCE.md`) are
+//! cited per test.
 
 mod common;
 

@@ -1,6 +1,6 @@
 //! PDO, SYNC, EMCY, TIME, error behaviour and 1F80h through whole nodes on the in-memory bus with simulated
 //! time. The master's frames and the expected replies are the VECTORS.md §9–§12 values (IDs in the test
-//! docs); the CHECKLIST IDs each test covers are named too.
+//! docs); the requirement IDs (`docs/CONFORMANCE.md`) each test covers are named too.
 
 mod common;
 

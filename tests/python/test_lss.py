@@ -63,6 +63,7 @@ def stop_node(proc):
     proc.wait(timeout=5)
 
 
+# LSS-01, LSS-03, LSS-05, LSS-06, LSS-09, LSS-10, LSS-13, LSS-14, LSS-15 against python canopen's master.
 def test_fastscan_configure_store_and_reboot(network, tmp_path):
     store = tmp_path / "lss-node.txt"
     log = tmp_path / "lss-node.log"
