@@ -148,7 +148,7 @@ fn sync_unconfirmed_single_producer_jitter_sync_15() {
     let consumer = NodeConfig { tpdo: TPDO_SYNC, ..NodeConfig::DEFAULT };
     let mut bus = bus_of(vec![node(1, producer), node(2, consumer)]);
     bus.inject(frame("000 [2] 01 00"));
-    bus.log.clear();
+    let boot_log = std::mem::take(&mut bus.log);
     bus.run_for_ms(95);
     let syncs: Vec<_> = bus.log.iter().filter(|s| s.frame.cob_id() == 0x080).collect();
     assert!(syncs.len() >= 9, "{} SYNCs in 95 ms", syncs.len());
@@ -158,12 +158,14 @@ fn sync_unconfirmed_single_producer_jitter_sync_15() {
     let tpdos = bus.frames_on(0x182);
     assert_eq!(tpdos.len(), syncs.len());
     assert!(bus.log.iter().all(|s| s.frame.cob_id() == 0x080 || s.frame.cob_id() == 0x182));
-    // High priority: lower than every PDO, SDO, EMCY, heartbeat COB-ID the nodes use.
-    for id in [0x081u16, 0x082, 0x182, 0x201, 0x582, 0x602, 0x701, 0x702] {
-        assert!(0x080 < id);
-    }
+    // High priority: below every other COB-ID on the bus but NMT's 000h (boot-ups, SDO, TPDOs, EMCY).
+    let mut ids: Vec<u16> = boot_log.iter().chain(&bus.log).map(|s| s.frame.cob_id()).collect();
     // Jitter: the master takes over SYNC (node 1 stops producing), period 10 ms ± 4 ms.
     sdo_ok(&mut bus, &["601 [8] 23 05 10 00 80 00 00 00"]);
+    ids.extend(bus.log.iter().map(|s| s.frame.cob_id()));
+    ids.retain(|&id| id != 0x000 && id != 0x080);
+    assert!(ids.contains(&0x701) && ids.contains(&0x581) && ids.contains(&0x182), "{ids:03X?}");
+    assert!(ids.iter().all(|&id| id > 0x080), "{ids:03X?}");
     bus.log.clear();
     let start = bus.now.as_micros();
     let offsets_ms = [0u64, 6, 20, 24, 38, 50, 56, 70, 84, 90];
@@ -507,4 +509,51 @@ fn device_type_dev_02() {
     assert_eq!(sdo(&mut bus, "605 [8] 40 00 10 00 00 00 00 00"), frame("585 [8] 43 00 10 00 91 01 FF FF"));
     let w = "605 [8] 23 00 10 00 00 00 00 00";
     assert_eq!(sdo(&mut bus, w), abort(w, 0x0601_0002));
+}
+
+/// PDO-39 at every length: an RPDO mapping 7 bytes (2000h, 2001h, 2003h) that arrives with 0 to 6 bytes is
+/// not applied and raises EMCY 8210h; with exactly 7 it is applied (and the error clears, EMCY 0000h).
+#[test]
+fn rpdo_shorter_than_mapping_by_any_amount_pdo_39() {
+    const RPDO: &[PdoDefault] =
+        &[PdoDefault { mapping: &[0x2000_0008, 0x2001_0010, 0x2003_0020], ..PdoDefault::EVENT }];
+    let mut bus = bus_of(vec![node(5, NodeConfig { rpdo: RPDO, ..NodeConfig::DEFAULT })]);
+    bus.inject(frame("000 [2] 01 05"));
+    let data = [0x11, 0x22, 0x01, 0x44, 0x55, 0x66, 0x77];
+    for len in 0..data.len() {
+        bus.log.clear();
+        bus.inject(CanFrame::new(0x205, &data[..len]).unwrap());
+        let a = bus.stations[0].app();
+        assert_eq!((a.byte, a.word, a.long), (0, 0, 0), "{len} bytes applied");
+        assert_eq!(bus.frames_on(0x085).last().map(|f| f.1[..3].to_vec()), Some(vec![0x10, 0x82, 0x11]), "{len}");
+        bus.inject(frame("000 [2] 82 05")); // reset communication: the error and its EMCY start afresh
+        bus.inject(frame("000 [2] 01 05"));
+    }
+    bus.log.clear();
+    bus.inject(CanFrame::new(0x205, &data).unwrap());
+    let a = bus.stations[0].app();
+    assert_eq!((a.byte, a.word, a.long), (0x11, 0x0122, 0x7766_5544));
+}
+
+/// SYNC-09/PDO-40 at the boundary: with a 1 ms window (1007h), a synchronous RPDO received exactly 1000 µs
+/// after the SYNC is inside the window (applied at the next SYNC); one received 1001 µs after is outside
+/// (discarded, the next SYNC applies nothing).
+#[test]
+fn sync_window_boundary_sync_09() {
+    const RPDO: &[PdoDefault] = &[PdoDefault { transmission_type: 0, mapping: &[0x2000_0008], ..PdoDefault::EVENT }];
+    let mut bus = bus_of(vec![node(5, NodeConfig { rpdo: RPDO, ..NodeConfig::DEFAULT })]);
+    sdo_ok(&mut bus, &["605 [8] 23 07 10 00 E8 03 00 00"]);
+    bus.inject(frame("000 [2] 01 05"));
+    for (after_us, value, applied) in [(1000u64, 0x0A, true), (1001, 0x0B, false), (0, 0x0C, true)] {
+        bus.run_for_ms(10);
+        bus.inject(frame("080 [0]"));
+        let t = bus.now.as_micros();
+        at_us(&mut bus, t + after_us);
+        let before = bus.stations[0].app().byte;
+        bus.inject(CanFrame::new(0x205, &[value]).unwrap());
+        bus.run_for_ms(5);
+        bus.inject(frame("080 [0]"));
+        let expect = if applied { value } else { before };
+        assert_eq!(bus.stations[0].app().byte, expect, "RPDO {after_us} µs after SYNC");
+    }
 }

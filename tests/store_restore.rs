@@ -251,7 +251,11 @@ fn restore_only_on_load_signature_store_08() {
     ] {
         let f = frame(req);
         let d = f.data();
-        assert_eq!(sdo(&mut bus, req), CanFrame::new(0x583, &[0x80, d[1], d[2], d[3], 0x20, 0, 0, 8]).unwrap(), "{req}");
+        assert_eq!(
+            sdo(&mut bus, req),
+            CanFrame::new(0x583, &[0x80, d[1], d[2], d[3], 0x20, 0, 0, 8]).unwrap(),
+            "{req}"
+        );
     }
     let raw = ram.0.borrow().slots.clone();
     bus.inject(frame("000 [2] 81 03"));
@@ -281,7 +285,8 @@ fn storage_failing_at_each_step_store_09() {
     }
     let stored = (0x44, 0x2001_0020, 0x44, 4);
     for step in [Step::Read, Step::Erase, Step::Write] {
-        for (what, req) in [("save", "603 [8] 23 10 10 01 73 61 76 65"), ("restore", "603 [8] 23 11 10 01 6C 6F 61 64")] {
+        for (what, req) in [("save", "603 [8] 23 10 10 01 73 61 76 65"), ("restore", "603 [8] 23 11 10 01 6C 6F 61 64")]
+        {
             let ram = Ram::default();
             let mut bus = boot(&ram);
             change_everything(&mut bus, 0x44, 4);
