@@ -31,6 +31,13 @@ FAULTS=(
   'rpdo-short-frame-accepted @@ pdo_sync_emcy,checklist_items @@ if data.len() < need { @@ if data.len() + 1 < need {'
   'rpdo-applied-outside-operational @@ checklist_items @@ if frame.is_rtr() || self.nmt.state() != NmtState::Operational { @@ if frame.is_rtr() {'
   'nmt-command-for-any-node @@ nmt_heartbeat_guarding @@ if !request.addresses(self.node_id.get()) { @@ if false {'
+  'sdo10-block-initiate-response-without-multiplexer @@ checklist_items @@ BlockDownloadInitiate { mux, crc, blksize } => {\n                b[0] = 0xA0 | (u8::from(crc) << 2);\n                mux.emit(&mut b); @@ BlockDownloadInitiate { mux: _, crc, blksize } => {\n                b[0] = 0xA0 | (u8::from(crc) << 2);'
+  'err12-default-error-behaviour-not-pre-operational @@ checklist_items @@         error_behaviour: 0, @@         error_behaviour: 1,'
+  'dev02-device-type-loses-additional-info @@ checklist_items @@ (0x1000, _) => c.device_type, @@ (0x1000, _) => c.device_type & 0xFFFF,'
+  'heartbeat-producer-late-by-one-tick @@ nmt_heartbeat_guarding @@ Some(next) if next <= now => { @@ Some(next) if next < now => {'
+  'emcy-inhibit-in-ms-not-100us @@ pdo_sync_emcy @@ self.inhibit = Duration::from_100us(u64::from(n)); @@ self.inhibit = Duration::from_millis(u64::from(n));'
+  'tpdo-inhibit-boundary @@ pdo_sync_emcy,checklist_items @@ if self.inhibit_until().is_some_and(|t| now < t) { @@ if self.inhibit_until().is_some_and(|t| now <= t) {'
+  'rpdo-event-timer-one-ms-late @@ pdo_sync_emcy,checklist_items @@ self.set_deadline(Some(now + Duration::from_millis(self.event_timer_ms.into()))); @@ self.set_deadline(Some(now + Duration::from_millis(u64::from(self.event_timer_ms) + 1)));'
   'emcy-inhibit-ignored @@ pdo_sync_emcy @@ self.next_allowed.is_none_or(|t| now >= t) @@ self.next_allowed.is_none_or(|_t| true)'
 )
 
@@ -76,14 +83,16 @@ EOF
   log=target/plant-faults-$name.log
   root_tests=()
   for t in ${test//,/ }; do root_tests+=(--test "$t"); done
-  if cargo test -q -p canopen-core --lib --tests >"$log" 2>&1 && cargo test -q "${root_tests[@]}" >>"$log" 2>&1; then
+  # A fault that makes a test hang is killed by the time limit.
+  if timeout 600 cargo test -q -p canopen-core --lib --tests >"$log" 2>&1 &&
+    timeout 600 cargo test -q "${root_tests[@]}" >>"$log" 2>&1; then
     verdict=SURVIVED
     survived=$((survived + 1))
   else
     verdict=killed
     killed=$((killed + 1))
     # Which test caught it (or that it did not build).
-    by=$(grep -m1 -oE "^---- [^ ]+|^error(\[E[0-9]+\])?:.*" "$log" | sed 's/^---- //' | cut -c1-60)
+    by=$(grep -m1 -oE "^---- [^ ]+|^error(\[E[0-9]+\])?:.*|has been running for over" "$log" | sed 's/^---- //' | cut -c1-60)
     verdict="killed   ($by)"
   fi
   restore

@@ -546,3 +546,46 @@ fn sync_window_boundary_sync_09() {
         assert_eq!(bus.stations[0].app().byte, expect, "RPDO {after_us} µs after SYNC");
     }
 }
+
+/// PDO-24 at the boundary (TPDO inhibit time = the minimum gap between two transmissions): with 1 ms
+/// (1800h:03 = 10), a trigger 999 µs after a transmission is held back and goes out exactly at 1000 µs; a
+/// trigger exactly 1000 µs after a transmission goes out at once (`trigger_tpdo` says so).
+#[test]
+fn tpdo_inhibit_time_boundary_pdo_24() {
+    const TPDO: &[PdoDefault] = &[PdoDefault { inhibit_100us: 10, mapping: &[0x2000_0008], ..PdoDefault::EVENT }];
+    let mut bus = Bus::booted(vec![node(5, NodeConfig { tpdo: TPDO, ..NodeConfig::DEFAULT })]);
+    bus.inject(frame("000 [2] 01 05")); // PDO-28: sent at once, t = 0
+    let sent = |bus: &Bus<TestNode>| -> Vec<u64> {
+        bus.log.iter().filter(|s| s.frame.cob_id() == 0x185).map(|s| s.at.as_micros()).collect()
+    };
+    assert_eq!(sent(&bus), [0]);
+    // The node learns the time from a frame it ignores (a heartbeat of node 127, no consumer).
+    at_us(&mut bus, 999);
+    bus.inject(frame("77F [1] 05"));
+    assert!(!bus.stations[0].trigger_tpdo(0), "sent 999 µs after the last one");
+    at_us(&mut bus, 1000);
+    assert_eq!(sent(&bus), [0, 1000]);
+    at_us(&mut bus, 2000);
+    bus.inject(frame("77F [1] 05"));
+    assert!(bus.stations[0].trigger_tpdo(0), "held back exactly one inhibit time after the last one");
+    bus.run_for_ms(0);
+    assert_eq!(sent(&bus), [0, 1000, 2000]);
+}
+
+/// PDO-12 at the boundary (RPDO event timer): with 100 ms (1400h:05), the time-out comes exactly 100 ms after
+/// the last RPDO, not a microsecond earlier and not later: the RpdoTimeout event and EMCY 8250h.
+#[test]
+fn rpdo_event_timer_boundary_pdo_12() {
+    const RPDO: &[PdoDefault] = &[PdoDefault { event_timer_ms: 100, mapping: &[0x2000_0008], ..PdoDefault::EVENT }];
+    let mut bus = Bus::booted(vec![node(5, NodeConfig { rpdo: RPDO, ..NodeConfig::DEFAULT })]);
+    bus.inject(frame("000 [2] 01 05"));
+    at_us(&mut bus, 5_000);
+    bus.inject(frame("205 [1] 01"));
+    let emcy = |bus: &Bus<TestNode>| bus.frames_on(0x085).iter().any(|(_, d)| d[..2] == [0x50, 0x82]);
+    at_us(&mut bus, 104_999);
+    assert!(!emcy(&bus));
+    assert!(!common::events(&mut bus.stations[0]).contains(&canopen::core::Event::RpdoTimeout { pdo: 0 }));
+    at_us(&mut bus, 105_000);
+    assert!(emcy(&bus), "no EMCY 8250h at 100 ms");
+    assert!(common::events(&mut bus.stations[0]).contains(&canopen::core::Event::RpdoTimeout { pdo: 0 }));
+}
