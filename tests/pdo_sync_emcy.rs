@@ -36,17 +36,6 @@ fn node_with(id: u8, cfg: NodeConfig) -> TestNode {
     Node::new(NodeId::new(id).unwrap(), cfg, App::default())
 }
 
-/// Boots the nodes, drops the boot-up traffic and events.
-fn bus_of(nodes: Vec<TestNode>) -> Bus<TestNode> {
-    let mut bus = Bus::new(nodes);
-    bus.run_until(ms(0));
-    bus.take_master_rx();
-    for n in &mut bus.stations {
-        events(n);
-    }
-    bus
-}
-
 /// Sends one SDO request and returns the server's reply.
 fn sdo(bus: &mut Bus<TestNode>, req: &str) -> CanFrame {
     bus.take_master_rx();
@@ -78,7 +67,7 @@ fn on(bus: &Bus<TestNode>, id: u16) -> Vec<(u64, Vec<u8>)> {
 /// then the RPDO carries the values; negative variants V-MAP-01..08.
 #[test]
 fn rpdo_remapping_procedure_vector() {
-    let mut bus = bus_of(vec![node_with(3, NodeConfig { rpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
+    let mut bus = Bus::booted(vec![node_with(3, NodeConfig { rpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
     // V-MAP-03/04 (PDO-11, PDO-13) and V-MAP-05 (PDO-09).
     assert_eq!(sdo(&mut bus, "603 [8] 40 00 14 04 00 00 00 00"), frame("583 [8] 80 00 14 04 11 00 09 06"));
     assert_eq!(sdo(&mut bus, "603 [8] 40 00 14 06 00 00 00 00"), frame("583 [8] 80 00 14 06 11 00 09 06"));
@@ -145,7 +134,7 @@ fn rpdo_remapping_procedure_vector() {
 #[test]
 fn tpdo_configuration_vector_and_cyclic_sync() {
     const TPDOS: &[PdoDefault] = &[PdoDefault::UNUSED, PdoDefault::UNUSED, PdoDefault::EVENT];
-    let mut bus = bus_of(vec![node_with(5, NodeConfig { tpdo: TPDOS, ..NodeConfig::DEFAULT })]);
+    let mut bus = Bus::booted(vec![node_with(5, NodeConfig { tpdo: TPDOS, ..NodeConfig::DEFAULT })]);
     // The seed's step 1 (bytes reversed: frame bit set) is refused (COB-15).
     assert_eq!(sdo(&mut bus, "605 [8] 23 02 18 01 00 00 07 38"), frame("585 [8] 80 02 18 01 30 00 09 06"));
     sdo_ok(
@@ -194,7 +183,7 @@ fn acyclic_and_sync_start_value() {
         counter_overflow: 4,
         ..SyncParams::DEFAULT
     };
-    let mut bus = bus_of(vec![node_with(1, NodeConfig { tpdo: TPDOS, sync, ..NodeConfig::DEFAULT })]);
+    let mut bus = Bus::booted(vec![node_with(1, NodeConfig { tpdo: TPDOS, sync, ..NodeConfig::DEFAULT })]);
     bus.stations[0].enter_state(NmtState::Operational);
     bus.run_until(ms(15));
     assert!(!bus.stations[0].trigger_tpdo(0)); // type 0: not now...
@@ -224,7 +213,7 @@ fn event_driven_inhibit_event_timer_and_rtr() {
         PdoDefault { transmission_type: 252, mapping: &[0x2000_0008], ..PdoDefault::EVENT },
         PdoDefault { transmission_type: 253, mapping: &[0x2000_0008], ..PdoDefault::EVENT },
     ];
-    let mut bus = bus_of(vec![node_with(4, NodeConfig { tpdo: TPDOS, ..NodeConfig::DEFAULT })]);
+    let mut bus = Bus::booted(vec![node_with(4, NodeConfig { tpdo: TPDOS, ..NodeConfig::DEFAULT })]);
     bus.inject(frame("000 [2] 01 04"));
     // V-PDO-09: both event-driven TPDOs go out at once; the RTR-only ones do not.
     assert_eq!(on(&bus, 0x184).len(), 1);
@@ -272,7 +261,7 @@ fn synchronous_rpdo_deadline_window_and_sync_length() {
         PdoDefault { transmission_type: 0, mapping: &[0x2000_0008], ..PdoDefault::EVENT },
         PdoDefault { event_timer_ms: 100, mapping: &[0x2002_0010], ..PdoDefault::EVENT },
     ];
-    let mut bus = bus_of(vec![node_with(3, NodeConfig { rpdo: RPDOS, ..NodeConfig::DEFAULT })]);
+    let mut bus = Bus::booted(vec![node_with(3, NodeConfig { rpdo: RPDOS, ..NodeConfig::DEFAULT })]);
     bus.inject(frame("000 [2] 01 00"));
     bus.inject(frame("203 [1] 2A"));
     assert_eq!(bus.stations[0].app().byte, 0);
@@ -305,7 +294,7 @@ fn synchronous_rpdo_deadline_window_and_sync_length() {
 /// sequence of raised and cleared errors.
 #[test]
 fn emcy_error_register_and_history_vectors() {
-    let mut bus = bus_of(vec![node_with(3, NodeConfig::DEFAULT)]);
+    let mut bus = Bus::booted(vec![node_with(3, NodeConfig::DEFAULT)]);
     // V-ERR-04, V-ERR-05.
     assert_eq!(sdo(&mut bus, "603 [8] 40 03 10 01 00 00 00 00"), frame("583 [8] 80 03 10 01 24 00 00 08"));
     assert_eq!(sdo(&mut bus, "603 [8] 40 01 10 00 00 00 00 00"), frame("583 [8] 4F 01 10 00 00 00 00 00"));
@@ -375,7 +364,7 @@ fn emcy_error_register_and_history_vectors() {
 #[test]
 fn time_round_trip() {
     let producer = NodeConfig { time_cob_id: 0x4000_0100, ..NodeConfig::DEFAULT };
-    let mut bus = bus_of(vec![node_with(1, producer), node_with(2, NodeConfig::DEFAULT)]);
+    let mut bus = Bus::booted(vec![node_with(1, producer), node_with(2, NodeConfig::DEFAULT)]);
     let t = TimeOfDay::new(5844, 45_296_789).unwrap(); // V-TIME-03
     assert!(bus.stations[0].produce_time(t));
     bus.run_for_ms(0);
@@ -397,7 +386,7 @@ fn time_round_trip() {
 #[test]
 fn error_behaviour_1029() {
     for (behaviour, expect) in [(0u8, NmtState::PreOperational), (1, NmtState::Operational), (2, NmtState::Stopped)] {
-        let mut bus = bus_of(vec![node_with(5, NodeConfig::DEFAULT)]);
+        let mut bus = Bus::booted(vec![node_with(5, NodeConfig::DEFAULT)]);
         assert_eq!(sdo(&mut bus, "605 [8] 2F 29 10 00 02 00 00 00"), frame("585 [8] 80 29 10 00 02 00 01 06"));
         assert_eq!(sdo(&mut bus, "605 [8] 2F 29 10 01 05 00 00 00"), frame("585 [8] 80 29 10 01 30 00 09 06"));
         let set = format!("605 [8] 2F 29 10 01 {behaviour:02X} 00 00 00");
@@ -423,7 +412,7 @@ fn nmt_startup_self_start() {
     assert_eq!(on(&bus, 0x706), [(0, vec![0])]);
     assert_eq!(on(&bus, 0x186), [(0, vec![0])]);
     assert_eq!(
-        sdo(&mut bus_of(vec![node_with(6, NodeConfig::DEFAULT)]), "606 [8] 40 80 1F 00 00 00 00 00"),
+        sdo(&mut Bus::booted(vec![node_with(6, NodeConfig::DEFAULT)]), "606 [8] 40 80 1F 00 00 00 00 00"),
         frame("586 [8] 43 80 1F 00 04 00 00 00")
     );
 }
@@ -433,7 +422,7 @@ fn nmt_startup_self_start() {
 /// valid), SYNC-01/02 (1005h read), ERR-10 (1029h sub 00h).
 #[test]
 fn parameter_change_rules() {
-    let mut bus = bus_of(vec![node_with(5, NodeConfig { tpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
+    let mut bus = Bus::booted(vec![node_with(5, NodeConfig { tpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
     let refused = |req: &str| {
         let f = frame(req);
         let d = f.data();

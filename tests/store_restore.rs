@@ -37,6 +37,10 @@ struct RamInner {
     slots: [Vec<u8>; 2],
     fail_after: Option<usize>,
     written: usize,
+    /// Every `read` fails (STORE-09).
+    fail_read: bool,
+    /// Every `erase` fails (STORE-09).
+    fail_erase: bool,
 }
 
 const CAP: usize = 1024;
@@ -47,7 +51,7 @@ impl Storage for Ram {
     }
     fn erase(&mut self, slot: u8) -> Result<(), StorageError> {
         let mut m = self.0.borrow_mut();
-        if m.fail_after.is_some_and(|n| m.written >= n) {
+        if m.fail_erase || m.fail_after.is_some_and(|n| m.written >= n) {
             return Err(StorageError::Io);
         }
         m.slots[usize::from(slot)] = vec![0xFF; CAP];
@@ -69,6 +73,9 @@ impl Storage for Ram {
     }
     fn read(&mut self, slot: u8, offset: usize, buf: &mut [u8]) -> Result<(), StorageError> {
         let m = self.0.borrow();
+        if m.fail_read {
+            return Err(StorageError::Io);
+        }
         let s = &m.slots[usize::from(slot)];
         for (i, b) in buf.iter_mut().enumerate() {
             *b = s.get(offset + i).copied().unwrap_or(0xFF);
@@ -219,4 +226,107 @@ fn torn_save_leaves_old_or_new() {
     }
     // The record is a few hundred bytes: every prefix of it was tried.
     assert!(total.is_some_and(|t| t > 50), "{total:?}");
+}
+
+/// STORE-08: 1011h restores only on the signature "load" (6C 6F 61 64 on the wire). Near misses (the bytes
+/// reversed, "save", one byte off, the right bytes in a 2-byte write) answer 0800 0020h and change nothing:
+/// the stored values still come back after a reset node. 1010h likewise only on "save".
+#[test]
+fn restore_only_on_load_signature_store_08() {
+    let ram = Ram::default();
+    let mut bus = boot(&ram);
+    change_everything(&mut bus, 0x33, 3);
+    let stored = (0x33, 0x2001_0020, 0x33, 3);
+    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 65").data()[0], 0x60);
+    for req in [
+        "603 [8] 23 11 10 01 64 61 6F 6C", // "load" as a big-endian number
+        "603 [8] 23 11 10 01 73 61 76 65", // "save"
+        "603 [8] 23 11 10 01 6C 6F 61 65",
+        "603 [8] 23 11 10 01 4C 4F 41 44", // "LOAD"
+        "603 [8] 23 11 10 01 00 00 00 00",
+        "603 [8] 23 11 10 02 6C 6F 61 00",
+        "603 [8] 23 11 10 03 64 61 6F 6C",
+        "603 [8] 23 10 10 01 65 76 61 73", // 1010h: "save" reversed
+        "603 [8] 23 10 10 01 6C 6F 61 64", // 1010h: "load"
+    ] {
+        let f = frame(req);
+        let d = f.data();
+        assert_eq!(
+            sdo(&mut bus, req),
+            CanFrame::new(0x583, &[0x80, d[1], d[2], d[3], 0x20, 0, 0, 8]).unwrap(),
+            "{req}"
+        );
+    }
+    let raw = ram.0.borrow().slots.clone();
+    bus.inject(frame("000 [2] 81 03"));
+    assert_eq!(snapshot(&bus.stations[0]), stored);
+    assert_eq!(ram.0.borrow().slots, raw, "a refused command touched the storage");
+    let bus = boot(&ram);
+    assert_eq!(snapshot(&bus.stations[0]), stored);
+    // The right signature does restore (so the refusals above are about the signature alone).
+    let mut bus = bus;
+    assert_eq!(sdo(&mut bus, "603 [8] 23 11 10 01 6C 6F 61 64").data()[0], 0x60);
+    assert_eq!(snapshot(&boot(&ram).stations[0]), DEFAULTS);
+}
+
+/// STORE-09 (success → download response; failure → 0606 0000h) for a storage failing at each of its steps:
+/// every read, every erase, a write (torn after 0 bytes; every later byte count is `torn_save_leaves_old_or_new`),
+/// for a save (1010h) and for a restore (1011h). Each failure is answered 0606 0000h, loses nothing (after a
+/// power cycle the last stored values come back, the storage's good record untouched), and once the storage
+/// works again the same command succeeds. A node booting on a storage whose reads fail comes up with its
+/// defaults instead of panicking.
+#[test]
+fn storage_failing_at_each_step_store_09() {
+    #[derive(Debug, Clone, Copy)]
+    enum Step {
+        Read,
+        Erase,
+        Write,
+    }
+    let stored = (0x44, 0x2001_0020, 0x44, 4);
+    for step in [Step::Read, Step::Erase, Step::Write] {
+        for (what, req) in [("save", "603 [8] 23 10 10 01 73 61 76 65"), ("restore", "603 [8] 23 11 10 01 6C 6F 61 64")]
+        {
+            let ram = Ram::default();
+            let mut bus = boot(&ram);
+            change_everything(&mut bus, 0x44, 4);
+            assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 65").data()[0], 0x60);
+            change_everything(&mut bus, 0x55, 5);
+            let set = |ram: &Ram, on: bool| {
+                let mut m = ram.0.borrow_mut();
+                match step {
+                    Step::Read => m.fail_read = on,
+                    Step::Erase => m.fail_erase = on,
+                    Step::Write => {
+                        m.written = 0;
+                        m.fail_after = on.then_some(0);
+                    }
+                }
+            };
+            set(&ram, true);
+            let f = frame(req);
+            let d = f.data();
+            let expect = CanFrame::new(0x583, &[0x80, d[1], d[2], d[3], 0x00, 0x00, 0x06, 0x06]).unwrap();
+            assert_eq!(sdo(&mut bus, req), expect, "{what} with {step:?} failing");
+            set(&ram, false);
+            assert_eq!(snapshot(&boot(&ram).stations[0]), stored, "{what} with {step:?} failing lost the record");
+            // The storage works again: the same command now succeeds.
+            assert_eq!(sdo(&mut bus, req).data()[0], 0x60, "{what} after {step:?} recovered");
+            let after = snapshot(&boot(&ram).stations[0]);
+            if what == "save" {
+                assert_eq!(after, (0x55, 0x2001_0020, 0x55, 5));
+            } else {
+                assert_eq!(after, DEFAULTS);
+            }
+        }
+    }
+    // Power-on with unreadable storage: defaults, no panic, and the node answers.
+    let ram = Ram::default();
+    let mut bus = boot(&ram);
+    change_everything(&mut bus, 0x66, 6);
+    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 65").data()[0], 0x60);
+    ram.0.borrow_mut().fail_read = true;
+    let mut bus = boot(&ram);
+    assert_eq!(snapshot(&bus.stations[0]), DEFAULTS);
+    assert_eq!(sdo(&mut bus, "603 [8] 40 17 10 00 00 00 00 00"), frame("583 [8] 4B 17 10 00 00 00 00 00"));
 }

@@ -106,7 +106,7 @@ fn len_strategy() -> impl Strategy<Value = usize> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: support::cases(128), ..ProptestConfig::default() })]
 
     /// Property 2: any payload 0..=65536 bytes round-trips by expedited (when it fits), segmented and block
     /// transfer, with and without CRC, random block sizes.

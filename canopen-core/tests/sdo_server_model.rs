@@ -165,7 +165,14 @@ impl Model {
         if st == S::BlockDownloadEnd && b[0] & 0xE1 != 0xC1 && (1..=BLKSIZE).contains(&(b[0] & 0x7F)) {
             return vec![(R::None, st)];
         }
-        let Ok(req) = ClientRequest::parse(&b) else {
+        self.on_request(&b)
+    }
+
+    /// Allowed (reply, next state) pairs for an 8-byte frame read as a client request.
+    fn on_request(&self, b: &[u8; 8]) -> Vec<(Reply, S)> {
+        use Reply as R;
+        let st = self.state;
+        let Ok(req) = ClientRequest::parse(b) else {
             return vec![(abort(AbortCode::InvalidCommandSpecifier), S::Idle)];
         };
         let wrong = vec![(abort(AbortCode::InvalidCommandSpecifier), S::Idle)];
@@ -269,7 +276,7 @@ fn allowed(set: &[(Reply, S)], got: Reply, next: S) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: support::cases(512), ..ProptestConfig::default() })]
 
     /// Properties 1 and 4.
     #[test]

@@ -44,6 +44,18 @@ impl<S: Station> Bus<S> {
         Bus { now: Instant::ZERO, stations, log: Vec::new(), master_rx: Vec::new(), loss: Vec::new() }
     }
 
+    /// A bus whose stations have powered on (time 0), with the master's received boot-up traffic and every
+    /// station's events dropped (the log keeps the boot-ups).
+    pub fn booted(stations: Vec<S>) -> Self {
+        let mut bus = Bus::new(stations);
+        bus.run_until(Instant::ZERO);
+        bus.take_master_rx();
+        for s in &mut bus.stations {
+            while s.poll_event().is_some() {}
+        }
+        bus
+    }
+
     /// Loses (does not deliver, does not log) the next frame that matches `pred`, once.
     pub fn lose_next(&mut self, mut pred: impl FnMut(&CanFrame) -> bool + 'static) {
         let mut armed = true;

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# Fuzzing in CI (issue 21, item 5): every cargo-fuzz target in fuzz/ runs FUZZ_SECONDS (default 60) of
+# fuzzing on nightly, starting from the checked-in corpus fuzz/seeds/<target>/.
+#
+# Installs what a clean CI machine lacks: the nightly toolchain (minimal profile) and cargo-fuzz.
+# The build happens before the clock starts, so each target gets its full time fuzzing.
+# New interesting inputs go to fuzz/corpus/<target>/ (gitignored). A crash or time-out is copied into
+# fuzz/seeds/<target>/ under its libFuzzer name, so that it is a test case kept: commit it with the fix,
+# and every later run replays it first (libFuzzer runs the whole corpus before mutating).
+#
+# The checked-in corpus is the hand-written seeds plus a libFuzzer merge of a run's corpus (-merge=1 keeps
+# only inputs that add coverage). To refresh it after a run:
+#   (cd fuzz && target/x86_64-unknown-linux-gnu/release/<t> -merge=1 seeds/<t> corpus/<t>)
+#
+# Usage: scripts/fuzz-ci.sh [target...]   (no target: all of `cargo fuzz list`)
+set -euo pipefail
+cd "$(dirname "$0")/../fuzz"
+SECONDS_PER_TARGET=${FUZZ_SECONDS:-60}
+
+if ! rustup toolchain list | grep -q '^nightly'; then
+  rustup toolchain install nightly --profile minimal
+fi
+if ! command -v cargo-fuzz >/dev/null; then
+  cargo install cargo-fuzz --locked
+fi
+cargo +nightly --version
+cargo fuzz --version
+
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  mapfile -t targets < <(cargo +nightly fuzz list)
+fi
+[ ${#targets[@]} -gt 0 ] || { echo "no fuzz targets found"; exit 1; }
+
+status=0
+for t in "${targets[@]}"; do
+  [ -d "seeds/$t" ] || { echo "FAIL: no checked-in corpus fuzz/seeds/$t"; status=1; continue; }
+  rm -rf "artifacts/$t"
+  mkdir -p "corpus/$t" "artifacts/$t"
+  echo "== $t: build"
+  cargo +nightly fuzz build -O "$t"
+  echo "== $t: ${SECONDS_PER_TARGET} s from $(find "seeds/$t" -type f | wc -l) checked-in inputs"
+  start=$(date +%s)
+  if ! cargo +nightly fuzz run -O "$t" "corpus/$t" "seeds/$t" -- \
+    -max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 2>&1 |
+    tail -n 40; then
+    status=1
+  fi
+  # Whatever libFuzzer left behind is kept as a seed.
+  found=$(find "artifacts/$t" -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \))
+  if [ -n "$found" ]; then
+    for a in $found; do
+      cp "$a" "seeds/$t/"
+      echo "FAIL: $t found $(basename "$a"); kept as fuzz/seeds/$t/$(basename "$a") (commit it with the fix)"
+      echo "  reproduce: (cd fuzz && cargo +nightly fuzz run $t seeds/$t/$(basename "$a"))"
+    done
+    status=1
+  fi
+  elapsed=$(($(date +%s) - start))
+  if [ "$status" -eq 0 ] && [ "$elapsed" -lt "$SECONDS_PER_TARGET" ]; then
+    echo "FAIL: $t stopped after ${elapsed} s, before its ${SECONDS_PER_TARGET} s"
+    status=1
+  fi
+  echo "== $t: ${elapsed} s, corpus now $(find "corpus/$t" -type f | wc -l) new inputs"
+done
+exit "$status"

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Plants hand-chosen faults in canopen-core one at a time and checks that the test suite catches each
+# (issue 21, item 4). A cheap stand-in for cargo-mutants on a 2-core machine: each fault is one literal text
+# replacement in one source file, found by its text (not its path, so moving modules does not break it), then
+#   cargo test -p canopen-core --lib --tests   (unit and integration tests; doctests left out: slow, and
+#                                               they check examples, not behaviour)
+#   cargo test --test <each root test named for the fault>
+# run; a failing build or a failing test "kills" the fault, both passing means it "survived". The file is
+# restored after each fault (and on exit or Ctrl-C).
+#
+# Usage: scripts/plant-faults.sh [name...]   (no name: every fault). Prints a table; exits 1 if any
+# survived or could not be planted. Results also go to target/plant-faults.txt.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+# name @@ root tests (comma-separated) @@ text to find (exactly once in canopen-core/src) @@ replacement. "\n" is a newline.
+FAULTS=(
+  'pdo10-rpdo-inhibit-changes-while-valid @@ checklist_items @@ if rules && valid {\n                    return Err(AbortCode::InvalidValue); // PDO-10 @@ if rules && valid && tx {\n                    return Err(AbortCode::InvalidValue); // PDO-10'
+  'pdo10-rpdo-inhibit-not-kept @@ checklist_items @@ comm.inhibit_100us = v as u16; @@ if tx { comm.inhibit_100us = v as u16; }'
+  'store08-any-1011h-signature @@ store_restore @@ LOAD_SIGNATURE };\n        if v != sig { @@ LOAD_SIGNATURE };\n        if v != sig && index == 0x1010 {'
+  'store08-load-signature-byte-order @@ store_restore @@ LOAD_SIGNATURE: u32 = 0x6461_6F6C @@ LOAD_SIGNATURE: u32 = 0x6C6F_6164'
+  'store09-failure-wrong-abort-code @@ store_restore @@ -> AbortCode {\n    AbortCode::HardwareError @@ -> AbortCode {\n    AbortCode::GeneralError'
+  'store09-erase-failure-ignored @@ store_restore @@             st.erase(target)?;\n        }\n        let mut crc_data @@             let _ = st.erase(target);\n        }\n        let mut crc_data'
+  'sdo-toggle-not-checked @@ sdo_node @@ if seg.toggle != *toggle { @@ if false && seg.toggle != *toggle {'
+  'sdo-block-crc-not-checked @@ sdo_node @@ if bd.crc_on && bd.crc.get() != crc { @@ if false && bd.crc_on && bd.crc.get() != crc {'
+  'sdo-expedited-size-misread @@ sdo_node @@ let len = 4 - ((b[0] >> 2) & 0x03); @@ let len = 4 - ((b[0] >> 3) & 0x01);'
+  'cob13-restricted-off-by-one @@ pdo_sync_emcy @@ 0x701..=0x7FF) @@ 0x702..=0x7FF)'
+  'sync-window-doubled @@ pdo_sync_emcy,checklist_items @@ now <= t + Duration::from_micros(u64::from(w)), @@ now <= t + Duration::from_micros(2 * u64::from(w)),'
+  'sync-window-boundary @@ pdo_sync_emcy,checklist_items @@ now <= t + Duration::from_micros(u64::from(w)), @@ now < t + Duration::from_micros(u64::from(w)),'
+  'sync-counter-wraps-late @@ pdo_sync_emcy @@ self.counter = if c >= self.params.counter_overflow @@ self.counter = if c > self.params.counter_overflow'
+  'rpdo-short-frame-accepted @@ pdo_sync_emcy,checklist_items @@ if data.len() < need { @@ if data.len() + 1 < need {'
+  'rpdo-applied-outside-operational @@ checklist_items @@ if frame.is_rtr() || self.nmt.state() != NmtState::Operational { @@ if frame.is_rtr() {'
+  'nmt-command-for-any-node @@ nmt_heartbeat_guarding @@ if !request.addresses(self.node_id.get()) { @@ if false {'
+  'sdo10-block-initiate-response-without-multiplexer @@ checklist_items @@ BlockDownloadInitiate { mux, crc, blksize } => {\n                b[0] = 0xA0 | (u8::from(crc) << 2);\n                mux.emit(&mut b); @@ BlockDownloadInitiate { mux: _, crc, blksize } => {\n                b[0] = 0xA0 | (u8::from(crc) << 2);'
+  'err12-default-error-behaviour-not-pre-operational @@ checklist_items @@         error_behaviour: 0, @@         error_behaviour: 1,'
+  'dev02-device-type-loses-additional-info @@ checklist_items @@ (0x1000, _) => c.device_type, @@ (0x1000, _) => c.device_type & 0xFFFF,'
+  'heartbeat-producer-late-by-one-tick @@ nmt_heartbeat_guarding @@ Some(next) if next <= now => { @@ Some(next) if next < now => {'
+  'emcy-inhibit-in-ms-not-100us @@ pdo_sync_emcy @@ self.inhibit = Duration::from_100us(u64::from(n)); @@ self.inhibit = Duration::from_millis(u64::from(n));'
+  'tpdo-inhibit-boundary @@ pdo_sync_emcy,checklist_items @@ if self.inhibit_until().is_some_and(|t| now < t) { @@ if self.inhibit_until().is_some_and(|t| now <= t) {'
+  'rpdo-event-timer-one-ms-late @@ pdo_sync_emcy,checklist_items @@ self.set_deadline(Some(now + Duration::from_millis(self.event_timer_ms.into()))); @@ self.set_deadline(Some(now + Duration::from_millis(u64::from(self.event_timer_ms) + 1)));'
+  'emcy-inhibit-ignored @@ pdo_sync_emcy @@ self.next_allowed.is_none_or(|t| now >= t) @@ self.next_allowed.is_none_or(|_t| true)'
+)
+
+# Field n (1-based) of a fault.
+field() { printf '%s' "$1" | awk -v n="$2" 'BEGIN { FS = " @@ " } { printf "%s", $n }'; }
+
+selected=("$@")
+out=target/plant-faults.txt
+mkdir -p target
+: >"$out"
+backup=""
+file=""
+restore() { if [ -n "$backup" ] && [ -f "$backup" ]; then cp "$backup" "$file"; rm -f "$backup"; backup=""; fi; }
+trap 'restore; exit 130' INT TERM
+trap restore EXIT
+
+killed=0 survived=0 broken=0
+for f in "${FAULTS[@]}"; do
+  name=$(field "$f" 1) test=$(field "$f" 2) find=$(field "$f" 3) repl=$(field "$f" 4)
+  if [ ${#selected[@]} -gt 0 ] && ! printf '%s\n' "${selected[@]}" | grep -qx "$name"; then continue; fi
+  # The one file holding the text exactly once.
+  file=$(FIND="$find" python3 - <<'EOF'
+import os, pathlib
+needle = os.environ["FIND"].replace("\\n", "\n")
+hits = [(p, p.read_text().count(needle)) for p in pathlib.Path("canopen-core/src").rglob("*.rs")]
+hits = [(p, n) for p, n in hits if n]
+print(hits[0][0] if len(hits) == 1 and hits[0][1] == 1 else "")
+EOF
+)
+  if [ -z "$file" ]; then
+    printf '%-40s NOT PLANTED (text not found exactly once)\n' "$name" | tee -a "$out"
+    broken=$((broken + 1))
+    continue
+  fi
+  backup=$(mktemp)
+  cp "$file" "$backup"
+  FIND="$find" REPL="$repl" FILE="$file" python3 - <<'EOF'
+import os, pathlib
+p = pathlib.Path(os.environ["FILE"])
+p.write_text(p.read_text().replace(os.environ["FIND"].replace("\\n", "\n"), os.environ["REPL"].replace("\\n", "\n"), 1))
+EOF
+  start=$(date +%s)
+  log=target/plant-faults-$name.log
+  root_tests=()
+  for t in ${test//,/ }; do root_tests+=(--test "$t"); done
+  # A fault that makes a test hang is killed by the time limit.
+  if timeout 600 cargo test -q -p canopen-core --lib --tests >"$log" 2>&1 &&
+    timeout 600 cargo test -q "${root_tests[@]}" >>"$log" 2>&1; then
+    verdict=SURVIVED
+    survived=$((survived + 1))
+  else
+    verdict=killed
+    killed=$((killed + 1))
+    # Which test caught it (or that it did not build).
+    by=$(grep -m1 -oE "^---- [^ ]+|^error(\[E[0-9]+\])?:.*|has been running for over" "$log" | sed 's/^---- //' | cut -c1-60)
+    verdict="killed   ($by)"
+  fi
+  restore
+  printf '%-40s %-16s %4ss %s\n' "$name" "$file" "$(($(date +%s) - start))" "$verdict" | sed "s|canopen-core/src/||" | tee -a "$out"
+done
+echo "killed $killed, survived $survived, not planted $broken" | tee -a "$out"
+[ "$survived" -eq 0 ] && [ "$broken" -eq 0 ]
