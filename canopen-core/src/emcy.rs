@@ -19,7 +19,7 @@
 
 use heapless::{Deque, Vec};
 
-use crate::od::AbortCode;
+use crate::abort::AbortCode;
 use crate::time::{Duration, Instant};
 use crate::wire::emcy::Emergency;
 

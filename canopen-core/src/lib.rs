@@ -18,6 +18,7 @@
 #[cfg(test)]
 extern crate self as canopen_core;
 
+pub mod abort;
 pub mod cob;
 pub mod comm;
 pub mod driver;

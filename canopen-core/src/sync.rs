@@ -8,7 +8,7 @@
 //! as [`SyncInput::WrongLength`]). SYNC-05 (only in Pre-operational/Operational) is enforced by `Node`.
 
 use crate::cob::CobIdEntry;
-use crate::od::AbortCode;
+use crate::abort::AbortCode;
 use crate::time::{Duration, Instant};
 
 /// The SYNC parameters (1005h, 1006h, 1007h, 1019h).

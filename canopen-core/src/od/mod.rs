@@ -14,7 +14,6 @@
 //! CiA 306 EDS writer ([`eds`]). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
 //! written, then used without any table search.
 
-mod abort;
 pub mod comm;
 mod domain;
 pub mod eds;
@@ -22,7 +21,7 @@ mod merged;
 mod table;
 mod value;
 
-pub use abort::AbortCode;
+pub use crate::abort::AbortCode;
 pub use domain::{Domain, DomainBuf};
 pub use merged::Merged;
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
