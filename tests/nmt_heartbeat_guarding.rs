@@ -4,10 +4,10 @@
 mod common;
 
 use canopen::core::{
-    comm::NodeConfig,
     guarding::LifeGuardingEvent,
     heartbeat::ConsumerEvent,
     node::{NoApplication, Node},
+    profile::NodeConfig,
     wire::error_control::StateCode,
     CanFrame, Event, NmtState, NodeId,
 };

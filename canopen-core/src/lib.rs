@@ -20,7 +20,6 @@ extern crate self as canopen_core;
 
 pub mod abort;
 pub mod cob;
-pub mod comm;
 pub mod driver;
 pub mod emcy;
 pub mod event;
@@ -32,6 +31,7 @@ pub mod nmt;
 pub mod node;
 pub mod od;
 pub mod pdo;
+pub mod profile;
 pub mod sdo;
 pub mod storage;
 pub mod sync;

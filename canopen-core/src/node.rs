@@ -36,7 +36,6 @@ use heapless::{Deque, Vec};
 mod with_lss;
 
 use crate::cob::{FunctionCode, NodeId};
-use crate::comm::{CommParams, NodeConfig};
 use crate::emcy::{codes, EmcyProducer};
 use crate::event::Event;
 use crate::frame::CanFrame;
@@ -44,10 +43,11 @@ use crate::guarding::Guarding;
 use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
 use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
-use crate::od::comm::{CommProfile, Unchecked};
 use crate::od::Merged;
 use crate::od::{AbortCode, ObjectDictionary, OdDescribe};
 use crate::pdo::{rpdo::Rpdo, tpdo::Tpdo};
+use crate::profile::{CommParams, NodeConfig};
+use crate::profile::{CommProfile, Unchecked};
 use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
 use crate::storage::{self, Groups, NoStorage, Storage};
 use crate::sync::Sync;
@@ -63,7 +63,7 @@ use dict::{NodeDict, SaveFn};
 /// `Node<App, 4, 16, 32>` keep their meaning.
 ///
 /// ```
-/// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, CanFrame, Instant, NodeId};
+/// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, CanFrame, Instant, NodeId};
 ///
 /// let cfg = NodeConfig { heartbeat_time_ms: 100, ..NodeConfig::DEFAULT };
 /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
@@ -123,7 +123,7 @@ pub struct Node<
 /// bus): implemented by [`Node`], so a runner is written once whatever the node's capacities are.
 ///
 /// ```
-/// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node, SansIo}, Instant, NodeId};
+/// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node, SansIo}, Instant, NodeId};
 /// fn boot<N: SansIo>(n: &mut N) -> usize {
 ///     n.handle_timeout(Instant::ZERO);
 ///     core::iter::from_fn(|| n.poll_transmit()).count()
@@ -241,7 +241,7 @@ impl<
     /// and every writable application entry the dictionary describes.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, storage::NoStorage, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, storage::NoStorage, NodeId};
     /// let node: Node<NoApplication, 0, 8, 8, 1, 1, NoStorage> =
     ///     Node::with_storage(NodeId::new(2).unwrap(), NodeConfig::DEFAULT, NoApplication, NoStorage);
     /// assert_eq!(node.node_id().get(), 2);
@@ -531,7 +531,7 @@ impl<
     /// that waits longer than this for the client's next frame is aborted with 0504 0000h.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, Duration, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, Duration, NodeId};
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
     /// node.set_sdo_timeout(Duration::from_millis(5_000));
     /// ```

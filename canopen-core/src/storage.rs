@@ -24,7 +24,7 @@
 //! # What a record holds
 //!
 //! Items `index u16 LE | sub u8 | len u8 | value[len]`, in two groups: communication (1000h–1FFFh, the
-//! writable entries of the [`CommProfile`](crate::od::comm::CommProfile)) and application (every writable
+//! writable entries of the [`CommProfile`](crate::profile::CommProfile)) and application (every writable
 //! and readable entry of the application dictionary found through [`OdDescribe`], DOMAIN excluded, at most
 //! 255 bytes each). A header flag says which groups are present, so that 1010h sub 02h/03h save one group
 //! and keep the other, and 1011h ("load") removes a group so that its defaults come back at the next reset
@@ -376,7 +376,7 @@ pub fn write_back<D: ObjectDictionary + ?Sized>(od: &mut D, index: u16, sub: u8,
 ///
 /// ```
 /// # use canopen_core::storage::*;
-/// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile, node::NoApplication};
+/// # use canopen_core::{profile::{CommProfile, NodeConfig}, node::NoApplication};
 /// # struct Ram([[u8; 512]; 2]);
 /// # impl Storage for Ram {
 /// #     fn capacity(&self) -> usize { 512 }

@@ -7,9 +7,9 @@
 //! - 1010h "save" stores the groups of its sub-index before the SDO response goes out (STORE-04);
 //! - 1011h "load" removes the groups from the stored record (STORE-08..10).
 
-use crate::od::comm::CommProfile;
 use crate::od::{AbortCode, Merged, ObjectDictionary, OdValue, PdoDir, PdoHandle, SubInfo};
 use crate::pdo::mapping::ResolvedMap;
+use crate::profile::CommProfile;
 use crate::storage::{self, abort_of, Groups, Storage, StorageError, LOAD_SIGNATURE, SAVE_SIGNATURE};
 
 /// Saves the groups of a record: `storage::save` with the application's description where the node has it.

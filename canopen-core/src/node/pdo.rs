@@ -265,7 +265,7 @@ impl<
     /// next SYNC. Returns whether a frame was queued now. Only in Operational (PDO-04).
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, pdo::PdoDefault, Instant, NmtState, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, pdo::PdoDefault, Instant, NmtState, NodeId};
     /// const CFG: NodeConfig = NodeConfig { tpdo: &[PdoDefault { mapping: &[0x1001_0008], ..PdoDefault::EVENT }], ..NodeConfig::DEFAULT };
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(1).unwrap(), CFG, NoApplication);
     /// node.handle_timeout(Instant::ZERO);
@@ -329,7 +329,7 @@ impl<
     /// Returns whether the frame was queued.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, od::TimeOfDay, Instant, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, od::TimeOfDay, Instant, NodeId};
     /// const CFG: NodeConfig = NodeConfig { time_cob_id: 0x4000_0100, ..NodeConfig::DEFAULT };
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(1).unwrap(), CFG, NoApplication);
     /// node.handle_timeout(Instant::ZERO);

@@ -9,12 +9,11 @@
 //! holding a firmware image) segment by segment without a buffer of the value's size.
 //!
 //! Submodules: value types and their encodings (`value`: DT-01..DT-14), [`Domain`] streaming (DT-15),
-//! the `const` entry tables and their binary-search [`lookup`] (`table`), the communication profile
-//! ([`comm`]), the [`Merged`] dictionary (comm profile + application, dispatched by index range) and the
-//! CiA 306 EDS writer ([`eds`]). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
+//! the `const` entry tables and their binary-search [`lookup`] (`table`), the [`Merged`] dictionary (two
+//! dictionaries dispatched by index range: the profile's and the application's) and the per-object
+//! sections of the CiA 306 EDS ([`eds`]; the file around them is `profile::eds`). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
 //! written, then used without any table search.
 
-pub mod comm;
 mod domain;
 pub mod eds;
 mod merged;
