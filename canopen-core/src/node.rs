@@ -406,8 +406,7 @@ impl<
         self.ensure_booted(now);
         self.lss_timeout(now);
         if self.sdo.poll_timeout().is_some_and(|t| t <= now) {
-            let mut od =
-                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let response = self.sdo.handle_timeout(now, &mut od);
             self.sdo_response(now, response);
         }
@@ -472,7 +471,7 @@ impl<
         if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {
             return;
         }
-        let mut od = NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+        let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
         let response = self.sdo.handle_request(now, frame.data(), &mut od);
         self.sdo_response(now, response);
         self.pump_sdo();
@@ -502,8 +501,7 @@ impl<
     /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
     fn pump_sdo(&mut self) {
         while self.sdo.wants_transmit() && self.tx.len() + TX_RESERVE.min(TXQ.saturating_sub(1)) < TXQ {
-            let mut od =
-                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
                 break;
             };
@@ -701,8 +699,7 @@ impl<
         }
         if to == NmtState::Stopped {
             // NMT-18: no SDO in Stopped; a transfer under way is dropped, so no time-out abort follows.
-            let mut od =
-                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             self.sdo.cancel(&mut od);
         }
         if from == NmtState::Stopped {

@@ -32,7 +32,7 @@ pub struct Merged<C, A> {
 }
 
 /// Whether `index` belongs to the communication profile area (OD-02).
-const fn is_comm(index: u16) -> bool {
+pub(crate) const fn is_comm(index: u16) -> bool {
     index >= 0x1000 && index <= 0x1FFF
 }
 

@@ -22,6 +22,7 @@ mod value;
 
 pub use crate::abort::AbortCode;
 pub use domain::{Domain, DomainBuf};
+pub(crate) use merged::is_comm;
 pub use merged::Merged;
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
