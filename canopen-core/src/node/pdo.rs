@@ -319,8 +319,8 @@ impl<
         if frame.is_rtr() || !consume || !self.nmt.state().allows(Service::Time) {
             return;
         }
-        if let Ok(TimeStamp(t)) = TimeStamp::parse(frame.data()) {
-            self.push_event(Event::Time(t));
+        if let Ok(TimeStamp { days, ms }) = TimeStamp::parse(frame.data()) {
+            self.push_event(Event::Time(TimeOfDay { days, ms }));
         }
     }
 
@@ -342,7 +342,7 @@ impl<
         if !cob.bit30() || !self.nmt.state().allows(Service::Time) {
             return false;
         }
-        let b = TimeStamp(time).emit();
+        let b = TimeStamp { days: time.days, ms: time.ms }.emit();
         let mut data = [0u8; 8];
         data[..6].copy_from_slice(&b);
         self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));

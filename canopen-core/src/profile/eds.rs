@@ -1,7 +1,7 @@
 //! The communication profile's part of the CiA 306 EDS: `[FileInfo]`, `[DeviceInfo]` (vendor and product
 //! numbers from 1018h, PDO counts from 1400h/1800h), `[DummyUsage]`, `[Comments]` and the object lists
 //! (`[MandatoryObjects]` = 1000h, 1001h, 1018h: OD-12). The per-object sections are the dictionary
-//! layer's [`write_object`](crate::od::eds::write_object); the format notes are in [`crate::od::eds`].
+//! layer's [`write_object`]; the format notes are in [`crate::od::eds`].
 
 use core::fmt::{self, Write};
 
