@@ -44,6 +44,7 @@ use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
 use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
 use crate::od::Merged;
+pub use crate::od::NoApplication;
 use crate::od::{AbortCode, ObjectDictionary, OdDescribe};
 use crate::pdo::{rpdo::Rpdo, tpdo::Tpdo};
 use crate::profile::{CommParams, NodeConfig};
@@ -175,39 +176,6 @@ impl<
 /// during a block upload is queued rather than dropped (a queue of `TXQ` frames gives block upload at least
 /// one slot).
 pub const TX_RESERVE: usize = 3;
-
-/// An empty application dictionary, for nodes that only use the communication profile.
-///
-/// ```
-/// use canopen_core::{node::NoApplication, od::{AbortCode, ObjectDictionary}};
-/// assert_eq!(NoApplication.info(0x2000, 0).err(), Some(AbortCode::ObjectDoesNotExist));
-/// ```
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct NoApplication;
-
-impl ObjectDictionary for NoApplication {
-    fn info(&self, _: u16, _: u8) -> Result<crate::od::SubInfo, AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-    fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-}
-
-impl crate::od::OdDescribe for NoApplication {
-    fn object_count(&self) -> usize {
-        0
-    }
-    fn object(&self, _: usize) -> Option<crate::od::ObjectDesc> {
-        None
-    }
-    fn entry(&self, _: u16, _: u8) -> Option<crate::od::EntryDesc> {
-        None
-    }
-}
 
 impl<
         A: ObjectDictionary,

@@ -467,6 +467,40 @@ impl PdoHandle {
     }
 }
 
+/// An empty dictionary: the application of a node that only uses the communication profile (also
+/// re-exported as `node::NoApplication`).
+///
+/// ```
+/// use canopen_core::od::{AbortCode, NoApplication, ObjectDictionary};
+/// assert_eq!(NoApplication.info(0x2000, 0).err(), Some(AbortCode::ObjectDoesNotExist));
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NoApplication;
+
+impl ObjectDictionary for NoApplication {
+    fn info(&self, _: u16, _: u8) -> Result<SubInfo, AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+    fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+}
+
+impl OdDescribe for NoApplication {
+    fn object_count(&self) -> usize {
+        0
+    }
+    fn object(&self, _: usize) -> Option<ObjectDesc> {
+        None
+    }
+    fn entry(&self, _: u16, _: u8) -> Option<EntryDesc> {
+        None
+    }
+}
+
 /// A mutable reference is a dictionary too, so views such as `Merged<&mut CommProfile, &mut App>` work.
 impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
