@@ -11,7 +11,6 @@ use crate::od::{Merged, ObjectDictionary, PdoDir, TimeOfDay};
 use crate::pdo::mapping::ResolvedMap;
 use crate::pdo::rpdo::{Rpdo, RxOutcome};
 use crate::pdo::tpdo::{SyncAction, Tpdo};
-use crate::pdo::{PdoComm, PdoMapParams};
 use crate::storage::Storage;
 use crate::sync::SyncInput;
 use crate::time::{earliest, Instant};
@@ -28,42 +27,51 @@ impl<
         S: Storage,
     > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
 {
-    /// Rebuilds RPDO `k` from 1400h+k / 1600h+k and the table of valid RPDOs by CAN-ID.
+    /// Rebuilds RPDO `k` from 1400h+k / 1600h+k: the mapping is resolved once here; a mapping that no
+    /// longer resolves (e.g. loaded from storage for another firmware) leaves the RPDO not valid.
     pub(super) fn configure_rpdo(&mut self, k: usize) {
-        let p = &self.comm.params;
-        let pdo = (p.rpdo_comm.get(k).copied(), p.rpdo_map.get(k).copied());
-        let Some((comm, resolved)) = self.resolve_pdo(pdo, PdoDir::Rpdo) else { return };
+        let (Some(mut comm), Some(map)) =
+            (self.comm.params.rpdo_comm.get(k).copied(), self.comm.params.rpdo_map.get(k).copied())
+        else {
+            return;
+        };
+        let od = Merged { comm: &mut self.comm, app: &mut self.app };
+        let resolved = ResolvedMap::resolve(&od, map.active(), PdoDir::Rpdo).unwrap_or_else(|_| {
+            comm.cob_id |= CobIdEntry::BIT31;
+            ResolvedMap::EMPTY
+        });
         if let Some(r) = self.rpdos.get_mut(k) {
             *r = Rpdo::new(&comm, resolved);
         }
-        rebuild_table(&mut self.rx_table, self.rpdos.iter().map(|r| (r.is_valid(), r.can_id())));
+        self.rx_table.clear();
+        for (i, r) in self.rpdos.iter().enumerate() {
+            if r.is_valid() {
+                insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
+            }
+        }
     }
 
     /// Rebuilds TPDO `k` from 1800h+k / 1A00h+k (see [`configure_rpdo`](Self::configure_rpdo)).
     pub(super) fn configure_tpdo(&mut self, k: usize) {
-        let p = &self.comm.params;
-        let pdo = (p.tpdo_comm.get(k).copied(), p.tpdo_map.get(k).copied());
-        let Some((comm, resolved)) = self.resolve_pdo(pdo, PdoDir::Tpdo) else { return };
-        if let Some(t) = self.tpdos.get_mut(k) {
-            *t = Tpdo::new(&comm, resolved);
-        }
-        rebuild_table(&mut self.rtr_table, self.tpdos.iter().map(|t| (t.rtr_allowed(), t.can_id())));
-    }
-
-    /// A PDO's communication parameters and its mapping resolved once; a mapping that no longer resolves
-    /// (e.g. loaded from storage for another firmware) leaves the PDO not valid.
-    fn resolve_pdo(
-        &mut self,
-        pdo: (Option<PdoComm>, Option<PdoMapParams>),
-        dir: PdoDir,
-    ) -> Option<(PdoComm, ResolvedMap)> {
-        let (Some(mut comm), Some(map)) = pdo else { return None };
+        let (Some(mut comm), Some(map)) =
+            (self.comm.params.tpdo_comm.get(k).copied(), self.comm.params.tpdo_map.get(k).copied())
+        else {
+            return;
+        };
         let od = Merged { comm: &mut self.comm, app: &mut self.app };
-        let resolved = ResolvedMap::resolve(&od, map.active(), dir).unwrap_or_else(|_| {
+        let resolved = ResolvedMap::resolve(&od, map.active(), PdoDir::Tpdo).unwrap_or_else(|_| {
             comm.cob_id |= CobIdEntry::BIT31;
             ResolvedMap::EMPTY
         });
-        Some((comm, resolved))
+        if let Some(t) = self.tpdos.get_mut(k) {
+            *t = Tpdo::new(&comm, resolved);
+        }
+        self.rtr_table.clear();
+        for (i, t) in self.tpdos.iter().enumerate() {
+            if t.rtr_allowed() {
+                insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
+            }
+        }
     }
 
     /// Entering Operational: event-driven TPDOs go out at once (PDO-28, V-PDO-09).
@@ -346,16 +354,6 @@ impl<
 /// IDs in PDO order (what the stable small-slice path of `sort_unstable_by_key` gave). A plain insertion:
 /// `sort_unstable_by_key` linked about 4 KB of quicksort into a Cortex-M firmware for tables of at most a few
 /// entries.
-/// Refills `table` with the (CAN-ID, number) of the PDOs whose flag is set, sorted by CAN-ID.
-fn rebuild_table<const N: usize>(table: &mut Vec<(u16, u16), N>, pdos: impl Iterator<Item = (bool, u16)>) {
-    table.clear();
-    for (i, (listed, can_id)) in pdos.enumerate() {
-        if listed {
-            insert_sorted(table, (can_id, i as u16));
-        }
-    }
-}
-
 fn insert_sorted<const N: usize>(table: &mut Vec<(u16, u16), N>, e: (u16, u16)) {
     let at = table.iter().position(|x| x.0 > e.0).unwrap_or(table.len());
     // push and swap down rather than Vec::insert, whose ptr::copy links compiler_builtins' memmove.
