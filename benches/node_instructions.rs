@@ -18,10 +18,10 @@
 use std::hint::black_box;
 
 use canopen::core::{
-    comm::NodeConfig,
     node::Node,
     od::{DomainBuf, VisibleString},
     pdo::PdoDefault,
+    profile::NodeConfig,
     sdo::client::{ClientEvent, Mode, SdoClient, SliceData},
     sdo::SdoClientParams,
     wire::sdo::Multiplexer,

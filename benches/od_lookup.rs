@@ -3,8 +3,11 @@
 //! (search + decode + limits), a PDO read through a resolved handle (no search), and a read of 1000h
 //! through the merged comm profile.
 
-use canopen_core::comm::NodeConfig;
-use canopen_core::od::{comm::CommProfile, Merged, ObjectDictionary, PdoDir};
+use canopen_core::profile::NodeConfig;
+use canopen_core::{
+    od::{Merged, ObjectDictionary, PdoDir},
+    profile::CommProfile,
+};
 use canopen_od_derive::ObjectDictionary;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 

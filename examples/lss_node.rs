@@ -18,9 +18,9 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant as StdInstant};
 
 use canopen::core::{
-    comm::{Identity, NodeConfig},
     lss::{LssEvent, LssStore, StoreError},
     node::{NoApplication, Node},
+    profile::{Identity, NodeConfig},
     wire::lss::BitRate,
     Event,
 };

@@ -87,7 +87,7 @@ type SharedNode = MutexShared<IoNode>;
 
 fn main() -> ExitCode {
     let args = Args::parse();
-    let config = canopen_core::comm::NodeConfig { heartbeat_time_ms: args.heartbeat, ..CONFIG };
+    let config = canopen_core::profile::NodeConfig { heartbeat_time_ms: args.heartbeat, ..CONFIG };
     if let Some(path) = &args.eds {
         return match std::fs::write(path, io_module::eds_text(config, args.store.is_some())) {
             Ok(()) => {

@@ -4,7 +4,7 @@
 #[path = "../tests/common/all_types.rs"]
 mod all_types;
 
-use canopen_core::od::eds::{write_eds, EdsInfo};
+use canopen_core::profile::eds::{write_eds, EdsInfo};
 
 fn main() {
     let od = all_types::node_od();

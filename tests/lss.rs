@@ -8,12 +8,12 @@ use std::cell::RefCell;
 use std::rc::Rc;
 
 use canopen::core::{
-    comm::{Identity, NodeConfig},
     lss::{
         master::{Commissioning, CommissioningEvent, LssMaster, MasterEvent},
         LssEvent, LssStore, StoreError,
     },
     node::{NoApplication, Node},
+    profile::{Identity, NodeConfig},
     sdo::{
         client::{ClientEvent, Mode, SdoClient, SliceData},
         SdoClientParams,

@@ -5,10 +5,10 @@
 mod common;
 
 use canopen::core::{
-    comm::NodeConfig,
     guarding::LifeGuardingEvent,
     heartbeat::ConsumerEvent,
     node::{NoApplication, Node},
+    profile::NodeConfig,
     wire::error_control::StateCode,
     CanFrame, Event, NmtState, NodeId,
 };

@@ -5,7 +5,7 @@
 mod common;
 
 use canopen::core::{
-    comm::NodeConfig, node::Node, od::TimeOfDay, pdo::PdoDefault, sync::SyncParams, wire::emcy::Emergency, CanFrame,
+    node::Node, od::TimeOfDay, pdo::PdoDefault, profile::NodeConfig, sync::SyncParams, wire::emcy::Emergency, CanFrame,
     Event, NmtState, NodeId,
 };
 use canopen::ObjectDictionary;

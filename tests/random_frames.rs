@@ -3,11 +3,11 @@
 //! PDO-04, EMCY-04/08, SYNC-04/05, TIME-04/05).
 
 use canopen::core::{
-    comm::NodeConfig,
     event::Event,
     node::{NoApplication, Node},
     od::AbortCode,
     pdo::PdoDefault,
+    profile::NodeConfig,
     sync::SyncParams,
     wire::emcy::Emergency,
     wire::sdo::ServerResponse,

@@ -6,10 +6,10 @@
 mod common;
 
 use canopen::core::{
-    comm::NodeConfig,
     node::Node,
     od::DomainBuf,
     od::VisibleString,
+    profile::NodeConfig,
     sdo::client::{ClientError, ClientEvent, Mode, SdoClient, SliceData},
     sdo::SdoClientParams,
     wire::sdo::Multiplexer,

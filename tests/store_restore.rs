@@ -8,9 +8,9 @@ use std::cell::RefCell;
 use std::rc::Rc;
 
 use canopen::core::{
-    comm::NodeConfig,
     node::Node,
     pdo::PdoDefault,
+    profile::NodeConfig,
     storage::{Storage, StorageError},
     CanFrame, NodeId,
 };

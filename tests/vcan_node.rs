@@ -42,10 +42,10 @@ struct RunningNode {
 
 impl RunningNode {
     fn start(id: u8) -> Self {
-        Self::start_with(id, canopen_core::comm::NodeConfig { heartbeat_time_ms: 100, ..CONFIG })
+        Self::start_with(id, canopen_core::profile::NodeConfig { heartbeat_time_ms: 100, ..CONFIG })
     }
 
-    fn start_with(id: u8, config: canopen_core::comm::NodeConfig) -> Self {
+    fn start_with(id: u8, config: canopen_core::profile::NodeConfig) -> Self {
         let shared = Arc::new(MutexShared::new(io_module::new_node(NodeId::new(id).unwrap(), config)));
         let stop = Arc::new(AtomicBool::new(false));
         let thread = {
@@ -148,7 +148,7 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
         PdoDefault { mapping: &[0x2006_0040], event_timer_ms: 1, ..PdoDefault::EVENT },
         PdoDefault { mapping: &[0x6000_0308, 0x6401_0110], event_timer_ms: 1, ..PdoDefault::EVENT },
     ];
-    let config = canopen_core::comm::NodeConfig { heartbeat_time_ms: 100, tpdo: TPDOS, ..CONFIG };
+    let config = canopen_core::profile::NodeConfig { heartbeat_time_ms: 100, tpdo: TPDOS, ..CONFIG };
     let node = RunningNode::start_with(32, config);
     node.shared.with(|n| n.enter_state(NmtState::Operational)); // PDOs only in Operational (PDO-04)
     let stop = Arc::new(AtomicBool::new(false));

@@ -7,7 +7,7 @@
 //! properties of the node as a whole (only the COBs a node supports get identifiers; defaults apply after
 //! reset communication).
 
-use crate::od::AbortCode;
+use crate::abort::AbortCode;
 
 /// A CANopen node-ID, 1..=127 (COB-02).
 ///

@@ -116,7 +116,7 @@ const BATCH: usize = 8;
 ///
 /// ```
 /// use core::{cell::RefCell, future::Future};
-/// use canopen_core::{comm::NodeConfig, driver::*, node::{NoApplication, Node}, CanFrame, Instant, NodeId};
+/// use canopen_core::{profile::NodeConfig, driver::*, node::{NoApplication, Node}, CanFrame, Instant, NodeId};
 ///
 /// struct Wire(std::vec::Vec<CanFrame>);
 /// impl CanTx for Wire {
@@ -270,8 +270,8 @@ async fn wait<R: CanRx, C: Timer, W: Wake>(
 mod tests {
     extern crate std;
     use super::*;
-    use crate::comm::NodeConfig;
     use crate::node::{NoApplication, Node};
+    use crate::profile::NodeConfig;
     use crate::NodeId;
     use core::cell::{Cell, RefCell};
     use core::task::{Context, Waker};

@@ -19,7 +19,7 @@
 
 use heapless::{Deque, Vec};
 
-use crate::od::AbortCode;
+use crate::abort::AbortCode;
 use crate::time::{Duration, Instant};
 use crate::wire::emcy::Emergency;
 
@@ -265,9 +265,12 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
 }
 
 /// The error state a node keeps: 8 distinct active errors, a 1003h history of
-/// [`HISTORY`](crate::od::comm::HISTORY) entries and 8 EMCYs waiting for the inhibit time or for the node to
+/// [`HISTORY`] entries and 8 EMCYs waiting for the inhibit time or for the node to
 /// leave Stopped.
-pub type NodeErrors = ErrorState<8, { crate::od::comm::HISTORY }, 8>;
+pub type NodeErrors = ErrorState<8, HISTORY, 8>;
+
+/// Depth of the 1003h error history of a node (ERR-04).
+pub const HISTORY: usize = 8;
 
 /// Spaces EMCY frames by the 1015h inhibit time (EMCY-09).
 ///

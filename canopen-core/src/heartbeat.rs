@@ -6,11 +6,50 @@
 //! the first heartbeat), HB-11 (one missed consumer time is a time-out; resolved when heartbeats resume or the
 //! entry is disabled; state changes and a re-boot of the producer are reported). HB-05 (never heartbeat and
 //! guarding at once) and HB-13 (time-out is a communication error handled per 1029h) are enforced by `Node`.
-//! HB-09 (duplicate node) is enforced by `comm::CommParams::set_consumer`. HB-12/HB-14 are advice.
+//! HB-09 (duplicate node) is enforced by `profile::CommParams::set_consumer`. HB-12/HB-14 are advice.
 
-use crate::comm::ConsumerEntry;
 use crate::time::{Duration, Instant};
 use crate::wire::error_control::StateCode;
+
+/// Decoded 1016h consumer heartbeat entry (HB-07: bits 23–16 node-ID, bits 15–0 time in ms).
+///
+/// ```
+/// use canopen_core::heartbeat::ConsumerEntry;
+/// let e = ConsumerEntry::from_raw(0x0002_0064);
+/// assert_eq!((e.node_id, e.time_ms), (2, 100));
+/// assert!(e.is_active());
+/// assert!(!ConsumerEntry::from_raw(0x0080_0064).is_active()); // node 128: inactive (HB-08)
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ConsumerEntry {
+    /// Monitored node-ID.
+    pub node_id: u8,
+    /// Consumer time in ms.
+    pub time_ms: u16,
+}
+
+impl ConsumerEntry {
+    /// Decodes the UNSIGNED32 of a 1016h sub-entry (bits 31–24 are reserved and ignored).
+    pub const fn from_raw(raw: u32) -> Self {
+        ConsumerEntry { node_id: (raw >> 16) as u8, time_ms: raw as u16 }
+    }
+
+    /// Encodes as the UNSIGNED32 of a 1016h sub-entry.
+    ///
+    /// ```
+    /// # use canopen_core::heartbeat::ConsumerEntry;
+    /// assert_eq!(ConsumerEntry { node_id: 7, time_ms: 4000 }.raw(), 0x0007_0FA0);
+    /// ```
+    pub const fn raw(self) -> u32 {
+        ((self.node_id as u32) << 16) | self.time_ms as u32
+    }
+
+    /// Active unless the time is 0 or the node-ID is 0 or above 127 (HB-08).
+    pub const fn is_active(self) -> bool {
+        self.time_ms != 0 && self.node_id >= 1 && self.node_id <= 127
+    }
+}
 
 /// The heartbeat producer: when the next heartbeat is due.
 ///

@@ -4,6 +4,19 @@
 //! time in, and drains frames to send, events for the application and the next deadline out. Each CiA 301
 //! service is a small state machine in its own module; the wire formats live apart from them.
 //!
+//! The modules form layers, each importing only the ones above it in this list (`docs/ARCHITECTURE.md`):
+//! - base: [`frame`] (the CAN frame), [`cob`] (COB-IDs, node-IDs), [`abort`] (SDO abort codes), [`time`]
+//!   (`Instant`, `Duration`);
+//! - wire: [`wire`] (parse/emit of every protocol's frames);
+//! - od: [`od`] (values, entries, tables, the `Merged` router, EDS object sections);
+//! - services, one state machine each: [`nmt`], [`heartbeat`], [`guarding`], [`sdo`], [`pdo`], [`sync`],
+//!   [`emcy`], [`lss`], [`storage`];
+//! - profile: [`profile`] (the communication profile 1000h–1FFFh over the services' parameters, the EDS
+//!   file);
+//! - node: [`node`] (routing of received frames, the node's dictionary view), [`event`] (what the
+//!   application is told);
+//! - driver: [`driver`] (the async run loop) and the trace points.
+//!
 //! Optional features: `defmt` (derives `defmt::Format` on the public types; NMT state changes, SDO aborts,
 //! driver errors and frames are logged through defmt) and `log` (the same trace points through the `log`
 //! facade, for std users). Both are off by default; the trace points sit in the [`driver`].
@@ -18,8 +31,8 @@
 #[cfg(test)]
 extern crate self as canopen_core;
 
+pub mod abort;
 pub mod cob;
-pub mod comm;
 pub mod driver;
 pub mod emcy;
 pub mod event;
@@ -31,6 +44,7 @@ pub mod nmt;
 pub mod node;
 pub mod od;
 pub mod pdo;
+pub mod profile;
 pub mod sdo;
 pub mod storage;
 pub mod sync;

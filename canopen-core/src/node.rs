@@ -36,7 +36,6 @@ use heapless::{Deque, Vec};
 mod with_lss;
 
 use crate::cob::{FunctionCode, NodeId};
-use crate::comm::{CommParams, NodeConfig};
 use crate::emcy::{codes, EmcyProducer};
 use crate::event::Event;
 use crate::frame::CanFrame;
@@ -44,10 +43,12 @@ use crate::guarding::Guarding;
 use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
 use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
-use crate::od::comm::{CommProfile, Unchecked};
 use crate::od::Merged;
+pub use crate::od::NoApplication;
 use crate::od::{AbortCode, ObjectDictionary, OdDescribe};
 use crate::pdo::{rpdo::Rpdo, tpdo::Tpdo};
+use crate::profile::{CommParams, NodeConfig};
+use crate::profile::{CommProfile, Unchecked};
 use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
 use crate::storage::{self, Groups, NoStorage, Storage};
 use crate::sync::Sync;
@@ -63,7 +64,7 @@ use dict::{NodeDict, SaveFn};
 /// `Node<App, 4, 16, 32>` keep their meaning.
 ///
 /// ```
-/// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, CanFrame, Instant, NodeId};
+/// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, CanFrame, Instant, NodeId};
 ///
 /// let cfg = NodeConfig { heartbeat_time_ms: 100, ..NodeConfig::DEFAULT };
 /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
@@ -123,7 +124,7 @@ pub struct Node<
 /// bus): implemented by [`Node`], so a runner is written once whatever the node's capacities are.
 ///
 /// ```
-/// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node, SansIo}, Instant, NodeId};
+/// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node, SansIo}, Instant, NodeId};
 /// fn boot<N: SansIo>(n: &mut N) -> usize {
 ///     n.handle_timeout(Instant::ZERO);
 ///     core::iter::from_fn(|| n.poll_transmit()).count()
@@ -176,39 +177,6 @@ impl<
 /// one slot).
 pub const TX_RESERVE: usize = 3;
 
-/// An empty application dictionary, for nodes that only use the communication profile.
-///
-/// ```
-/// use canopen_core::{node::NoApplication, od::{AbortCode, ObjectDictionary}};
-/// assert_eq!(NoApplication.info(0x2000, 0).err(), Some(AbortCode::ObjectDoesNotExist));
-/// ```
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct NoApplication;
-
-impl ObjectDictionary for NoApplication {
-    fn info(&self, _: u16, _: u8) -> Result<crate::od::SubInfo, AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-    fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-}
-
-impl crate::od::OdDescribe for NoApplication {
-    fn object_count(&self) -> usize {
-        0
-    }
-    fn object(&self, _: usize) -> Option<crate::od::ObjectDesc> {
-        None
-    }
-    fn entry(&self, _: u16, _: u8) -> Option<crate::od::EntryDesc> {
-        None
-    }
-}
-
 impl<
         A: ObjectDictionary,
         const HB: usize,
@@ -241,7 +209,7 @@ impl<
     /// and every writable application entry the dictionary describes.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, storage::NoStorage, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, storage::NoStorage, NodeId};
     /// let node: Node<NoApplication, 0, 8, 8, 1, 1, NoStorage> =
     ///     Node::with_storage(NodeId::new(2).unwrap(), NodeConfig::DEFAULT, NoApplication, NoStorage);
     /// assert_eq!(node.node_id().get(), 2);
@@ -406,8 +374,7 @@ impl<
         self.ensure_booted(now);
         self.lss_timeout(now);
         if self.sdo.poll_timeout().is_some_and(|t| t <= now) {
-            let mut od =
-                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let response = self.sdo.handle_timeout(now, &mut od);
             self.sdo_response(now, response);
         }
@@ -472,7 +439,7 @@ impl<
         if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {
             return;
         }
-        let mut od = NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+        let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
         let response = self.sdo.handle_request(now, frame.data(), &mut od);
         self.sdo_response(now, response);
         self.pump_sdo();
@@ -502,8 +469,7 @@ impl<
     /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
     fn pump_sdo(&mut self) {
         while self.sdo.wants_transmit() && self.tx.len() + TX_RESERVE.min(TXQ.saturating_sub(1)) < TXQ {
-            let mut od =
-                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
                 break;
             };
@@ -531,7 +497,7 @@ impl<
     /// that waits longer than this for the client's next frame is aborted with 0504 0000h.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, Duration, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, Duration, NodeId};
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
     /// node.set_sdo_timeout(Duration::from_millis(5_000));
     /// ```
@@ -701,8 +667,7 @@ impl<
         }
         if to == NmtState::Stopped {
             // NMT-18: no SDO in Stopped; a transfer under way is dropped, so no time-out abort follows.
-            let mut od =
-                NodeDict { comm: &mut self.comm, app: &mut self.app, storage: &mut self.storage, save: self.save };
+            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             self.sdo.cancel(&mut od);
         }
         if from == NmtState::Stopped {

@@ -24,14 +24,14 @@
 //! # What a record holds
 //!
 //! Items `index u16 LE | sub u8 | len u8 | value[len]`, in two groups: communication (1000h–1FFFh, the
-//! writable entries of the [`CommProfile`](crate::od::comm::CommProfile)) and application (every writable
+//! writable entries of the [`CommProfile`](crate::profile::CommProfile)) and application (every writable
 //! and readable entry of the application dictionary found through [`OdDescribe`], DOMAIN excluded, at most
 //! 255 bytes each). A header flag says which groups are present, so that 1010h sub 02h/03h save one group
 //! and keep the other, and 1011h ("load") removes a group so that its defaults come back at the next reset
 //! (STORE-10). Values are written back through the dictionary's normal write path, so a value that a newer
 //! firmware no longer accepts is skipped rather than stored blindly.
 
-use crate::od::{AbortCode, ObjectDictionary, OdDescribe};
+use crate::od::{AbortCode, NoApplication, ObjectDictionary, OdDescribe};
 
 /// 1010h signature "save" (V-ENC-10): `73 61 76 65` on the bus.
 pub const SAVE_SIGNATURE: u32 = 0x6576_6173;
@@ -376,7 +376,7 @@ pub fn write_back<D: ObjectDictionary + ?Sized>(od: &mut D, index: u16, sub: u8,
 ///
 /// ```
 /// # use canopen_core::storage::*;
-/// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile, node::NoApplication};
+/// # use canopen_core::{profile::{CommProfile, NodeConfig}, node::NoApplication};
 /// # struct Ram([[u8; 512]; 2]);
 /// # impl Storage for Ram {
 /// #     fn capacity(&self) -> usize { 512 }
@@ -511,7 +511,7 @@ pub fn restore_defaults<S: Storage + ?Sized>(st: &mut S, groups: Groups) -> Resu
     };
     let remaining = Groups(h.groups.0 & !groups.0);
     // Re-save the remaining groups by copying them: "fresh" is empty, so everything comes from the record.
-    let empty = EmptyOd;
+    let empty = NoApplication;
     let old = newest(st)?;
     let target = old.map_or(0, |(s, _)| 1 - s);
     let seq = h.seq.wrapping_add(1);
@@ -545,30 +545,4 @@ pub fn restore_defaults<S: Storage + ?Sized>(st: &mut S, groups: Groups) -> Resu
 /// ```
 pub const fn abort_of(_e: StorageError) -> AbortCode {
     AbortCode::HardwareError
-}
-
-struct EmptyOd;
-
-impl ObjectDictionary for EmptyOd {
-    fn info(&self, _: u16, _: u8) -> Result<crate::od::SubInfo, AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-    fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
-        Err(AbortCode::ObjectDoesNotExist)
-    }
-}
-
-impl OdDescribe for EmptyOd {
-    fn object_count(&self) -> usize {
-        0
-    }
-    fn object(&self, _: usize) -> Option<crate::od::ObjectDesc> {
-        None
-    }
-    fn entry(&self, _: u16, _: u8) -> Option<crate::od::EntryDesc> {
-        None
-    }
 }

@@ -7,8 +7,8 @@
 //! SYNC-12 (1019h refused while 1006h ≠ 0 with 0800 0022h), SYNC-14 (unexpected DLC → EMCY 8240h, reported
 //! as [`SyncInput::WrongLength`]). SYNC-05 (only in Pre-operational/Operational) is enforced by `Node`.
 
+use crate::abort::AbortCode;
 use crate::cob::CobIdEntry;
-use crate::od::AbortCode;
 use crate::time::{Duration, Instant};
 
 /// The SYNC parameters (1005h, 1006h, 1007h, 1019h).

@@ -173,7 +173,7 @@ fn open_socket(iface: &str, filters: &[(u32, u32)]) -> io::Result<CanSocket> {
 ///
 /// ```no_run
 /// use std::cell::RefCell;
-/// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, NodeId};
+/// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, NodeId};
 /// use canopen_socketcan::{run_blocking, BlockingBus, Observed};
 /// let mut bus = BlockingBus::open("vcan0")?;
 /// let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);

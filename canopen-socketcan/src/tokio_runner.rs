@@ -13,7 +13,7 @@
 //!
 //! ```no_run
 //! use std::sync::Arc;
-//! use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, NodeId};
+//! use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, NodeId};
 //! use canopen_socketcan::{run_tokio, MutexShared, NotifyWake};
 //! # async fn demo() -> std::io::Result<()> {
 //! let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);

@@ -12,8 +12,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use canopen_core::comm::NodeConfig;
 use canopen_core::node::{NoApplication, Node};
+use canopen_core::profile::NodeConfig;
 use canopen_core::sdo::client::Mode;
 use canopen_core::wire::nmt::NmtCommand;
 use canopen_core::{CanFrame, Instant, NmtState, NodeId};

@@ -27,10 +27,10 @@
 //! Parameters are stored (1010h/1011h) in a [`Store`]: a [`FileStorage`] with `--store FILE`, else none.
 #![allow(dead_code)]
 
-use canopen_core::comm::{Identity, NodeConfig};
-use canopen_core::od::eds::EdsInfo;
 use canopen_core::od::{AbortCode, Domain, VisibleString};
 use canopen_core::pdo::PdoDefault;
+use canopen_core::profile::eds::EdsInfo;
+use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::storage::{Storage, StorageError};
 use canopen_od_derive::ObjectDictionary;
 use canopen_socketcan::FileStorage;
@@ -257,10 +257,10 @@ pub fn error_injection_after_reset(node: &mut IoNode) -> (u16, u16) {
 
 /// The EDS text of the node (`storage`: whether 1010h/1011h announce that saving is supported).
 pub fn eds_text(config: NodeConfig, storage: bool) -> String {
-    let mut comm = canopen_core::od::comm::CommProfile::<4, 4, 4>::new(config);
+    let mut comm = canopen_core::profile::CommProfile::<4, 4, 4>::new(config);
     comm.storage_supported = storage;
     let od = canopen_core::od::Merged { comm, app: IoModule::with_defaults() };
     let mut text = String::new();
-    canopen_core::od::eds::write_eds(&mut text, &EDS_INFO, &od).expect("formatting into a String cannot fail");
+    canopen_core::profile::eds::write_eds(&mut text, &EDS_INFO, &od).expect("formatting into a String cannot fail");
     text
 }

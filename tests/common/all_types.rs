@@ -3,13 +3,13 @@
 //! test loads).
 #![allow(dead_code)]
 
-use canopen_core::comm::{Identity, NodeConfig};
-use canopen_core::od::comm::CommProfile;
 use canopen_core::od::{
     AbortCode, DomainBuf, Merged, OctetString, TimeDifference, TimeOfDay, UnicodeString, VisibleString, I24, I40, I48,
     I56, U24, U40, U48, U56,
 };
 use canopen_core::pdo::PdoDefault;
+use canopen_core::profile::CommProfile;
+use canopen_core::profile::{Identity, NodeConfig};
 use canopen_od_derive::ObjectDictionary;
 
 #[derive(ObjectDictionary, Debug, Default)]

@@ -25,7 +25,7 @@
 
 use heapless::Deque;
 
-use crate::comm::Identity;
+use crate::lss::Identity;
 use crate::time::{Duration, Instant};
 use crate::wire::lss::{
     BitRate, IdentifyPart, IdentityField, LssMode, LssRequest, LssResponse, Status, FASTSCAN_CONFIRM,
@@ -174,7 +174,7 @@ impl LssMaster {
     /// Switch state selective (40h–43h → 44h): [`MasterEvent::Selected`] or [`MasterEvent::Timeout`].
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::master::LssMaster, Duration, Instant};
+    /// # use canopen_core::{lss::{master::LssMaster, Identity}, Duration, Instant};
     /// let mut m = LssMaster::new(Duration::from_millis(1));
     /// m.switch_selective(&Identity { vendor_id: 1, product_code: 2, revision: 3, serial: 4 }).unwrap();
     /// let frames: Vec<_> = core::iter::from_fn(|| m.poll_transmit(Instant::ZERO)).collect();

@@ -68,12 +68,31 @@
 pub mod master;
 
 use crate::cob::NodeId;
-use crate::comm::Identity;
 use crate::time::{Duration, Instant};
 use crate::wire::lss::{
     BitRate, IdentifyPart, IdentityField, LssMode, LssRequest, LssResponse, Status, FASTSCAN_CONFIRM,
     UNCONFIGURED_NODE_ID,
 };
+
+/// 1018h identity object (DEV-03).
+///
+/// ```
+/// use canopen_core::lss::Identity;
+/// let id = Identity { vendor_id: 0, product_code: 1, revision: 0x0001_0000, serial: 42 };
+/// assert_eq!(id.serial, 42);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Identity {
+    /// 1018h:01 vendor-ID (CiA-assigned).
+    pub vendor_id: u32,
+    /// 1018h:02 product code.
+    pub product_code: u32,
+    /// 1018h:03 revision number (major.minor in the high/low 16 bits).
+    pub revision: u32,
+    /// 1018h:04 serial number.
+    pub serial: u32,
+}
 
 /// Something the LSS slave tells the application (inside `Event::Lss`).
 ///
@@ -222,7 +241,7 @@ pub const CIA301_BIT_RATES: u16 = 0b1_1101_1111;
 /// fastscan.
 ///
 /// ```
-/// use canopen_core::{comm::Identity, lss::LssSlave, wire::lss::{LssMode, LssRequest, LssResponse}, Instant};
+/// use canopen_core::{lss::{Identity, LssSlave}, wire::lss::{LssMode, LssRequest, LssResponse}, Instant};
 /// let id = Identity { vendor_id: 1, product_code: 2, revision: 3, serial: 4 };
 /// let mut s = LssSlave::new(&id, None);
 /// let now = Instant::ZERO;
@@ -260,7 +279,7 @@ impl LssSlave {
     /// [`set_bit_rate`](Self::set_bit_rate).
     ///
     /// ```
-    /// use canopen_core::{comm::Identity, lss::LssSlave, NodeId};
+    /// use canopen_core::{lss::{Identity, LssSlave}, NodeId};
     /// let s = LssSlave::new(&Identity::default(), NodeId::new(5));
     /// assert_eq!(s.pending_node_id(), 5);
     /// ```
@@ -286,7 +305,7 @@ impl LssSlave {
     /// The LSS state.
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave, wire::lss::LssMode};
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::LssMode};
     /// assert_eq!(LssSlave::new(&Identity::default(), None).mode(), LssMode::Waiting);
     /// ```
     pub const fn mode(&self) -> LssMode {
@@ -296,7 +315,7 @@ impl LssSlave {
     /// The active node-ID, `None` while unconfigured (FFh).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave, NodeId};
+    /// # use canopen_core::{lss::{Identity, LssSlave}, NodeId};
     /// let n = NodeId::new(3);
     /// assert_eq!(LssSlave::new(&Identity::default(), n).active_node_id(), n);
     /// ```
@@ -307,7 +326,7 @@ impl LssSlave {
     /// The raw pending node-ID (1–127, or FFh).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave};
+    /// # use canopen_core::lss::{Identity, LssSlave};
     /// assert_eq!(LssSlave::new(&Identity::default(), None).pending_node_id(), 0xFF);
     /// ```
     pub const fn pending_node_id(&self) -> u8 {
@@ -317,7 +336,7 @@ impl LssSlave {
     /// Whether both the active and the pending node-ID are FFh (the fastscan and 4Ch condition).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave};
+    /// # use canopen_core::lss::{Identity, LssSlave};
     /// assert!(LssSlave::new(&Identity::default(), None).is_unconfigured());
     /// ```
     pub const fn is_unconfigured(&self) -> bool {
@@ -327,7 +346,7 @@ impl LssSlave {
     /// The active bit rate as far as LSS knows (what the application set, or the last activated one).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave, wire::lss::BitRate};
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::BitRate};
     /// assert_eq!(LssSlave::new(&Identity::default(), None).bit_rate(), BitRate::K125);
     /// ```
     pub const fn bit_rate(&self) -> BitRate {
@@ -337,7 +356,7 @@ impl LssSlave {
     /// The pending bit rate (configured, not yet activated).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave, wire::lss::BitRate};
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::BitRate};
     /// assert_eq!(LssSlave::new(&Identity::default(), None).pending_bit_rate(), BitRate::K125);
     /// ```
     pub const fn pending_bit_rate(&self) -> BitRate {
@@ -347,7 +366,7 @@ impl LssSlave {
     /// Tells LSS the bit rate the node runs at (active and pending).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave, wire::lss::BitRate};
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::BitRate};
     /// let mut s = LssSlave::new(&Identity::default(), None);
     /// s.set_bit_rate(BitRate::K500);
     /// assert_eq!(s.pending_bit_rate(), BitRate::K500);
@@ -361,7 +380,7 @@ impl LssSlave {
     /// [`CIA301_BIT_RATES`] (every CiA 301 rate, no automatic detection).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave};
+    /// # use canopen_core::lss::{Identity, LssSlave};
     /// let mut s = LssSlave::new(&Identity::default(), None);
     /// s.set_supported_bit_rates(1 << 2 | 1 << 3); // 500 and 250 kbit/s only
     /// ```
@@ -373,7 +392,7 @@ impl LssSlave {
     /// when false (the default) it is answered with error 01h.
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave};
+    /// # use canopen_core::lss::{Identity, LssSlave};
     /// let mut s = LssSlave::new(&Identity::default(), None);
     /// s.set_store_supported(true);
     /// ```
@@ -384,7 +403,7 @@ impl LssSlave {
     /// Whether a store request waits for [`complete_store`](Self::complete_store).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave};
+    /// # use canopen_core::lss::{Identity, LssSlave};
     /// assert!(!LssSlave::new(&Identity::default(), None).store_pending());
     /// ```
     pub const fn store_pending(&self) -> bool {
@@ -395,7 +414,7 @@ impl LssSlave {
     /// if the node has none (it then stays in Initialisation, serving LSS only).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave, NodeId};
+    /// # use canopen_core::{lss::{Identity, LssSlave}, NodeId};
     /// let mut s = LssSlave::new(&Identity::default(), NodeId::new(4));
     /// assert_eq!(s.apply_pending(), NodeId::new(4));
     /// ```
@@ -408,7 +427,7 @@ impl LssSlave {
     /// state does not serve are ignored (an empty output).
     ///
     /// ```
-    /// use canopen_core::{comm::Identity, lss::LssSlave, wire::lss::LssResponse, Instant};
+    /// use canopen_core::{lss::{Identity, LssSlave}, wire::lss::LssResponse, Instant};
     /// let mut s = LssSlave::new(&Identity::default(), None);
     /// // Inquire node-ID in LSS waiting: silence.
     /// assert_eq!(s.handle_request(Instant::ZERO, &[0x5E, 0, 0, 0, 0, 0, 0, 0]).response, None);
@@ -517,7 +536,7 @@ impl LssSlave {
     /// no store was requested.
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave};
+    /// # use canopen_core::lss::{Identity, LssSlave};
     /// let mut s = LssSlave::new(&Identity::default(), None);
     /// assert_eq!(s.complete_store(Ok(())), None);
     /// ```
@@ -531,7 +550,7 @@ impl LssSlave {
     /// The next instant [`handle_timeout`](Self::handle_timeout) has work (the ends of the switch delays).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave};
+    /// # use canopen_core::lss::{Identity, LssSlave};
     /// assert_eq!(LssSlave::new(&Identity::default(), None).poll_timeout(), None);
     /// ```
     pub fn poll_timeout(&self) -> Option<Instant> {
@@ -542,7 +561,7 @@ impl LssSlave {
     /// [`LssEvent::TransmitResumed`] at the end of the second.
     ///
     /// ```
-    /// use canopen_core::{comm::Identity, lss::{LssEvent, LssSlave}, wire::lss::LssMode, Instant};
+    /// use canopen_core::{lss::{Identity, LssEvent, LssSlave}, wire::lss::LssMode, Instant};
     /// let mut s = LssSlave::new(&Identity::default(), None);
     /// s.handle_request(Instant::ZERO, &[0x04, 1, 0, 0, 0, 0, 0, 0]);
     /// s.handle_request(Instant::ZERO, &[0x15, 10, 0, 0, 0, 0, 0, 0]); // 10 ms switch delay
@@ -567,7 +586,7 @@ impl LssSlave {
     /// switch delay).
     ///
     /// ```
-    /// # use canopen_core::{comm::Identity, lss::LssSlave, Instant};
+    /// # use canopen_core::{lss::{Identity, LssSlave}, Instant};
     /// assert!(!LssSlave::new(&Identity::default(), None).holds_transmit(Instant::ZERO));
     /// ```
     pub fn holds_transmit(&self, now: Instant) -> bool {

@@ -26,7 +26,7 @@ impl<
     /// already active (nothing is repeated) or is 0000h.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, Instant, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, Instant, NodeId};
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, NoApplication);
     /// node.handle_timeout(Instant::ZERO);
     /// while node.poll_transmit().is_some() {}

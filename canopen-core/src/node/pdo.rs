@@ -265,7 +265,7 @@ impl<
     /// next SYNC. Returns whether a frame was queued now. Only in Operational (PDO-04).
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, pdo::PdoDefault, Instant, NmtState, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, pdo::PdoDefault, Instant, NmtState, NodeId};
     /// const CFG: NodeConfig = NodeConfig { tpdo: &[PdoDefault { mapping: &[0x1001_0008], ..PdoDefault::EVENT }], ..NodeConfig::DEFAULT };
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(1).unwrap(), CFG, NoApplication);
     /// node.handle_timeout(Instant::ZERO);
@@ -319,8 +319,8 @@ impl<
         if frame.is_rtr() || !consume || !self.nmt.state().allows(Service::Time) {
             return;
         }
-        if let Ok(TimeStamp(t)) = TimeStamp::parse(frame.data()) {
-            self.push_event(Event::Time(t));
+        if let Ok(TimeStamp { days, ms }) = TimeStamp::parse(frame.data()) {
+            self.push_event(Event::Time(TimeOfDay { days, ms }));
         }
     }
 
@@ -329,7 +329,7 @@ impl<
     /// Returns whether the frame was queued.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{Node, NoApplication}, od::TimeOfDay, Instant, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, od::TimeOfDay, Instant, NodeId};
     /// const CFG: NodeConfig = NodeConfig { time_cob_id: 0x4000_0100, ..NodeConfig::DEFAULT };
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(1).unwrap(), CFG, NoApplication);
     /// node.handle_timeout(Instant::ZERO);
@@ -342,7 +342,7 @@ impl<
         if !cob.bit30() || !self.nmt.state().allows(Service::Time) {
             return false;
         }
-        let b = TimeStamp(time).emit();
+        let b = TimeStamp { days: time.days, ms: time.ms }.emit();
         let mut data = [0u8; 8];
         data[..6].copy_from_slice(&b);
         self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));

@@ -9,11 +9,11 @@
 
 use super::Node;
 use crate::cob::{NodeId, LSS_SLAVE_ID};
-use crate::comm::NodeConfig;
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::lss::{LssSlave, LssStore, StoreError, PLACEHOLDER_NODE_ID};
 use crate::od::ObjectDictionary;
+use crate::profile::NodeConfig;
 use crate::storage::{NoStorage, Storage};
 use crate::time::Instant;
 use crate::wire::lss::{LssResponse, UNCONFIGURED_NODE_ID};
@@ -31,7 +31,7 @@ impl<
     /// an LSS master assigns one.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, CanFrame, Instant, NmtState};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, CanFrame, Instant, NmtState};
     /// let mut node: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
     /// node.handle_timeout(Instant::ZERO);
     /// assert_eq!(node.poll_transmit(), None); // no boot-up
@@ -46,7 +46,7 @@ impl<
     /// [`Node::new_unconfigured`]; `None` for any other value.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}};
     /// let n: Node<NoApplication> = Node::from_raw_node_id(0x22, NodeConfig::DEFAULT, NoApplication).unwrap();
     /// assert_eq!(n.lss_node_id().map(|id| id.get()), Some(0x22));
     /// let u: Node<NoApplication> = Node::from_raw_node_id(0xFF, NodeConfig::DEFAULT, NoApplication).unwrap();
@@ -76,7 +76,7 @@ impl<
     /// [`Node::with_storage`]; [`Node::new_unconfigured`] is the short form without storage).
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, storage::NoStorage, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, storage::NoStorage, NodeId};
     /// let node: Node<NoApplication> =
     ///     Node::with_storage(NodeId::new(1).unwrap(), NodeConfig::DEFAULT, NoApplication, NoStorage).without_node_id();
     /// assert_eq!(node.lss_node_id(), None);
@@ -89,7 +89,7 @@ impl<
     /// The active node-ID, `None` while the node has none (then [`Node::node_id`] is a placeholder).
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, NodeId};
     /// let n: Node<NoApplication> = Node::new(NodeId::new(9).unwrap(), NodeConfig::DEFAULT, NoApplication);
     /// assert_eq!(n.lss_node_id(), NodeId::new(9));
     /// ```
@@ -100,7 +100,7 @@ impl<
     /// The LSS slave (state, pending node-ID and bit rate).
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, wire::lss::LssMode};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, wire::lss::LssMode};
     /// let n: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
     /// assert_eq!(n.lss().mode(), LssMode::Waiting);
     /// ```
@@ -111,7 +111,7 @@ impl<
     /// The LSS slave, to declare the bit rate, the supported rates and store support.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node}, wire::lss::BitRate};
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, wire::lss::BitRate};
     /// let mut n: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
     /// n.lss_mut().set_bit_rate(BitRate::K250);
     /// n.lss_mut().set_store_supported(true);
@@ -125,7 +125,7 @@ impl<
     /// batch of events.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, lss::{LssStore, StoreError}, node::{NoApplication, Node}};
+    /// use canopen_core::{profile::NodeConfig, lss::{LssStore, StoreError}, node::{NoApplication, Node}};
     /// use canopen_core::{wire::lss::BitRate, CanFrame, Instant};
     /// struct Ram(Option<u8>);
     /// impl LssStore for Ram {
@@ -158,7 +158,7 @@ impl<
     /// Answers a pending LSS store request with a result the application got by other means.
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, lss::StoreError, node::{NoApplication, Node}};
+    /// use canopen_core::{profile::NodeConfig, lss::StoreError, node::{NoApplication, Node}};
     /// let mut node: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
     /// node.lss_store_result(Err(StoreError::MediaAccess)); // nothing pending: no frame
     /// assert_eq!(node.poll_transmit(), None);

@@ -10,8 +10,8 @@ use super::{AbortCode, EntryDesc, ObjectDesc, ObjectDictionary, OdDescribe, PdoD
 /// index below 1000h (the derive macro refuses 0000h–1FFFh).
 ///
 /// ```
-/// use canopen_core::comm::NodeConfig;
-/// use canopen_core::od::{comm::CommProfile, Merged, ObjectDictionary, AbortCode};
+/// use canopen_core::profile::NodeConfig;
+/// use canopen_core::{od::{Merged, ObjectDictionary, AbortCode}, profile::CommProfile};
 /// # use canopen_core::od::{Access, DataType, PdoMapping, SubInfo};
 /// # struct Empty;
 /// # impl ObjectDictionary for Empty {
@@ -32,7 +32,7 @@ pub struct Merged<C, A> {
 }
 
 /// Whether `index` belongs to the communication profile area (OD-02).
-const fn is_comm(index: u16) -> bool {
+pub(crate) const fn is_comm(index: u16) -> bool {
     index >= 0x1000 && index <= 0x1FFF
 }
 

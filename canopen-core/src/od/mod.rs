@@ -9,21 +9,20 @@
 //! holding a firmware image) segment by segment without a buffer of the value's size.
 //!
 //! Submodules: value types and their encodings (`value`: DT-01..DT-14), [`Domain`] streaming (DT-15),
-//! the `const` entry tables and their binary-search [`lookup`] (`table`), the communication profile
-//! ([`comm`]), the [`Merged`] dictionary (comm profile + application, dispatched by index range) and the
-//! CiA 306 EDS writer ([`eds`]). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
+//! the `const` entry tables and their binary-search [`lookup`] (`table`), the [`Merged`] dictionary (two
+//! dictionaries dispatched by index range: the profile's and the application's) and the per-object
+//! sections of the CiA 306 EDS ([`eds`]; the file around them is `profile::eds`). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
 //! written, then used without any table search.
 
-mod abort;
-pub mod comm;
 mod domain;
 pub mod eds;
 mod merged;
 mod table;
 mod value;
 
-pub use abort::AbortCode;
+pub use crate::abort::AbortCode;
 pub use domain::{Domain, DomainBuf};
+pub(crate) use merged::is_comm;
 pub use merged::Merged;
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
@@ -465,6 +464,40 @@ impl PdoHandle {
             return Err(AbortCode::NotMappable);
         }
         Ok(PdoHandle { index, sub, size: size as u8, slot })
+    }
+}
+
+/// An empty dictionary: the application of a node that only uses the communication profile (also
+/// re-exported as `node::NoApplication`).
+///
+/// ```
+/// use canopen_core::od::{AbortCode, NoApplication, ObjectDictionary};
+/// assert_eq!(NoApplication.info(0x2000, 0).err(), Some(AbortCode::ObjectDoesNotExist));
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NoApplication;
+
+impl ObjectDictionary for NoApplication {
+    fn info(&self, _: u16, _: u8) -> Result<SubInfo, AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+    fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
+        Err(AbortCode::ObjectDoesNotExist)
+    }
+}
+
+impl OdDescribe for NoApplication {
+    fn object_count(&self) -> usize {
+        0
+    }
+    fn object(&self, _: usize) -> Option<ObjectDesc> {
+        None
+    }
+    fn entry(&self, _: u16, _: u8) -> Option<EntryDesc> {
+        None
     }
 }
 

@@ -39,7 +39,7 @@ pub struct Mapped {
 /// refused with 0604 0041h. Dummy entries are accepted in RPDOs only.
 ///
 /// ```
-/// use canopen_core::{comm::NodeConfig, od::{comm::CommProfile, PdoDir, AbortCode}, pdo::mapping::resolve};
+/// use canopen_core::{profile::NodeConfig, od::{PdoDir, AbortCode}, profile::CommProfile, pdo::mapping::resolve};
 /// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
 /// assert!(resolve(&od, 0x1001_0008, PdoDir::Tpdo).is_ok()); // 1001h is TPDO-mappable
 /// assert_eq!(resolve(&od, 0x1001_0008, PdoDir::Rpdo), Err(AbortCode::NotMappable));
@@ -94,7 +94,7 @@ impl ResolvedMap {
     /// a bad entry → its [`resolve`] error).
     ///
     /// ```
-    /// use canopen_core::{comm::NodeConfig, od::{comm::CommProfile, PdoDir, AbortCode}, pdo::mapping::ResolvedMap};
+    /// use canopen_core::{profile::NodeConfig, od::{PdoDir, AbortCode}, profile::CommProfile, pdo::mapping::ResolvedMap};
     /// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
     /// let m = ResolvedMap::resolve(&od, &[0x1001_0008, 0x1001_0004], PdoDir::Tpdo).unwrap();
     /// assert_eq!((m.len(), m.bits(), m.bytes()), (2, 12, 2));

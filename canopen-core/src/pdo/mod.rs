@@ -2,9 +2,9 @@
 //! state machines, and the resolved mappings that move process data without searching the dictionary.
 //!
 //! - [`PdoComm`] / [`PdoMapParams`] are the values of 1400h–15FFh / 1800h–19FFh and 1600h–17FFh /
-//!   1A00h–1BFFh, kept in [`CommParams`](crate::comm::CommParams) and served through the
-//!   [`CommProfile`](crate::od::comm::CommProfile) with the spec's change rules;
-//! - [`PdoDefault`] is how a [`NodeConfig`](crate::comm::NodeConfig) gives each PDO its defaults;
+//!   1A00h–1BFFh, kept in [`CommParams`](crate::profile::CommParams) and served through the
+//!   [`CommProfile`](crate::profile::CommProfile) with the spec's change rules;
+//! - [`PdoDefault`] is how a [`NodeConfig`](crate::profile::NodeConfig) gives each PDO its defaults;
 //! - [`rpdo::Rpdo`] / [`tpdo::Tpdo`] are the run-time state machines the `Node` drives;
 //! - [`mapping`] resolves and packs mappings.
 //!
@@ -82,7 +82,7 @@ impl PdoMapParams {
     }
 }
 
-/// The defaults of one PDO in a [`NodeConfig`](crate::comm::NodeConfig).
+/// The defaults of one PDO in a [`NodeConfig`](crate::profile::NodeConfig).
 ///
 /// ```
 /// use canopen_core::pdo::PdoDefault;

@@ -35,8 +35,8 @@
 //! ```
 
 use super::block::{last_segment_len, Crc16};
+use crate::abort::AbortCode;
 use crate::cob::{CobIdEntry, FunctionCode};
-use crate::od::AbortCode;
 use crate::time::{Duration, Instant};
 use crate::wire::sdo::{
     abort_frame, BlockSegment, ClientRequest, Expedited, InitiateData, Multiplexer, Segment, ServerResponse,

@@ -4,7 +4,7 @@
 #![no_std]
 #![no_main]
 
-use canopen_core::{comm::NodeConfig, CanFrame, Instant, Node, NodeId};
+use canopen_core::{profile::NodeConfig, CanFrame, Instant, Node, NodeId};
 use canopen_od_derive::ObjectDictionary;
 
 /// 101 entries: ARRAY 6000h (sub 0 + 50) and ARRAY 6401h (sub 0 + 49), plus 2000h.

@@ -18,7 +18,7 @@
 #![no_std]
 #![no_main]
 
-use canopen_core::comm::{Identity, NodeConfig};
+use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::driver::{self, Shared};
 use canopen_core::pdo::PdoDefault;
 use canopen_core::{Event, NmtState, Node, NodeId};

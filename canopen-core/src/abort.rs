@@ -6,7 +6,7 @@
 /// An SDO abort code. The discriminant is the code sent on the bus (little-endian in bytes 4–7).
 ///
 /// ```
-/// use canopen_core::od::AbortCode;
+/// use canopen_core::abort::AbortCode;
 /// assert_eq!(AbortCode::ObjectDoesNotExist.code(), 0x0602_0000);
 /// assert_eq!(AbortCode::from_code(0x0609_0011), Some(AbortCode::SubIndexDoesNotExist));
 /// assert_eq!(AbortCode::from_code(0x1234_5678), None);
@@ -118,7 +118,7 @@ impl AbortCode {
     /// The UNSIGNED32 sent in bytes 4–7 of the abort frame.
     ///
     /// ```
-    /// # use canopen_core::od::AbortCode;
+    /// # use canopen_core::abort::AbortCode;
     /// assert_eq!(AbortCode::SdoTimeout.code().to_le_bytes(), [0x00, 0x00, 0x04, 0x05]);
     /// ```
     pub const fn code(self) -> u32 {
@@ -128,7 +128,7 @@ impl AbortCode {
     /// The variant for a received code, `None` for a code Table 22 does not define.
     ///
     /// ```
-    /// # use canopen_core::od::AbortCode;
+    /// # use canopen_core::abort::AbortCode;
     /// assert_eq!(AbortCode::from_code(0x0800_0024), Some(AbortCode::NoDataAvailable));
     /// ```
     pub fn from_code(code: u32) -> Option<AbortCode> {

@@ -3,40 +3,31 @@
 //! [`NodeConfig`] is the device's fixed description (identity, names, defaults); [`CommParams`] holds the
 //! run-time values of the communication objects that the services read. NMT reset communication sets
 //! [`CommParams`] back to its power-on values (NMT-05, NMT-06), and store/restore (1010h/1011h) saves and
-//! loads it. The object-dictionary view over these values (SDO access to 1000h–1FFFh) lives in the `od`
-//! layer; the rules that belong to a value rather than to its encoding are enforced here, by the setters.
+//! loads it. [`CommProfile`] (`dict`) is the object-dictionary view over these values (SDO access to
+//! 1000h–1FFFh) and [`eds`] writes the profile's part of the EDS; the rules that belong to a value rather
+//! than to its encoding are enforced by the setters here.
+//!
+//! Layer: the profile sits above the services (it is built from their parameter types: [`PdoComm`],
+//! [`SyncParams`], [`ConsumerEntry`], [`Identity`], the EMCY error state) and below the node.
 //!
 //! Implemented here: HB-01 (1017h), HB-06..HB-09 (1016h entries, duplicate node → 0604 0043h), GUARD-02/03
 //! (100Ch, 100Dh), DEV-01/DEV-03/DEV-04 (1000h, 1018h, 1008h–100Ah as configuration).
 
-use crate::od::AbortCode;
+mod dict;
+pub mod eds;
+
+pub use crate::heartbeat::ConsumerEntry;
+pub use crate::lss::Identity;
+pub use dict::{CommProfile, Unchecked};
+
+use crate::abort::AbortCode;
 use crate::pdo::{PdoComm, PdoDefault, PdoMapParams};
 use crate::sync::SyncParams;
-
-/// 1018h identity object (DEV-03).
-///
-/// ```
-/// use canopen_core::comm::Identity;
-/// let id = Identity { vendor_id: 0, product_code: 1, revision: 0x0001_0000, serial: 42 };
-/// assert_eq!(id.serial, 42);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Identity {
-    /// 1018h:01 vendor-ID (CiA-assigned).
-    pub vendor_id: u32,
-    /// 1018h:02 product code.
-    pub product_code: u32,
-    /// 1018h:03 revision number (major.minor in the high/low 16 bits).
-    pub revision: u32,
-    /// 1018h:04 serial number.
-    pub serial: u32,
-}
 
 /// The fixed description of a node and the defaults of its communication parameters.
 ///
 /// ```
-/// use canopen_core::comm::NodeConfig;
+/// use canopen_core::profile::NodeConfig;
 /// const CFG: NodeConfig = NodeConfig { heartbeat_time_ms: 1000, ..NodeConfig::DEFAULT };
 /// assert_eq!(CFG.heartbeat_time_ms, 1000);
 /// ```
@@ -122,51 +113,11 @@ impl Default for NodeConfig {
     }
 }
 
-/// Decoded 1016h consumer heartbeat entry (HB-07: bits 23–16 node-ID, bits 15–0 time in ms).
-///
-/// ```
-/// use canopen_core::comm::ConsumerEntry;
-/// let e = ConsumerEntry::from_raw(0x0002_0064);
-/// assert_eq!((e.node_id, e.time_ms), (2, 100));
-/// assert!(e.is_active());
-/// assert!(!ConsumerEntry::from_raw(0x0080_0064).is_active()); // node 128: inactive (HB-08)
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ConsumerEntry {
-    /// Monitored node-ID.
-    pub node_id: u8,
-    /// Consumer time in ms.
-    pub time_ms: u16,
-}
-
-impl ConsumerEntry {
-    /// Decodes the UNSIGNED32 of a 1016h sub-entry (bits 31–24 are reserved and ignored).
-    pub const fn from_raw(raw: u32) -> Self {
-        ConsumerEntry { node_id: (raw >> 16) as u8, time_ms: raw as u16 }
-    }
-
-    /// Encodes as the UNSIGNED32 of a 1016h sub-entry.
-    ///
-    /// ```
-    /// # use canopen_core::comm::ConsumerEntry;
-    /// assert_eq!(ConsumerEntry { node_id: 7, time_ms: 4000 }.raw(), 0x0007_0FA0);
-    /// ```
-    pub const fn raw(self) -> u32 {
-        ((self.node_id as u32) << 16) | self.time_ms as u32
-    }
-
-    /// Active unless the time is 0 or the node-ID is 0 or above 127 (HB-08).
-    pub const fn is_active(self) -> bool {
-        self.time_ms != 0 && self.node_id >= 1 && self.node_id <= 127
-    }
-}
-
 /// Run-time values of the communication objects, for a node with `HB` heartbeat consumer entries, `RPDO`
 /// receive and `TPDO` transmit PDOs.
 ///
 /// ```
-/// use canopen_core::comm::{CommParams, NodeConfig};
+/// use canopen_core::profile::{CommParams, NodeConfig};
 /// let mut p: CommParams<4> = CommParams::new(&NodeConfig::DEFAULT);
 /// p.set_consumer(1, 0x0002_0064).unwrap();
 /// assert!(p.set_consumer(2, 0x0002_00C8).is_err()); // node 2 monitored twice (HB-09)
@@ -215,7 +166,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO,
     /// The power-on defaults of `config` for `node_id` (COB-04/05/06, COB-10).
     ///
     /// ```
-    /// use canopen_core::comm::{CommParams, NodeConfig};
+    /// use canopen_core::profile::{CommParams, NodeConfig};
     /// let p: CommParams<0, 4, 4> = CommParams::for_node(&NodeConfig::DEFAULT, 5);
     /// assert_eq!(p.emcy_cob_id, 0x85);
     /// assert_eq!(p.rpdo_comm[1].cob_id, 0x8000_0305); // no default mapping: not valid
@@ -263,7 +214,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO,
     /// The decoded consumer entry at 1016h sub-index `sub` (1-based), if it exists.
     ///
     /// ```
-    /// # use canopen_core::comm::{CommParams, NodeConfig};
+    /// # use canopen_core::profile::{CommParams, NodeConfig};
     /// let p: CommParams<2> = CommParams::new(&NodeConfig::DEFAULT);
     /// assert!(p.consumer(1).is_some());
     /// assert!(p.consumer(3).is_none());
@@ -277,7 +228,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO,
     /// a node-ID that another active entry already monitors (HB-09, 0604 0043h).
     ///
     /// ```
-    /// # use canopen_core::{comm::{CommParams, NodeConfig}, od::AbortCode};
+    /// # use canopen_core::{profile::{CommParams, NodeConfig}, od::AbortCode};
     /// let mut p: CommParams<2> = CommParams::new(&NodeConfig::DEFAULT);
     /// assert_eq!(p.set_consumer(3, 0), Err(AbortCode::SubIndexDoesNotExist));
     /// ```

@@ -22,13 +22,13 @@
 //!
 //! Dispatch is a `match` on the index (compiled to a jump table / comparison tree), no table search.
 
-use super::{
+use super::{CommParams, NodeConfig};
+use crate::cob::{is_restricted, CobIdEntry};
+use crate::emcy::{NodeErrors, HISTORY};
+use crate::od::{
     copy_at, count_entry, AbortCode, Access, DataType, EntryDesc, ObjectCode, ObjectDesc, ObjectDictionary, OdDescribe,
     OdValue, PdoMapping, SubInfo, Value,
 };
-use crate::cob::{is_restricted, CobIdEntry};
-use crate::comm::{CommParams, NodeConfig};
-use crate::emcy::NodeErrors;
 use crate::pdo::{mapping::MAX_ENTRIES, rpdo_type_ok, tpdo_type_ok, PdoComm, PdoMapParams};
 use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 
@@ -36,8 +36,8 @@ use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 /// `TPDO` transmit PDOs.
 ///
 /// ```
-/// use canopen_core::comm::{CommParams, NodeConfig};
-/// use canopen_core::od::{comm::CommProfile, AbortCode, ObjectDictionary};
+/// use canopen_core::profile::{CommParams, CommProfile, NodeConfig};
+/// use canopen_core::od::{AbortCode, ObjectDictionary};
 /// const CFG: NodeConfig = NodeConfig { device_type: 0x0001_0191, ..NodeConfig::DEFAULT };
 /// let mut od: CommProfile<2> = CommProfile::new(CFG);
 /// let mut b = [0u8; 4];
@@ -66,9 +66,6 @@ const OBJECTS: [u16; 21] = [
     0x1000, 0x1001, 0x1003, 0x1005, 0x1006, 0x1007, 0x1008, 0x1009, 0x100A, 0x100C, 0x100D, 0x1010, 0x1011, 0x1012,
     0x1014, 0x1015, 0x1016, 0x1017, 0x1018, 0x1019, 0x1029,
 ];
-
-/// Depth of the 1003h error history.
-pub const HISTORY: usize = 8;
 
 const STORE_NAMES: [&str; 3] = ["Save all parameters", "Save communication parameters", "Save application parameters"];
 const RESTORE_NAMES: [&str; 3] = [
@@ -100,7 +97,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
     /// The power-on state of `config` for `node_id`.
     ///
     /// ```
-    /// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile};
+    /// # use canopen_core::profile::{CommProfile, NodeConfig};
     /// let od: CommProfile<0, 1, 1> = CommProfile::for_node(NodeConfig::DEFAULT, 3);
     /// assert_eq!(od.params.emcy_cob_id, 0x83);
     /// ```
@@ -120,7 +117,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
     /// history are kept: they belong to the error handling).
     ///
     /// ```
-    /// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile};
+    /// # use canopen_core::profile::{CommProfile, NodeConfig};
     /// let mut od: CommProfile<1> = CommProfile::new(NodeConfig::DEFAULT);
     /// od.params.heartbeat_time_ms = 5;
     /// od.reset_communication();
@@ -563,7 +560,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
     /// consistent when it was saved; PDO mappings are resolved again when the node applies them).
     ///
     /// ```
-    /// # use canopen_core::{comm::NodeConfig, od::comm::CommProfile};
+    /// # use canopen_core::profile::{CommProfile, NodeConfig};
     /// let mut od: CommProfile<0, 1, 0> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
     /// od.load_value(0x1600, 1, &[8, 0, 1, 0x10]).unwrap(); // entry while sub 00h = 0 is fine anyway
     /// od.load_value(0x1400, 1, &[0x01, 0x02, 0, 0]).unwrap();
@@ -579,7 +576,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
 /// writes stored communication values through.
 ///
 /// ```
-/// # use canopen_core::{comm::NodeConfig, od::{ObjectDictionary, comm::{CommProfile, Unchecked}}};
+/// # use canopen_core::{profile::NodeConfig, od::ObjectDictionary, profile::{CommProfile, Unchecked}};
 /// let mut od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
 /// Unchecked(&mut od).write(0x1017, 0, &[10, 0]).unwrap();
 /// assert_eq!(od.params.heartbeat_time_ms, 10);
@@ -702,7 +699,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> OdDescribe for CommP
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::comm::Identity;
+    use crate::profile::Identity;
 
     const CFG: NodeConfig = NodeConfig {
         device_type: 0x0004_0191,
