@@ -8,14 +8,13 @@
 mod common;
 
 use canopen::core::{
-    comm::NodeConfig,
     node::Node,
-    od::{
-        comm::CommProfile,
-        eds::{write_eds, EdsInfo},
-        DataType, Merged, ObjectCode, OdDescribe, VisibleString,
-    },
+    od::{DataType, Merged, ObjectCode, OdDescribe, VisibleString},
     pdo::PdoDefault,
+    profile::{
+        eds::{write_eds, EdsInfo},
+        CommProfile, NodeConfig,
+    },
     sync::SyncParams,
     CanFrame, Instant, NmtState, NodeId,
 };
