@@ -311,9 +311,14 @@ fn life_guarding_timeout_and_recovery() {
             Event::StateChanged { from: NmtState::Operational, to: NmtState::PreOperational }
         ]
     );
+    // GUARD-11, EMCY-07: the life-guarding time-out raised 8130h (register 11h) ...
+    assert_eq!(bus.frames_on(0x085), vec![(5_300, vec![0x30, 0x81, 0x11, 0, 0, 0, 0, 0])]);
     bus.run_until(ms(6_000));
     bus.inject(frame("705 [RTR]"));
     assert_eq!(events(&mut bus.stations[0]), vec![Event::LifeGuarding(LifeGuardingEvent::Resolved)]);
+    // ... and the guarding master resuming clears it (issue 22): EMCY 0000h, register 00h.
+    assert_eq!(bus.frames_on(0x085)[1..], [(6_000, vec![0; 8])]);
+    assert_eq!(bus.stations[0].error_register(), 0);
 }
 
 /// HB-05: while the heartbeat producer runs, guarding requests are not answered.
@@ -357,7 +362,94 @@ fn full_transmit_queue_is_counted() {
     assert_eq!(n.poll_transmit(), Some(frame("705 [1] 00")));
     assert_eq!(n.poll_transmit(), Some(frame("705 [1] 7F")));
     assert_eq!(n.poll_transmit(), Some(frame("085 [8] 10 81 11 00 00 00 00 00")));
+    assert_eq!(n.error_register(), 0x00, "8110h is cleared once everything queued since the overflow went out");
+    // EMCY-07: the clearing is sent as EMCY 0000h with the remaining register.
+    assert_eq!(n.poll_transmit(), Some(frame("085 [8] 00 00 00 00 00 00 00 00")));
     assert_eq!(n.poll_transmit(), None);
+}
+
+/// Node 9 consumes the heartbeats of nodes 2 and 3 (100 ms each) and says so on its EMCY COB-ID 089h.
+fn watcher_bus() -> Bus<TestNode> {
+    let mut bus = Bus::booted(vec![node(9, 0), node(2, 50), node(3, 50)]);
+    let now = bus.now;
+    bus.stations[0].set_consumer_heartbeat(now, 1, 0x0002_0064).unwrap();
+    bus.stations[0].set_consumer_heartbeat(now, 2, 0x0003_0064).unwrap();
+    bus.run_until(ms(60)); // both monitored nodes heard once: monitoring started (HB-10)
+    bus
+}
+
+fn emcys(bus: &Bus<TestNode>) -> Vec<(u64, Vec<u8>)> {
+    bus.frames_on(0x089)
+}
+
+/// EMCY-07, ERR-02, HB-11, HB-13 (issue 22): a heartbeat time-out raises EMCY 8130h with 1001h = 11h; when the
+/// monitored node is heard again the error is cleared: EMCY 0000h with register 00h, 1001h back to 0. Lost
+/// again, raised again.
+#[test]
+fn heartbeat_error_is_cleared_when_the_node_is_heard_again() {
+    let mut bus = watcher_bus();
+    bus.stations[1].set_heartbeat_time(ms(60), 0); // node 2 falls silent after its heartbeat at 50 ms
+    bus.run_until(ms(149));
+    assert!(emcys(&bus).is_empty());
+    bus.run_until(ms(150));
+    assert_eq!(emcys(&bus), vec![(150, vec![0x30, 0x81, 0x11, 0, 0, 0, 0, 0])]);
+    assert_eq!(bus.stations[0].error_register(), 0x11);
+    bus.run_until(ms(400));
+    assert_eq!(emcys(&bus).len(), 1, "the error is not repeated while it lasts");
+    // Node 2 produces again: its first heartbeat ends the time-out and clears 8130h.
+    bus.stations[1].set_heartbeat_time(ms(400), 50);
+    bus.run_until(ms(450));
+    assert_eq!(emcys(&bus)[1..], [(450, vec![0; 8])]);
+    assert_eq!(bus.stations[0].error_register(), 0x00);
+    // Lost again: raised again.
+    bus.stations[1].set_heartbeat_time(ms(460), 0);
+    bus.run_until(ms(600));
+    assert_eq!(emcys(&bus)[2..], [(550, vec![0x30, 0x81, 0x11, 0, 0, 0, 0, 0])]);
+    assert_eq!(bus.stations[0].error_register(), 0x11);
+}
+
+/// Issue 22: with two monitored nodes lost, 8130h stays until BOTH are heard again; an application error
+/// raised meanwhile keeps its bit in the register sent with the clearing (EMCY-07, ERR-02).
+#[test]
+fn heartbeat_error_waits_for_every_lost_node_and_keeps_other_errors() {
+    let mut bus = watcher_bus();
+    bus.stations[1].set_heartbeat_time(ms(60), 0);
+    bus.stations[2].set_heartbeat_time(ms(60), 0);
+    bus.run_until(ms(200));
+    assert_eq!(emcys(&bus), vec![(150, vec![0x30, 0x81, 0x11, 0, 0, 0, 0, 0])], "one EMCY for one active code");
+    // The application raises a device-specific error (FF00h: register bit 7 and bit 0).
+    assert!(bus.stations[0].raise_error(0xFF00, [1, 2, 3, 4, 5]));
+    bus.run_until(ms(210));
+    assert_eq!(emcys(&bus)[1..], [(200, vec![0x00, 0xFF, 0x91, 1, 2, 3, 4, 5])]);
+    // Node 2 back, node 3 still silent: 8130h stays.
+    bus.stations[1].set_heartbeat_time(ms(300), 50);
+    bus.run_until(ms(400));
+    assert_eq!(emcys(&bus).len(), 2);
+    assert_eq!(bus.stations[0].error_register(), 0x91);
+    // Node 3 back: 8130h cleared; the register sent keeps the application's error (bits 7 and 0).
+    bus.stations[2].set_heartbeat_time(ms(400), 50);
+    bus.run_until(ms(450));
+    assert_eq!(emcys(&bus)[2..], [(450, vec![0, 0, 0x81, 0, 0, 0, 0, 0])]);
+    assert_eq!(bus.stations[0].error_register(), 0x81);
+    // The application clears its own error: register 0.
+    assert!(bus.stations[0].clear_error(0xFF00));
+    bus.run_until(ms(460));
+    assert_eq!(emcys(&bus)[3..], [(450, vec![0; 8])]);
+    assert_eq!(bus.stations[0].error_register(), 0);
+}
+
+/// Issue 22: removing the entry of a timed-out node (1016h:01 = 0) removes the cause: 8130h is cleared.
+#[test]
+fn heartbeat_error_is_cleared_when_the_lost_node_is_no_longer_monitored() {
+    let mut bus = watcher_bus();
+    bus.stations[1].set_heartbeat_time(ms(60), 0);
+    bus.run_until(ms(200));
+    assert_eq!(bus.stations[0].error_register(), 0x11);
+    let now = bus.now;
+    bus.stations[0].set_consumer_heartbeat(now, 1, 0).unwrap();
+    bus.run_until(ms(210));
+    assert_eq!(emcys(&bus)[1..], [(200, vec![0; 8])]);
+    assert_eq!(bus.stations[0].error_register(), 0);
 }
 
 /// NMT-16, NMT-17: local control may enter Operational without a master; a local reset node boots again.

@@ -290,6 +290,38 @@ fn synchronous_rpdo_deadline_window_and_sync_length() {
     assert_eq!(on(&bus, 0x083).last().unwrap().1, [0x40, 0x82, 0x11, 0x01, 0, 0, 0, 0]);
 }
 
+/// PDO-12, EEC-20, EMCY-07 (issue 22): 8250h is one code for every RPDO, so it is cleared only when no RPDO is
+/// timed out any more; the same for the length errors 8210h/8220h.
+#[test]
+fn rpdo_errors_clear_when_no_rpdo_has_the_cause() {
+    const RPDOS: &[PdoDefault] = &[
+        PdoDefault { event_timer_ms: 100, mapping: &[0x2000_0008], ..PdoDefault::EVENT },
+        PdoDefault { event_timer_ms: 100, mapping: &[0x2002_0010], ..PdoDefault::EVENT },
+    ];
+    let mut bus = Bus::booted(vec![node_with(3, NodeConfig { rpdo: RPDOS, ..NodeConfig::DEFAULT })]);
+    bus.inject(frame("000 [2] 01 00"));
+    bus.inject(frame("203 [1] 01"));
+    bus.inject(frame("303 [2] 01 00"));
+    bus.run_for_ms(150);
+    let emcy = |bus: &Bus<_>| on(bus, 0x083).into_iter().map(|(_, d)| d).collect::<Vec<_>>();
+    assert_eq!(emcy(&bus), [vec![0x50, 0x82, 0x11, 0x01, 0, 0, 0, 0]], "both timed out: one active code");
+    bus.inject(frame("203 [1] 02")); // RPDO 1 back, RPDO 2 still silent: the cause remains
+    assert_eq!(emcy(&bus).len(), 1);
+    assert_eq!(bus.stations[0].error_register(), 0x11);
+    bus.inject(frame("303 [2] 02 00")); // RPDO 2 back: cleared
+    assert_eq!(emcy(&bus)[1..], [vec![0; 8]]);
+    assert_eq!(bus.stations[0].error_register(), 0);
+    // Length errors: RPDO 1 too long (8220h), RPDO 2 too short (8210h).
+    bus.inject(frame("203 [2] 01 01"));
+    bus.inject(frame("303 [1] 01"));
+    assert_eq!(emcy(&bus)[2..], [vec![0x20, 0x82, 0x11, 0x01, 0, 0, 0, 0], vec![0x10, 0x82, 0x11, 0x02, 0, 0, 0, 0]]);
+    bus.inject(frame("203 [1] 03")); // RPDO 1 right again; RPDO 2's last frame was still short
+    assert_eq!(emcy(&bus).len(), 4);
+    bus.inject(frame("303 [2] 03 00")); // both right: both length codes cleared
+    assert_eq!(bus.stations[0].error_register(), 0);
+    assert_eq!(emcy(&bus).last(), Some(&vec![0; 8]));
+}
+
 /// VECTORS §11 (EMCY-04..09, ERR-01..09, NMT-22): the emergency state machine, 1001h and 1003h agree after a
 /// sequence of raised and cleared errors.
 #[test]

@@ -244,6 +244,24 @@ impl<const N: usize> HeartbeatConsumer<N> {
         self.slot(node).is_some_and(|s| matches!(s.monitor, Monitor::TimedOut { .. }))
     }
 
+    /// Whether any monitored node is currently timed out (the cause of EMCY 8130h from the consumer side).
+    ///
+    /// ```
+    /// use canopen_core::{heartbeat::HeartbeatConsumer, Instant};
+    /// use canopen_core::wire::error_control::StateCode;
+    /// let mut c: HeartbeatConsumer<2> = HeartbeatConsumer::new();
+    /// c.configure(&[0x0002_0064, 0x0003_0064]);
+    /// c.handle_heartbeat(Instant::ZERO, 2, StateCode::Operational);
+    /// assert!(!c.any_timed_out());
+    /// c.handle_timeout(Instant::from_millis(100));
+    /// assert!(c.any_timed_out());
+    /// c.handle_heartbeat(Instant::from_millis(150), 2, StateCode::Operational);
+    /// assert!(!c.any_timed_out());
+    /// ```
+    pub fn any_timed_out(&self) -> bool {
+        self.slots.iter().any(|s| s.entry.is_active() && matches!(s.monitor, Monitor::TimedOut { .. }))
+    }
+
     fn slot(&self, node: u8) -> Option<&Slot> {
         self.slots.iter().find(|s| s.entry.is_active() && s.entry.node_id == node)
     }

@@ -40,7 +40,7 @@ use crate::emcy::{codes, EmcyProducer};
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::guarding::Guarding;
-use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
+use crate::heartbeat::{ConsumerEvent, HeartbeatConsumer, HeartbeatProducer};
 use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
 use crate::od::Merged;
@@ -344,6 +344,9 @@ impl<
             // EEC-10: frames were lost; reported once there is room for the EMCY.
             self.tx_overrun = false;
             self.raise_error(codes::CAN_OVERRUN, [0; 5]);
+        } else if self.tx.is_empty() && self.comm.errors.is_active(codes::CAN_OVERRUN) {
+            // The cause is gone: every frame queued since the overflow (the 8110h EMCY included) went out.
+            self.clear_error(codes::CAN_OVERRUN);
         }
         self.pump_emcy(self.now);
         self.pump_sdo();
@@ -538,8 +541,12 @@ impl<
                 if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| p.heartbeat_consumers.get(i)) {
                     self.consumer.set_entry(usize::from(sub) - 1, *raw);
                 }
+                self.error_control_recovered(); // the timed-out entry may be gone
             }
-            0x100C | 0x100D => self.guarding.set_life_time(now, p.guard_time_ms, p.life_time_factor),
+            0x100C | 0x100D => {
+                self.guarding.set_life_time(now, p.guard_time_ms, p.life_time_factor);
+                self.error_control_recovered(); // life guarding switched off or restarted
+            }
             _ => {}
         }
     }
@@ -629,6 +636,7 @@ impl<
         self.transmit(self.error_control_frame(reply.emit()));
         if let Some(ev) = resolved {
             self.push_event(Event::LifeGuarding(ev));
+            self.error_control_recovered();
         }
     }
 
@@ -640,7 +648,19 @@ impl<
             return;
         };
         if let Some(ev) = self.consumer.handle_heartbeat(now, node, state) {
+            let resumed = matches!(ev, ConsumerEvent::Resumed { .. });
             self.push_event(Event::Heartbeat(ev));
+            if resumed {
+                self.error_control_recovered();
+            }
+        }
+    }
+
+    /// EMCY 8130h is cleared once its cause is gone: no monitored node is timed out and life guarding is not
+    /// (the node's error state machine then sends EMCY 0000h with the remaining error register, EMCY-07).
+    fn error_control_recovered(&mut self) {
+        if !self.consumer.any_timed_out() && !self.guarding.is_timed_out() {
+            self.clear_error(codes::HEARTBEAT_OR_LIFE_GUARD);
         }
     }
 

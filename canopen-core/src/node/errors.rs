@@ -1,5 +1,21 @@
 //! The node's emergency wiring: the public raise/clear API, the EMCY producer with 1014h/1015h, the
 //! Stopped rule and the EMCY consumer.
+//!
+//! Every error the stack raises itself follows one rule: raised when its cause appears, cleared when the cause
+//! is gone; each clearing is sent as EMCY 0000h with the remaining error register (EMCY-07), and 1001h/1003h
+//! follow (ERR-02, ERR-06). A code is one entry however many objects share the cause, so it is cleared only
+//! when no object has the cause any more.
+//!
+//! | code | raised when | cleared when |
+//! |---|---|---|
+//! | 8110h CAN overrun | the transmit queue was full and a frame was dropped (EEC-10), once there is room for the EMCY | the transmit queue has drained empty: every frame queued since the overflow, the 8110h EMCY included, went out |
+//! | 8130h heartbeat / life guarding | a monitored node's heartbeat times out (HB-11, HB-13) or life guarding times out (GUARD-11) | no monitored node is timed out (each lost one heard again, or its 1016h entry removed) and life guarding is not (the guarding master's next request, or 100Ch/100Dh rewritten) |
+//! | 8210h / 8220h PDO length | an RPDO shorter / longer than its mapping (PDO-39) | no RPDO's last frame had a wrong length |
+//! | 8240h SYNC length | a SYNC with the wrong DLC (SYNC-14) | the next SYNC of the right length |
+//! | 8250h RPDO time-out | an RPDO event-timer deadline passes (PDO-12, EEC-20) | no RPDO is timed out (each received again) |
+//!
+//! A reset communication or reset node clears them all (1001h = 0). Errors the application raises with
+//! [`Node::raise_error`] are cleared by it with [`Node::clear_error`].
 
 use super::Node;
 use crate::cob::CobIdEntry;

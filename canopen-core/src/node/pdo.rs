@@ -163,7 +163,8 @@ impl<
                 exceeded
             }
         };
-        if timed_out {
+        // The cause of 8250h is gone when no RPDO is timed out any more (one code for every RPDO).
+        if timed_out && !self.rpdos.iter().any(|r| r.timed_out) {
             self.clear_error(codes::RPDO_TIMEOUT);
         }
         self.rpdo_length_state(k, exceeded);
@@ -175,7 +176,8 @@ impl<
         if exceeded {
             r.length_error = true;
             self.raise_error(codes::PDO_LENGTH_EXCEEDED, [k as u8 + 1, 0, 0, 0, 0]);
-        } else if core::mem::take(&mut r.length_error) {
+        } else if core::mem::take(&mut r.length_error) && !self.rpdos.iter().any(|r| r.length_error) {
+            // The cause is gone when no RPDO's last frame had a wrong length (one code for every RPDO).
             self.clear_error(codes::PDO_LENGTH);
             self.clear_error(codes::PDO_LENGTH_EXCEEDED);
         }
