@@ -160,6 +160,11 @@ impl Model {
                 (ANY_ABORT, S::Idle),
             ];
         }
+        if st == S::BlockDownloadEnd && b[0] & 0xE1 != 0xC1 && (1..=BLKSIZE).contains(&(b[0] & 0x7F)) {
+            // SDO-40/SDO-41: waiting for "end block download", a frame that can be a late segment of this
+            // transfer (seqno 1..=blksize, last bit or not) is ignored, whatever command it would otherwise read as
+            return vec![(R::None, st)];
+        }
         let Ok(req) = ClientRequest::parse(&b) else {
             return vec![(abort(AbortCode::InvalidCommandSpecifier), S::Idle)];
         };
