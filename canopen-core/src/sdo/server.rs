@@ -55,8 +55,16 @@
 //!   abort frame `80h` is a segment (byte 0 is c ‖ seqno there), so an initiate cannot be recognised then.
 //! - **Block sequence numbers** (SDO-50): seqno 0 or > blksize → 0504 0003h. An out-of-order segment is
 //!   discarded; the server acknowledges the last in-order one when the segment with seqno = blksize or c = 1
-//!   arrives (go-back-n, VECTORS 8.2). An exact repeat of the last accepted segment (a CAN-level duplicate)
-//!   is ignored without an acknowledgement.
+//!   arrives (go-back-n, VECTORS 8.2). A repeat of the last accepted segment or of the one that made the
+//!   server acknowledge (a CAN-level duplicate) is ignored without an acknowledgement: the server has that
+//!   sequence number already, and a second acknowledge would read as the next sub-block's.
+//! - **Stalled sub-block** (SDO-40, as CANopenNode does at 70 % of its timeout): when a sub-block has
+//!   in-order segments but no frame arrives for a quarter of the SDO timeout (its last segment was lost, so
+//!   the client waits for the acknowledge and the server for segments), the server acknowledges the last
+//!   in-order segment once; the client goes back to the next one (our client, and python-canopen's
+//!   `BlockDownloadStream`, whose 0.3 s response timeout is longer than 250 ms at the default 1 s). The SDO
+//!   timeout still runs from the last frame received. With no in-order segment since the last acknowledge
+//!   the server does not guess (the client may not have that acknowledge yet) and waits for the timeout.
 //! - **CRC** (SDO-48, INTEROP): the server answers `sc = cc` in both directions.
 //! - **Block upload acknowledgement** with ackseq > segments sent → 0504 0003h; blksize outside 1..127 →
 //!   0504 0002h.
@@ -561,7 +569,10 @@ impl SdoServer {
     /// assert_eq!(SdoServer::new(SdoServerParams::DISABLED).poll_timeout(), None);
     /// ```
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        self.deadline
+        match self.deadline {
+            Some(d) => Some(self.block_download_deadline(d)),
+            None => None,
+        }
     }
 
     /// Aborts a transfer whose deadline has passed with 0504 0000h (SDO-31, ABORT-02).
@@ -579,8 +590,11 @@ impl SdoServer {
     /// assert_eq!(s.handle_timeout(canopen_core::Instant::from_millis(5), &mut Empty), Response::NONE);
     /// ```
     pub fn handle_timeout<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Response {
-        match self.deadline {
+        match self.poll_timeout() {
             Some(d) if now >= d && !self.is_idle() => {
+                if let Some(ack) = self.block_download_stalled() {
+                    return ack;
+                }
                 let mux = self.mux().unwrap_or_default();
                 self.abort(od, mux, AbortCode::SdoTimeout)
             }

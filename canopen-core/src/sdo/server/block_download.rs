@@ -4,10 +4,17 @@
 //!
 //! Each in-order segment is written to the sink when the next one arrives: only the last 7 bytes are held
 //! back, because the number of valid bytes in the last segment is only known from the end frame (SDO-41).
+//!
+//! Loss and duplicates (SDO-40, go-back-n): an out-of-order segment is dropped and the last in-order one is
+//! acknowledged when the sub-block ends; a repeat of the segment just accepted or just acknowledged is
+//! ignored; a sub-block that stalls for a quarter of the SDO timeout after in-order segments is acknowledged
+//! up to them, so a lost last segment costs a quarter of the timeout instead of the whole transfer (see the
+//! server's module docs for why once, and why not without in-order segments).
 
 use super::{Response, SdoEvent, SdoServer, Sink, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::Crc16;
+use crate::time::Instant;
 use crate::wire::sdo::{Multiplexer, ServerResponse};
 
 /// The state of a block download (the shared [`State`]'s `BlockDownload`).
@@ -27,6 +34,9 @@ pub(super) struct BlockDownload {
     held: [u8; 7],
     /// The segment with c = 1 was accepted: waiting for the end frame.
     pub(super) ending: bool,
+    /// Byte 0 of the segment that made the server acknowledge, until the next in-order segment (0 = none):
+    /// a CAN-level repeat of it is ignored instead of acknowledged again.
+    acked: u8,
 }
 
 impl SdoServer {
@@ -53,6 +63,7 @@ impl SdoServer {
             held_seqno: 0,
             held: [0; 7],
             ending: false,
+            acked: 0,
         });
         // INTEROP: sc = cc
         Ok(Response::send(ServerResponse::BlockDownloadInitiate { mux, crc, blksize: self.block_size }.emit()))
@@ -68,13 +79,17 @@ impl SdoServer {
             return self.abort(od, mux, AbortCode::InvalidSequenceNumber); // SDO-50
         }
         if seqno != bd.expected {
-            if bd.held_seqno == seqno && b[1..8] == bd.held {
-                return Response::NONE; // exact repeat of the last accepted segment
+            if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) {
+                // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
+                // has that sequence number already; a second acknowledge would read as one for the next
+                // sub-block and make the client skip segments
+                return Response::NONE;
             }
             // out of order: discard; acknowledge the last in-order segment at the sub-block's end (SDO-40)
             if last || seqno == blksize {
                 let ackseq = bd.expected - 1;
                 bd.expected = 1;
+                bd.acked = b[0];
                 return Response::send(ServerResponse::BlockDownloadAck { ackseq, blksize }.emit());
             }
             return Response::NONE;
@@ -87,12 +102,43 @@ impl SdoServer {
         bd.held.copy_from_slice(&b[1..8]);
         bd.held_seqno = seqno;
         bd.expected = seqno + 1;
+        bd.acked = 0;
         if last || seqno == blksize {
             bd.expected = 1;
             bd.ending = last;
+            bd.acked = b[0];
             return Response::send(ServerResponse::BlockDownloadAck { ackseq: seqno, blksize }.emit());
         }
         Response::NONE
+    }
+
+    /// The deadline to report for the SDO timeout's `timeout_at`: a quarter of the SDO timeout after the last
+    /// frame while a sub-block has in-order segments but has not ended (then
+    /// [`block_download_stalled`](Self::block_download_stalled) acknowledges them), `timeout_at` otherwise.
+    pub(super) const fn block_download_deadline(&self, timeout_at: Instant) -> Instant {
+        match &self.state {
+            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => {
+                let t = self.timeout.as_micros();
+                Instant::from_micros(timeout_at.as_micros().saturating_sub(t - t / 4))
+            }
+            _ => timeout_at,
+        }
+    }
+
+    /// A sub-block stalled: acknowledge the in-order segments received so far (ackseq = last in-order seqno,
+    /// go-back-n as SDO-40), so the client resends the rest at once instead of both sides waiting for the SDO
+    /// timeout. The SDO timeout still runs from the last frame received. `None` when the stall rule does not
+    /// apply (the caller aborts with 0504 0000h).
+    pub(super) fn block_download_stalled(&mut self) -> Option<Response> {
+        let blksize = self.block_size;
+        let State::BlockDownload(bd) = &mut self.state else { return None };
+        if bd.ending || bd.expected <= 1 {
+            return None;
+        }
+        let ackseq = bd.expected - 1;
+        bd.expected = 1;
+        bd.acked = 0;
+        Some(Response::send(ServerResponse::BlockDownloadAck { ackseq, blksize }.emit()))
     }
 
     pub(super) fn block_download_end<O: ObjectDictionary + ?Sized>(

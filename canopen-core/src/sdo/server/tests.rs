@@ -4,6 +4,7 @@ use super::test_od::{TestOd, STRING64};
 use super::*;
 use crate::sdo::block::Crc16;
 use crate::wire::sdo::Segment;
+use crate::Duration;
 
 const T0: Instant = Instant::ZERO;
 
@@ -312,16 +313,29 @@ fn v_sdo_block_download_8_1_and_variants() {
     assert_eq!(t.od.get(0x607A, 0), Some(10_000));
 }
 
+/// VECTORS 8.2 (segment 2 lost, 83h closes the sub-block: acknowledge 1, go back), with SDO-40's duplicates:
+/// a CAN-level repeat of the segment that made the server acknowledge is ignored, not acknowledged again (a
+/// second acknowledge would read as the next sub-block's and make the client skip segments).
 #[test]
 fn v_sdo_block_download_8_2_go_back_n() {
     let mut t = Bench::with_block_size(3);
     t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
     t.ex([0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], None);
     t.ex([0x83, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x01, 0x03, 0, 0, 0, 0, 0]));
+    t.ex([0x83, 0x4F, 0x50, 0, 0, 0, 0, 0], None);
     t.ex([0x01, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], None);
     t.ex([0x82, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x02, 0x03, 0, 0, 0, 0, 0]));
     t.ex([0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
     assert_eq!(t.od.domain(), b"ABCDEFGHIJKLMNOP");
+    // the same after an in-order acknowledge (03h = blksize): its repeat is ignored, the next sub-block goes on
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x16, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
+    for seg in [[0x01, 1, 2, 3, 4, 5, 6, 7], [0x02, 8, 9, 10, 11, 12, 13, 14]] {
+        t.ex(seg, None);
+    }
+    t.ex([0x03, 15, 16, 17, 18, 19, 20, 21], Some([0xA2, 0x03, 0x03, 0, 0, 0, 0, 0]));
+    t.ex([0x03, 15, 16, 17, 18, 19, 20, 21], None);
+    t.ex([0x81, 22, 0, 0, 0, 0, 0, 0], Some([0xA2, 0x01, 0x03, 0, 0, 0, 0, 0]));
+    assert_eq!(t.s.state(), ServerState::BlockDownloadEnd);
 }
 
 /// SDO-40/SDO-41: while waiting for "end block download", a late segment (here the last segment again as
@@ -493,4 +507,39 @@ fn servers_table() {
         client_node: None,
     };
     assert!(!p.is_valid(), "29-bit frames are not supported");
+}
+
+/// Issue 21 item 2 (server side), SDO-40 go-back-n on simulated time: a sub-block whose last segment is lost
+/// stalls; after a quarter of the SDO timeout the server acknowledges the in-order segments it has, the client
+/// resends the rest, and the SDO timeout still counts from the last frame received.
+#[test]
+fn stalled_sub_block_is_acknowledged_after_a_quarter_of_the_timeout() {
+    let mut s = server().with_block_size(4).with_timeout(Duration::from_millis(100));
+    let mut od = TestOd::new();
+    let t = |ms| Instant::from_millis(ms);
+    assert!(s.handle_request(t(0), &[0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], &mut od).frame.is_some());
+    // waiting for the first segment: the SDO timeout, no early acknowledge (nothing to acknowledge yet)
+    assert_eq!(s.poll_timeout(), Some(t(100)));
+    s.handle_request(t(1), &[0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], &mut od);
+    s.handle_request(t(2), &[0x02, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], &mut od);
+    // segment 3 (the last, 83h) is lost
+    assert_eq!(s.poll_timeout(), Some(t(27)));
+    assert_eq!(s.handle_timeout(t(26), &mut od), Response::NONE);
+    let r = s.handle_timeout(t(27), &mut od);
+    assert_eq!(r.frame, Some([0xA2, 0x02, 0x04, 0, 0, 0, 0, 0]), "ackseq 2, blksize 4");
+    assert_eq!(r.event, None);
+    assert_eq!(s.state(), ServerState::BlockDownloadSubBlock);
+    // one acknowledge per stall: then the SDO timeout from the last frame received (2 ms)
+    assert_eq!(s.poll_timeout(), Some(t(102)));
+    // the client resends "OP" as segment 1 of the next sub-block, last
+    let r = s.handle_request(t(30), &[0x81, 0x4F, 0x50, 0, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0xA2, 0x01, 0x04, 0, 0, 0, 0, 0]));
+    let r = s.handle_request(t(31), &[0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(od.domain(), b"ABCDEFGHIJKLMNOP");
+    // a stall with no in-order segment of the sub-block ends by the SDO timeout (0504 0000h)
+    s.handle_request(t(200), &[0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], &mut od);
+    s.handle_request(t(201), &[0x02, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], &mut od);
+    assert_eq!(s.poll_timeout(), Some(t(301)));
+    assert_eq!(s.handle_timeout(t(301), &mut od).frame, abort_of(0x2000, 0, AbortCode::SdoTimeout));
 }
