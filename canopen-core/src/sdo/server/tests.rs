@@ -243,15 +243,17 @@ fn segmented_length_checks() {
     // announced 9, sends 7 → too low at the last segment
     t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
     t.ex([0x01, 1, 2, 3, 4, 5, 6, 7], abort_of(0x2000, 0, AbortCode::LengthTooLow));
-    // segmented U64 without size via the scratch
-    t.ex([0x20, 0x05, 0x20, 0x00, 0, 0, 0, 0], Some([0x60, 0x05, 0x20, 0x00, 0, 0, 0, 0]));
-    t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
-    t.ex([0x1D, 8, 0, 0, 0, 0, 0, 0], Some([0x30, 0, 0, 0, 0, 0, 0, 0]));
-    assert_eq!(t.od.get(0x2005, 0), Some(0x0807_0605_0403_0201));
-    // 9 bytes into the 8-byte scratch without size
-    t.ex([0x20, 0x05, 0x20, 0x00, 0, 0, 0, 0], Some([0x60, 0x05, 0x20, 0x00, 0, 0, 0, 0]));
-    t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
-    t.ex([0x1B, 8, 9, 0, 0, 0, 0, 0], abort_of(0x2005, 0, AbortCode::LengthTooHigh));
+    // segmented U64 without size via the scratch: 8 bytes are written, 9 do not fit the 8-byte scratch
+    let last_segments = [
+        ([0x1D, 8, 0, 0, 0, 0, 0, 0], Some([0x30, 0, 0, 0, 0, 0, 0, 0])),
+        ([0x1B, 8, 9, 0, 0, 0, 0, 0], abort_of(0x2005, 0, AbortCode::LengthTooHigh)),
+    ];
+    for (last, want) in last_segments {
+        t.ex([0x20, 0x05, 0x20, 0x00, 0, 0, 0, 0], Some([0x60, 0x05, 0x20, 0x00, 0, 0, 0, 0]));
+        t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+        t.ex(last, want);
+        assert_eq!(t.od.get(0x2005, 0), Some(0x0807_0605_0403_0201)); // the refused 9 bytes changed nothing
+    }
 }
 
 #[test]
