@@ -1,0 +1,207 @@
+//! Block download (CiA 301 §7.2.4.3.9–§7.2.4.3.14; CHECKLIST SDO-35, SDO-36, SDO-38..SDO-42, SDO-47..SDO-51):
+//! initiate (SDO-35, SDO-36), sub-block segments and their acknowledge (SDO-38..SDO-40, go-back-n), end with
+//! the CRC check (SDO-41, SDO-48, SDO-49).
+//!
+//! Each in-order segment is written to the sink when the next one arrives: only the last 7 bytes are held
+//! back, because the number of valid bytes in the last segment is only known from the end frame (SDO-41).
+//!
+//! Loss and duplicates (SDO-40, go-back-n): an out-of-order segment is dropped and the last in-order one is
+//! acknowledged when the sub-block ends; a repeat of the segment just accepted or just acknowledged is
+//! ignored; a sub-block that stalls for a quarter of the SDO timeout after in-order segments is acknowledged
+//! up to them, so a lost last segment costs a quarter of the timeout instead of the whole transfer (see the
+//! server's module docs for why once, and why not without in-order segments).
+
+use super::{Response, SdoEvent, SdoServer, Sink, State};
+use crate::od::{AbortCode, ObjectDictionary};
+use crate::sdo::block::Crc16;
+use crate::time::Instant;
+use crate::wire::sdo::{Multiplexer, ServerResponse};
+
+/// The state of a block download (the shared [`State`]'s `BlockDownload`).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct BlockDownload {
+    pub(super) mux: Multiplexer,
+    pub(super) sink: Sink,
+    /// Bytes written to the sink so far (everything before the held segment).
+    offset: u32,
+    size: Option<u32>,
+    crc: Crc16,
+    crc_on: bool,
+    /// Next seqno expected in the current sub-block.
+    expected: u8,
+    /// Seqno of the held segment (0 = nothing held).
+    held_seqno: u8,
+    held: [u8; 7],
+    /// The segment with c = 1 was accepted: waiting for the end frame.
+    pub(super) ending: bool,
+    /// Byte 0 of the segment that made the server acknowledge, until the next in-order segment (0 = none):
+    /// a CAN-level repeat of it is ignored instead of acknowledged again.
+    acked: u8,
+}
+
+impl SdoServer {
+    pub(super) fn block_download_initiate<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        mux: Multiplexer,
+        crc: bool,
+        size: Option<u32>,
+        od: &mut O,
+    ) -> Result<Response, AbortCode> {
+        let info = od.info(mux.index, mux.sub)?;
+        if !info.access.writable() {
+            return Err(AbortCode::WriteOfReadOnly);
+        }
+        let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
+        self.state = State::BlockDownload(BlockDownload {
+            mux,
+            sink,
+            offset: 0,
+            size,
+            crc: Crc16::new(),
+            crc_on: crc,
+            expected: 1,
+            held_seqno: 0,
+            held: [0; 7],
+            ending: false,
+            acked: 0,
+        });
+        // INTEROP: sc = cc
+        Ok(Response::send(ServerResponse::BlockDownloadInitiate { mux, crc, blksize: self.block_size }.emit()))
+    }
+
+    pub(super) fn block_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
+        let blksize = self.block_size;
+        let State::BlockDownload(bd) = &mut self.state else { return Response::NONE };
+        let mux = bd.mux;
+        let last = b[0] & 0x80 != 0;
+        let seqno = b[0] & 0x7F;
+        if seqno == 0 || seqno > blksize {
+            return self.abort(od, mux, AbortCode::InvalidSequenceNumber); // SDO-50
+        }
+        if seqno != bd.expected {
+            if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) {
+                // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
+                // has that sequence number already; a second acknowledge would read as one for the next
+                // sub-block and make the client skip segments
+                return Response::NONE;
+            }
+            // out of order: discard; acknowledge the last in-order segment at the sub-block's end (SDO-40)
+            if last || seqno == blksize {
+                let ackseq = bd.expected - 1;
+                bd.expected = 1;
+                bd.acked = b[0];
+                return Response::send(ServerResponse::BlockDownloadAck { ackseq, blksize }.emit());
+            }
+            return Response::NONE;
+        }
+        if bd.held_seqno != 0 {
+            if let Err(code) = bd.flush_held(7, od) {
+                return self.abort(od, mux, code);
+            }
+        }
+        bd.held.copy_from_slice(&b[1..8]);
+        bd.held_seqno = seqno;
+        bd.expected = seqno + 1;
+        bd.acked = 0;
+        if last || seqno == blksize {
+            bd.expected = 1;
+            bd.ending = last;
+            bd.acked = b[0];
+            return Response::send(ServerResponse::BlockDownloadAck { ackseq: seqno, blksize }.emit());
+        }
+        Response::NONE
+    }
+
+    /// The deadline to report for the SDO timeout's `timeout_at`: a quarter of the SDO timeout after the last
+    /// frame while a sub-block has in-order segments but has not ended (then
+    /// [`block_download_stalled`](Self::block_download_stalled) acknowledges them), `timeout_at` otherwise.
+    pub(super) const fn block_download_deadline(&self, timeout_at: Instant) -> Instant {
+        match &self.state {
+            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => {
+                let t = self.timeout.as_micros();
+                Instant::from_micros(timeout_at.as_micros().saturating_sub(t - t / 4))
+            }
+            _ => timeout_at,
+        }
+    }
+
+    /// A sub-block stalled: acknowledge the in-order segments received so far (ackseq = last in-order seqno,
+    /// go-back-n as SDO-40), so the client resends the rest at once instead of both sides waiting for the SDO
+    /// timeout. The SDO timeout still runs from the last frame received. `None` when the stall rule does not
+    /// apply (the caller aborts with 0504 0000h).
+    pub(super) fn block_download_stalled(&mut self) -> Option<Response> {
+        let blksize = self.block_size;
+        let State::BlockDownload(bd) = &mut self.state else { return None };
+        if bd.ending || bd.expected <= 1 {
+            return None;
+        }
+        let ackseq = bd.expected - 1;
+        bd.expected = 1;
+        bd.acked = 0;
+        Some(Response::send(ServerResponse::BlockDownloadAck { ackseq, blksize }.emit()))
+    }
+
+    pub(super) fn block_download_end<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        unused: u8,
+        crc: u16,
+        od: &mut O,
+    ) -> Response {
+        let State::BlockDownload(bd) = &mut self.state else {
+            return self.invalid(od);
+        };
+        let mux = bd.mux;
+        let r = (|| {
+            bd.flush_held(usize::from(7 - unused.min(7)), od)?;
+            if bd.crc_on && bd.crc.get() != crc {
+                return Err(AbortCode::CrcError); // SDO-50
+            }
+            match bd.size {
+                Some(s) if bd.offset > s => return Err(AbortCode::LengthTooHigh),
+                Some(s) if bd.offset < s => return Err(AbortCode::LengthTooLow),
+                _ => {}
+            }
+            bd.sink.finish(mux, bd.offset, od)
+        })();
+        if let Err(code) = r {
+            return self.abort(od, mux, code);
+        }
+        self.state = State::Idle;
+        Response {
+            frame: Some(ServerResponse::BlockDownloadEnd.emit()),
+            event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
+        }
+    }
+}
+
+/// Whether `b0`, received while waiting for "end block download" (SDO-41), is a late segment of this transfer.
+///
+/// Block segments carry no command specifier, so a late or repeated segment (any seqno the sub-blocks can
+/// use, last bit or not) would read as a request: 81h–9Fh as an abort with reserved bits, 20h–7Fh as a new
+/// initiate. In this state such a frame is a late segment and is ignored (SDO-40); only the end frame (ccs 6,
+/// cs 1: C1h + 4·n, bit 1 reserved) and the abort 80h are requests. A client that starts a new transfer here
+/// must abort first.
+#[inline]
+pub(super) const fn is_late_segment(b0: u8, blksize: u8) -> bool {
+    let seqno = b0 & 0x7F;
+    b0 & 0xE1 != 0xC1 && seqno >= 1 && seqno <= blksize
+}
+
+impl BlockDownload {
+    /// Writes the first `len` bytes of the held segment (in order) to the sink and the CRC.
+    #[inline]
+    fn flush_held<O: ObjectDictionary + ?Sized>(&mut self, len: usize, od: &mut O) -> Result<(), AbortCode> {
+        let bytes = self.held.get(..len).unwrap_or(&[]);
+        let end = self.offset.saturating_add(bytes.len() as u32);
+        if self.size.is_some_and(|s| end > s) || end == u32::MAX {
+            return Err(AbortCode::LengthTooHigh);
+        }
+        self.sink.write(self.mux, self.offset, bytes, od)?;
+        if self.crc_on {
+            self.crc.update(bytes);
+        }
+        self.offset = end;
+        self.held_seqno = 0;
+        Ok(())
+    }
+}

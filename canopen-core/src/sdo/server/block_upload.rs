@@ -1,0 +1,182 @@
+//! Block upload (CiA 301 §7.2.4.3.15–§7.2.4.3.20; CHECKLIST SDO-37, SDO-43..SDO-51): initiate with the
+//! protocol switch (SDO-43, SDO-44), start, sub-blocks pulled one frame at a time through
+//! [`SdoServer::poll_transmit`] (SDO-37, SDO-46), the client's acknowledge with go-back-n and a new block
+//! size (SDO-45), end with the CRC (SDO-47..SDO-49).
+
+use super::{Response, SdoEvent, SdoServer, State};
+use crate::od::{AbortCode, ObjectDictionary};
+use crate::sdo::block::{last_segment_len, Crc16};
+use crate::time::Instant;
+use crate::wire::sdo::{BlockSegment, Multiplexer, ServerResponse, MAX_BLKSIZE};
+
+/// Where a block upload is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum UploadPhase {
+    Start,
+    Sending,
+    WaitAck,
+    WaitEnd,
+}
+
+/// The state of a block upload (the shared [`State`]'s `BlockUpload`).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct BlockUpload {
+    pub(super) mux: Multiplexer,
+    size: u32,
+    /// Offset of the first byte of the current sub-block.
+    base: u32,
+    /// Bytes covered by the CRC so far (always a prefix of the data, go-back-n never skips ahead).
+    crc_len: u32,
+    crc: Crc16,
+    crc_on: bool,
+    blksize: u8,
+    /// Segments of the current sub-block produced so far.
+    sent: u8,
+    pub(super) phase: UploadPhase,
+}
+
+impl SdoServer {
+    /// Whether [`poll_transmit`](Self::poll_transmit) has a frame (block upload sub-block in progress).
+    ///
+    /// ```
+    /// # use canopen_core::sdo::{SdoServer, SdoServerParams};
+    /// assert!(!SdoServer::new(SdoServerParams::DISABLED).wants_transmit());
+    /// ```
+    pub const fn wants_transmit(&self) -> bool {
+        matches!(self.state, State::BlockUpload(BlockUpload { phase: UploadPhase::Sending, .. }))
+    }
+
+    /// The next frame of a block-upload sub-block (SDO-37, SDO-46), one per call, `None` when there is
+    /// nothing to send. Call it when the TX queue has room. A read error aborts the transfer (the abort frame
+    /// is returned in the response).
+    ///
+    /// ```
+    /// # use canopen_core::sdo::{SdoServer, SdoServerParams};
+    /// # use canopen_core::od::{AbortCode, ObjectDictionary, SubInfo};
+    /// # struct Empty;
+    /// # impl ObjectDictionary for Empty {
+    /// #     fn info(&self, _: u16, _: u8) -> Result<SubInfo, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+    /// #     fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+    /// #     fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+    /// # }
+    /// let mut s = SdoServer::new(SdoServerParams::DISABLED);
+    /// assert!(s.poll_transmit(canopen_core::Instant::ZERO, &mut Empty).is_none());
+    /// ```
+    pub fn poll_transmit<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Option<Response> {
+        let State::BlockUpload(b) = &mut self.state else { return None };
+        if b.phase != UploadPhase::Sending {
+            return None;
+        }
+        let off = b.base.saturating_add(u32::from(b.sent).saturating_mul(7));
+        let want = b.size.saturating_sub(off).min(7) as usize;
+        let mut seg = BlockSegment { last: false, seqno: b.sent.saturating_add(1), data: [0; 7] };
+        let mux = b.mux;
+        let n = match od.read(mux.index, mux.sub, off as usize, &mut seg.data[..want]) {
+            Ok(n) if n == want => n as u32,
+            Ok(_) => return Some(self.abort(od, mux, AbortCode::LengthMismatch)),
+            Err(code) => return Some(self.abort(od, mux, code)),
+        };
+        let end = off + n;
+        if end > b.crc_len && b.crc_on {
+            let skip = b.crc_len.saturating_sub(off) as usize;
+            b.crc.update(seg.data.get(skip..n as usize).unwrap_or(&[]));
+        }
+        b.crc_len = b.crc_len.max(end);
+        seg.last = end >= b.size;
+        b.sent = seg.seqno;
+        if seg.last || b.sent >= b.blksize {
+            b.phase = UploadPhase::WaitAck;
+        }
+        self.touch(now);
+        Some(Response::send(seg.emit()))
+    }
+    pub(super) fn block_upload_initiate<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        mux: Multiplexer,
+        crc: bool,
+        blksize: u8,
+        pst: u8,
+        od: &mut O,
+    ) -> Result<Response, AbortCode> {
+        if blksize == 0 || blksize > MAX_BLKSIZE {
+            return Err(AbortCode::InvalidBlockSize);
+        }
+        let size = readable_size(mux, od)?;
+        if pst > 0 && size <= u32::from(pst) {
+            return self.initiate_upload(mux, od); // SDO-43: protocol switch
+        }
+        self.state = State::BlockUpload(BlockUpload {
+            mux,
+            size,
+            base: 0,
+            crc_len: 0,
+            crc: Crc16::new(),
+            crc_on: crc,
+            blksize,
+            sent: 0,
+            phase: UploadPhase::Start,
+        });
+        Ok(Response::send(ServerResponse::BlockUploadInitiate { mux, crc, size: Some(size) }.emit()))
+    }
+
+    pub(super) fn block_upload_ack<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        ackseq: u8,
+        blksize: u8,
+        od: &mut O,
+    ) -> Response {
+        let State::BlockUpload(bu) = &mut self.state else { return self.invalid(od) };
+        if !matches!(bu.phase, UploadPhase::Sending | UploadPhase::WaitAck) {
+            return self.invalid(od);
+        }
+        let mux = bu.mux;
+        if ackseq > bu.sent {
+            return self.abort(od, mux, AbortCode::InvalidSequenceNumber);
+        }
+        if blksize == 0 || blksize > MAX_BLKSIZE {
+            return self.abort(od, mux, AbortCode::InvalidBlockSize);
+        }
+        bu.base = bu.base.saturating_add(u32::from(ackseq) * 7);
+        bu.sent = 0;
+        bu.blksize = blksize;
+        if ackseq >= 1 && bu.base >= bu.size {
+            bu.phase = UploadPhase::WaitEnd;
+            let crc = if bu.crc_on { bu.crc.get() } else { 0 };
+            let unused = 7 - last_segment_len(bu.size);
+            return Response::send(ServerResponse::BlockUploadEnd { unused, crc }.emit());
+        }
+        bu.phase = UploadPhase::Sending;
+        Response::NONE
+    }
+
+    /// "Start upload" (A3h, SDO-37): the first sub-block may go out.
+    pub(super) fn block_upload_start<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) -> Response {
+        match &mut self.state {
+            State::BlockUpload(bu) if bu.phase == UploadPhase::Start => {
+                bu.phase = UploadPhase::Sending;
+                Response::NONE
+            }
+            _ => self.invalid(od),
+        }
+    }
+
+    /// "End block upload" response (A1h, SDO-47): the transfer is complete.
+    pub(super) fn block_upload_end<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) -> Response {
+        match self.state {
+            State::BlockUpload(bu) if bu.phase == UploadPhase::WaitEnd => {
+                self.state = State::Idle;
+                Response { frame: None, event: Some(SdoEvent::Uploaded { index: bu.mux.index, sub: bu.mux.sub }) }
+            }
+            _ => self.invalid(od),
+        }
+    }
+}
+
+/// Size of a readable object (SDO upload preconditions).
+fn readable_size<O: ObjectDictionary + ?Sized>(mux: Multiplexer, od: &O) -> Result<u32, AbortCode> {
+    let info = od.info(mux.index, mux.sub)?;
+    if !info.access.readable() {
+        return Err(AbortCode::ReadOfWriteOnly);
+    }
+    u32::try_from(info.size).map_err(|_| AbortCode::OutOfMemory)
+}

@@ -1,0 +1,547 @@
+//! Unit tests of the SDO server: the VECTORS 7.x and 8.x exchanges and the choices in the module docs.
+
+use super::test_od::{TestOd, STRING64};
+use super::*;
+use crate::sdo::block::Crc16;
+use crate::wire::sdo::Segment;
+use crate::Duration;
+
+const T0: Instant = Instant::ZERO;
+
+fn server() -> SdoServer {
+    SdoServer::new(SdoServerParams::default_server(NodeId::new(3).unwrap()))
+}
+
+/// A server (node 3) and the test dictionary.
+struct Bench {
+    s: SdoServer,
+    od: TestOd,
+}
+
+impl Bench {
+    fn new() -> Self {
+        Bench { s: server(), od: TestOd::new() }
+    }
+
+    fn with_block_size(blksize: u8) -> Self {
+        Bench { s: server().with_block_size(blksize), od: TestOd::new() }
+    }
+
+    /// Sends `req` at [`T0`], expects exactly `want` as the reply frame.
+    fn ex(&mut self, req: [u8; 8], want: Option<[u8; 8]>) -> Response {
+        let r = self.s.handle_request(T0, &req, &mut self.od);
+        assert_eq!(r.frame, want, "request {req:02X?} → {:02X?}", r.frame);
+        r
+    }
+}
+
+fn abort_of(index: u16, sub: u8, code: AbortCode) -> Option<[u8; 8]> {
+    Some(abort_frame(Multiplexer::new(index, sub), code.code()))
+}
+
+#[test]
+fn ram_bound() {
+    let (server, client) = (core::mem::size_of::<SdoServer>(), core::mem::size_of::<crate::sdo::SdoClient>());
+    std::eprintln!("size_of SdoServer = {server} B, SdoClient = {client} B");
+    assert!(server <= SdoServer::RAM_BYTES, "{server}");
+    assert!(client <= 96, "{client}");
+}
+
+#[test]
+fn v_sdo_expedited_positive() {
+    let mut t = Bench::new();
+    // V-SDO-01
+    let r = t.ex([0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00], Some([0x60, 0x7A, 0x60, 0, 0, 0, 0, 0]));
+    assert_eq!(r.event, Some(SdoEvent::Written { index: 0x607A, sub: 0 }));
+    assert_eq!(t.od.get(0x607A, 0), Some(1000));
+    // V-SDO-02
+    t.ex([0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0], Some([0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0]));
+    // V-SDO-03 (conformant answer) and a positive 1400h:02 write of FEh
+    t.ex([0x2F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0], abort_of(0x1400, 2, AbortCode::InvalidValue));
+    t.ex([0x2F, 0x00, 0x14, 0x02, 0xFE, 0, 0, 0], Some([0x60, 0x00, 0x14, 0x02, 0, 0, 0, 0]));
+    // V-SDO-04, V-SDO-06
+    t.ex([0x23, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60], Some([0x60, 0x03, 0x16, 0x01, 0, 0, 0, 0]));
+    t.ex([0x40, 0x03, 0x16, 0x01, 0, 0, 0, 0], Some([0x43, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60]));
+    // V-SDO-05 (value FEh after the write above)
+    t.ex([0x40, 0x00, 0x14, 0x02, 0, 0, 0, 0], Some([0x4F, 0x00, 0x14, 0x02, 0xFE, 0, 0, 0]));
+    // V-SDO-08, V-SDO-09 (our 1018h), V-SDO-17
+    t.ex([0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0], Some([0x43, 0x18, 0x10, 0x01, 0xB6, 0x02, 0, 0]));
+    t.ex([0x40, 0x18, 0x10, 0x00, 0, 0, 0, 0], Some([0x4F, 0x18, 0x10, 0x00, 0x04, 0, 0, 0]));
+    t.ex([0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0], Some([0x43, 0x00, 0x10, 0x00, 0x91, 0x01, 0, 0]));
+    // SDO-13: 22h without size into a U16 takes 2 bytes
+    t.ex([0x22, 0x17, 0x10, 0x00, 0xE8, 0x03, 0xAA, 0xBB], Some([0x60, 0x17, 0x10, 0, 0, 0, 0, 0]));
+    assert_eq!(t.od.get(0x1017, 0), Some(1000));
+    assert!(t.s.is_idle());
+    assert_eq!(t.s.poll_timeout(), None);
+}
+
+#[test]
+fn v_sdo_expedited_negative_and_od_abort_codes() {
+    let mut t = Bench::new();
+    let cases: [([u8; 8], u16, u8, AbortCode); 16] = [
+        ([0x40, 0x00, 0x50, 0x00, 0, 0, 0, 0], 0x5000, 0, AbortCode::ObjectDoesNotExist), // V-SDO-10
+        ([0x40, 0x18, 0x10, 0x07, 0, 0, 0, 0], 0x1018, 7, AbortCode::SubIndexDoesNotExist), // V-SDO-11
+        ([0x23, 0x00, 0x10, 0x00, 0, 0, 0, 0], 0x1000, 0, AbortCode::WriteOfReadOnly),    // V-SDO-12
+        ([0x2F, 0x17, 0x10, 0x00, 0x64, 0, 0, 0], 0x1017, 0, AbortCode::LengthTooLow),    // V-SDO-13
+        ([0x23, 0x0D, 0x10, 0x00, 0x03, 0, 0, 0], 0x100D, 0, AbortCode::LengthTooHigh),   // V-SDO-14
+        ([0xE0, 0x00, 0x10, 0x00, 0, 0, 0, 0], 0x1000, 0, AbortCode::InvalidCommandSpecifier), // V-SDO-15
+        ([0x40, 0x01, 0x20, 0x00, 0, 0, 0, 0], 0x2001, 0, AbortCode::ReadOfWriteOnly),
+        ([0x2B, 0x02, 0x20, 0x00, 0x65, 0x00, 0, 0], 0x2002, 0, AbortCode::ValueTooHigh),
+        ([0x2B, 0x02, 0x20, 0x00, 0x9B, 0xFF, 0, 0], 0x2002, 0, AbortCode::ValueTooLow),
+        ([0x23, 0x03, 0x20, 0x00, 0, 0, 0, 0], 0x2003, 0, AbortCode::InvalidValue),
+        ([0x23, 0x03, 0x20, 0x00, 1, 0, 0, 0], 0x2003, 0, AbortCode::GeneralError),
+        ([0x23, 0x03, 0x20, 0x00, 2, 0, 0, 0], 0x2003, 0, AbortCode::CannotStore),
+        ([0x23, 0x03, 0x20, 0x00, 3, 0, 0, 0], 0x2003, 0, AbortCode::CannotStoreDeviceState),
+        ([0x21, 0x17, 0x10, 0x00, 3, 0, 0, 0], 0x1017, 0, AbortCode::LengthTooHigh), // SDO-18 at initiate
+        ([0x21, 0x05, 0x20, 0x00, 4, 0, 0, 0], 0x2005, 0, AbortCode::LengthTooLow),
+        ([0xC6, 0x00, 0x20, 0x00, 0x01, 0x00, 0x01, 0x00], 0x2000, 0, AbortCode::OutOfMemory), // 65537 bytes
+    ];
+    for (req, index, sub, code) in cases {
+        let r = t.ex(req, abort_of(index, sub, code));
+        assert_eq!(r.event, Some(SdoEvent::Aborted { index, sub, code }));
+        assert!(t.s.is_idle());
+    }
+    // a refused write changed nothing
+    assert_eq!(t.od.get(0x2003, 0), Some(7));
+    // streamed write to a fixed-size object the OD cannot stream: unsupported access (0601 0000h) does
+    // not arise; a streamed end_write refusal does (0800 0020h)
+    t.ex([0x21, 0x07, 0x20, 0x00, 3, 0, 0, 0], Some([0x60, 0x07, 0x20, 0, 0, 0, 0, 0]));
+    t.ex([0x09, b'b', b'a', b'd', 0, 0, 0, 0], abort_of(0x2007, 0, AbortCode::CannotStore));
+    assert_eq!(t.od.aborted_writes, 1);
+}
+
+/// A dictionary of one object at every index: `info` says `data_type`, `access` and `size`; `read` delivers
+/// only `readable` bytes (`x`); writes succeed and are dropped. Streaming is the trait's default: refused.
+struct OneObject {
+    data_type: crate::od::DataType,
+    access: crate::od::Access,
+    size: usize,
+    readable: usize,
+}
+
+impl ObjectDictionary for OneObject {
+    fn info(&self, _: u16, _: u8) -> Result<crate::od::SubInfo, AbortCode> {
+        let (data_type, access, size) = (self.data_type, self.access, self.size);
+        Ok(crate::od::SubInfo { data_type, access, pdo: crate::od::PdoMapping::No, size })
+    }
+    fn read(&self, _: u16, _: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        let n = self.readable.saturating_sub(offset).min(buf.len());
+        buf[..n].fill(b'x');
+        Ok(n)
+    }
+    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
+        Ok(())
+    }
+}
+
+#[test]
+fn unsupported_access_from_od() {
+    // An OD that cannot stream a DOMAIN: the trait's default begin_write refuses with 0601 0000h.
+    let mut od =
+        OneObject { data_type: crate::od::DataType::Domain, access: crate::od::Access::Rw, size: 0, readable: 0 };
+    let mut s = server();
+    let r = s.handle_request(T0, &[0x21, 0x00, 0x30, 0x00, 3, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, abort_of(0x3000, 0, AbortCode::UnsupportedAccess));
+    // an empty DOMAIN uploads as a segmented transfer of 0 bytes: one segment with n = 7, c = 1
+    let r = s.handle_request(T0, &[0x40, 0x00, 0x30, 0x00, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0x41, 0x00, 0x30, 0x00, 0, 0, 0, 0]));
+    let r = s.handle_request(T0, &[0x60, 0, 0, 0, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0x0F, 0, 0, 0, 0, 0, 0, 0]));
+    assert!(s.is_idle());
+}
+
+#[test]
+fn value_shorter_than_announced_is_length_mismatch() {
+    // info says 10 bytes, read delivers only 3: the upload cannot keep its announced size (0607 0010h)
+    let mut od = OneObject {
+        data_type: crate::od::DataType::VisibleString,
+        access: crate::od::Access::Ro,
+        size: 10,
+        readable: 3,
+    };
+    let mut s = server();
+    let r = s.handle_request(T0, &[0x40, 0x00, 0x30, 0x00, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0x41, 0x00, 0x30, 0x00, 10, 0, 0, 0]));
+    let r = s.handle_request(T0, &[0x60, 0, 0, 0, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, abort_of(0x3000, 0, AbortCode::LengthMismatch));
+    let r = s.handle_request(T0, &[0xA4, 0x00, 0x30, 0x00, 0x7F, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0xC6, 0x00, 0x30, 0x00, 10, 0, 0, 0]));
+    s.handle_request(T0, &[0xA3, 0, 0, 0, 0, 0, 0, 0], &mut od);
+    assert_eq!(s.poll_transmit(T0, &mut od).unwrap().frame, abort_of(0x3000, 0, AbortCode::LengthMismatch));
+    assert!(s.is_idle());
+}
+
+/// VECTORS 7.2, then the seed 7.1 whose step 5 repeats t = 0: abort 0503 0000h (SDO-30).
+#[test]
+fn v_sdo_segmented_upload_7_2_and_toggle_error() {
+    let mut t = Bench::new();
+    let steps: [([u8; 8], Option<[u8; 8]>); 8] = [
+        ([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0])),
+        ([0x60, 0, 0, 0, 0, 0, 0, 0], Some([0x00, 0x4E, 0x31, 0x30, 0x20, 0x2D, 0x20, 0x57])),
+        ([0x70, 0, 0, 0, 0, 0, 0, 0], Some([0x10, 0x54, 0x31, 0x32, 0x30, 0x39, 0x2D, 0x56])),
+        // 002's client puts the multiplexer in the reserved bytes: accepted (SDO-02)
+        ([0x60, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x00, 0x31, 0x2E, 0x30, 0x30, 0x2D, 0x38, 0x4D])),
+        ([0x70, 0, 0, 0, 0, 0, 0, 0], Some([0x1B, 0x42, 0x00, 0, 0, 0, 0, 0])),
+        // the seed 7.1: the second segment request repeats t = 0
+        ([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0])),
+        ([0x60, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x00, 0x4E, 0x31, 0x30, 0x20, 0x2D, 0x20, 0x57])),
+        ([0x60, 0x09, 0x10, 0x00, 0, 0, 0, 0], abort_of(0x1009, 0, AbortCode::ToggleNotAlternated)),
+    ];
+    for (i, (req, rsp)) in steps.iter().enumerate() {
+        let r = t.ex(*req, *rsp);
+        if i == 4 {
+            assert_eq!(r.event, Some(SdoEvent::Uploaded { index: 0x1009, sub: 0 }));
+        }
+        assert_eq!(t.s.is_idle(), i == 4 || i == 7, "step {i}");
+    }
+}
+
+#[test]
+fn v_sdo_segmented_download_7_3_and_variants() {
+    let mut t = Bench::new();
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    let r = t.ex([0x1B, 0x38, 0x39, 0, 0, 0, 0, 0], Some([0x30, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(r.event, Some(SdoEvent::Written { index: 0x2000, sub: 0 }));
+    assert_eq!(t.od.domain(), b"123456789");
+
+    // toggle-error variant
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    t.ex([0x0B, 0x38, 0x39, 0, 0, 0, 0, 0], Some([0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x03, 0x05]));
+    assert_eq!(t.od.aborted_writes, 1);
+
+    // time-out variant (SDO-31)
+    let t1 = Instant::from_millis(10);
+    let r = t.s.handle_request(t1, &[0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], &mut t.od);
+    assert!(r.frame.is_some());
+    let deadline = t.s.poll_timeout().unwrap();
+    assert_eq!(deadline, t1 + super::super::DEFAULT_TIMEOUT);
+    assert_eq!(t.s.handle_timeout(Instant::from_micros(deadline.as_micros() - 1), &mut t.od), Response::NONE);
+    let r = t.s.handle_timeout(deadline, &mut t.od);
+    assert_eq!(r.frame, Some([0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05]));
+    assert_eq!(r.event, Some(SdoEvent::Aborted { index: 0x2000, sub: 0, code: AbortCode::SdoTimeout }));
+    assert!(t.s.is_idle() && t.s.poll_timeout().is_none());
+    assert_eq!(t.od.aborted_writes, 2);
+
+    // new-initiate variant (SDO-29)
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    t.ex([0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0], Some([0x43, 0x00, 0x10, 0x00, 0x91, 0x01, 0, 0]));
+    assert_eq!(t.od.aborted_writes, 3);
+    assert!(t.s.is_idle());
+    assert_eq!(t.od.domain(), b"123456789"); // the abandoned write left the old value visible
+}
+
+#[test]
+fn segmented_length_checks() {
+    let mut t = Bench::new();
+    // announced 9, sends 14 → too high at the second segment
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    t.ex([0x11, 1, 2, 3, 4, 5, 6, 7], abort_of(0x2000, 0, AbortCode::LengthTooHigh));
+    // announced 9, sends 7 → too low at the last segment
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x01, 1, 2, 3, 4, 5, 6, 7], abort_of(0x2000, 0, AbortCode::LengthTooLow));
+    // segmented U64 without size via the scratch: 8 bytes are written, 9 do not fit the 8-byte scratch
+    let last_segments = [
+        ([0x1D, 8, 0, 0, 0, 0, 0, 0], Some([0x30, 0, 0, 0, 0, 0, 0, 0])),
+        ([0x1B, 8, 9, 0, 0, 0, 0, 0], abort_of(0x2005, 0, AbortCode::LengthTooHigh)),
+    ];
+    for (last, want) in last_segments {
+        t.ex([0x20, 0x05, 0x20, 0x00, 0, 0, 0, 0], Some([0x60, 0x05, 0x20, 0x00, 0, 0, 0, 0]));
+        t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+        t.ex(last, want);
+        assert_eq!(t.od.get(0x2005, 0), Some(0x0807_0605_0403_0201)); // the refused 9 bytes changed nothing
+    }
+}
+
+#[test]
+fn segmented_upload_64_byte_string_and_read_error() {
+    let mut t = Bench::new();
+    t.ex([0x40, 0x04, 0x20, 0x00, 0, 0, 0, 0], Some([0x41, 0x04, 0x20, 0x00, 64, 0, 0, 0]));
+    let mut got = [0u8; 64];
+    let mut n = 0;
+    for i in 0..10u8 {
+        let toggle = i % 2 == 1;
+        let r = t.s.handle_request(T0, &[0x60 | (u8::from(toggle) << 4), 0, 0, 0, 0, 0, 0, 0], &mut t.od);
+        let seg = Segment::parse(&r.frame.unwrap()).unwrap();
+        assert_eq!(seg.toggle, toggle);
+        got[n..n + seg.bytes().len()].copy_from_slice(seg.bytes());
+        n += seg.bytes().len();
+        assert_eq!(seg.last, i == 9);
+    }
+    assert_eq!(&got, STRING64);
+    // 2006h fails reading at offset 14: the third segment aborts with the OD's code (0606 0000h)
+    t.ex([0x40, 0x06, 0x20, 0x00, 0, 0, 0, 0], Some([0x41, 0x06, 0x20, 0x00, 200, 0, 0, 0]));
+    t.ex([0x60, 0, 0, 0, 0, 0, 0, 0], Some([0x00, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55]));
+    t.ex([0x70, 0, 0, 0, 0, 0, 0, 0], Some([0x10, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55]));
+    t.ex([0x60, 0, 0, 0, 0, 0, 0, 0], abort_of(0x2006, 0, AbortCode::HardwareError));
+}
+
+#[test]
+fn v_sdo_block_download_8_1_and_variants() {
+    let mut t = Bench::new();
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0]));
+    t.ex([0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], None);
+    t.ex([0x82, 0x38, 0x39, 0, 0, 0, 0, 0], Some([0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0]));
+    assert_eq!(t.s.state(), ServerState::BlockDownloadEnd);
+    let r = t.ex([0xD5, 0xC3, 0x31, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(r.event, Some(SdoEvent::Written { index: 0x2000, sub: 0 }));
+    assert_eq!(t.od.domain(), b"123456789");
+
+    // CRC error variant
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0]));
+    t.ex([0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], None);
+    t.ex([0x82, 0x38, 0x39, 0, 0, 0, 0, 0], Some([0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0]));
+    t.ex([0xD5, 0, 0, 0, 0, 0, 0, 0], Some([0x80, 0x00, 0x20, 0x00, 0x04, 0x00, 0x04, 0x05]));
+    assert_eq!(t.od.aborted_writes, 1);
+
+    // no-CRC variant: sc = cc = 0, CRC bytes not checked
+    t.ex([0xC2, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0xA0, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0]));
+    t.ex([0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], None);
+    t.ex([0x82, 0x38, 0x39, 0, 0, 0, 0, 0], Some([0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0]));
+    // a CAN-level duplicate of the last segment is not taken for an end frame
+    t.ex([0x82, 0x38, 0x39, 0, 0, 0, 0, 0], None);
+    t.ex([0xD5, 0x12, 0x34, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+
+    // block download of a U32 via the scratch
+    t.ex([0xC6, 0x7A, 0x60, 0x00, 4, 0, 0, 0], Some([0xA4, 0x7A, 0x60, 0x00, 0x7F, 0, 0, 0]));
+    t.ex([0x81, 0x10, 0x27, 0, 0, 0, 0, 0], Some([0xA2, 0x01, 0x7F, 0, 0, 0, 0, 0]));
+    let mut crc = Crc16::new();
+    crc.update(&[0x10, 0x27, 0, 0]);
+    let [c0, c1] = crc.get().to_le_bytes();
+    t.ex([0xCD, c0, c1, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(t.od.get(0x607A, 0), Some(10_000));
+}
+
+/// VECTORS 8.2 (segment 2 lost, 83h closes the sub-block: acknowledge 1, go back), with SDO-40's duplicates:
+/// a CAN-level repeat of the segment that made the server acknowledge is ignored, not acknowledged again (a
+/// second acknowledge would read as the next sub-block's and make the client skip segments).
+#[test]
+fn v_sdo_block_download_8_2_go_back_n() {
+    let mut t = Bench::with_block_size(3);
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
+    t.ex([0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], None);
+    t.ex([0x83, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x01, 0x03, 0, 0, 0, 0, 0]));
+    t.ex([0x83, 0x4F, 0x50, 0, 0, 0, 0, 0], None);
+    t.ex([0x01, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], None);
+    t.ex([0x82, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x02, 0x03, 0, 0, 0, 0, 0]));
+    t.ex([0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(t.od.domain(), b"ABCDEFGHIJKLMNOP");
+    // the same after an in-order acknowledge (03h = blksize): its repeat is ignored, the next sub-block goes on
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x16, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
+    for seg in [[0x01, 1, 2, 3, 4, 5, 6, 7], [0x02, 8, 9, 10, 11, 12, 13, 14]] {
+        t.ex(seg, None);
+    }
+    t.ex([0x03, 15, 16, 17, 18, 19, 20, 21], Some([0xA2, 0x03, 0x03, 0, 0, 0, 0, 0]));
+    t.ex([0x03, 15, 16, 17, 18, 19, 20, 21], None);
+    t.ex([0x81, 22, 0, 0, 0, 0, 0, 0], Some([0xA2, 0x01, 0x03, 0, 0, 0, 0, 0]));
+    assert_eq!(t.s.state(), ServerState::BlockDownloadEnd);
+}
+
+/// SDO-40/SDO-41: while waiting for "end block download", a late segment (here the last segment again as
+/// number 1 of a repeated sub-block, 81h) is ignored, not read as an abort with reserved bits; the end
+/// frame still completes the transfer.
+#[test]
+fn late_segment_before_block_end_is_ignored() {
+    let mut t = Bench::with_block_size(8);
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 8, 0, 0, 0]));
+    t.ex([0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], None);
+    t.ex([0x02, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], None);
+    t.ex([0x83, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x03, 0x08, 0, 0, 0, 0, 0]));
+    assert_eq!(t.s.state(), ServerState::BlockDownloadEnd);
+    // late copies under other sequence numbers, last bit or not: silence, still waiting for the end
+    for late in [[0x81, 0x4F, 0x50, 0, 0, 0, 0, 0], [0x82, 0x2E, 0x4D, 0x6C, 0x8B, 0xAA, 0xC9, 0], [0x02; 8]] {
+        let r = t.ex(late, None);
+        assert_eq!(r.event, None, "{late:02X?}");
+        assert_eq!(t.s.state(), ServerState::BlockDownloadEnd, "{late:02X?}");
+    }
+    let mut crc = Crc16::new();
+    crc.update(b"ABCDEFGHIJKLMNOP");
+    let [c0, c1] = crc.get().to_le_bytes();
+    let r = t.ex([0xD5, c0, c1, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(r.event, Some(SdoEvent::Written { index: 0x2000, sub: 0 }));
+    assert_eq!(t.od.domain(), b"ABCDEFGHIJKLMNOP");
+    // a seqno beyond the block size cannot be a segment: 89h is an abort (reserved bits set, SDO-02)
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x01, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 8, 0, 0, 0]));
+    t.ex([0x81, 0x41, 0, 0, 0, 0, 0, 0], Some([0xA2, 0x01, 0x08, 0, 0, 0, 0, 0]));
+    let r = t.ex([0x89, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05], None);
+    assert!(matches!(r.event, Some(SdoEvent::AbortReceived { code: 0x0504_0000, .. })), "{:?}", r.event);
+    assert!(t.s.is_idle());
+}
+
+#[test]
+fn block_download_sequence_and_size_errors() {
+    let mut t = Bench::with_block_size(3);
+    // seqno 0 and seqno > blksize → 0504 0003h
+    for bad in [0x00u8, 0x04, 0x80 | 0x05] {
+        t.ex([0xC4, 0x00, 0x20, 0x00, 0, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
+        t.ex([bad, 1, 2, 3, 4, 5, 6, 7], abort_of(0x2000, 0, AbortCode::InvalidSequenceNumber));
+    }
+    // an abort frame during a sub-block is an abort, not a segment (SDO-33: not answered)
+    t.ex([0xC4, 0x00, 0x20, 0x00, 0, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
+    let r = t.ex([0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x00, 0x08], None);
+    assert_eq!(r.event, Some(SdoEvent::AbortReceived { index: 0x2000, sub: 0, code: 0x0800_0000 }));
+    assert!(t.s.is_idle());
+    // more data than announced → 0607 0012h; less → 0607 0013h
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x03, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
+    t.ex([0x01, 1, 2, 3, 4, 5, 6, 7], None);
+    t.ex([0x02, 1, 2, 3, 4, 5, 6, 7], abort_of(0x2000, 0, AbortCode::LengthTooHigh));
+    t.ex([0xC2, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0xA0, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
+    t.ex([0x81, 1, 2, 3, 4, 5, 6, 7], Some([0xA2, 0x01, 0x03, 0, 0, 0, 0, 0]));
+    t.ex([0xC1, 0, 0, 0, 0, 0, 0, 0], abort_of(0x2000, 0, AbortCode::LengthTooLow));
+    // a block end frame while idle, an upload segment request while downloading → 0504 0001h
+    t.ex([0xC1, 0, 0, 0, 0, 0, 0, 0], abort_of(0, 0, AbortCode::InvalidCommandSpecifier));
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x60, 0, 0, 0, 0, 0, 0, 0], abort_of(0x2000, 0, AbortCode::InvalidCommandSpecifier));
+}
+
+#[test]
+fn v_sdo_block_upload_8_3() {
+    let mut t = Bench::new();
+    t.od.set_domain(b"123456789");
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));
+    assert!(!t.s.wants_transmit());
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    assert!(t.s.wants_transmit());
+    assert_eq!(t.s.poll_transmit(T0, &mut t.od).unwrap().frame, Some([0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37]));
+    assert_eq!(t.s.poll_transmit(T0, &mut t.od).unwrap().frame, Some([0x82, 0x38, 0x39, 0, 0, 0, 0, 0]));
+    assert!(t.s.poll_transmit(T0, &mut t.od).is_none());
+    t.ex([0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0], Some([0xD5, 0xC3, 0x31, 0, 0, 0, 0, 0]));
+    let r = t.ex([0xA1, 0, 0, 0, 0, 0, 0, 0], None);
+    assert_eq!(r.event, Some(SdoEvent::Uploaded { index: 0x2000, sub: 0 }));
+    assert!(t.s.is_idle());
+    // INTEROP: cc = 0 → sc = 0 and CRC 0
+    t.ex([0xA0, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC2, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+    t.ex([0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0], Some([0xD5, 0, 0, 0, 0, 0, 0, 0]));
+    t.ex([0xA1, 0, 0, 0, 0, 0, 0, 0], None);
+}
+
+#[test]
+fn block_upload_retransmission_and_errors() {
+    let mut t = Bench::new();
+    t.od.set_domain(b"ABCDEFGHIJKLMNOP");
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x02, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0]));
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    assert_eq!(t.s.poll_transmit(T0, &mut t.od).unwrap().frame.unwrap()[0], 0x01);
+    assert_eq!(t.s.poll_transmit(T0, &mut t.od).unwrap().frame.unwrap()[0], 0x02);
+    assert!(t.s.poll_transmit(T0, &mut t.od).is_none());
+    // client got only seq 1: go back to "HIJKLMN" as seqno 1, new blksize 3
+    t.ex([0xA2, 0x01, 0x03, 0, 0, 0, 0, 0], None);
+    assert_eq!(t.s.poll_transmit(T0, &mut t.od).unwrap().frame, Some([0x01, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E]));
+    assert_eq!(t.s.poll_transmit(T0, &mut t.od).unwrap().frame, Some([0x82, 0x4F, 0x50, 0, 0, 0, 0, 0]));
+    assert!(t.s.poll_transmit(T0, &mut t.od).is_none());
+    t.ex([0xA2, 0x02, 0x03, 0, 0, 0, 0, 0], Some([0xD5, 0x80, 0x60, 0, 0, 0, 0, 0]));
+    t.ex([0xA1, 0, 0, 0, 0, 0, 0, 0], None);
+    // invalid blksize at initiate and in the ack; ackseq beyond what was sent
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x00, 0x00, 0, 0], abort_of(0x2000, 0, AbortCode::InvalidBlockSize));
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x80, 0x00, 0, 0], abort_of(0x2000, 0, AbortCode::InvalidBlockSize));
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x02, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0]));
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+    t.ex([0xA2, 0x02, 0x00, 0, 0, 0, 0, 0], abort_of(0x2000, 0, AbortCode::InvalidBlockSize));
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x02, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0]));
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+    t.ex([0xA2, 0x03, 0x02, 0, 0, 0, 0, 0], abort_of(0x2000, 0, AbortCode::InvalidSequenceNumber));
+    // read error during a sub-block
+    t.ex([0xA4, 0x06, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC6, 0x06, 0x20, 0x00, 200, 0, 0, 0]));
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    assert!(t.s.poll_transmit(T0, &mut t.od).unwrap().event.is_none());
+    assert!(t.s.poll_transmit(T0, &mut t.od).unwrap().event.is_none());
+    let r = t.s.poll_transmit(T0, &mut t.od).unwrap();
+    assert_eq!(r.frame, abort_of(0x2006, 0, AbortCode::HardwareError));
+    assert!(t.s.is_idle());
+}
+
+#[test]
+fn v_sdo_block_upload_8_4_protocol_switch() {
+    let mut t = Bench::new();
+    t.od.set_domain(b"123456789");
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x15, 0, 0], Some([0x41, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));
+    t.ex([0x60, 0, 0, 0, 0, 0, 0, 0], Some([0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37]));
+    t.ex([0x70, 0, 0, 0, 0, 0, 0, 0], Some([0x1B, 0x38, 0x39, 0, 0, 0, 0, 0]));
+    t.ex([0xA4, 0x17, 0x10, 0x00, 0x7F, 0x15, 0, 0], Some([0x4B, 0x17, 0x10, 0x00, 0x64, 0, 0, 0]));
+    assert!(t.s.is_idle());
+}
+
+#[test]
+fn abort_handling_and_ignored_frames() {
+    let mut t = Bench::new();
+    // abort while idle: silence (SDO-33)
+    t.ex([0x80, 0, 0x20, 0, 0, 0, 0x04, 0x05], None);
+    // abort during a segmented download: silence, OD told, idle
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    let r = t.ex([0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05], None);
+    assert_eq!(r.event, Some(SdoEvent::AbortReceived { index: 0x2000, sub: 0, code: 0x0504_0000 }));
+    assert_eq!(t.od.aborted_writes, 1);
+    assert!(t.s.is_idle() && t.s.poll_timeout().is_none());
+    // DLC < 8 (CAN-07 choice: ignored), also mid-transfer; the transfer goes on
+    for n in 0..8 {
+        assert_eq!(t.s.handle_request(T0, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0][..n], &mut t.od), Response::NONE);
+    }
+    t.ex([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0]));
+    assert_eq!(t.s.handle_request(T0, &[0x60], &mut t.od), Response::NONE);
+    assert_eq!(t.s.state(), ServerState::Uploading);
+    // unknown ccs mid-transfer: abort with the transfer's multiplexer
+    t.ex([0xE0, 0, 0, 0, 0, 0, 0, 0], abort_of(0x1009, 0, AbortCode::InvalidCommandSpecifier));
+    // a download segment while idle
+    t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], abort_of(0, 0, AbortCode::InvalidCommandSpecifier));
+    // block upload start / ack / end while idle
+    for b0 in [0xA3u8, 0xA2, 0xA1] {
+        t.ex([b0, 1, 1, 0, 0, 0, 0, 0], abort_of(0, 0, AbortCode::InvalidCommandSpecifier));
+    }
+}
+
+#[test]
+fn servers_table() {
+    let node = NodeId::new(0x7F).unwrap();
+    let servers = SdoServers::<4>::new(node);
+    assert_eq!(servers.len(), 4);
+    assert_eq!(servers.find(0x67F), Some(0));
+    assert_eq!(servers.iter().filter(|s| s.rx_cob_id().is_some()).count(), 1);
+    let p = SdoServerParams {
+        cob_rx: CobIdEntry::from_raw(0x2000_0600),
+        cob_tx: CobIdEntry::from_raw(0x580),
+        client_node: None,
+    };
+    assert!(!p.is_valid(), "29-bit frames are not supported");
+}
+
+/// Issue 21 item 2 (server side), SDO-40 go-back-n on simulated time: a sub-block whose last segment is lost
+/// stalls; after a quarter of the SDO timeout the server acknowledges the in-order segments it has, the client
+/// resends the rest, and the SDO timeout still counts from the last frame received.
+#[test]
+fn stalled_sub_block_is_acknowledged_after_a_quarter_of_the_timeout() {
+    let mut s = server().with_block_size(4).with_timeout(Duration::from_millis(100));
+    let mut od = TestOd::new();
+    let t = |ms| Instant::from_millis(ms);
+    assert!(s.handle_request(t(0), &[0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], &mut od).frame.is_some());
+    // waiting for the first segment: the SDO timeout, no early acknowledge (nothing to acknowledge yet)
+    assert_eq!(s.poll_timeout(), Some(t(100)));
+    s.handle_request(t(1), &[0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], &mut od);
+    s.handle_request(t(2), &[0x02, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], &mut od);
+    // segment 3 (the last, 83h) is lost
+    assert_eq!(s.poll_timeout(), Some(t(27)));
+    assert_eq!(s.handle_timeout(t(26), &mut od), Response::NONE);
+    let r = s.handle_timeout(t(27), &mut od);
+    assert_eq!(r.frame, Some([0xA2, 0x02, 0x04, 0, 0, 0, 0, 0]), "ackseq 2, blksize 4");
+    assert_eq!(r.event, None);
+    assert_eq!(s.state(), ServerState::BlockDownloadSubBlock);
+    // one acknowledge per stall: then the SDO timeout from the last frame received (2 ms)
+    assert_eq!(s.poll_timeout(), Some(t(102)));
+    // the client resends "OP" as segment 1 of the next sub-block, last
+    let r = s.handle_request(t(30), &[0x81, 0x4F, 0x50, 0, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0xA2, 0x01, 0x04, 0, 0, 0, 0, 0]));
+    let r = s.handle_request(t(31), &[0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(od.domain(), b"ABCDEFGHIJKLMNOP");
+    // a stall with no in-order segment of the sub-block ends by the SDO timeout (0504 0000h)
+    s.handle_request(t(200), &[0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], &mut od);
+    s.handle_request(t(201), &[0x02, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E], &mut od);
+    assert_eq!(s.poll_timeout(), Some(t(301)));
+    assert_eq!(s.handle_timeout(t(301), &mut od).frame, abort_of(0x2000, 0, AbortCode::SdoTimeout));
+}
