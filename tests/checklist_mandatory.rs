@@ -290,3 +290,192 @@ fn client_initiates_either_side_aborts_sdo_07() {
     assert_eq!(bus.stations[0].app().text.as_str(), "");
     dialogue(&mut bus, &[("603 [8] 40 00 10 00 00 00 00 00", "583 [8] 43 00 10 00 00 00 00 00")]);
 }
+
+/// An SDO expedited download of a 4-byte value to node `id`: Ok, or the abort code.
+fn download(bus: &mut Bus<TestNode>, id: u8, index: u16, sub: u8, value: u32) -> Result<(), u32> {
+    download_n(bus, id, index, sub, value, 4)
+}
+
+/// An SDO expedited download of the `len` low bytes of `value` (n = 4 - len).
+fn download_n(bus: &mut Bus<TestNode>, id: u8, index: u16, sub: u8, value: u32, len: u8) -> Result<(), u32> {
+    let [lo, hi] = index.to_le_bytes();
+    let v = value.to_le_bytes();
+    let cmd = 0x23 | (4 - len) << 2;
+    let req = CanFrame::new(0x600 + u16::from(id), &[cmd, lo, hi, sub, v[0], v[1], v[2], v[3]]).unwrap();
+    bus.take_master_rx();
+    bus.inject(req);
+    let r: Vec<CanFrame> = bus.take_master_rx().into_iter().map(|s| s.frame).collect();
+    assert_eq!(r.len(), 1, "{index:04X}:{sub}: {r:?}");
+    let d = r[0].data();
+    assert_eq!(&d[1..4], &[lo, hi, sub]);
+    match d[0] {
+        0x60 => Ok(()),
+        0x80 => Err(u32::from_le_bytes([d[4], d[5], d[6], d[7]])),
+        c => panic!("{index:04X}:{sub}: unexpected command byte {c:02X}"),
+    }
+}
+
+/// DEV-01 (1000h device type: UNSIGNED32, read-only, not mappable; the profile number in bits 15–0 and the
+/// additional information in bits 31–16) and DEV-03 (1018h identity: sub 00h const 4, then vendor-ID,
+/// product code, revision and serial number, all read-only UNSIGNED32): the values of the configuration come
+/// back byte for byte (V-SDO-08/09 layout), every write is refused with 0601 0002h, 1018h:05 does not exist,
+/// and mapping 1000h into a TPDO is refused with 0604 0041h.
+#[test]
+fn device_type_and_identity_dev_01_dev_03() {
+    let cfg = NodeConfig {
+        device_type: 0x0002_0191,
+        identity: Identity { vendor_id: 0x0000_02B6, product_code: 0x0000_1234, revision: 0x0001_0002, serial: 42 },
+        tpdo: FOUR_TPDOS,
+        ..NodeConfig::DEFAULT
+    };
+    let mut bus = Bus::booted(vec![node(1, cfg)]);
+    dialogue(
+        &mut bus,
+        &[
+            ("601 [8] 40 00 10 00 00 00 00 00", "581 [8] 43 00 10 00 91 01 02 00"),
+            ("601 [8] 40 18 10 00 00 00 00 00", "581 [8] 4F 18 10 00 04 00 00 00"),
+            ("601 [8] 40 18 10 01 00 00 00 00", "581 [8] 43 18 10 01 B6 02 00 00"),
+            ("601 [8] 40 18 10 02 00 00 00 00", "581 [8] 43 18 10 02 34 12 00 00"),
+            ("601 [8] 40 18 10 03 00 00 00 00", "581 [8] 43 18 10 03 02 00 01 00"),
+            ("601 [8] 40 18 10 04 00 00 00 00", "581 [8] 43 18 10 04 2A 00 00 00"),
+            ("601 [8] 40 18 10 05 00 00 00 00", "581 [8] 80 18 10 05 11 00 09 06"),
+            ("601 [8] 2F 18 10 00 04 00 00 00", "581 [8] 80 18 10 00 02 00 01 06"),
+        ],
+    );
+    for (index, sub) in [(0x1000u16, 0u8), (0x1018, 1), (0x1018, 2), (0x1018, 3), (0x1018, 4)] {
+        assert_eq!(download(&mut bus, 1, index, sub, 7), Err(0x0601_0002), "{index:04X}:{sub}");
+    }
+    assert_eq!(upload(&mut bus, 1, 0x1018, 4), Ok(42));
+    // Not mappable: TPDO1 made invalid, its mapping emptied, then 1000h offered as an entry.
+    let cob = upload(&mut bus, 1, 0x1800, 1).unwrap();
+    assert_eq!(download(&mut bus, 1, 0x1800, 1, cob | 0x8000_0000), Ok(()));
+    assert_eq!(download_n(&mut bus, 1, 0x1A00, 0, 0, 1), Ok(()));
+    assert_eq!(download(&mut bus, 1, 0x1A00, 1, 0x1000_0020), Err(0x0604_0041));
+    assert_eq!(download(&mut bus, 1, 0x1A00, 1, 0x2002_0020), Ok(()));
+}
+
+/// OD-01 (an entry is addressed by a 16-bit index and an 8-bit sub-index) and OD-03 (a VAR is at sub-index
+/// 00h only): 1018h:01 and 1018h:04 are different entries; 1810h (the index bytes swapped) does not exist; the VARs 1017h and 2000h answer at 00h and refuse 01h and FFh with 0609 0011h; a write to 2000h:00
+/// changes only 2000h.
+#[test]
+fn object_addressing_od_01_od_03() {
+    let cfg = NodeConfig {
+        heartbeat_time_ms: 0x64,
+        identity: Identity { vendor_id: 1, product_code: 2, revision: 3, serial: 4 },
+        ..NodeConfig::DEFAULT
+    };
+    let mut bus = Bus::booted(vec![node(2, cfg)]);
+    assert_eq!(upload(&mut bus, 2, 0x1018, 1), Ok(1));
+    assert_eq!(upload(&mut bus, 2, 0x1018, 4), Ok(4));
+    assert_eq!(upload(&mut bus, 2, 0x1810, 1), Err(0x0602_0000));
+    assert_eq!(upload(&mut bus, 2, 0x1017, 0), Ok(0x64));
+    for sub in [1u8, 0xFF] {
+        assert_eq!(upload(&mut bus, 2, 0x1017, sub), Err(0x0609_0011), "1017h:{sub}");
+        assert_eq!(upload(&mut bus, 2, 0x2000, sub), Err(0x0609_0011), "2000h:{sub}");
+    }
+    dialogue(&mut bus, &[("602 [8] 2F 00 20 00 5A 00 00 00", "582 [8] 60 00 20 00 00 00 00 00")]);
+    let app = bus.stations[0].app();
+    assert_eq!((app.byte, app.word, app.long), (0x5A, 0, 0));
+}
+
+/// COB-14 (every COB-ID entry has the same layout: bit 31 and 30 object-specific, bit 29 the frame type,
+/// bits 10–0 the 11-bit CAN-ID with bits 28–11 zero) and DT-22 (such structured UNSIGNED32 entries travel
+/// as one little-endian UNSIGNED32): on 1005h, 1014h, 1400h and 1800h, bit 29 and any of bits 28–11 are
+/// refused with 0609 0030h; bit 31 makes TPDO1 invalid (a trigger sends nothing) and clearing it valid
+/// again; the new CAN-ID written as the bytes A3 01 00 80 is 0x8000_01A3 and TPDO1 goes out on 1A3h; the
+/// mapping written as 10 00 01 20 (2001h:00, 16 bits) reads back as those bytes and makes a 2-byte TPDO.
+#[test]
+fn cob_id_entry_layout_cob_14_dt_22() {
+    let cfg = NodeConfig { tpdo: FOUR_TPDOS, rpdo: FOUR_RPDOS, ..NodeConfig::DEFAULT };
+    let mut bus = Bus::booted(vec![node(3, cfg)]);
+    for (index, sub) in [(0x1005u16, 0u8), (0x1014, 0), (0x1400, 1), (0x1800, 1)] {
+        let cur = upload(&mut bus, 3, index, sub).unwrap();
+        let off = if index == 0x1005 { cur } else { cur | 0x8000_0000 };
+        assert_eq!(download(&mut bus, 3, index, sub, off), Ok(()), "{index:04X}");
+        for bad in [off | 0x2000_0000, off | 0x0000_0800, off | 0x1000_0000, off | 0x0004_0000] {
+            assert_eq!(download(&mut bus, 3, index, sub, bad), Err(0x0609_0030), "{index:04X} {bad:08X}");
+        }
+        assert_eq!(upload(&mut bus, 3, index, sub), Ok(off), "{index:04X} unchanged");
+    }
+    bus.inject(frame("000 [2] 01 03"));
+    bus.stations[0].app_mut().word = 0xBEEF;
+    assert!(!bus.stations[0].trigger_tpdo(0), "TPDO1 is invalid");
+    bus.take_master_rx();
+    dialogue(
+        &mut bus,
+        &[
+            ("603 [8] 23 00 18 01 A3 01 00 80", "583 [8] 60 00 18 01 00 00 00 00"),
+            ("603 [8] 2F 00 1A 00 00 00 00 00", "583 [8] 60 00 1A 00 00 00 00 00"),
+            ("603 [8] 23 00 1A 01 10 00 01 20", "583 [8] 60 00 1A 01 00 00 00 00"),
+            ("603 [8] 2F 00 1A 00 01 00 00 00", "583 [8] 60 00 1A 00 00 00 00 00"),
+            ("603 [8] 40 00 1A 01 00 00 00 00", "583 [8] 43 00 1A 01 10 00 01 20"),
+            ("603 [8] 40 00 18 01 00 00 00 00", "583 [8] 43 00 18 01 A3 01 00 80"),
+        ],
+    );
+    assert!(!bus.stations[0].trigger_tpdo(0), "still invalid");
+    dialogue(&mut bus, &[("603 [8] 23 00 18 01 A3 01 00 00", "583 [8] 60 00 18 01 00 00 00 00")]);
+    assert!(bus.stations[0].trigger_tpdo(0));
+    bus.run_for_ms(1);
+    assert_eq!(bus.frames_on(0x1A3), vec![(bus.now.as_micros() / 1000 - 1, vec![0xEF, 0xBE])]);
+    assert!(bus.frames_on(0x183).is_empty());
+}
+
+/// COB-10 (the pre-defined IDs apply whenever Pre-operational is entered after initialisation): TPDO1
+/// moved to 1A3h and the EMCY to 0A3h over SDO are back at 183h and 083h after NMT reset communication (82h),
+/// and TPDO1 goes out on 183h again; the same after reset node (81h).
+#[test]
+fn default_ids_after_reset_cob_10() {
+    let cfg = NodeConfig { tpdo: FOUR_TPDOS, ..NodeConfig::DEFAULT };
+    let mut bus = Bus::booted(vec![node(3, cfg)]);
+    let tpdo = upload(&mut bus, 3, 0x1800, 1).unwrap();
+    assert_eq!((tpdo & 0x7FF, upload(&mut bus, 3, 0x1014, 0)), (0x183, Ok(0x83)));
+    for reset in ["000 [2] 82 03", "000 [2] 81 03"] {
+        assert_eq!(download(&mut bus, 3, 0x1800, 1, 0x8000_01A3), Ok(()));
+        assert_eq!(download(&mut bus, 3, 0x1800, 1, 0x0000_01A3), Ok(()));
+        assert_eq!(download(&mut bus, 3, 0x1014, 0, 0x8000_0083), Ok(()));
+        assert_eq!(download(&mut bus, 3, 0x1014, 0, 0x0000_00A3), Ok(()));
+        assert_eq!(upload(&mut bus, 3, 0x1800, 1), Ok(0x0000_01A3));
+        let boot = exchange(&mut bus, reset);
+        assert_eq!(boot, vec![frame("703 [1] 00")], "{reset}");
+        assert_eq!(bus.stations[0].state(), NmtState::PreOperational);
+        assert_eq!(upload(&mut bus, 3, 0x1800, 1), Ok(tpdo), "{reset}");
+        assert_eq!(upload(&mut bus, 3, 0x1014, 0), Ok(0x83), "{reset}");
+        bus.log.clear();
+        bus.inject(frame("000 [2] 01 03"));
+        assert!(bus.stations[0].trigger_tpdo(0));
+        bus.run_for_ms(1);
+        assert!(bus.frames_on(0x1A3).is_empty());
+        assert!(!bus.frames_on(0x183).is_empty(), "{reset}");
+    }
+}
+
+/// PDO-01 (a PDO carries only the mapped data, 0 to 8 bytes, with no protocol bytes, and is not confirmed):
+/// TPDO1 maps one byte and goes out with DLC 1 holding just that byte, TPDO4 maps a byte and a word and goes
+/// out with DLC 3; TPDO2 with its mapping emptied (1A01h:00 = 0) goes out with DLC 0; RPDO1 received from the
+/// master is applied and nothing answers it.
+#[test]
+fn pdo_carries_only_mapped_data_pdo_01() {
+    let cfg = NodeConfig { tpdo: FOUR_TPDOS, rpdo: FOUR_RPDOS, ..NodeConfig::DEFAULT };
+    let mut bus = Bus::booted(vec![node(4, cfg)]);
+    let cob = upload(&mut bus, 4, 0x1801, 1).unwrap();
+    assert_eq!(download(&mut bus, 4, 0x1801, 1, cob | 0x8000_0000), Ok(()));
+    assert_eq!(download_n(&mut bus, 4, 0x1A01, 0, 0, 1), Ok(()));
+    assert_eq!(download(&mut bus, 4, 0x1801, 1, cob), Ok(()));
+    bus.inject(frame("000 [2] 01 04"));
+    bus.run_for_ms(1);
+    bus.log.clear(); // entering Operational sent each event-driven TPDO once (PDO-28)
+    {
+        let app = bus.stations[0].app_mut();
+        app.byte = 0x11;
+        app.word = 0x3322;
+    }
+    for k in [0, 1, 3] {
+        assert!(bus.stations[0].trigger_tpdo(k), "TPDO{}", k + 1);
+    }
+    bus.run_for_ms(1);
+    assert_eq!(bus.frames_on(0x184), vec![(1, vec![0x11])]);
+    assert_eq!(bus.frames_on(0x284), vec![(1, vec![])]);
+    assert_eq!(bus.frames_on(0x484), vec![(1, vec![0x11, 0x22, 0x33])]);
+    assert!(exchange(&mut bus, "204 [1] 55").is_empty());
+    assert_eq!(bus.stations[0].app().byte, 0x55);
+}
