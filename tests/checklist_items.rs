@@ -188,6 +188,7 @@ fn eds_list(eds: &str, section: &str) -> Vec<u16> {
 /// EDS files them under `[MandatoryObjects]` only; the optional ones (1005h, 1017h, the PDOs) under
 /// `[OptionalObjects]`; the application's under `[ManufacturerObjects]`; every object is in exactly one list.
 /// Conditional: an RPDO's mapping (1600h) exists exactly where its communication parameter (1400h) does.
+/// OD-12: 1000h, 1001h and 1018h are present (and readable over SDO) on a node configured with nothing.
 #[test]
 fn entry_categories_od_10() {
     let od = merged();

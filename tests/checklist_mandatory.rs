@@ -13,7 +13,7 @@ use canopen::core::{
     CanFrame, NmtState, NodeId,
 };
 use canopen::ObjectDictionary;
-use common::{frame, Bus, Sender};
+use common::{frame, Bus, Sender, Station};
 
 #[derive(ObjectDictionary, Default, Debug)]
 #[od(crate = "canopen::core")]
@@ -49,7 +49,7 @@ fn one(bus: &mut Bus<TestNode>, req: &str) -> CanFrame {
 }
 
 /// An SDO upload of `index:sub` from node `id`, as the expedited value (Ok) or the abort code (Err).
-fn upload(bus: &mut Bus<TestNode>, id: u8, index: u16, sub: u8) -> Result<u32, u32> {
+fn upload<S: Station>(bus: &mut Bus<S>, id: u8, index: u16, sub: u8) -> Result<u32, u32> {
     let [lo, hi] = index.to_le_bytes();
     let req = CanFrame::new(0x600 + u16::from(id), &[0x40, lo, hi, sub, 0, 0, 0, 0]).unwrap();
     bus.take_master_rx();
@@ -65,14 +65,6 @@ fn upload(bus: &mut Bus<TestNode>, id: u8, index: u16, sub: u8) -> Result<u32, u
         c if c & 0xF3 == 0x43 => Ok(v),
         c => panic!("{index:04X}:{sub}: unexpected command byte {c:02X}"),
     }
-}
-
-/// The abort frame node `id` answers to the multiplexer of `req` with `code`.
-fn abort(req: &str, code: u32) -> CanFrame {
-    let f = frame(req);
-    let d = f.data();
-    let c = code.to_le_bytes();
-    CanFrame::new(f.cob_id() - 0x80, &[0x80, d[1], d[2], d[3], c[0], c[1], c[2], c[3]]).unwrap()
 }
 
 const FOUR_TPDOS: &[PdoDefault] = &[
@@ -478,4 +470,49 @@ fn pdo_carries_only_mapped_data_pdo_01() {
     assert_eq!(bus.frames_on(0x484), vec![(1, vec![0x11, 0x22, 0x33])]);
     assert!(exchange(&mut bus, "204 [1] 55").is_empty());
     assert_eq!(bus.stations[0].app().byte, 0x55);
+}
+
+/// COB-09 (the pre-defined set allocates identifiers only to the objects the device has): a node built with
+/// no PDOs has no 1400h/1600h/1800h/1A00h at all; a node with four PDO slots of which none is configured
+/// has all of them invalid (bit 31); neither sends a PDO in a second of Operational, while the node whose
+/// four TPDOs are configured does; none has a second SDO server (1201h).
+#[test]
+fn identifiers_only_for_existing_objects_cob_09() {
+    let mut none: Bus<Node<App, 4, 16, 16, 0, 0>> =
+        Bus::booted(vec![Node::new(NodeId::new(6).unwrap(), NodeConfig::DEFAULT, App::default())]);
+    for index in [0x1400u16, 0x1600, 0x1800, 0x1A00, 0x1201] {
+        assert_eq!(upload(&mut none, 6, index, 1), Err(0x0602_0000), "{index:04X}");
+    }
+    assert_eq!(upload(&mut none, 6, 0x1014, 0), Ok(0x86));
+    let mut unused = Bus::booted(vec![
+        node(6, NodeConfig::DEFAULT),
+        node(7, NodeConfig { tpdo: FOUR_TPDOS, ..NodeConfig::DEFAULT }),
+    ]);
+    for k in 0..4u16 {
+        for index in [0x1400 + k, 0x1800 + k] {
+            assert_eq!(upload(&mut unused, 6, index, 1).map(|v| v >> 31), Ok(1), "{index:04X} invalid");
+            assert_eq!(upload(&mut unused, 7, index, 1).map(|v| v >> 31), Ok(u32::from(index < 0x1800)));
+        }
+    }
+    for bus_frames in [
+        {
+            none.inject(frame("000 [2] 01 00"));
+            none.stations[0].app_mut().byte = 1;
+            none.run_for_ms(1000);
+            none.log.iter().map(|s| s.frame.cob_id()).collect::<Vec<_>>()
+        },
+        {
+            unused.inject(frame("000 [2] 01 00"));
+            unused.stations[0].app_mut().byte = 1;
+            unused.run_for_ms(1000);
+            unused.log.iter().filter(|s| s.from == Sender::Station(0)).map(|s| s.frame.cob_id()).collect()
+        },
+    ] {
+        assert!(bus_frames.iter().all(|id| !(0x180..0x580).contains(id)), "{bus_frames:03X?}");
+    }
+    let configured: Vec<u16> =
+        unused.log.iter().filter(|s| s.from == Sender::Station(1)).map(|s| s.frame.cob_id()).collect();
+    for id in [0x187, 0x287, 0x387, 0x487] {
+        assert!(configured.contains(&id), "{id:03X}: {configured:03X?}");
+    }
 }
