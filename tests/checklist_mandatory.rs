@@ -135,6 +135,15 @@ fn dialogue(bus: &mut Bus<TestNode>, steps: &[(&str, &str)]) {
 /// segmented with size), SDO-17 (the answer is 60h, the multiplexer and four zero bytes, and the value is
 /// written when it comes), SDO-23 (initiate upload 40h with the multiplexer). Node 3, VECTORS §6, §7.2/7.3
 /// (on 2003h instead of 2000h) and §8.1/8.3.
+///
+/// The same frames prove the segmented and block layouts: SDO-05 (a 9-byte object goes segmented), SDO-14
+/// (21h with the size in bytes 4–7), SDO-19 (download segments 00h and 1Bh: t, n = 5 unused bytes, c on the
+/// last; exactly "123456789" is written), SDO-20 (answers 20h/30h, zeros), SDO-21 (t starts at 0, alternates,
+/// is echoed), SDO-22 (the write completes with the answer to the c = 1 segment, 9 bytes as announced),
+/// SDO-25 (41h with the size), SDO-26 (60h/70h), SDO-27 (00h then 1Bh: t, n, c), SDO-35 (C6h: cc, s, size),
+/// SDO-36 (A4h, multiplexer, blksize 1..127, zeros), SDO-39 (A2h, ackseq 2, blksize after the c = 1
+/// segment), SDO-42 (A4h, blksize 7Fh, pst 0), SDO-44 (C6h with the size), SDO-45 (nothing until A3h, then
+/// the sub-block), SDO-46 (segments, the client's A2h acknowledgement, then the end).
 #[test]
 fn sdo_command_specifiers_sdo_03_08_11_17_23() {
     let mut bus = Bus::booted(vec![node(3, NodeConfig::DEFAULT)]);
@@ -196,6 +205,7 @@ fn sdo_command_specifiers_sdo_03_08_11_17_23() {
     let d = r.data();
     assert_eq!((r.cob_id(), d[0], &d[1..4]), (0x583, 0xA4, &[0x03, 0x20, 0x00][..]), "{r:?}");
     assert!((2..=127).contains(&d[4]), "blksize {}", d[4]);
+    assert_eq!(&d[5..], &[0, 0, 0]);
     bus.inject(frame("603 [8] 01 41 42 43 44 45 46 47"));
     let blk = d[4];
     let ack = one(&mut bus, "603 [8] 82 48 49 00 00 00 00 00");
@@ -252,7 +262,7 @@ fn unknown_command_specifier_sdo_09_32_abort_03() {
 /// SDO-07 (only the client starts a transfer; either side may abort): in ten seconds of Operational with a
 /// heartbeat the server never sends on 583h by itself; a client abort (80h) ends a segmented download
 /// silently and the value is not written; the server aborts a segmented download whose toggle bit is wrong
-/// (0503 0000h, VECTORS §7.3 toggle-error variant), after which a new transfer starts normally.
+/// (0503 0000h, VECTORS §7.3 toggle-error variant, ABORT-01), after which a new transfer starts normally.
 #[test]
 fn client_initiates_either_side_aborts_sdo_07() {
     let mut bus = Bus::booted(vec![node(3, NodeConfig { heartbeat_time_ms: 100, ..NodeConfig::DEFAULT })]);
@@ -311,7 +321,7 @@ fn download_n(bus: &mut Bus<TestNode>, id: u8, index: u16, sub: u8, value: u32, 
 /// additional information in bits 31–16) and DEV-03 (1018h identity: sub 00h const 4, then vendor-ID,
 /// product code, revision and serial number, all read-only UNSIGNED32): the values of the configuration come
 /// back byte for byte (V-SDO-08/09 layout), every write is refused with 0601 0002h, 1018h:05 does not exist,
-/// and mapping 1000h into a TPDO is refused with 0604 0041h.
+/// and mapping 1000h into a TPDO is refused with 0604 0041h (ABORT-12).
 #[test]
 fn device_type_and_identity_dev_01_dev_03() {
     let cfg = NodeConfig {
@@ -515,4 +525,123 @@ fn identifiers_only_for_existing_objects_cob_09() {
     for id in [0x187, 0x287, 0x387, 0x487] {
         assert!(configured.contains(&id), "{id:03X}: {configured:03X?}");
     }
+}
+
+/// The block upload of `text` from 2003h on node 3 with the client's `blksize` and CRC, VECTORS §8.3 style:
+/// every frame the server sends after the start (A3h) and after each acknowledgement, sub-block by sub-block.
+fn block_upload_sub_blocks(bus: &mut Bus<TestNode>, blksize: u8, sub_blocks: &[&[&str]], end: &str) {
+    let init = format!("603 [8] A4 03 20 00 {blksize:02X} 00 00 00");
+    let r = one(bus, &init);
+    assert_eq!(r.data()[0], 0xC6, "{r:?}");
+    let mut trigger = "603 [8] A3 00 00 00 00 00 00 00".to_string();
+    for blk in sub_blocks {
+        let got = exchange(bus, &trigger);
+        let want: Vec<CanFrame> = blk.iter().map(|f| frame(f)).collect();
+        assert_eq!(got, want, "after {trigger}");
+        trigger = format!("603 [8] A2 {:02X} {blksize:02X} 00 00 00 00 00", blk.len());
+    }
+    dialogue(bus, &[(&trigger, end)]);
+    assert!(exchange(bus, "603 [8] A1 00 00 00 00 00 00 00").is_empty());
+}
+
+/// SDO-15 (20h: segmented download without a size), SDO-38 (seqno restarts at 1 in every sub-block, up to
+/// blksize), SDO-51 (a block transfer has at least one sub-block: 16 bytes in blocks of 2 segments make two
+/// sub-blocks), SDO-43 (protocol switch: pst 21 ≥ 9 bytes → a segmented upload 41h; a 2-byte object →
+/// expedited, VECTORS §8.4), SDO-48 and SDO-50/ABORT-06 (the CRC counts only when cc and sc were both 1:
+/// with C2h (cc 0) a CRC of 0000h is accepted; with C6h a wrong CRC is 0504 0004h),
+/// ABORT-04 (a client blksize of 0 or 80h is 0504 0002h) and ABORT-05 (a block-download segment with seqno
+/// 0 is 0504 0003h).
+#[test]
+fn segmented_and_block_variants_sdo_15_38_43_48_50_51_abort_04_05_06() {
+    let mut bus = Bus::booted(vec![node(3, NodeConfig { heartbeat_time_ms: 100, ..NodeConfig::DEFAULT })]);
+    // SDO-15.
+    dialogue(
+        &mut bus,
+        &[
+            ("603 [8] 20 03 20 00 00 00 00 00", "583 [8] 60 03 20 00 00 00 00 00"),
+            ("603 [8] 00 41 42 43 44 45 46 47", "583 [8] 20 00 00 00 00 00 00 00"),
+            ("603 [8] 10 48 49 4A 4B 4C 4D 4E", "583 [8] 30 00 00 00 00 00 00 00"),
+            ("603 [8] 0B 4F 50 00 00 00 00 00", "583 [8] 20 00 00 00 00 00 00 00"),
+        ],
+    );
+    assert_eq!(bus.stations[0].app().text.as_str(), "ABCDEFGHIJKLMNOP");
+    // SDO-38, SDO-51: blksize 2, 16 bytes = 3 segments = two sub-blocks, the second restarting at seqno 1.
+    let crc = crc16_xmodem(b"ABCDEFGHIJKLMNOP").to_le_bytes();
+    block_upload_sub_blocks(
+        &mut bus,
+        2,
+        &[
+            &["583 [8] 01 41 42 43 44 45 46 47", "583 [8] 02 48 49 4A 4B 4C 4D 4E"],
+            &["583 [8] 81 4F 50 00 00 00 00 00"],
+        ],
+        &format!("583 [8] D5 {:02X} {:02X} 00 00 00 00 00", crc[0], crc[1]),
+    );
+    // SDO-43.
+    dialogue(
+        &mut bus,
+        &[
+            ("603 [8] A4 03 20 00 7F 15 00 00", "583 [8] 41 03 20 00 10 00 00 00"),
+            ("603 [8] 60 00 00 00 00 00 00 00", "583 [8] 00 41 42 43 44 45 46 47"),
+            ("603 [8] 70 00 00 00 00 00 00 00", "583 [8] 10 48 49 4A 4B 4C 4D 4E"),
+            ("603 [8] 60 00 00 00 00 00 00 00", "583 [8] 0B 4F 50 00 00 00 00 00"),
+            ("603 [8] A4 17 10 00 7F 15 00 00", "583 [8] 4B 17 10 00 64 00 00 00"),
+        ],
+    );
+    // SDO-48: no CRC asked (C2h), so a CRC of 0000h is not checked.
+    let r = one(&mut bus, "603 [8] C2 03 20 00 03 00 00 00");
+    assert_eq!(r.data()[0] & 0xFB, 0xA0, "{r:?}");
+    bus.inject(frame("603 [8] 81 78 79 7A 00 00 00 00"));
+    bus.take_master_rx();
+    dialogue(&mut bus, &[("603 [8] D1 00 00 00 00 00 00 00", "583 [8] A1 00 00 00 00 00 00 00")]);
+    assert_eq!(bus.stations[0].app().text.as_str(), "xyz");
+    // SDO-50, ABORT-06: CRC asked and wrong.
+    let r = one(&mut bus, "603 [8] C6 03 20 00 03 00 00 00");
+    assert_eq!(r.data()[0], 0xA4, "{r:?}");
+    bus.inject(frame("603 [8] 81 31 32 33 00 00 00 00"));
+    bus.take_master_rx();
+    dialogue(&mut bus, &[("603 [8] D1 00 00 00 00 00 00 00", "583 [8] 80 03 20 00 04 00 04 05")]);
+    // What the object holds after this abort: `aborted_downloads_leave_the_old_value` (ignored, a defect).
+    // ABORT-04: blksize 0 and 80h at a block upload initiate.
+    for b in ["00", "80"] {
+        let req = format!("603 [8] A4 03 20 00 {b} 00 00 00");
+        dialogue(&mut bus, &[(&req, "583 [8] 80 03 20 00 02 00 04 05")]);
+    }
+    // ABORT-05: seqno 0 in a block download.
+    let r = one(&mut bus, "603 [8] C6 03 20 00 03 00 00 00");
+    assert_eq!(r.data()[0], 0xA4, "{r:?}");
+    let r = exchange(&mut bus, "603 [8] 80 31 32 33 00 00 00 00");
+    assert!(r.is_empty(), "80h here is the client's abort, not a segment: {r:?}");
+    let r = one(&mut bus, "603 [8] C6 03 20 00 03 00 00 00");
+    assert_eq!(r.data()[0], 0xA4, "{r:?}");
+    dialogue(&mut bus, &[("603 [8] 00 31 32 33 00 00 00 00", "583 [8] 80 03 20 00 03 00 04 05")]);
+}
+
+/// An aborted download must not change the object: the value read afterwards is the old one, whether the
+/// client aborted a segmented download or the server aborted a block download for a wrong CRC (SDO-50) or a
+/// wrong sequence number. Today the string types (VISIBLE/OCTET/UNICODE_STRING) stream each segment straight
+/// into their buffer and keep their old length on abort, so the old value's first bytes are overwritten.
+#[test]
+#[ignore = "defect: an aborted streamed download to a string overwrites the old value's bytes (OdValue strings have no abort_write; canopen-core/src, being restructured)"]
+fn aborted_downloads_leave_the_old_value() {
+    let mut bus = Bus::booted(vec![node(3, NodeConfig::DEFAULT)]);
+    let set_xyz = |bus: &mut Bus<TestNode>| {
+        dialogue(bus, &[("603 [8] 27 03 20 00 78 79 7A 00", "583 [8] 60 03 20 00 00 00 00 00")]);
+        assert_eq!(bus.stations[0].app().text.as_str(), "xyz");
+    };
+    set_xyz(&mut bus);
+    dialogue(
+        &mut bus,
+        &[
+            ("603 [8] 21 03 20 00 09 00 00 00", "583 [8] 60 03 20 00 00 00 00 00"),
+            ("603 [8] 00 31 32 33 34 35 36 37", "583 [8] 20 00 00 00 00 00 00 00"),
+        ],
+    );
+    assert!(exchange(&mut bus, "603 [8] 80 03 20 00 00 00 04 05").is_empty());
+    assert_eq!(bus.stations[0].app().text.as_str(), "xyz", "after a client abort");
+    set_xyz(&mut bus);
+    assert_eq!(one(&mut bus, "603 [8] C6 03 20 00 03 00 00 00").data()[0], 0xA4);
+    bus.inject(frame("603 [8] 81 31 32 33 00 00 00 00"));
+    bus.take_master_rx();
+    dialogue(&mut bus, &[("603 [8] D1 00 00 00 00 00 00 00", "583 [8] 80 03 20 00 04 00 04 05")]);
+    assert_eq!(bus.stations[0].app().text.as_str(), "xyz", "after a CRC error");
 }

@@ -64,7 +64,8 @@ fn on(bus: &Bus<TestNode>, id: u16) -> Vec<(u64, Vec<u8>)> {
 }
 
 /// VECTORS §9.3 (PDO-30..PDO-37, PDO-04, PDO-38/39): the master remaps RPDO1 of node 3 in the spec's order,
-/// then the RPDO carries the values; negative variants V-MAP-01..08.
+/// then the RPDO carries the values; negative variants V-MAP-01..08. ABORT-13: three 32-bit entries (96 bits)
+/// are refused with 0604 0042h (V-MAP-02).
 #[test]
 fn rpdo_remapping_procedure_vector() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig { rpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
@@ -171,6 +172,7 @@ fn tpdo_configuration_vector_and_cyclic_sync() {
 
 /// V-PDO-05 (PDO-19): type 00h sends once after the SYNC that follows an application event.
 /// V-PDO-06 (PDO-26, SYNC-10/11): type 02h with SYNC start value 2 and this node producing SYNC with 1019h = 4.
+/// ABORT-29: writing 1019h while 1006h is non-zero is refused for the present device state, 0800 0022h.
 #[test]
 fn acyclic_and_sync_start_value() {
     const TPDOS: &[PdoDefault] = &[
@@ -291,7 +293,7 @@ fn synchronous_rpdo_deadline_window_and_sync_length() {
 }
 
 /// VECTORS §11 (EMCY-04..09, ERR-01..09, NMT-22): the emergency state machine, 1001h and 1003h agree after a
-/// sequence of raised and cleared errors.
+/// sequence of raised and cleared errors. ABORT-31: 1003h:01 with an empty history is 0800 0024h (no data).
 #[test]
 fn emcy_error_register_and_history_vectors() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig::DEFAULT)]);

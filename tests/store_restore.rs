@@ -134,7 +134,7 @@ fn snapshot(n: &TestNode) -> (u16, u32, u8, u32) {
 
 const DEFAULTS: (u16, u32, u8, u32) = (0, 0x2000_0008, 1, 0);
 
-/// V-STO-01..07.
+/// V-STO-01..07. ABORT-27: a wrong "save" signature is answered 0800 0020h (V-STO-02).
 #[test]
 fn store_restore_vectors_and_resets() {
     let ram = Ram::default();
@@ -178,6 +178,7 @@ fn store_restore_vectors_and_resets() {
 }
 
 /// V-STO-03 (STORE-04): a storage failure is 0606 0000h; a node without storage reads 0 and refuses.
+/// ABORT-16: 0606 0000h is the answer to a store the hardware failed.
 #[test]
 fn storage_failure_and_no_storage() {
     let ram = Ram::default();
