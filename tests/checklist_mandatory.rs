@@ -82,7 +82,9 @@ const FOUR_RPDOS: &[PdoDefault] = FOUR_TPDOS;
 /// the boot-up, the heartbeat, the SDO answer go out on exactly those IDs, an SDO request to another node's
 /// 600h is not answered, NMT start on 000h addressed to the node is obeyed, and the COB-ID entries read over
 /// SDO hold the pre-defined IDs (1005h 080h, 1012h 100h, 1014h 080h + ID, 1400h–1403h 200h/300h/
-/// 400h/500h + ID, 1800h–1803h 180h/280h/380h/480h + ID). NodeId refuses 0 and 128.
+/// 400h/500h + ID, 1800h–1803h 180h/280h/380h/480h + ID). NodeId refuses 0 and 128. The same reads prove
+/// COB-04 (EMCY 080h + ID), COB-06 (RPDO1-4 200h/300h/400h/500h + ID) and COB-12 (the generic pre-defined
+/// set of 1400h-1403h and 1800h-1803h).
 #[test]
 fn predefined_connection_set_cob_01_02_03_07_08_11_sdo_01() {
     assert!(NodeId::new(0).is_none() && NodeId::new(128).is_none() && NodeId::new(255).is_none());
@@ -644,4 +646,143 @@ fn aborted_downloads_leave_the_old_value() {
     bus.take_master_rx();
     dialogue(&mut bus, &[("603 [8] D1 00 00 00 00 00 00 00", "583 [8] 80 03 20 00 04 00 04 05")]);
     assert_eq!(bus.stations[0].app().text.as_str(), "xyz", "after a CRC error");
+}
+
+/// OD-13 (the node supports node guarding, so 100Ch and 100Dh exist; 1017h exists too), HB-01 (1017h:
+/// UNSIGNED16 ms, rw, default 0 = off, not mappable), GUARD-02 (100Ch: UNSIGNED16 ms, rw, default 0) and
+/// GUARD-03 (100Dh: UNSIGNED8 factor, rw, default 0): sizes and defaults as read, writes of the right size
+/// accepted and read back, of the wrong size refused (V-SDO-13, V-SDO-14); 1017h = 50 makes a heartbeat every
+/// 50 ms and 0 stops it; mapping 1017h into a TPDO is 0604 0041h.
+#[test]
+fn error_control_objects_od_13_hb_01_guard_02_guard_03() {
+    let mut bus = Bus::booted(vec![node(3, NodeConfig { tpdo: FOUR_TPDOS, ..NodeConfig::DEFAULT })]);
+    dialogue(
+        &mut bus,
+        &[
+            ("603 [8] 40 17 10 00 00 00 00 00", "583 [8] 4B 17 10 00 00 00 00 00"),
+            ("603 [8] 40 0C 10 00 00 00 00 00", "583 [8] 4B 0C 10 00 00 00 00 00"),
+            ("603 [8] 40 0D 10 00 00 00 00 00", "583 [8] 4F 0D 10 00 00 00 00 00"),
+            ("603 [8] 2F 17 10 00 64 00 00 00", "583 [8] 80 17 10 00 13 00 07 06"),
+            ("603 [8] 23 0D 10 00 03 00 00 00", "583 [8] 80 0D 10 00 12 00 07 06"),
+            ("603 [8] 2B 0C 10 00 64 00 00 00", "583 [8] 60 0C 10 00 00 00 00 00"),
+            ("603 [8] 2F 0D 10 00 03 00 00 00", "583 [8] 60 0D 10 00 00 00 00 00"),
+            ("603 [8] 40 0C 10 00 00 00 00 00", "583 [8] 4B 0C 10 00 64 00 00 00"),
+            ("603 [8] 40 0D 10 00 00 00 00 00", "583 [8] 4F 0D 10 00 03 00 00 00"),
+            ("603 [8] 2B 0C 10 00 00 00 00 00", "583 [8] 60 0C 10 00 00 00 00 00"),
+        ],
+    );
+    bus.run_for_ms(1000);
+    assert!(bus.frames_on(0x703).len() == 1, "only the boot-up with 1017h = 0");
+    let t0 = bus.now.as_micros() / 1000;
+    dialogue(&mut bus, &[("603 [8] 2B 17 10 00 32 00 00 00", "583 [8] 60 17 10 00 00 00 00 00")]);
+    bus.run_for_ms(120);
+    let hb: Vec<u64> = bus.frames_on(0x703).iter().skip(1).map(|(t, _)| t - t0).collect();
+    assert_eq!(hb, [50, 100]);
+    dialogue(&mut bus, &[("603 [8] 2B 17 10 00 00 00 00 00", "583 [8] 60 17 10 00 00 00 00 00")]);
+    bus.run_for_ms(500);
+    assert_eq!(bus.frames_on(0x703).len(), 3);
+    let cob = upload(&mut bus, 3, 0x1800, 1).unwrap();
+    assert_eq!(download(&mut bus, 3, 0x1800, 1, cob | 0x8000_0000), Ok(()));
+    assert_eq!(download_n(&mut bus, 3, 0x1A00, 0, 0, 1), Ok(()));
+    assert_eq!(download(&mut bus, 3, 0x1A00, 1, 0x1017_0010), Err(0x0604_0041));
+}
+
+/// SYNC-06 (1006h communication cycle period: UNSIGNED32 µs, rw, default 0 = no SYNC): a node that may
+/// produce SYNC (1005h bit 30) reads 1006h as 0 and sends nothing; 1006h = 10 000 µs makes a SYNC every
+/// 10 ms; 0 stops it again. EMCY-02 (1014h: UNSIGNED32, rw, default 080h + node-ID, frame bit 0): read as
+/// 4 bytes 83 00 00 00, written and read back.
+#[test]
+fn sync_period_sync_06_and_emcy_cob_id_emcy_02() {
+    let cfg = NodeConfig {
+        sync: canopen::core::sync::SyncParams {
+            cob_id: canopen::core::cob::CobIdEntry::from_raw(0x4000_0080),
+            ..canopen::core::sync::SyncParams::DEFAULT
+        },
+        ..NodeConfig::DEFAULT
+    };
+    let mut bus = Bus::booted(vec![node(3, cfg)]);
+    dialogue(&mut bus, &[("603 [8] 40 06 10 00 00 00 00 00", "583 [8] 43 06 10 00 00 00 00 00")]);
+    bus.run_for_ms(100);
+    assert!(bus.frames_on(0x080).is_empty());
+    dialogue(&mut bus, &[("603 [8] 23 06 10 00 10 27 00 00", "583 [8] 60 06 10 00 00 00 00 00")]);
+    let t0 = bus.now.as_micros() / 1000;
+    bus.run_for_ms(100);
+    let sync: Vec<u64> = bus.frames_on(0x080).iter().map(|(t, _)| t - t0).collect();
+    assert_eq!(sync, (1..=10).map(|k| 10 * k).collect::<Vec<u64>>());
+    dialogue(&mut bus, &[("603 [8] 23 06 10 00 00 00 00 00", "583 [8] 60 06 10 00 00 00 00 00")]);
+    bus.run_for_ms(100);
+    assert_eq!(bus.frames_on(0x080).len(), 10);
+    dialogue(
+        &mut bus,
+        &[
+            ("603 [8] 40 14 10 00 00 00 00 00", "583 [8] 43 14 10 00 83 00 00 00"),
+            ("603 [8] 23 14 10 00 83 00 00 80", "583 [8] 60 14 10 00 00 00 00 00"),
+            ("603 [8] 23 14 10 00 A3 00 00 80", "583 [8] 60 14 10 00 00 00 00 00"),
+            ("603 [8] 40 14 10 00 00 00 00 00", "583 [8] 43 14 10 00 A3 00 00 80"),
+        ],
+    );
+}
+
+/// SYNC-05 (a SYNC consumer handles SYNC in Pre-operational and Operational; the PDO action only in
+/// Operational): in Pre-operational a SYNC with a counter the node does not expect (1019h = 0) raises EMCY
+/// 8240h, so it was handled, yet the synchronous TPDO stays silent; in Operational the TPDO follows each
+/// SYNC; in Stopped the SYNC is not handled (no EMCY, no TPDO).
+#[test]
+fn sync_in_pre_operational_and_operational_sync_05() {
+    const TPDO_SYNC: &[PdoDefault] =
+        &[PdoDefault { transmission_type: 1, mapping: &[0x2000_0008], ..PdoDefault::EVENT }];
+    let mut bus = Bus::booted(vec![node(3, NodeConfig { tpdo: TPDO_SYNC, ..NodeConfig::DEFAULT })]);
+    bus.inject(frame("080 [0]"));
+    assert!(bus.frames_on(0x183).is_empty());
+    bus.inject(frame("080 [1] 05"));
+    assert_eq!(bus.frames_on(0x083).len(), 1);
+    assert_eq!(&bus.frames_on(0x083)[0].1[..2], &[0x40, 0x82]);
+    assert!(bus.frames_on(0x183).is_empty());
+    bus.inject(frame("000 [2] 01 03"));
+    for _ in 0..3 {
+        bus.inject(frame("080 [0]"));
+    }
+    assert_eq!(bus.frames_on(0x183).len(), 3);
+    bus.inject(frame("000 [2] 02 03"));
+    let emcy = bus.frames_on(0x083).len();
+    bus.inject(frame("080 [1] 05"));
+    bus.inject(frame("080 [0]"));
+    assert_eq!((bus.frames_on(0x083).len(), bus.frames_on(0x183).len()), (emcy, 3));
+}
+
+/// PDO-06 (1400h+k sub 00h: const, the highest sub-index, between 02h and 06h: 05h here, with the inhibit
+/// time 03h and the event timer 05h) and PDO-07 (1400h+k sub 01h bit 31: only valid RPDOs are used in
+/// Operational): RPDO1 and RPDO2 both map 2000h; RPDO2 invalid ignores its frames on 304h while RPDO1's on
+/// 204h are applied; once RPDO2's bit 31 is cleared, its frames are applied too, and once RPDO1's is set,
+/// RPDO1's are not.
+#[test]
+fn rpdo_parameter_count_and_valid_bit_pdo_06_pdo_07() {
+    const TWO: &[PdoDefault] = &[
+        PdoDefault { mapping: &[0x2000_0008], ..PdoDefault::EVENT },
+        PdoDefault { mapping: &[0x2000_0008], ..PdoDefault::EVENT },
+    ];
+    let mut bus = Bus::booted(vec![node(4, NodeConfig { rpdo: TWO, ..NodeConfig::DEFAULT })]);
+    dialogue(
+        &mut bus,
+        &[
+            ("604 [8] 40 00 14 00 00 00 00 00", "584 [8] 4F 00 14 00 05 00 00 00"),
+            ("604 [8] 2F 00 14 00 02 00 00 00", "584 [8] 80 00 14 00 02 00 01 06"),
+            ("604 [8] 40 00 14 04 00 00 00 00", "584 [8] 80 00 14 04 11 00 09 06"),
+        ],
+    );
+    let rpdo2 = upload(&mut bus, 4, 0x1401, 1).unwrap();
+    assert_eq!(download(&mut bus, 4, 0x1401, 1, rpdo2 | 0x8000_0000), Ok(()));
+    bus.inject(frame("000 [2] 01 04"));
+    let byte = |bus: &Bus<TestNode>| bus.stations[0].app().byte;
+    bus.inject(frame("204 [1] 11"));
+    assert_eq!(byte(&bus), 0x11);
+    bus.inject(frame("304 [1] 22"));
+    assert_eq!(byte(&bus), 0x11, "RPDO2 is invalid");
+    assert_eq!(download(&mut bus, 4, 0x1401, 1, rpdo2 & 0x7FFF_FFFF), Ok(()));
+    bus.inject(frame("304 [1] 22"));
+    assert_eq!(byte(&bus), 0x22);
+    let rpdo1 = upload(&mut bus, 4, 0x1400, 1).unwrap();
+    assert_eq!(download(&mut bus, 4, 0x1400, 1, rpdo1 | 0x8000_0000), Ok(()));
+    bus.inject(frame("204 [1] 33"));
+    assert_eq!(byte(&bus), 0x22, "RPDO1 is invalid");
 }

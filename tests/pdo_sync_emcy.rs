@@ -293,7 +293,8 @@ fn synchronous_rpdo_deadline_window_and_sync_length() {
 }
 
 /// VECTORS §11 (EMCY-04..09, ERR-01..09, NMT-22): the emergency state machine, 1001h and 1003h agree after a
-/// sequence of raised and cleared errors. ABORT-31: 1003h:01 with an empty history is 0800 0024h (no data).
+/// sequence of raised and cleared errors. EEC-01/EEC-02: the generic error 1000h goes out as 00 10, and
+/// 0000h (error reset) when the errors clear. COB-04: the EMCY is on 080h + node-ID (083h). ABORT-31: 1003h:01 with an empty history is 0800 0024h (no data).
 #[test]
 fn emcy_error_register_and_history_vectors() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig::DEFAULT)]);
@@ -385,6 +386,7 @@ fn time_round_trip() {
 }
 
 /// ERR-10..13, NMT-26: 1029h sub 01h decides what a heartbeat time-out does; 8130h is raised (EEC-12).
+/// HB-13: the consumer's heartbeat time-out is that communication error, handled per 1029h sub 01h.
 #[test]
 fn error_behaviour_1029() {
     for (behaviour, expect) in [(0u8, NmtState::PreOperational), (1, NmtState::Operational), (2, NmtState::Stopped)] {

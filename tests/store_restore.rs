@@ -134,7 +134,10 @@ fn snapshot(n: &TestNode) -> (u16, u32, u8, u32) {
 
 const DEFAULTS: (u16, u32, u8, u32) = (0, 0x2000_0008, 1, 0);
 
-/// V-STO-01..07. ABORT-27: a wrong "save" signature is answered 0800 0020h (V-STO-02).
+/// V-STO-01..07. STORE-02 (1010h sub 01h all, 02h communication, 03h application: saving only 03h keeps
+/// the communication defaults; restoring 02h only the communication ones), STORE-03 ("save" is 73 61 76 65;
+/// 73 61 76 00 is refused), STORE-05 and STORE-11 (1010h:01 and 1011h:01 read 1: on command), STORE-06 (the
+/// sub-entries are written). ABORT-27: a wrong "save" signature is answered 0800 0020h (V-STO-02).
 #[test]
 fn store_restore_vectors_and_resets() {
     let ram = Ram::default();
