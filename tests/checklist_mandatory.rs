@@ -786,3 +786,28 @@ fn rpdo_parameter_count_and_valid_bit_pdo_06_pdo_07() {
     bus.inject(frame("204 [1] 33"));
     assert_eq!(byte(&bus), 0x22, "RPDO1 is invalid");
 }
+
+/// PDO-27 (a TPDO with a SYNC start value, whose start the counter has already passed when the node enters
+/// Operational, waits for the next cycle in which the counter equals the start value): node 3 consumes SYNC
+/// with a counter to 10 (1019h); TPDO1 is type 1 with start value 3. Operational is entered after the SYNC
+/// with counter 5: counters 6 to 10 and 1, 2 send nothing, 3 sends the first TPDO, and 4 and 5 the next.
+#[test]
+fn sync_start_value_already_passed_pdo_27() {
+    const TPDO: &[PdoDefault] =
+        &[PdoDefault { transmission_type: 1, sync_start: 3, mapping: &[0x2000_0008], ..PdoDefault::EVENT }];
+    let mut bus = Bus::booted(vec![node(3, NodeConfig { tpdo: TPDO, ..NodeConfig::DEFAULT })]);
+    dialogue(&mut bus, &[("603 [8] 2F 19 10 00 0A 00 00 00", "583 [8] 60 19 10 00 00 00 00 00")]);
+    let sync = |bus: &mut Bus<TestNode>, c: u8| {
+        let before = bus.frames_on(0x183).len();
+        bus.inject(CanFrame::new(0x080, &[c]).unwrap());
+        bus.frames_on(0x183).len() > before
+    };
+    for c in 1..=5 {
+        assert!(!sync(&mut bus, c), "Pre-operational, counter {c}");
+    }
+    bus.inject(frame("000 [2] 01 03"));
+    bus.log.clear();
+    let sent: Vec<bool> = [6u8, 7, 8, 9, 10, 1, 2, 3, 4, 5].into_iter().map(|c| sync(&mut bus, c)).collect();
+    assert_eq!(sent, [false, false, false, false, false, false, false, true, true, true]);
+    assert!(bus.frames_on(0x083).is_empty(), "no EMCY: the counter is expected");
+}
