@@ -145,7 +145,8 @@ fn dialogue(bus: &mut Bus<TestNode>, steps: &[(&str, &str)]) {
 /// SDO-25 (41h with the size), SDO-26 (60h/70h), SDO-27 (00h then 1Bh: t, n, c), SDO-35 (C6h: cc, s, size),
 /// SDO-36 (A4h, multiplexer, blksize 1..127, zeros), SDO-39 (A2h, ackseq 2, blksize after the c = 1
 /// segment), SDO-42 (A4h, blksize 7Fh, pst 0), SDO-44 (C6h with the size), SDO-45 (nothing until A3h, then
-/// the sub-block), SDO-46 (segments, the client's A2h acknowledgement, then the end).
+/// the sub-block), SDO-46 (segments, the client's A2h acknowledgement, then the end). SDO-06: block transfer,
+/// optional, is offered both ways.
 #[test]
 fn sdo_command_specifiers_sdo_03_08_11_17_23() {
     let mut bus = Bus::booted(vec![node(3, NodeConfig::DEFAULT)]);
@@ -388,6 +389,7 @@ fn object_addressing_od_01_od_03() {
 /// refused with 0609 0030h; bit 31 makes TPDO1 invalid (a trigger sends nothing) and clearing it valid
 /// again; the new CAN-ID written as the bytes A3 01 00 80 is 0x8000_01A3 and TPDO1 goes out on 1A3h; the
 /// mapping written as 10 00 01 20 (2001h:00, 16 bits) reads back as those bytes and makes a 2-byte TPDO.
+/// PDO-05 (variable mapping: the PDO configuration is changed over SDO).
 #[test]
 fn cob_id_entry_layout_cob_14_dt_22() {
     let cfg = NodeConfig { tpdo: FOUR_TPDOS, rpdo: FOUR_RPDOS, ..NodeConfig::DEFAULT };
@@ -690,7 +692,8 @@ fn error_control_objects_od_13_hb_01_guard_02_guard_03() {
 /// SYNC-06 (1006h communication cycle period: UNSIGNED32 µs, rw, default 0 = no SYNC): a node that may
 /// produce SYNC (1005h bit 30) reads 1006h as 0 and sends nothing; 1006h = 10 000 µs makes a SYNC every
 /// 10 ms; 0 stops it again. EMCY-02 (1014h: UNSIGNED32, rw, default 080h + node-ID, frame bit 0): read as
-/// 4 bytes 83 00 00 00, written and read back.
+/// 4 bytes 83 00 00 00, written and read back. SYNC-08 (1007h window length: UNSIGNED32, rw, default 0;
+/// the unit, µs, is `sync_window_boundary_sync_09`'s): read as 4 zero bytes, written and read back.
 #[test]
 fn sync_period_sync_06_and_emcy_cob_id_emcy_02() {
     let cfg = NodeConfig {
@@ -715,6 +718,9 @@ fn sync_period_sync_06_and_emcy_cob_id_emcy_02() {
     dialogue(
         &mut bus,
         &[
+            ("603 [8] 40 07 10 00 00 00 00 00", "583 [8] 43 07 10 00 00 00 00 00"),
+            ("603 [8] 23 07 10 00 E8 03 00 00", "583 [8] 60 07 10 00 00 00 00 00"),
+            ("603 [8] 40 07 10 00 00 00 00 00", "583 [8] 43 07 10 00 E8 03 00 00"),
             ("603 [8] 40 14 10 00 00 00 00 00", "583 [8] 43 14 10 00 83 00 00 00"),
             ("603 [8] 23 14 10 00 83 00 00 80", "583 [8] 60 14 10 00 00 00 00 00"),
             ("603 [8] 23 14 10 00 A3 00 00 80", "583 [8] 60 14 10 00 00 00 00 00"),

@@ -60,7 +60,9 @@ fn samples() -> Vec<(u16, u8, Vec<u8>, DataType)> {
 /// VISIBLE_STRING needs no terminating zero: 12 characters are 12 bytes), DT-12 (UNICODE_STRING is an array
 /// of little-endian UNSIGNED16: 41 00 E9 00 is 'A', 'é'), DT-14 (TIME_DIFFERENCE has the TIME_OF_DAY layout:
 /// 28-bit milliseconds, 4 reserved bits, 16-bit days), DT-15 (a DOMAIN holds a block of any length up to
-/// its capacity and any content).
+/// its capacity and any content). OD-09: the `rww` (2002h) and `rwr` (2003h) entries are read and written,
+/// through the dictionary calls the SDO server makes,
+/// like rw; their PDO direction is `pdo_handles`'s and `table_is_const_and_sorted`'s.
 #[test]
 fn every_writable_entry_round_trips() {
     let mut od = AllTypes::default();

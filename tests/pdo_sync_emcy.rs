@@ -294,7 +294,7 @@ fn synchronous_rpdo_deadline_window_and_sync_length() {
 
 /// VECTORS §11 (EMCY-04..09, ERR-01..09, NMT-22): the emergency state machine, 1001h and 1003h agree after a
 /// sequence of raised and cleared errors. EEC-01/EEC-02: the generic error 1000h goes out as 00 10, and
-/// 0000h (error reset) when the errors clear. COB-04: the EMCY is on 080h + node-ID (083h). ABORT-31: 1003h:01 with an empty history is 0800 0024h (no data).
+/// 0000h (error reset) when the errors clear (EMCY-01: the producer supports at least those two). COB-04: the EMCY is on 080h + node-ID (083h). ABORT-31: 1003h:01 with an empty history is 0800 0024h (no data).
 #[test]
 fn emcy_error_register_and_history_vectors() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig::DEFAULT)]);
