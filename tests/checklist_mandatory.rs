@@ -817,3 +817,14 @@ fn sync_start_value_already_passed_pdo_27() {
     assert_eq!(sent, [false, false, false, false, false, false, false, true, true, true]);
     assert!(bus.frames_on(0x083).is_empty(), "no EMCY: the counter is expected");
 }
+
+/// EMCY-12 (the manufacturer-specific field and additional error codes come from the manufacturer): an
+/// application error code (FF01h, device specific) and its five bytes go out unchanged in the EMCY frame,
+/// after the error register (bit 0 and the manufacturer bit 7 set).
+#[test]
+fn manufacturer_error_code_and_field_emcy_12() {
+    let mut bus = Bus::booted(vec![node(3, NodeConfig::DEFAULT)]);
+    assert!(bus.stations[0].raise_error(0xFF01, [1, 2, 3, 4, 5]));
+    bus.run_for_ms(1);
+    assert_eq!(bus.frames_on(0x083), vec![(0, vec![0x01, 0xFF, 0x81, 1, 2, 3, 4, 5])]);
+}
