@@ -26,6 +26,8 @@ fn states(bus: &Bus<TestNode>) -> Vec<NmtState> {
 }
 
 /// NMT-03, NMT-23, NMT-24, V-HB-01: every node boots by itself into Pre-operational with one boot-up frame.
+/// NMT-02: the node starts in Initialising and passes its reset sub-states (reset application, reset
+/// communication) before Pre-operational, as its events show.
 #[test]
 fn power_on_boot_up() {
     let mut bus = Bus::new(vec![node(5, 0), node(6, 0), node(42, 0)]);
