@@ -187,6 +187,8 @@ fn eds_list(eds: &str, section: &str) -> Vec<u16> {
 /// EDS files them under `[MandatoryObjects]` only; the optional ones (1005h, 1017h, the PDOs) under
 /// `[OptionalObjects]`; the application's under `[ManufacturerObjects]`; every object is in exactly one list.
 /// Conditional: an RPDO's mapping (1600h) exists exactly where its communication parameter (1400h) does.
+/// OD-14: every PDO has both records (1400h+k with 1600h+k, 1800h+k with 1A00h+k).
+/// OD-12: 1000h, 1001h and 1018h are present (and readable over SDO) on a node configured with nothing.
 #[test]
 fn entry_categories_od_10() {
     let od = merged();
@@ -219,7 +221,7 @@ fn entry_categories_od_10() {
 /// record layouts): walking the whole dictionary, every object is a VAR with only sub 00h, or an ARRAY/RECORD
 /// whose sub 00h is an UNSIGNED8 count; every sub-entry has one basic data type (below 0020h:
 /// no record or array inside). 1400h is PDO_COMMUNICATION_PARAMETER (0020h), 1600h PDO_MAPPING (0021h), 1018h
-/// IDENTITY (0023h), sub by sub.
+/// IDENTITY (0023h), sub by sub. PDO-03: each PDO is described by exactly those two records.
 #[test]
 fn no_nesting_and_predefined_records_od_07_dt_18() {
     let od = merged();

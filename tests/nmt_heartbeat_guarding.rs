@@ -26,6 +26,8 @@ fn states(bus: &Bus<TestNode>) -> Vec<NmtState> {
 }
 
 /// NMT-03, NMT-23, NMT-24, V-HB-01: every node boots by itself into Pre-operational with one boot-up frame.
+/// NMT-02: the node starts in Initialising and passes its reset sub-states (reset application, reset
+/// communication) before Pre-operational, as its events show.
 #[test]
 fn power_on_boot_up() {
     let mut bus = Bus::new(vec![node(5, 0), node(6, 0), node(42, 0)]);
@@ -48,6 +50,10 @@ fn power_on_boot_up() {
 }
 
 /// NMT-07..NMT-15, V-NMT-01..V-NMT-08: unicast and broadcast commands; the slaves never answer on 000h.
+/// NMT-01 and COB-02: each node is an NMT slave obeying commands addressed to its own node-ID (06h moves
+/// only node 6; 07h, absent, moves none) or to 0, which addresses all. NMT-02: the states the nodes walk
+/// through are Pre-operational, Operational and Stopped, and the Initialisation sub-states reset node and
+/// reset communication each end with a boot-up into Pre-operational.
 #[test]
 fn nmt_command_sequence() {
     let mut bus = Bus::new(vec![node(5, 0), node(6, 0), node(42, 0)]);
@@ -104,6 +110,8 @@ fn malformed_nmt_frames_are_ignored() {
 }
 
 /// HB-02..HB-04, NMT-18, NMT-21: the derived heartbeat timeline of VECTORS.md §4 (node 5, 100 ms).
+/// GUARD-01 (at least one error-control protocol): the heartbeat producer is one (node guarding, the other,
+/// is proven by `guarding_toggle_sequence_vector`).
 #[test]
 fn heartbeat_timeline_vector() {
     let mut bus = Bus::new(vec![node(5, 100)]);
@@ -235,6 +243,7 @@ fn heartbeat_consumer_timeline() {
 }
 
 /// GUARD-05..GUARD-08, V-GRD-01..V-GRD-03: the derived toggle sequence of VECTORS.md §5 (node 5).
+/// GUARD-01: node guarding is offered as an error-control protocol.
 #[test]
 fn guarding_toggle_sequence_vector() {
     let mut bus = Bus::new(vec![node(5, 0)]);

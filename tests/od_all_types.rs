@@ -6,8 +6,10 @@ mod common {
 }
 
 use canopen_core::od::{
-    AbortCode, Access, DataType, ObjectCode, ObjectDictionary, OdDescribe, PdoDir, PdoMapping, TimeOfDay, Value,
+    AbortCode, Access, DataType, ObjectCode, ObjectDictionary, OdDescribe, PdoDir, PdoMapping, TimeDifference,
+    TimeOfDay, Value,
 };
+use canopen_core::profile::eds::{write_eds, EdsInfo};
 use common::all_types::{node_od, AllTypes};
 
 fn read(od: &impl ObjectDictionary, index: u16, sub: u8) -> Result<Vec<u8>, AbortCode> {
@@ -53,6 +55,14 @@ fn samples() -> Vec<(u16, u8, Vec<u8>, DataType)> {
     ]
 }
 
+/// Every writable entry of every data type takes a value and reads it back byte for byte, with the size of
+/// what was written: DT-10 (OCTET_STRING is plain UNSIGNED8s, 00h and FFh included), DT-11 (a
+/// VISIBLE_STRING needs no terminating zero: 12 characters are 12 bytes), DT-12 (UNICODE_STRING is an array
+/// of little-endian UNSIGNED16: 41 00 E9 00 is 'A', 'é'), DT-14 (TIME_DIFFERENCE has the TIME_OF_DAY layout:
+/// 28-bit milliseconds, 4 reserved bits, 16-bit days), DT-15 (a DOMAIN holds a block of any length up to
+/// its capacity and any content). OD-09: the `rww` (2002h) and `rwr` (2003h) entries are read and written,
+/// through the dictionary calls the SDO server makes,
+/// like rw; their PDO direction is `pdo_handles`'s and `table_is_const_and_sorted`'s.
 #[test]
 fn every_writable_entry_round_trips() {
     let mut od = AllTypes::default();
@@ -71,6 +81,9 @@ fn every_writable_entry_round_trips() {
     assert_eq!(od.int40.get(), -0x7A_FBFC_FDFF);
     assert_eq!(od.uint24.get(), 0x03_0201);
     assert_eq!(od.time_of_day, TimeOfDay::new(9913, 43_200_000).unwrap());
+    assert_eq!(od.time_diff, TimeDifference::new(0x16D4, 0x02B3_2C95).unwrap()); // 5844 days, 45 296 789 ms
+    assert_eq!(od.octets.as_bytes(), &[0, 0xFF, 0x10]);
+    assert_eq!(od.firmware.as_bytes(), (0..40).collect::<Vec<u8>>());
     assert_eq!(od.visible.as_str(), "visible text");
     assert_eq!(od.unicode.units(), &[0x41, 0xE9]);
     assert_eq!(od.firmware.as_bytes().len(), 40);
@@ -106,6 +119,12 @@ fn read_only_entries_and_counts() {
     assert_eq!(read(&od, 0x2021, 0).unwrap(), b"AB");
 }
 
+/// OD-16 (access errors give the fixed abort codes of Table 22): read of a wo entry 0601 0001h; write of
+/// ro, const and sub 00h 0601 0002h; unknown index 0602 0000h; unknown sub-index 0609 0011h; length
+/// 0607 0010h/0012h/0013h; value 0609 0030h/0031h/0032h, and a refused write changes nothing. OD-08 (the
+/// access types): wo is writable but not readable, ro and const are readable but not writable (rw entries
+/// round-trip in `every_writable_entry_round_trips`). DT-11: a VISIBLE_STRING refuses a non-visible
+/// character (07h).
 #[test]
 fn abort_codes() {
     let mut od = AllTypes::with_defaults();
@@ -288,4 +307,130 @@ fn restore_defaults_gives_the_declared_defaults() {
     assert_eq!(read(&od, 0x2020, 0).unwrap(), b"hello".to_vec());
     assert_eq!(read(&od, 0x2022, 0).unwrap(), vec![b'h', 0, b'i', 0]);
     assert_eq!(read(&od, 0x2006, 0).unwrap(), vec![0; 6]); // no default: the type's default
+}
+
+/// The EDS text of the whole node dictionary.
+fn eds() -> String {
+    let mut s = String::new();
+    write_eds(&mut s, &EdsInfo::DEFAULT, &node_od()).unwrap();
+    s
+}
+
+/// The `[name]` section of an EDS, up to the blank line.
+fn section<'a>(eds: &'a str, name: &str) -> &'a str {
+    let start = eds.find(&format!("\n[{name}]\n")).unwrap_or_else(|| panic!("[{name}] missing")) + 1;
+    let rest = &eds[start..];
+    &rest[..rest.find("\n\n").unwrap_or(rest.len())]
+}
+
+/// DT-17 (the basic data types have the fixed indices of Table 44): the entry of each type is described in
+/// the EDS with exactly that index, and the dictionary reports the same type.
+#[test]
+fn data_type_indices_dt_17() {
+    let table: [(u16, u16); 25] = [
+        (0x2000, 0x0001), // BOOLEAN
+        (0x2001, 0x0002), // INTEGER8
+        (0x2002, 0x0003), // INTEGER16
+        (0x2003, 0x0010), // INTEGER24
+        (0x2004, 0x0004), // INTEGER32
+        (0x2005, 0x0012), // INTEGER40
+        (0x2006, 0x0013), // INTEGER48
+        (0x2007, 0x0014), // INTEGER56
+        (0x2008, 0x0015), // INTEGER64
+        (0x2010, 0x0005), // UNSIGNED8
+        (0x2011, 0x0006), // UNSIGNED16
+        (0x2012, 0x0016), // UNSIGNED24
+        (0x2013, 0x0007), // UNSIGNED32
+        (0x2014, 0x0018), // UNSIGNED40
+        (0x2015, 0x0019), // UNSIGNED48
+        (0x2016, 0x001A), // UNSIGNED56
+        (0x2017, 0x001B), // UNSIGNED64
+        (0x2018, 0x0008), // REAL32
+        (0x2019, 0x0011), // REAL64
+        (0x2020, 0x0009), // VISIBLE_STRING
+        (0x2021, 0x000A), // OCTET_STRING
+        (0x2022, 0x000B), // UNICODE_STRING
+        (0x2023, 0x000C), // TIME_OF_DAY
+        (0x2024, 0x000D), // TIME_DIFFERENCE
+        (0x2025, 0x000F), // DOMAIN
+    ];
+    let eds = eds();
+    let od = node_od();
+    for (index, code) in table {
+        let s = section(&eds, &format!("{index:04X}"));
+        assert!(s.contains(&format!("\nDataType=0x{code:04X}\n")), "{index:04X}: {s}");
+        assert_eq!(od.info(index, 0).unwrap().data_type as u16, code, "{index:04X}");
+    }
+}
+
+/// OD-06 (object codes VAR 07h, ARRAY 08h, RECORD 09h; this dictionary defines no NULL, DEFTYPE or
+/// DEFSTRUCT objects, DT-19) and OD-11 (each object carries name, object code and, per entry, data type,
+/// access, PDO mapping, value range and default; the category is the EDS object list, OD-10): VARs
+/// (1017h, 2001h), ARRAYs (1016h, 6000h) and RECORDs (1018h, 2100h) are described with those codes, both by
+/// the dictionary and in the EDS, and one VAR and one record member are described completely.
+#[test]
+fn object_codes_and_descriptions_od_06_od_11() {
+    let eds = eds();
+    let od = node_od();
+    for (index, code, value) in [
+        (0x1017u16, ObjectCode::Var, 7u8),
+        (0x2001, ObjectCode::Var, 7),
+        (0x1016, ObjectCode::Array, 8),
+        (0x6000, ObjectCode::Array, 8),
+        (0x1018, ObjectCode::Record, 9),
+        (0x2100, ObjectCode::Record, 9),
+    ] {
+        let o = (0..od.object_count()).filter_map(|n| od.object(n)).find(|o| o.index == index).unwrap();
+        assert_eq!((o.code, o.code as u8), (code, value), "{index:04X}");
+        let s = section(&eds, &format!("{index:04X}"));
+        assert!(s.contains(&format!("\nObjectType=0x{value:X}\n")), "{index:04X}: {s}");
+    }
+    assert_eq!(
+        section(&eds, "2001"),
+        "[2001]\nParameterName=Integer8\nObjectType=0x7\nDataType=0x0002\nAccessType=rw\nDefaultValue=-1\n\
+         PDOMapping=1\nLowLimit=-100\nHighLimit=100"
+    );
+    let mode = section(&eds, "2100sub3");
+    for line in [
+        "ObjectType=0x7",
+        "DataType=0x0005",
+        "AccessType=rw",
+        "DefaultValue=",
+        "PDOMapping=0",
+        "LowLimit=",
+        "HighLimit=",
+    ] {
+        assert!(mode.contains(line), "{line}: {mode}");
+    }
+    assert!(mode.starts_with("[2100sub3]\nParameterName=Mode"), "{mode}");
+}
+
+/// OD-02 (the index space is split into fixed areas): the node dictionary has no object in 0000h–0FFFh
+/// (data types; 0000h unused), its communication objects are in 1000h–1FFFh, the application's in
+/// 2000h–5FFFh (the EDS's ManufacturerObjects) and 6000h–9FFFh (standardized profile), and nothing at or
+/// above A000h; reads anywhere else (0000h, 0260h reserved, A000h, C000h reserved, FFFFh) are 0602 0000h.
+#[test]
+fn index_areas_od_02() {
+    let od = node_od();
+    for n in 0..od.object_count() {
+        let o = od.object(n).unwrap();
+        let area_ok = (0x1000..=0x9FFF).contains(&o.index);
+        assert!(area_ok, "{:04X}", o.index);
+    }
+    let eds = eds();
+    let listed = |name: &str| -> Vec<u16> {
+        section(&eds, name)
+            .lines()
+            .filter_map(|l| l.split_once("=0x").filter(|(k, _)| k.parse::<u16>().is_ok()))
+            .map(|(_, v)| u16::from_str_radix(v, 16).unwrap())
+            .collect()
+    };
+    let manufacturer = listed("ManufacturerObjects");
+    assert!(!manufacturer.is_empty() && manufacturer.iter().all(|i| (0x2000..=0x5FFF).contains(i)));
+    for i in listed("MandatoryObjects").into_iter().chain(listed("OptionalObjects")) {
+        assert!((0x1000..=0x1FFF).contains(&i) || (0x6000..=0x9FFF).contains(&i), "{i:04X}");
+    }
+    for index in [0x0000u16, 0x0260, 0x0FFF, 0xA000, 0xC000, 0xFFFF] {
+        assert_eq!(read(&od, index, 0), Err(AbortCode::ObjectDoesNotExist), "{index:04X}");
+    }
 }

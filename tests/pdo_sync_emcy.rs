@@ -64,7 +64,8 @@ fn on(bus: &Bus<TestNode>, id: u16) -> Vec<(u64, Vec<u8>)> {
 }
 
 /// VECTORS §9.3 (PDO-30..PDO-37, PDO-04, PDO-38/39): the master remaps RPDO1 of node 3 in the spec's order,
-/// then the RPDO carries the values; negative variants V-MAP-01..08.
+/// then the RPDO carries the values; negative variants V-MAP-01..08. ABORT-13: three 32-bit entries (96 bits)
+/// are refused with 0604 0042h (V-MAP-02).
 #[test]
 fn rpdo_remapping_procedure_vector() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig { rpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
@@ -171,6 +172,7 @@ fn tpdo_configuration_vector_and_cyclic_sync() {
 
 /// V-PDO-05 (PDO-19): type 00h sends once after the SYNC that follows an application event.
 /// V-PDO-06 (PDO-26, SYNC-10/11): type 02h with SYNC start value 2 and this node producing SYNC with 1019h = 4.
+/// ABORT-29: writing 1019h while 1006h is non-zero is refused for the present device state, 0800 0022h.
 #[test]
 fn acyclic_and_sync_start_value() {
     const TPDOS: &[PdoDefault] = &[
@@ -323,7 +325,8 @@ fn rpdo_errors_clear_when_no_rpdo_has_the_cause() {
 }
 
 /// VECTORS §11 (EMCY-04..09, ERR-01..09, NMT-22): the emergency state machine, 1001h and 1003h agree after a
-/// sequence of raised and cleared errors.
+/// sequence of raised and cleared errors. EEC-01/EEC-02: the generic error 1000h goes out as 00 10, and
+/// 0000h (error reset) when the errors clear (EMCY-01: the producer supports at least those two). COB-04: the EMCY is on 080h + node-ID (083h). ABORT-31: 1003h:01 with an empty history is 0800 0024h (no data).
 #[test]
 fn emcy_error_register_and_history_vectors() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig::DEFAULT)]);
@@ -415,6 +418,7 @@ fn time_round_trip() {
 }
 
 /// ERR-10..13, NMT-26: 1029h sub 01h decides what a heartbeat time-out does; 8130h is raised (EEC-12).
+/// HB-13: the consumer's heartbeat time-out is that communication error, handled per 1029h sub 01h.
 #[test]
 fn error_behaviour_1029() {
     for (behaviour, expect) in [(0u8, NmtState::PreOperational), (1, NmtState::Operational), (2, NmtState::Stopped)] {

@@ -134,7 +134,10 @@ fn snapshot(n: &TestNode) -> (u16, u32, u8, u32) {
 
 const DEFAULTS: (u16, u32, u8, u32) = (0, 0x2000_0008, 1, 0);
 
-/// V-STO-01..07.
+/// V-STO-01..07. STORE-02 (1010h sub 01h all, 02h communication, 03h application: saving only 03h keeps
+/// the communication defaults; restoring 02h only the communication ones), STORE-03 ("save" is 73 61 76 65;
+/// 73 61 76 00 is refused), STORE-05 and STORE-11 (1010h:01 and 1011h:01 read 1: on command), STORE-06 (the
+/// sub-entries are written). ABORT-27: a wrong "save" signature is answered 0800 0020h (V-STO-02).
 #[test]
 fn store_restore_vectors_and_resets() {
     let ram = Ram::default();
@@ -178,6 +181,7 @@ fn store_restore_vectors_and_resets() {
 }
 
 /// V-STO-03 (STORE-04): a storage failure is 0606 0000h; a node without storage reads 0 and refuses.
+/// ABORT-16: 0606 0000h is the answer to a store the hardware failed.
 #[test]
 fn storage_failure_and_no_storage() {
     let ram = Ram::default();
@@ -329,4 +333,25 @@ fn storage_failing_at_each_step_store_09() {
     let mut bus = boot(&ram);
     assert_eq!(snapshot(&bus.stations[0]), DEFAULTS);
     assert_eq!(sdo(&mut bus, "603 [8] 40 17 10 00 00 00 00 00"), frame("583 [8] 4B 17 10 00 00 00 00 00"));
+}
+
+/// STORE-01 (1010h store parameters: an ARRAY of UNSIGNED32 whose sub 00h is const, here 03h) and STORE-07
+/// (1011h restore default parameters: the same layout and grouping): sub 00h reads 03h and cannot be
+/// written (0601 0002h); subs 01h–03h are 4-byte entries reading 1 (on command); sub 04h does not exist.
+#[test]
+fn store_and_restore_object_layout_store_01_store_07() {
+    let ram = Ram::default();
+    let mut bus = boot(&ram);
+    for index in [0x10u8, 0x11] {
+        let read0 = format!("603 [8] 40 {index:02X} 10 00 00 00 00 00");
+        assert_eq!(sdo(&mut bus, &read0), frame(&format!("583 [8] 4F {index:02X} 10 00 03 00 00 00")));
+        let write0 = format!("603 [8] 2F {index:02X} 10 00 03 00 00 00");
+        assert_eq!(sdo(&mut bus, &write0), frame(&format!("583 [8] 80 {index:02X} 10 00 02 00 01 06")));
+        for sub in 1..=3u8 {
+            let req = format!("603 [8] 40 {index:02X} 10 {sub:02X} 00 00 00 00");
+            assert_eq!(sdo(&mut bus, &req), frame(&format!("583 [8] 43 {index:02X} 10 {sub:02X} 01 00 00 00")));
+        }
+        let req = format!("603 [8] 40 {index:02X} 10 04 00 00 00 00");
+        assert_eq!(sdo(&mut bus, &req), frame(&format!("583 [8] 80 {index:02X} 10 04 11 00 09 06")));
+    }
 }
