@@ -12,9 +12,8 @@ cd "$(dirname "$0")/.."
 ROOT=$PWD
 SHARED=${SHARED:-$ROOT/../shared}
 
-if [[ "${SKIP_PIP:-0}" != 1 ]]; then
-    python3 -m pip install --quiet -r tests/python/requirements.txt
-fi
+# python canopen, python-can, pytest in the project's own virtual environment (target/venv).
+source scripts/python-env.sh
 
 echo "== build on the host (the VM compiles ~14x slower)"
 cargo build --examples

@@ -6,10 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 WITH_VCAN="${WITH_VCAN:-../shared/vcan/with-vcan}"
-if [[ "${SKIP_PIP:-0}" != 1 ]]; then
-    # canopen, python-can, pytest (pinned: canopen 2.4.1 is the lss.py the slave was checked against).
-    python3 -m pip install --quiet -r tests/python/requirements.txt
-fi
+# python canopen, python-can, pytest in the project's own virtual environment (target/venv).
+source scripts/python-env.sh
 cargo build --quiet --example lss_node
 set +e
 "$WITH_VCAN" -- env LSS_NODE_BIN="$PWD/target/debug/examples/lss_node" \
