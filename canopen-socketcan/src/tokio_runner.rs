@@ -1,5 +1,5 @@
-//! The tokio adapter: the core's executor-agnostic [`driver`] on a tokio
-//! `AsyncFd` CAN socket.
+//! The tokio adapter: the node on a tokio `AsyncFd` CAN socket ([`run_tokio`]); the halves of
+//! [`TokioBus`] also plug into the core's executor-agnostic [`driver`](canopen_core::driver).
 //!
 //! - [`TokioBus`] owns the socket; [`TokioBus::split`] gives a receive half ([`CanRx`], cancel-safe: a frame
 //!   is only taken from the socket when the read completes) and a transmit half ([`CanTx`], waits and
@@ -8,8 +8,8 @@
 //! - [`MutexShared`] holds the node (a `std::sync::Mutex`: the driver never holds it across an `.await`)
 //!   and [`NotifyWake`] (a `tokio::sync::Notify`) lets another task wake the driver after it changed the
 //!   node.
-//! - [`run_tokio`] is the supervisor: it runs [`driver::run`] and, when the
-//!   interface goes down, waits for it, reopens the socket and runs the driver again on the same node.
+//! - [`run_tokio`] runs the node in passes (one clock reading, batched socket calls, kernel filters) and,
+//!   when the interface goes down, waits for it, reopens the socket and goes on with the same node.
 //!
 //! ```no_run
 //! use std::sync::Arc;
@@ -264,8 +264,8 @@ pub async fn run_tokio<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
 ) -> io::Result<Infallible> {
     let timer = TokioTimer::new(Clock::new());
     let mut pass = Pass::default();
+    let mut bus = TokioBus::open(iface)?;
     loop {
-        let bus = TokioBus::open(iface)?;
         let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
         pass.installed = None;
         let e = match run_passes(shared, &bus, &mut pass, &timer, wake, observe).await {
@@ -276,9 +276,14 @@ pub async fn run_tokio<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
             return Err(e);
         }
         observe(Observed::Adapter(&AdapterEvent::InterfaceDown { iface: iface.to_owned(), error: e.to_string() }));
-        while !crate::interface_is_up(iface) {
+        bus = loop {
+            if crate::interface_is_up(iface) {
+                if let Ok(b) = TokioBus::open(iface) {
+                    break b;
+                }
+            }
             tokio::time::sleep(crate::REOPEN_POLL).await;
-        }
+        };
         observe(Observed::Adapter(&AdapterEvent::Reopened { iface: iface.to_owned() }));
     }
 }
