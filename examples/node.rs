@@ -15,7 +15,8 @@
 //! the commands that create a virtual one.
 //!
 //! The inputs 2006h (uptime in ms), 6000h (a walking bit, once a second) and 6401h (analogue waves) are
-//! sampled when someone needs them, never on a tick: before the node serves an SDO request, and, while
+//! sampled when someone needs them, never on a tick: before the node serves an SDO upload of one of them,
+//! and, while
 //! the node is Operational, by another task (tokio) or thread (`--blocking`) that sleeps until the walking
 //! bit changes. The node lives in a `MutexShared` cell; the task changes it under the lock, calls
 //! `trigger_changed_tpdos` (the event-driven TPDO1 and TPDO2 go out when their inputs changed, spaced by
@@ -230,6 +231,17 @@ fn next_input_change(shared: &SharedNode, started: StdInstant) -> Option<Duratio
     })
 }
 
+/// Whether `f` is an SDO upload request (initiate, CCS 2, or block upload initiate, CCS 5) of an input (2006h uptime, 6000h, 6401h) to any
+/// server (600h–67Fh): the application samples its inputs right before the node serves it, so a read is
+/// always current without sampling while nobody looks.
+fn reads_an_input(f: &canopen_core::CanFrame) -> bool {
+    let d = f.data();
+    (0x600..0x680).contains(&f.cob_id())
+        && d.len() >= 3
+        && matches!(d[0] >> 5, 2 | 5)
+        && matches!(u16::from_le_bytes([d[1], d[2]]), 0x2006 | 0x6000 | 0x6401)
+}
+
 /// A wake-up for the application task (tokio) or thread (`--blocking`): a state change.
 #[derive(Default)]
 struct AppWake {
@@ -289,23 +301,22 @@ struct Printer {
 
 impl Printer {
     fn print(&self, o: Observed<'_>) {
-        let t = self.started.elapsed().as_secs_f64();
+        // The clock is read only for what is printed (`--quiet` prints no frames).
+        let t = || self.started.elapsed().as_secs_f64();
         match o {
             Observed::Received(f) => {
-                // Inputs are sampled when a master asks for them: an SDO request to any server (600h–67Fh),
-                // handed to the node right after this call. No periodic sampling while nobody looks.
-                if (0x600..0x680).contains(&f.cob_id()) {
+                if reads_an_input(f) {
                     self.shared.with(|n| update_process_values(n, self.started));
                 }
                 if !self.quiet {
-                    println!("({t:10.6}) {}  rx  {f}", self.iface)
+                    println!("({:10.6}) {}  rx  {f}", t(), self.iface)
                 }
             }
-            Observed::Sent(f) if !self.quiet => println!("({t:10.6}) {}  tx  {f}", self.iface),
+            Observed::Sent(f) if !self.quiet => println!("({:10.6}) {}  tx  {f}", t(), self.iface),
             Observed::Sent(_) => {}
-            Observed::Event(e) => self.event(t, e),
+            Observed::Event(e) => self.event(t(), e),
             Observed::Adapter(a) => {
-                println!("({t:10.6}) adapter {a}");
+                println!("({:10.6}) adapter {a}", t());
                 if *a == AdapterEvent::BusOff {
                     // ERR-13/ERR-12: bus-off is a communication error: Operational -> Pre-operational
                     // (the 1029h default behaviour).
