@@ -188,3 +188,61 @@ pub(crate) fn drop_first(tx: &mut Vec<CanFrame>, observe: &mut dyn FnMut(Observe
         observe(Observed::Adapter(&AdapterEvent::TxDropped(f)));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canopen_core::comm::NodeConfig;
+    use canopen_core::node::{NoApplication, Node};
+    use canopen_core::NodeId;
+    use std::cell::RefCell;
+
+    /// One pass: the frames in order at the one instant given, then the time; every frame the node
+    /// produced (including those an event observer queued) in order; the filters reported only when they
+    /// differ from the installed ones (issue 19; SDO-05: the reply to a request in the same pass).
+    #[test]
+    fn a_pass_handles_frames_in_order_and_reports_filter_changes() {
+        let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+        let shared = RefCell::new(node);
+        let mut pass = Pass::default();
+        let mut seen = Vec::new();
+        let (deadline, filters) = pass.run(&shared, Instant::ZERO, &mut |o| seen.push(format!("{o:?}")));
+        assert_eq!(pass.tx, [CanFrame::new(0x705, &[0]).unwrap()]); // boot-up
+        assert_eq!(deadline, None);
+        pass.installed = Some(filters.expect("first pass: filters to install"));
+        pass.tx.clear();
+        // Two reads of 1000h, then a write of 1016h:01 (a heartbeat consumer of node 3): three replies in
+        // order, and the receive set changed (703h).
+        for req in [[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0], [0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]] {
+            pass.rx.push(CanFrame::new(0x605, &req).unwrap());
+        }
+        pass.rx.push(CanFrame::new(0x605, &[0x23, 0x16, 0x10, 0x01, 0xF4, 0x01, 0x03, 0x00]).unwrap());
+        let mut observed = 0;
+        let (_, filters) = pass.run(&shared, Instant::from_millis(1), &mut |o| {
+            if matches!(o, Observed::Received(_)) {
+                observed += 1;
+            }
+        });
+        assert_eq!(observed, 3);
+        assert!(pass.rx.is_empty());
+        let cmds: Vec<u8> = pass.tx.iter().map(|f| f.data()[0]).collect();
+        assert_eq!(cmds, [0x43, 0x43, 0x60]);
+        let filters = filters.expect("1016h changed the receive set");
+        assert!(filters.iter().any(|f| f.id == 0x703));
+        pass.installed = Some(filters);
+        pass.tx.clear();
+        // Nothing changed: no filters to install.
+        let (_, filters) = pass.run(&shared, Instant::from_millis(2), &mut |_| {});
+        assert!(filters.is_none() && pass.tx.is_empty());
+        // An observer that queues a frame while handling an event (an EMCY on the state change): the
+        // pass drains the node again, so the EMCY goes out in the same pass (EMCY-01: 080h + node-ID).
+        pass.rx.push(CanFrame::new(0x000, &[0x01, 0x05]).unwrap()); // NMT start: an event
+        let (_, _) = pass.run(&shared, Instant::from_millis(3), &mut |o| {
+            if let Observed::Event(canopen_core::Event::StateChanged { .. }) = o {
+                shared.borrow_mut().raise_error(0x1000, [0; 5]);
+            }
+        });
+        assert_eq!(pass.tx.iter().map(|f| f.cob_id()).collect::<Vec<_>>(), [0x085]);
+        assert!(seen.iter().any(|s| s.contains("Event")), "{seen:?}");
+    }
+}
