@@ -89,11 +89,12 @@ impl TokioBus {
         let out = to_socket_frame(frame)?;
         let mut stalled: Option<std::time::Instant> = None;
         loop {
-            let written = self.socket.async_io(Interest::WRITABLE, |s| s.write_frame(&out)).await;
-            match written {
+            // The socket is registered for readability only (see `batch::register`): a full queue
+            // (`ENOBUFS`, or `EAGAIN` from the socket's own buffer) is retried after a back-off.
+            match self.socket.get_ref().write_frame(&out) {
                 Ok(()) => return Ok(()),
                 Err(e) => match classify(&e) {
-                    ErrorClass::NoBufs => {
+                    ErrorClass::NoBufs | ErrorClass::Timeout => {
                         let since = *stalled.get_or_insert_with(|| {
                             observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
                             std::time::Instant::now()
@@ -104,7 +105,7 @@ impl TokioBus {
                         }
                         tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
                     }
-                    ErrorClass::Interrupted | ErrorClass::Timeout => {}
+                    ErrorClass::Interrupted => {}
                     ErrorClass::Down | ErrorClass::Fatal => return Err(e),
                 },
             }
