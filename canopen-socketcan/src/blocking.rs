@@ -1,9 +1,9 @@
-//! The blocking adapter: one raw CAN socket, read with a timeout equal to the node's next deadline.
+//! The blocking adapter: one raw CAN socket, waited on until the node's next deadline.
 //!
 //! [`run_blocking`] is the whole runner loop. The node lives in a [`Shared`] cell (a
-//! [`MutexShared`](crate::MutexShared) when other threads change it, a `RefCell` otherwise). A blocking read
-//! cannot be woken by another thread, so the runner wakes at least every [`APP_POLL`] to send what another
-//! thread queued; the tokio runner has no such delay (it awaits a [`Wake`](canopen_core::driver::Wake)).
+//! [`MutexShared`](crate::MutexShared) when other threads change it, a `RefCell` otherwise). Another thread
+//! that changed the node wakes the runner with a [`BusWaker`] ([`BlockingBus::waker`]); a runner whose bus
+//! gave out no waker wakes at least every [`APP_POLL`] to send what another thread queued.
 
 use std::io;
 use std::time::Duration as StdDuration;

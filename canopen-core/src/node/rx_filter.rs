@@ -41,7 +41,11 @@ impl<
         S: Storage,
     > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
 {
-    /// The acceptance filters covering every frame the node handles now (see the [module](self)).
+    /// The acceptance filters covering every frame the node handles now: NMT, SYNC (1005h), TIME (1012h,
+    /// when consumed), the valid RPDOs, the TPDOs that answer a remote request, the SDO server (1200h), the
+    /// heartbeat consumers (1016h), the EMCY consumer (081h–0FFh), LSS (7E5h) and the node guarding request.
+    /// A pure function of the node's parameters: a runner compares it with the filters it installed after
+    /// each pass and re-installs it when it differs (a COB-ID written by SDO, a reset communication).
     ///
     /// ```
     /// use canopen_core::{comm::NodeConfig, node::{NoApplication, Node, RxFilter}, NodeId};
