@@ -14,16 +14,20 @@
 //! interface going down and coming back). Where there is no SocketCAN interface it says so in one line, with
 //! the commands that create a virtual one.
 //!
-//! While it runs, another task (tokio) or thread (`--blocking`) updates 2006h (uptime in ms), the digital
-//! inputs 6000h (a walking bit, once a second) and the analogue inputs 6401h: the node lives in a
-//! `MutexShared` cell, the task changes it under the lock, calls `trigger_changed_tpdos` (the event-driven
-//! TPDO1 and TPDO2 go out when their inputs changed, spaced by their inhibit time) and signals a
-//! `NotifyWake` so the driver sends them at once. RPDO1/RPDO2 write the outputs 6200h/6411h.
+//! The inputs 2006h (uptime in ms), 6000h (a walking bit, once a second) and 6401h (analogue waves) are
+//! sampled when someone needs them, never on a tick: before the node serves an SDO upload of one of them,
+//! and, while
+//! the node is Operational, by another task (tokio) or thread (`--blocking`) that sleeps until the walking
+//! bit changes. The node lives in a `MutexShared` cell; the task changes it under the lock, calls
+//! `trigger_changed_tpdos` (the event-driven TPDO1 and TPDO2 go out when their inputs changed, spaced by
+//! their inhibit time) and signals the runner (`NotifyWake`, `BusWaker`) so it sends them at once. Idle in
+//! Pre-operational with the heartbeat off, the process makes no system call at all. RPDO1/RPDO2 write the
+//! outputs 6200h/6411h.
 //!
 //! **NMT reset node on Linux**: the node resets *in-process*. The core sends the boot-up frame, sets the
 //! application values back to their `default =` values and the communication parameters to their power-on
 //! values, then loads what 1010h stored. The process, its socket and 2006h uptime continue (the uptime
-//! reads 0 until the next 100 ms tick). A master sees the boot-up either way; restarting the process would
+//! reads 0 until the inputs are sampled again). A master sees the boot-up either way; restarting the process would
 //! lose the socket and make a supervisor part of the protocol for no gain.
 //!
 //! **Store/restore**: with `--store FILE` the parameters go to `FILE.a`/`FILE.b`
@@ -134,8 +138,14 @@ fn main() -> ExitCode {
     let started = StdInstant::now();
     let limit = args.run_for.map(Duration::from_secs_f64);
     let wake = Arc::new(NotifyWake::new());
-    let printer =
-        Printer { shared: shared.clone(), started, iface: args.iface.clone(), quiet: args.quiet, wake: wake.clone() };
+    let printer = Printer {
+        shared: shared.clone(),
+        started,
+        iface: args.iface.clone(),
+        quiet: args.quiet,
+        wake: wake.clone(),
+        app: Arc::default(),
+    };
     let result = if args.blocking {
         run_on_threads(&args, &shared, &printer, limit)
     } else {
@@ -159,14 +169,21 @@ fn run_on_tokio(
     let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
     rt.block_on(async {
         let wake = printer.wake.clone();
-        // The application task: process values change while the node runs.
-        let (s, w, t0) = (shared.clone(), wake.clone(), printer.started);
+        // The application task: wakes when its inputs change (the walking bit, once a second) while the
+        // node is Operational (the TPDOs go out only then), and when the NMT state changes; never on a tick.
+        let (s, w, t0, app) = (shared.clone(), wake.clone(), printer.started, printer.app.clone());
         tokio::spawn(async move {
-            let mut tick = tokio::time::interval(Duration::from_millis(100));
             loop {
-                tick.tick().await;
-                s.with(|n| update_process_values(n, t0));
-                w.signal();
+                match next_input_change(&s, t0) {
+                    Some(wait) => {
+                        w.signal();
+                        tokio::select! {
+                            _ = tokio::time::sleep(wait) => {}
+                            _ = app.notify.notified() => {}
+                        }
+                    }
+                    None => app.notify.notified().await,
+                }
             }
         });
         let observe = |o: Observed<'_>| printer.print(o);
@@ -189,15 +206,69 @@ fn run_on_threads(
     limit: Option<Duration>,
 ) -> std::io::Result<()> {
     let mut bus = BlockingBus::open(&args.iface)?;
-    let (s, t0) = (shared.clone(), printer.started);
+    let (s, t0, app, waker) = (shared.clone(), printer.started, printer.app.clone(), bus.waker()?);
+    // The application thread, as the tokio task: on input changes while Operational, and on state changes.
     std::thread::spawn(move || loop {
-        std::thread::sleep(Duration::from_millis(100));
-        s.with(|n| update_process_values(n, t0));
+        let wait = next_input_change(&s, t0);
+        if wait.is_some() {
+            waker.signal();
+        }
+        app.wait_thread(wait);
     });
     run_blocking(&**shared, &mut bus, |o| printer.print(o), || limit.is_none_or(|l| printer.started.elapsed() < l))
 }
 
-/// What the application task does every 100 ms: new input values, then the event-driven TPDOs whose
+/// The application's inputs, sampled now: while Operational the application then sleeps until the next
+/// change (returned; the caller wakes the runner so the TPDOs go out); in other states only a state change
+/// or an SDO request (see [`Printer::print`]) samples them again (`None`).
+fn next_input_change(shared: &SharedNode, started: StdInstant) -> Option<Duration> {
+    shared.with(|n| {
+        update_process_values(n, started);
+        (n.state() == NmtState::Operational).then(|| {
+            let ms = started.elapsed().as_millis() as u64;
+            Duration::from_millis(1000 - ms % 1000)
+        })
+    })
+}
+
+/// Whether `f` is an SDO upload request (initiate, CCS 2, or block upload initiate, CCS 5) of an input (2006h uptime, 6000h, 6401h) to any
+/// server (600h–67Fh): the application samples its inputs right before the node serves it, so a read is
+/// always current without sampling while nobody looks.
+fn reads_an_input(f: &canopen_core::CanFrame) -> bool {
+    let d = f.data();
+    (0x600..0x680).contains(&f.cob_id())
+        && d.len() >= 3
+        && matches!(d[0] >> 5, 2 | 5)
+        && matches!(u16::from_le_bytes([d[1], d[2]]), 0x2006 | 0x6000 | 0x6401)
+}
+
+/// A wake-up for the application task (tokio) or thread (`--blocking`): a state change.
+#[derive(Default)]
+struct AppWake {
+    notify: tokio::sync::Notify,
+    pending: std::sync::Mutex<bool>,
+    cv: std::sync::Condvar,
+}
+
+impl AppWake {
+    fn signal(&self) {
+        self.notify.notify_one();
+        *self.pending.lock().unwrap_or_else(|p| p.into_inner()) = true;
+        self.cv.notify_all();
+    }
+
+    /// Blocks the application thread until a signal or `timeout` (forever if `None`).
+    fn wait_thread(&self, timeout: Option<Duration>) {
+        let guard = self.pending.lock().unwrap_or_else(|p| p.into_inner());
+        let mut guard = match timeout {
+            Some(t) => self.cv.wait_timeout_while(guard, t, |p| !*p).unwrap_or_else(|p| p.into_inner()).0,
+            None => self.cv.wait_while(guard, |p| !*p).unwrap_or_else(|p| p.into_inner()),
+        };
+        *guard = false;
+    }
+}
+
+/// New input values (uptime, the walking bit, the analogue wave), then the event-driven TPDOs whose
 /// inputs changed.
 fn update_process_values(node: &mut IoNode, started: StdInstant) {
     let ms = started.elapsed().as_millis() as u64;
@@ -224,18 +295,28 @@ struct Printer {
     /// Wakes the tokio driver when an event handler queued frames (an EMCY of 2100h), so they go out now
     /// rather than at the next deadline (the blocking runner drains the node after every event anyway).
     wake: Arc<NotifyWake>,
+    /// Wakes the application task on an NMT state change.
+    app: Arc<AppWake>,
 }
 
 impl Printer {
     fn print(&self, o: Observed<'_>) {
-        let t = self.started.elapsed().as_secs_f64();
+        // The clock is read only for what is printed (`--quiet` prints no frames).
+        let t = || self.started.elapsed().as_secs_f64();
         match o {
-            Observed::Received(f) if !self.quiet => println!("({t:10.6}) {}  rx  {f}", self.iface),
-            Observed::Sent(f) if !self.quiet => println!("({t:10.6}) {}  tx  {f}", self.iface),
-            Observed::Received(_) | Observed::Sent(_) => {}
-            Observed::Event(e) => self.event(t, e),
+            Observed::Received(f) => {
+                if reads_an_input(f) {
+                    self.shared.with(|n| update_process_values(n, self.started));
+                }
+                if !self.quiet {
+                    println!("({:10.6}) {}  rx  {f}", t(), self.iface)
+                }
+            }
+            Observed::Sent(f) if !self.quiet => println!("({:10.6}) {}  tx  {f}", t(), self.iface),
+            Observed::Sent(_) => {}
+            Observed::Event(e) => self.event(t(), e),
             Observed::Adapter(a) => {
-                println!("({t:10.6}) adapter {a}");
+                println!("({:10.6}) adapter {a}", t());
                 if *a == AdapterEvent::BusOff {
                     // ERR-13/ERR-12: bus-off is a communication error: Operational -> Pre-operational
                     // (the 1029h default behaviour).
@@ -251,7 +332,10 @@ impl Printer {
 
     fn event(&self, t: f64, e: &Event) {
         match e {
-            Event::StateChanged { from, to } => println!("({t:10.6}) NMT {from:?} -> {to:?}"),
+            Event::StateChanged { from, to } => {
+                println!("({t:10.6}) NMT {from:?} -> {to:?}");
+                self.app.signal();
+            }
             Event::ResetApplication => {
                 println!("({t:10.6}) NMT reset application: application values back to their defaults (or stored)")
             }

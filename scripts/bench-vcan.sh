@@ -5,14 +5,20 @@
 #   - the same node with the blocking runner (--blocking), block+CRC only;
 #   - python canopen <-> our node: 64 KiB block download and upload with CRC (python is the bottleneck).
 # Each line also gives the node process's CPU time per frame it handled (/proc/<pid>/stat, 10 ms ticks).
+# Then, in the same VM, system calls per frame (issue 19): python canopen drives four workloads against the
+# node (tokio and blocking runner, heartbeat off) while `strace -f -c` counts the node's and python's calls:
+# 2,000 expedited reads of 1018h:1, a 64 KiB block download with CRC (9,365 frames in), 4,000 SDO requests
+# for node 6 (bystander), 1 s idle. Per frame sent towards the node: all calls, calls without clock_gettime,
+# and the node's CPU (ticks under strace, so inflated alike for every row). python's counts are net of its
+# interpreter start-up (what its idle run costs); the idle row is the node's whole ~2 s strace window.
 # Usage: scripts/bench-vcan.sh [SIZE_BYTES]   (SKIP_PIP=1 skips the pip install). Fails if the VM cannot start.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SHARED=${SHARED:-$PWD/../shared}
 SIZE=${1:-1048576}
-if [[ "${SKIP_PIP:-0}" != 1 ]]; then
-    python3 -m pip install --quiet -r tests/python/requirements.txt
-fi
+command -v strace >/dev/null || { apt-get install -y -qq strace >/dev/null || sudo apt-get install -y -qq strace >/dev/null; }
+# python canopen, python-can, pytest in the project's own virtual environment (target/venv).
+source scripts/python-env.sh
 cargo build --release --examples
 cat > target/bench-in-vm.sh <<INNER
 set -euo pipefail
@@ -29,6 +35,28 @@ pid=\$(run_node --blocking); sleep 0.5
 echo "== our client <-> our node (blocking runner)"
 \$M bench --size $SIZE --node-pid \$pid
 kill \$pid; wait \$pid 2>/dev/null || true
+calls() { awk '\$NF=="total"{t=\$4} \$NF=="clock_gettime"{c=\$4} END{print t+0, c+0}' "\$1"; }
+hz=\$(getconf CLK_TCK)
+echo "== system calls per frame (strace -f -c), python canopen as the master, heartbeat off"
+printf '| runner | workload | node calls/frame | node w/o clock | node CPU us/frame | python calls/frame | python w/o clock |\n|---|---|---:|---:|---:|---:|---:|\n'
+for runner in tokio blocking; do
+    flag=; [[ \$runner == blocking ]] && flag=--blocking
+    \$N --quiet --heartbeat 0 \$flag > target/bench-node.log 2>&1 & pid=\$!; sleep 0.5
+    pt0=0; pc0=0
+    for w in idle bystander expedited block; do
+        tids=\$(ls /proc/\$pid/task | paste -sd, -)
+        strace -f -c -o target/strace-node.txt -p "\$tids" 2>/dev/null & spid=\$!; sleep 0.5
+        out=\$(strace -f -c -o target/strace-py.txt python3 tests/python/bench_syscalls.py \$w target/bench.eds \$pid)
+        sleep 0.3; kill -INT \$spid; wait \$spid 2>/dev/null || true
+        frames=\$(sed -n 's/.*frames=\([0-9]*\).*/\1/p' <<<"\$out"); ticks=\$(sed -n 's/.*node_cpu_ticks=\([0-9]*\).*/\1/p' <<<"\$out")
+        read -r nt nc < <(calls target/strace-node.txt); read -r pt pc < <(calls target/strace-py.txt)
+        # python's start-up (imports) is what its idle run costs; the other rows are net of it.
+        if [[ \$w == idle ]]; then pt0=\$pt; pc0=\$pc; label="idle (whole ~2 s window)"; else label=\$w; fi
+        awk -v r=\$runner -v w="\$label" -v f=\$frames -v nt=\$nt -v nc=\$nc -v pt=\$((pt-pt0)) -v pc=\$((pc-pc0)) -v tk=\$ticks -v hz=\$hz \
+            'BEGIN{printf "| %s | %s | %.2f | %.2f | %.0f | %.2f | %.2f |\n", r, w, nt/f, (nt-nc)/f, tk*1e6/hz/f, pt/f, (pt-pc)/f}'
+    done
+    kill \$pid; wait \$pid 2>/dev/null || true
+done
 INNER
 status=0
 "$SHARED/vcan/with-vcan" -- bash target/bench-in-vm.sh || status=$?

@@ -5,9 +5,12 @@
 //!
 //! - 64 KiB into and out of the 2005h DOMAIN, segmented and block with CRC (and block without CRC),
 //!   byte-exact;
-//! - load: back-to-back block transfers both ways while another socket floods COB-IDs the node does not
-//!   use (11-bit and 29-bit) and the node, Operational, sends 4 TPDOs on 1 ms event timers: nothing panics,
-//!   every transfer is byte-exact, the node keeps its heartbeat and its TPDOs keep flowing.
+//! - load: 15 block downloads (each followed by a block upload) while another socket floods COB-IDs the
+//!   node does not use (11-bit and 29-bit) and the node, Operational, sends 4 TPDOs on 1 ms event timers:
+//!   at least 14 of 15 downloads complete byte-exact, any other ends with the same abort code on both
+//!   sides, the node keeps its heartbeat and its TPDOs keep flowing (issue 21, item 2);
+//! - bystander: frames for other nodes neither wake the node's runner nor reach its socket (kernel
+//!   filters, issue 19), and the filters follow a COB-ID written by SDO and an NMT reset communication.
 
 #[path = "../examples/common/io_module.rs"]
 mod io_module;
@@ -36,7 +39,11 @@ fn require_vcan() {
 /// A node on its own thread (tokio runner), stopped when dropped.
 struct RunningNode {
     shared: Arc<MutexShared<IoNode>>,
+    /// Every SDO abort the node reported: (code, sent by the client).
+    aborts: Arc<std::sync::Mutex<Vec<(u32, bool)>>>,
     stop: Arc<AtomicBool>,
+    /// The blocking runner's wake-up (it sleeps without a deadline otherwise).
+    waker: Option<canopen_socketcan::BusWaker>,
     thread: Option<std::thread::JoinHandle<()>>,
 }
 
@@ -48,8 +55,9 @@ impl RunningNode {
     fn start_with(id: u8, config: canopen_core::profile::NodeConfig) -> Self {
         let shared = Arc::new(MutexShared::new(io_module::new_node(NodeId::new(id).unwrap(), config)));
         let stop = Arc::new(AtomicBool::new(false));
+        let aborts = Arc::new(std::sync::Mutex::new(Vec::new()));
         let thread = {
-            let (shared, stop) = (shared.clone(), stop.clone());
+            let (shared, stop, aborts) = (shared.clone(), stop.clone(), aborts.clone());
             std::thread::spawn(move || {
                 let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
                 rt.block_on(async {
@@ -57,6 +65,9 @@ impl RunningNode {
                     let observe = |o: Observed<'_>| {
                         if let Observed::Adapter(a) = o {
                             eprintln!("node adapter: {a}");
+                        }
+                        if let Observed::Event(canopen_core::Event::SdoAborted { code, by_client, .. }) = o {
+                            aborts.lock().unwrap().push((*code, *by_client));
                         }
                     };
                     tokio::select! {
@@ -67,13 +78,38 @@ impl RunningNode {
             })
         };
         std::thread::sleep(Duration::from_millis(200));
-        RunningNode { shared, stop, thread: Some(thread) }
+        RunningNode { shared, aborts, stop, waker: None, thread: Some(thread) }
+    }
+
+    /// The same node on the blocking runner (`run_blocking`), on its own thread.
+    fn start_blocking(id: u8, config: canopen_core::profile::NodeConfig) -> Self {
+        let shared = Arc::new(MutexShared::new(io_module::new_node(NodeId::new(id).unwrap(), config)));
+        let stop = Arc::new(AtomicBool::new(false));
+        let mut bus = BlockingBus::open(IFACE).unwrap();
+        let waker = bus.waker().unwrap();
+        let thread = {
+            let (shared, stop) = (shared.clone(), stop.clone());
+            std::thread::spawn(move || {
+                let observe = |o: Observed<'_>| {
+                    if let Observed::Adapter(a) = o {
+                        eprintln!("node adapter: {a}");
+                    }
+                };
+                canopen_socketcan::run_blocking(&*shared, &mut bus, observe, || !stop.load(Ordering::Relaxed))
+                    .expect("blocking runner failed");
+            })
+        };
+        std::thread::sleep(Duration::from_millis(200));
+        RunningNode { shared, aborts: Arc::default(), stop, waker: Some(waker), thread: Some(thread) }
     }
 }
 
 impl Drop for RunningNode {
     fn drop(&mut self) {
         self.stop.store(true, Ordering::Relaxed);
+        if let Some(w) = &self.waker {
+            w.signal();
+        }
         if let Some(t) = self.thread.take() {
             let r = t.join();
             if !std::thread::panicking() {
@@ -212,40 +248,48 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     let mut m = Master::new(BlockingBus::open(IFACE).unwrap(), NodeId::new(32).unwrap()).unwrap();
     m.set_timeout(Duration::from_secs(3));
     let start = StdInstant::now();
-    let budget = Duration::from_secs(25);
-    let (mut completed, mut aborted, mut bytes, mut downloads) = (0, 0, 0, 0);
+    let (mut completed, mut bytes, mut downloads_ok) = (0, 0, 0);
+    let mut failures: Vec<String> = Vec::new();
     let mut committed: Vec<u8> = Vec::new();
-    let mut seed = 100;
-    while start.elapsed() < budget && completed < 24 {
+    const DOWNLOADS: u32 = 15;
+    for seed in 100..100 + DOWNLOADS {
         let n = 8192 + (seed as usize * 977) % 8192;
         let data = pattern(n, seed);
-        seed += 1;
-        // A transfer may be aborted (a frame lost in an overflowing receive buffer ends a block transfer by
-        // time-out, as the protocol says); it must never complete with wrong data.
+        let aborts_before = node.aborts.lock().unwrap().len();
         match m.download(0x2005, 0, &data, BLOCK_CRC) {
             Ok(()) => {
+                assert!(
+                    node.shared.with(|nd| nd.app().data_block.as_bytes() == data),
+                    "download {seed}: completed but the node's 2005h differs"
+                );
                 completed += 1;
-                downloads += 1;
+                downloads_ok += 1;
                 bytes += n;
                 committed = data;
             }
             Err(e) => {
-                eprintln!("download aborted: {e}");
-                aborted += 1;
+                // Not completed: it must end with a stated abort code on both sides (SDO-17).
+                let code = e.abort_code();
+                std::thread::sleep(Duration::from_millis(50));
+                let node_side = node.aborts.lock().unwrap()[aborts_before..].to_vec();
+                eprintln!("download {seed} aborted: {e} (node reported {node_side:X?})");
+                assert!(code.is_some(), "download {seed} failed without an abort code: {e}");
+                assert!(
+                    node_side.iter().any(|&(c, _)| Some(c) == code),
+                    "download {seed}: the node did not report the abort {code:X?}: {node_side:X?}"
+                );
+                failures.push(format!("download {seed}: {e}"));
             }
         }
         match m.upload(0x2005, 0, BLOCK_CRC, 65_536) {
             Ok(back) => {
-                assert!(
-                    back == committed,
-                    "upload after transfer {completed}: content differs from the last committed download"
-                );
+                assert!(back == committed, "upload after download {seed}: content differs from the last committed");
                 completed += 1;
                 bytes += back.len();
             }
             Err(e) => {
-                eprintln!("upload aborted: {e}");
-                aborted += 1;
+                assert!(e.abort_code().is_some(), "upload after download {seed} failed without an abort code: {e}");
+                failures.push(format!("upload after download {seed}: {e}"));
             }
         }
     }
@@ -258,21 +302,93 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     eprintln!("load: TPDO frames seen (TPDO1..4, 1 ms event timers): {tpdos:?} in {:.1?}", start.elapsed());
     assert!(tpdos.iter().all(|&n| n > 100), "every TPDO kept flowing during the transfers: {tpdos:?}");
     let frames = flooded.load(Ordering::Relaxed);
+    let stats = canopen_socketcan::runner_stats();
     eprintln!(
-        "load: {completed} block transfers ({downloads} downloads, {bytes} bytes) byte-exact, {aborted} aborted cleanly, in {:.1?} while {frames} flood frames were sent",
+        "load: {downloads_ok}/{DOWNLOADS} block downloads byte-exact, {completed} transfers ({bytes} bytes) in {:.1?} while {frames} flood frames were sent; failures: {failures:?}; runner {stats:?}",
         start.elapsed()
     );
-    // Every transfer that completed was byte-exact (checked above), and the node kept serving. How many
-    // block downloads complete is reported, not asserted: in the one-CPU VM the node, its four 1 ms TPDOs,
-    // the flood and the master share a CPU with slow system calls; in some runs the node's socket receive
-    // buffer overflows during a sub-block, and a block download whose last sub-block segment is lost can only
-    // end by time-out (CiA 301), while in others all downloads complete (12 of 12 seen).
-    // At least one transfer must complete, so that "byte-exact" is never vacuous (runs have completed 3 to
-    // 24 of them in the time budget).
-    assert!(completed >= 1, "no transfer completed in the time budget ({aborted} aborted)");
+    // Issue 21 item 2: the node's kernel filters keep the flood out of its socket, so sub-blocks are not
+    // lost to an overflowing receive buffer.
+    assert!(
+        downloads_ok >= DOWNLOADS - 1,
+        "only {downloads_ok} of {DOWNLOADS} block downloads completed: {failures:?}"
+    );
     assert!(frames > 1000, "the flood did not run: {frames} frames");
     // Frames the node had to drop because its transmit queue was full (four 1 ms TPDOs faster than the VM's
     // socket takes them); reported, not asserted.
     eprintln!("load: node transmit-queue drops: {}", node.shared.with(|n| n.tx_dropped()));
+    drop(node);
+}
+
+/// Issue 19, CAN-02: frames for other nodes cost the node nothing. Idle (Pre-operational, heartbeat off, no
+/// deadline) the runner does not wake at all; 4,000 frames for other nodes (their SDO servers, RPDOs,
+/// heartbeats, 29-bit frames) are dropped by the kernel filters: no wake-up, no frame received. Then a
+/// COB-ID written by SDO (a heartbeat consumer for node 34, 1016h) opens the filter for that node's
+/// heartbeat, and an NMT reset communication closes it again.
+#[test]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+fn frames_for_other_nodes_do_not_wake_the_tokio_node() {
+    require_vcan();
+    bystander(RunningNode::start_with(33, canopen_core::profile::NodeConfig { heartbeat_time_ms: 0, ..CONFIG }));
+}
+
+/// The same with the blocking runner (with a `BusWaker`, so no `APP_POLL` wake-ups).
+#[test]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+fn frames_for_other_nodes_do_not_wake_the_blocking_node() {
+    require_vcan();
+    bystander(RunningNode::start_blocking(33, canopen_core::profile::NodeConfig { heartbeat_time_ms: 0, ..CONFIG }));
+}
+
+fn bystander(node: RunningNode) {
+    use socketcan::{EmbeddedFrame, ExtendedId, Socket, StandardId};
+    let raw = socketcan::CanSocket::open(IFACE).unwrap();
+    let send = |id: u16, n: usize| {
+        for i in 0..n {
+            let f = if i % 8 == 7 {
+                socketcan::CanFrame::new(ExtendedId::new(0x600 + 33).unwrap(), &[0x40, 0, 0x10, 0, 0, 0, 0, 0])
+            } else {
+                socketcan::CanFrame::new(StandardId::new(id).unwrap(), &[0x40, 0, 0x10, 0, 0, 0, 0, 0])
+            }
+            .unwrap();
+            while raw.write_frame(&f).is_err() {
+                std::thread::sleep(Duration::from_micros(200));
+            }
+        }
+    };
+    std::thread::sleep(Duration::from_millis(300));
+    let idle0 = canopen_socketcan::runner_stats();
+    std::thread::sleep(Duration::from_millis(500));
+    let idle1 = canopen_socketcan::runner_stats();
+    assert_eq!(idle1.wakeups - idle0.wakeups, 0, "idle with heartbeat off: no wake-up ({idle0:?} -> {idle1:?})");
+    for id in [0x600 + 34, 0x200 + 34, 0x700 + 34, 0x580 + 33] {
+        send(id, 1000);
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    let flood = canopen_socketcan::runner_stats();
+    eprintln!("bystander: 4000 frames for other nodes: {idle1:?} -> {flood:?}");
+    assert_eq!(flood.wakeups - idle1.wakeups, 0, "woken by frames for other nodes");
+    assert_eq!(flood.frames_received - idle1.frames_received, 0, "received frames for other nodes");
+    // 1016h:01 = node 34, 500 ms: its heartbeats now reach the node (HB-09), and reset communication
+    // restores the power-on filters (NMT-05).
+    let mut m = Master::new(BlockingBus::open(IFACE).unwrap(), NodeId::new(33).unwrap()).unwrap();
+    m.download(0x1016, 1, &0x0022_01F4u32.to_le_bytes(), Mode::Auto).unwrap();
+    std::thread::sleep(Duration::from_millis(100));
+    let before = canopen_socketcan::runner_stats();
+    send(0x700 + 34, 10);
+    std::thread::sleep(Duration::from_millis(200));
+    let after = canopen_socketcan::runner_stats();
+    assert!(after.frames_received - before.frames_received >= 9, "consumed heartbeats: {before:?} -> {after:?}");
+    raw.write_frame(&socketcan::CanFrame::new(StandardId::new(0).unwrap(), &[0x82, 33]).unwrap()).unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    let before = canopen_socketcan::runner_stats();
+    send(0x700 + 34, 10);
+    std::thread::sleep(Duration::from_millis(200));
+    let after = canopen_socketcan::runner_stats();
+    assert_eq!(after.frames_received - before.frames_received, 0, "after reset communication: {after:?}");
+    assert!(
+        after.filter_updates - idle0.filter_updates >= 2,
+        "filters re-installed after 1016h and after the reset: {idle0:?} -> {after:?}"
+    );
     drop(node);
 }

@@ -30,6 +30,9 @@
 mod dict;
 mod errors;
 mod pdo;
+mod rx_filter;
+
+pub use rx_filter::{RxFilter, RxFilters, RX_FILTER_CAPACITY};
 
 use heapless::{Deque, Vec};
 

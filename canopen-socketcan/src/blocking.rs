@@ -1,18 +1,23 @@
-//! The blocking adapter: one raw CAN socket, read with a timeout equal to the node's next deadline.
+//! The blocking adapter: one raw CAN socket, waited on until the node's next deadline.
 //!
 //! [`run_blocking`] is the whole runner loop. The node lives in a [`Shared`] cell (a
-//! [`MutexShared`](crate::MutexShared) when other threads change it, a `RefCell` otherwise). A blocking read
-//! cannot be woken by another thread, so the runner wakes at least every [`APP_POLL`] to send what another
-//! thread queued; the tokio runner has no such delay (it awaits a [`Wake`](canopen_core::driver::Wake)).
+//! [`MutexShared`](crate::MutexShared) when other threads change it, a `RefCell` otherwise). Another thread
+//! that changed the node wakes the runner with a [`BusWaker`] ([`BlockingBus::waker`]); a runner whose bus
+//! gave out no waker wakes at least every [`APP_POLL`] to send what another thread queued.
 
 use std::io;
 use std::time::Duration as StdDuration;
+
+use std::os::fd::{AsRawFd, RawFd};
+use std::os::unix::net::UnixDatagram;
+use std::sync::Arc;
 
 use canopen_core::driver::Shared;
 use canopen_core::node::SansIo;
 use canopen_core::{CanFrame, Instant};
 use socketcan::{CanFilter, CanSocket, Socket, SocketOptions};
 
+use crate::pass::{count, kernel_filters, Counter, Pass, ReceiveFilters};
 use crate::{classify, map_received, open_error, to_socket_frame, AdapterEvent, Clock, ErrorClass, Observed};
 
 /// The longest the blocking runner sleeps without looking at the node (changes made by other threads).
@@ -42,6 +47,8 @@ pub struct BlockingBus {
     clock: Clock,
     iface: String,
     filters: Vec<(u32, u32)>,
+    /// The runner's end and the [`BusWaker`]s' end of the wake-up socket pair, once taken.
+    waker: Option<(UnixDatagram, Arc<UnixDatagram>)>,
 }
 
 impl BlockingBus {
@@ -49,7 +56,7 @@ impl BlockingBus {
     /// virtual interface when it is missing.
     pub fn open(iface: &str) -> io::Result<Self> {
         let socket = open_socket(iface, &[])?;
-        Ok(BlockingBus { socket, clock: Clock::new(), iface: iface.to_owned(), filters: Vec::new() })
+        Ok(BlockingBus { socket, clock: Clock::new(), iface: iface.to_owned(), filters: Vec::new(), waker: None })
     }
 
     /// Receive only frames whose `id & mask == filter_id & mask` for one of `filters` (error frames still
@@ -58,6 +65,20 @@ impl BlockingBus {
         apply_filters(&self.socket, filters)?;
         self.filters = filters.to_vec();
         Ok(())
+    }
+
+    /// A wake-up for [`run_blocking`]: another thread that changed the node calls [`BusWaker::signal`] and
+    /// the runner sends what it queued at once. Once a waker is taken the runner no longer wakes every
+    /// [`APP_POLL`]: it sleeps until a frame, the node's next deadline or a signal.
+    pub fn waker(&mut self) -> io::Result<BusWaker> {
+        if self.waker.is_none() {
+            let (rx, tx) = UnixDatagram::pair()?;
+            rx.set_nonblocking(true)?;
+            tx.set_nonblocking(true)?;
+            self.waker = Some((rx, Arc::new(tx)));
+        }
+        let tx = self.waker.as_ref().map(|(_, tx)| tx.clone()).ok_or_else(|| io::Error::other("no waker"))?;
+        Ok(BusWaker(tx))
     }
 
     /// The interface name.
@@ -166,10 +187,33 @@ fn open_socket(iface: &str, filters: &[(u32, u32)]) -> io::Result<CanSocket> {
     Ok(socket)
 }
 
-/// Runs the node in `shared` on `bus` until `keep_running` returns false: waits for a frame or the next
-/// deadline (at most [`APP_POLL`]), feeds the node, sends what it produces, and hands every event, every
-/// frame on the wire and every [`AdapterEvent`] to `observe`. An interface that goes down is waited for
-/// and reopened (the node keeps its state); other socket errors are returned.
+/// A handle another thread uses to wake [`run_blocking`] after it changed the node (see
+/// [`BlockingBus::waker`]). Cheap to clone; a signal given while the runner is busy is kept.
+///
+/// ```no_run
+/// let mut bus = canopen_socketcan::BlockingBus::open("vcan0")?;
+/// let waker = bus.waker()?;
+/// std::thread::spawn(move || waker.signal());
+/// # Ok::<(), std::io::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct BusWaker(Arc<UnixDatagram>);
+
+impl BusWaker {
+    /// Wakes the runner (one non-blocking send on a socket pair; a full pair means a wake-up is pending).
+    pub fn signal(&self) {
+        let _ = self.0.send(&[1]);
+    }
+}
+
+/// Runs the node in `shared` on `bus` until `keep_running` returns false. Each pass reads the clock once,
+/// hands the node every frame received since the last pass and the time, sends what it produced (one
+/// `sendmmsg` per batch), installs the node's receive set as kernel filters when it changed, then waits in
+/// one `ppoll` for a frame, the node's next deadline or a [`BusWaker`] signal, and takes every queued frame
+/// (one `recvmmsg` per [`BATCH`](crate::BATCH) frames). Without a waker (none taken with
+/// [`BlockingBus::waker`]) the wait is capped at [`APP_POLL`] so that changes made by other threads go out.
+/// Every event, every frame on the wire and every [`AdapterEvent`] goes to `observe`. An interface that
+/// goes down is waited for and reopened (the node keeps its state); other socket errors are returned.
 ///
 /// ```no_run
 /// use std::cell::RefCell;
@@ -180,19 +224,22 @@ fn open_socket(iface: &str, filters: &[(u32, u32)]) -> io::Result<CanSocket> {
 /// run_blocking(&RefCell::new(node), &mut bus, |o| println!("{o:?}"), || true)?;
 /// # Ok::<(), std::io::Error>(())
 /// ```
-pub fn run_blocking<N: SansIo, S: Shared<N>>(
+pub fn run_blocking<N: SansIo + ReceiveFilters, S: Shared<N>>(
     shared: &S,
     bus: &mut BlockingBus,
     mut observe: impl FnMut(Observed<'_>),
     mut keep_running: impl FnMut() -> bool,
 ) -> io::Result<()> {
+    let mut pass = Pass::default();
+    let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
     while keep_running() {
-        match step(shared, bus, &mut observe) {
+        match step(shared, bus, &mut pass, &mut observe) {
             Ok(()) => {}
             Err(e) if classify(&e) == ErrorClass::Down => {
                 let iface = bus.iface().to_owned();
                 observe(Observed::Adapter(&AdapterEvent::InterfaceDown { iface: iface.clone(), error: e.to_string() }));
                 bus.reopen(None)?;
+                let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
                 observe(Observed::Adapter(&AdapterEvent::Reopened { iface }));
             }
             Err(e) => return Err(e),
@@ -201,44 +248,93 @@ pub fn run_blocking<N: SansIo, S: Shared<N>>(
     Ok(())
 }
 
-fn step<N: SansIo, S: Shared<N>>(
+fn step<N: SansIo + ReceiveFilters, S: Shared<N>>(
     shared: &S,
-    bus: &BlockingBus,
+    bus: &mut BlockingBus,
+    pass: &mut Pass,
     observe: &mut impl FnMut(Observed<'_>),
 ) -> io::Result<()> {
-    let now = bus.now();
-    shared.lock(|n| n.handle_timeout(now));
-    flush(shared, bus, observe)?;
-    let cap = Instant::from_micros(bus.now().as_micros() + APP_POLL.as_micros() as u64);
-    let deadline = shared.lock(|n| n.poll_timeout()).map_or(cap, |d| d.min(cap));
-    match bus.recv_until(Some(deadline))? {
-        Rx::Frame(frame) => {
-            observe(Observed::Received(&frame));
-            let now = bus.now();
-            shared.lock(|n| n.handle_frame(now, &frame));
-        }
-        Rx::Adapter(event) => observe(Observed::Adapter(&event)),
-        Rx::Timeout => {}
+    let now = bus.now(); // the pass's one clock reading
+    let (deadline, filters) = pass.run(shared, now, observe);
+    if let Some(f) = filters {
+        bus.set_filters(&kernel_filters(&f))?;
+        count(Counter::FilterUpdates, 1);
+        pass.installed = Some(f);
     }
-    flush(shared, bus, observe)
+    send_all(bus, pass, observe)?;
+    let mut wait = deadline.map(|d| d.as_micros().saturating_sub(now.as_micros()));
+    if bus.waker.is_none() {
+        let cap = APP_POLL.as_micros() as u64;
+        wait = Some(wait.map_or(cap, |w| w.min(cap)));
+    }
+    let fd = bus.socket.as_raw_fd();
+    let socket_ready = if wait == Some(0) {
+        true // due now: take what is queued without waiting
+    } else {
+        let wake_fd = bus.waker.as_ref().map_or(-1, |(rx, _)| rx.as_raw_fd());
+        let [ready, woken] = crate::batch::wait_readable([fd, wake_fd], wait)?;
+        count(Counter::Wakeups, 1);
+        if woken {
+            if let Some((rx, _)) = &bus.waker {
+                let mut b = [0u8; 16];
+                while rx.recv(&mut b).is_ok() {}
+            }
+        }
+        ready
+    };
+    if socket_ready {
+        receive_all(fd, pass, observe)?;
+    }
+    Ok(())
 }
 
-fn flush<N: SansIo, S: Shared<N>>(
-    shared: &S,
-    bus: &BlockingBus,
-    observe: &mut impl FnMut(Observed<'_>),
-) -> io::Result<()> {
+/// Takes every queued frame, [`BATCH`](crate::BATCH) per call, so the socket's receive buffer is empty
+/// after each pass.
+pub(crate) fn receive_all(fd: RawFd, pass: &mut Pass, observe: &mut dyn FnMut(Observed<'_>)) -> io::Result<usize> {
+    let mut raw = [crate::batch::empty_frame(); crate::BATCH];
+    let mut total = 0;
     loop {
-        let (frame, event) = shared.lock(|n| (n.poll_transmit(), n.poll_event()));
-        if frame.is_none() && event.is_none() {
-            return Ok(());
+        let n = crate::batch::recv_frames(fd, &mut raw)?;
+        if n > 0 {
+            pass.take_raw(&raw[..n], observe);
         }
-        if let Some(event) = event {
-            observe(Observed::Event(&event));
-        }
-        if let Some(frame) = frame {
-            bus.send(&frame, &mut |e| observe(Observed::Adapter(&e)))?;
-            observe(Observed::Sent(&frame));
+        total += n;
+        if n < raw.len() {
+            return Ok(total);
         }
     }
+}
+
+/// Sends `pass.tx` in order, in as few calls as the socket takes; a full queue (`ENOBUFS`, `EAGAIN`) is
+/// waited out as [`BlockingBus::send`] does, nothing is lost or reordered on a partial send.
+fn send_all(bus: &BlockingBus, pass: &mut Pass, observe: &mut impl FnMut(Observed<'_>)) -> io::Result<()> {
+    let mut stalled: Option<Instant> = None;
+    while !pass.tx.is_empty() {
+        let raw = pass.tx.iter().map(crate::pass::raw_frame).collect::<io::Result<Vec<_>>>()?;
+        match crate::batch::send_frames(bus.socket.as_raw_fd(), &raw) {
+            Ok(n) => {
+                crate::pass::sent(&mut pass.tx, n, observe);
+                stalled = None;
+            }
+            Err(e) => match classify(&e) {
+                ErrorClass::NoBufs | ErrorClass::Timeout => {
+                    // Only a stall reads the clock again.
+                    let t = bus.now();
+                    let since = *stalled.get_or_insert_with(|| {
+                        observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
+                        t
+                    });
+                    if t.as_micros().saturating_sub(since.as_micros()) >= crate::TX_STALL_LIMIT.as_micros() as u64 {
+                        crate::pass::drop_first(&mut pass.tx, observe);
+                        stalled = None;
+                    } else {
+                        std::thread::sleep(crate::ENOBUFS_BACKOFF);
+                    }
+                }
+                ErrorClass::Interrupted => {}
+                ErrorClass::Down | ErrorClass::Fatal => return Err(e),
+            },
+        }
+    }
+    Ok(())
 }

@@ -30,7 +30,7 @@
 //!
 //! 29-bit (extended) frames are ignored (CAN-01: CANopen uses 11-bit identifiers).
 
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 
 use std::io;
@@ -41,14 +41,18 @@ use canopen_core::{CanFrame, Event, Instant};
 /// The `socketcan` crate this adapter is built on (for raw sockets in tests and tools).
 pub use socketcan;
 
+mod batch;
 pub mod blocking;
 pub mod file_storage;
 pub mod master;
+mod pass;
 pub mod tokio_runner;
 
-pub use blocking::{run_blocking, BlockingBus, Rx};
+pub use batch::BATCH;
+pub use blocking::{run_blocking, BlockingBus, BusWaker, Rx};
 pub use file_storage::FileStorage;
 pub use master::{Master, MasterError, MasterStats};
+pub use pass::{runner_stats, ReceiveFilters, RunnerStats};
 pub use tokio_runner::{run_tokio, MutexShared, NotifyWake, TokioBus, TokioTimer};
 
 /// How long a send waits before retrying when the socket buffer is full (`ENOBUFS`).
@@ -56,6 +60,11 @@ pub const ENOBUFS_BACKOFF: StdDuration = StdDuration::from_micros(200);
 
 /// How long a send keeps retrying on `ENOBUFS` before the frame is dropped and reported.
 pub const TX_STALL_LIMIT: StdDuration = StdDuration::from_secs(1);
+
+/// The receive buffer the runners ask for on the node's socket (`SO_RCVBUFFORCE`, else `SO_RCVBUF` capped
+/// by `net.core.rmem_max`): a whole 127-segment sub-block plus a burst of other traffic while the node
+/// computes (the default of about 200 KiB holds far fewer frames than it seems, each costing a whole skb).
+pub const RECEIVE_BUFFER: usize = 4 << 20;
 
 /// How often a runner looks whether a downed interface is up again.
 pub const REOPEN_POLL: StdDuration = StdDuration::from_millis(100);

@@ -1,5 +1,5 @@
-//! The tokio adapter: the core's executor-agnostic [`driver`] on a tokio
-//! `AsyncFd` CAN socket.
+//! The tokio adapter: the node on a tokio `AsyncFd` CAN socket ([`run_tokio`]); the halves of
+//! [`TokioBus`] also plug into the core's executor-agnostic [`driver`](canopen_core::driver).
 //!
 //! - [`TokioBus`] owns the socket; [`TokioBus::split`] gives a receive half ([`CanRx`], cancel-safe: a frame
 //!   is only taken from the socket when the read completes) and a transmit half ([`CanTx`], waits and
@@ -8,8 +8,8 @@
 //! - [`MutexShared`] holds the node (a `std::sync::Mutex`: the driver never holds it across an `.await`)
 //!   and [`NotifyWake`] (a `tokio::sync::Notify`) lets another task wake the driver after it changed the
 //!   node.
-//! - [`run_tokio`] is the supervisor: it runs [`driver::run`] and, when the
-//!   interface goes down, waits for it, reopens the socket and runs the driver again on the same node.
+//! - [`run_tokio`] runs the node in passes (one clock reading, batched socket calls, kernel filters) and,
+//!   when the interface goes down, waits for it, reopens the socket and goes on with the same node.
 //!
 //! ```no_run
 //! use std::sync::Arc;
@@ -34,12 +34,17 @@ use std::future::Future;
 use std::io;
 use std::sync::Mutex;
 
-use canopen_core::driver::{self, CanRx, CanTx, DriverError, Shared, Timer, Wake};
+use canopen_core::driver::{CanRx, CanTx, Shared, Timer, Wake};
 use canopen_core::node::SansIo;
 use canopen_core::{CanFrame, Instant};
-use socketcan::SocketOptions;
+use std::os::fd::AsRawFd;
+
+use socketcan::{Socket, SocketOptions};
+use tokio::io::unix::AsyncFd;
+use tokio::io::Interest;
 use tokio::sync::Notify;
 
+use crate::pass::{count, kernel_filters, Counter, Pass, ReceiveFilters};
 use crate::{classify, map_received, open_error, to_socket_frame, AdapterEvent, Clock, ErrorClass, Observed};
 
 /// The observer the tokio runner reports to (shared by the receive half, the transmit half and the driver's
@@ -48,7 +53,7 @@ pub type Observer<'a> = &'a (dyn Fn(Observed<'_>) + Sync);
 
 /// A tokio CAN socket on one interface.
 pub struct TokioBus {
-    socket: socketcan::tokio::CanSocket,
+    socket: AsyncFd<socketcan::CanSocket>,
     iface: String,
 }
 
@@ -56,9 +61,10 @@ impl TokioBus {
     /// Opens `iface` and accepts every error frame class. Must be called inside a tokio runtime. The error
     /// says how to create a virtual interface when it is missing.
     pub fn open(iface: &str) -> io::Result<Self> {
-        let socket = socketcan::tokio::CanSocket::open(iface).map_err(|e| open_error(iface, e))?;
+        let socket = socketcan::CanSocket::open(iface).map_err(|e| open_error(iface, e))?;
         socket.set_error_filter_accept_all()?;
-        Ok(TokioBus { socket, iface: iface.to_owned() })
+        socket.set_nonblocking(true)?;
+        Ok(TokioBus { socket: crate::batch::register(socket)?, iface: iface.to_owned() })
     }
 
     /// The interface name.
@@ -68,7 +74,7 @@ impl TokioBus {
 
     /// Receive only frames matching one of `(id, mask)` (error frames still come through).
     pub fn set_filters(&self, filters: &[(u32, u32)]) -> io::Result<()> {
-        crate::blocking::apply_filters(&self.socket, filters)
+        crate::blocking::apply_filters(self.socket.get_ref(), filters)
     }
 
     /// The receive and transmit halves, both reporting to `observe`.
@@ -83,10 +89,12 @@ impl TokioBus {
         let out = to_socket_frame(frame)?;
         let mut stalled: Option<std::time::Instant> = None;
         loop {
-            match self.socket.write_frame(out).await {
+            // The socket is registered for readability only (see `batch::register`): a full queue
+            // (`ENOBUFS`, or `EAGAIN` from the socket's own buffer) is retried after a back-off.
+            match self.socket.get_ref().write_frame(&out) {
                 Ok(()) => return Ok(()),
                 Err(e) => match classify(&e) {
-                    ErrorClass::NoBufs => {
+                    ErrorClass::NoBufs | ErrorClass::Timeout => {
                         let since = *stalled.get_or_insert_with(|| {
                             observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
                             std::time::Instant::now()
@@ -97,7 +105,7 @@ impl TokioBus {
                         }
                         tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
                     }
-                    ErrorClass::Interrupted | ErrorClass::Timeout => {}
+                    ErrorClass::Interrupted => {}
                     ErrorClass::Down | ErrorClass::Fatal => return Err(e),
                 },
             }
@@ -108,7 +116,8 @@ impl TokioBus {
     /// are skipped. Cancel-safe.
     pub async fn recv(&self, observe: Observer<'_>) -> io::Result<CanFrame> {
         loop {
-            match self.socket.read_frame().await {
+            let read = self.socket.async_io(Interest::READABLE, |s| s.read_frame()).await;
+            match read {
                 Ok(f) => match map_received(&f) {
                     Some(Ok(frame)) => return Ok(frame),
                     Some(Err(event)) => observe(Observed::Adapter(&event)),
@@ -242,22 +251,27 @@ impl Wake for NotifyWake {
 /// Runs the node in `shared` on `iface` with tokio until a socket error that is not an interface going
 /// down (that is returned). Every frame, node event and [`AdapterEvent`] goes to `observe`. Stop it by
 /// dropping the future (`tokio::select!`, `tokio::time::timeout`).
-pub async fn run_tokio<N: SansIo, S: Shared<N>, W: Wake>(
+///
+/// Each pass reads the clock once, hands the node every frame received since the last pass and the time,
+/// sends what it produced (one `sendmmsg` per [`BATCH`](crate::BATCH) frames), installs the node's receive
+/// set as kernel filters when it changed (`CAN_RAW_FILTER`: frames for other nodes never wake the task),
+/// then waits for the first of: the socket readable (every queued frame is taken, one `recvmmsg` per
+/// batch), the node's next deadline (no timer at all when it has none), a [`Wake`] signal.
+pub async fn run_tokio<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
     shared: &S,
     iface: &str,
     wake: &W,
     observe: Observer<'_>,
 ) -> io::Result<Infallible> {
-    let mut timer = TokioTimer::new(Clock::new());
+    let timer = TokioTimer::new(Clock::new());
+    let mut pass = Pass::default();
     let mut bus = TokioBus::open(iface)?;
     loop {
-        let result = {
-            let (mut rx, mut tx) = bus.split(observe);
-            driver::run(shared, &mut rx, &mut tx, &mut timer, wake, |e| observe(Observed::Event(&e))).await
-        };
-        let e = match result {
+        let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
+        pass.installed = None;
+        let e = match run_passes(shared, &bus, &mut pass, &timer, wake, observe).await {
             Ok(never) => match never {},
-            Err(DriverError::Receive(e)) | Err(DriverError::Transmit(e)) => e,
+            Err(e) => e,
         };
         if classify(&e) != ErrorClass::Down {
             return Err(e);
@@ -273,4 +287,96 @@ pub async fn run_tokio<N: SansIo, S: Shared<N>, W: Wake>(
         };
         observe(Observed::Adapter(&AdapterEvent::Reopened { iface: iface.to_owned() }));
     }
+}
+
+async fn run_passes<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
+    shared: &S,
+    bus: &TokioBus,
+    pass: &mut Pass,
+    timer: &TokioTimer,
+    wake: &W,
+    observe: Observer<'_>,
+) -> io::Result<Infallible> {
+    let fd = bus.socket.as_raw_fd();
+    let mut obs = |o: Observed<'_>| observe(o);
+    let mut raw = [crate::batch::empty_frame(); crate::BATCH];
+    loop {
+        let now = timer.now(); // the pass's one clock reading
+        let (deadline, filters) = pass.run(shared, now, &mut obs);
+        if let Some(f) = filters {
+            bus.set_filters(&kernel_filters(&f))?;
+            count(Counter::FilterUpdates, 1);
+            pass.installed = Some(f);
+        }
+        send_all(bus, pass, timer, &mut obs).await?;
+        if deadline.is_some_and(|d| d <= now) {
+            crate::blocking::receive_all(fd, pass, &mut obs)?; // due now: no wait
+            continue;
+        }
+        let sleep = async {
+            match deadline {
+                Some(d) => tokio::time::sleep_until(tokio::time::Instant::from_std(timer.clock.to_std(d))).await,
+                None => std::future::pending().await,
+            }
+        };
+        let ready = tokio::select! {
+            biased;
+            r = bus.socket.readable() => Some(r?),
+            _ = sleep => None,
+            _ = wake.wait() => None,
+        };
+        count(Counter::Wakeups, 1);
+        if let Some(mut guard) = ready {
+            loop {
+                let n = crate::batch::recv_frames(fd, &mut raw)?;
+                if n > 0 {
+                    pass.take_raw(&raw[..n], &mut obs);
+                }
+                if n < raw.len() {
+                    // The queue was empty at the end of this call: wait for the next edge.
+                    guard.clear_ready();
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// Sends `pass.tx` in order, in as few calls as the socket takes; a full queue (`ENOBUFS`, `EAGAIN`) is
+/// retried every [`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF), the first frame dropped and reported after
+/// [`TX_STALL_LIMIT`](crate::TX_STALL_LIMIT); nothing is lost or reordered on a partial send.
+async fn send_all(
+    bus: &TokioBus,
+    pass: &mut Pass,
+    timer: &TokioTimer,
+    observe: &mut (dyn FnMut(Observed<'_>) + Send),
+) -> io::Result<()> {
+    let mut stalled: Option<Instant> = None;
+    while !pass.tx.is_empty() {
+        let raw = pass.tx.iter().map(crate::pass::raw_frame).collect::<io::Result<Vec<_>>>()?;
+        match crate::batch::send_frames(bus.socket.as_raw_fd(), &raw) {
+            Ok(n) => {
+                crate::pass::sent(&mut pass.tx, n, observe);
+                stalled = None;
+            }
+            Err(e) => match classify(&e) {
+                ErrorClass::NoBufs | ErrorClass::Timeout => {
+                    let t = timer.now(); // only a stall reads the clock again
+                    let since = *stalled.get_or_insert_with(|| {
+                        observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
+                        t
+                    });
+                    if t.as_micros().saturating_sub(since.as_micros()) >= crate::TX_STALL_LIMIT.as_micros() as u64 {
+                        crate::pass::drop_first(&mut pass.tx, observe);
+                        stalled = None;
+                    } else {
+                        tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
+                    }
+                }
+                ErrorClass::Interrupted => {}
+                ErrorClass::Down | ErrorClass::Fatal => return Err(e),
+            },
+        }
+    }
+    Ok(())
 }

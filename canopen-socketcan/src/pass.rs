@@ -1,0 +1,248 @@
+//! One pass of a runner, shared by [`run_blocking`](crate::run_blocking) and [`run_tokio`](crate::run_tokio):
+//! the frames received since the last pass and the time that passed go to the node with ONE clock reading,
+//! everything the node produced comes out in one batch, and the node's receive filters are compared with the
+//! installed ones. The runners only differ in how they wait and how they sleep on a full send queue.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use canopen_core::driver::Shared;
+use canopen_core::node::{RxFilters, SansIo};
+use canopen_core::{CanFrame, Event, Instant};
+
+use crate::{map_received, AdapterEvent, Observed};
+
+/// A node whose receive set the runners install as kernel filters (`CAN_RAW_FILTER`), so that frames for
+/// other nodes never wake the process. Implemented by [`canopen_core::Node`].
+///
+/// ```
+/// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, NodeId};
+/// use canopen_socketcan::ReceiveFilters;
+/// let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+/// assert!(ReceiveFilters::rx_filters(&node).iter().any(|f| f.id == 0x605));
+/// ```
+pub trait ReceiveFilters {
+    /// The acceptance filters of the frames the node handles now.
+    fn rx_filters(&self) -> RxFilters;
+}
+
+impl<
+        A: canopen_core::od::ObjectDictionary,
+        const HB: usize,
+        const TXQ: usize,
+        const EVQ: usize,
+        const RPDO: usize,
+        const TPDO: usize,
+        S: canopen_core::storage::Storage,
+    > ReceiveFilters for canopen_core::Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+{
+    fn rx_filters(&self) -> RxFilters {
+        canopen_core::Node::rx_filters(self)
+    }
+}
+
+/// What the runners did, counted process-wide (all runners in the process together), for tests and
+/// benchmarks: a frame for another node must not move any of these.
+///
+/// ```
+/// let s = canopen_socketcan::runner_stats();
+/// assert!(s.frames_received <= s.frames_received + s.wakeups);
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RunnerStats {
+    /// Returns from a wait (a frame, a deadline, an application wake-up, a signal).
+    pub wakeups: u64,
+    /// Passes through the node (one clock reading each).
+    pub passes: u64,
+    /// Receive system calls that returned frames.
+    pub receive_calls: u64,
+    /// Frames received (11-bit, 29-bit and error frames).
+    pub frames_received: u64,
+    /// Send system calls.
+    pub send_calls: u64,
+    /// Frames sent.
+    pub frames_sent: u64,
+    /// Kernel filter installations (at open and whenever the node's receive set changed).
+    pub filter_updates: u64,
+}
+
+static COUNTERS: [AtomicU64; 7] = [const { AtomicU64::new(0) }; 7];
+
+pub(crate) enum Counter {
+    Wakeups,
+    Passes,
+    ReceiveCalls,
+    FramesReceived,
+    SendCalls,
+    FramesSent,
+    FilterUpdates,
+}
+
+pub(crate) fn count(c: Counter, n: u64) {
+    COUNTERS[c as usize].fetch_add(n, Ordering::Relaxed);
+}
+
+/// The runners' counters since the process started (see [`RunnerStats`]).
+pub fn runner_stats() -> RunnerStats {
+    let c = |i: usize| COUNTERS[i].load(Ordering::Relaxed);
+    RunnerStats {
+        wakeups: c(0),
+        passes: c(1),
+        receive_calls: c(2),
+        frames_received: c(3),
+        send_calls: c(4),
+        frames_sent: c(5),
+        filter_updates: c(6),
+    }
+}
+
+/// The buffers one runner reuses from pass to pass.
+#[derive(Default)]
+pub(crate) struct Pass {
+    /// Frames received since the last pass, in order.
+    pub rx: Vec<CanFrame>,
+    /// Frames the node produced, in order, not yet sent.
+    pub tx: Vec<CanFrame>,
+    events: Vec<Event>,
+    /// The filters installed on the socket (`None`: accept all).
+    pub installed: Option<RxFilters>,
+}
+
+impl Pass {
+    /// Maps raw frames from the socket into `rx` (reporting error frames, skipping 29-bit ones).
+    pub fn take_raw(&mut self, raw: &[libc::can_frame], observe: &mut dyn FnMut(Observed<'_>)) {
+        count(Counter::ReceiveCalls, 1);
+        count(Counter::FramesReceived, raw.len() as u64);
+        for r in raw {
+            match map_received(&socketcan::CanFrame::from(*r)) {
+                Some(Ok(frame)) => self.rx.push(frame),
+                Some(Err(event)) => observe(Observed::Adapter(&event)),
+                None => {}
+            }
+        }
+    }
+
+    /// Runs the node at `now`: the received frames, then the time, then drains its frames into `tx` and
+    /// its events into `observe` (outside the lock: an observer may change the node, whose frames are
+    /// drained too). Returns the next deadline and the node's filters when they differ from `installed`.
+    pub fn run<N: SansIo + ReceiveFilters, S: Shared<N>>(
+        &mut self,
+        shared: &S,
+        now: Instant,
+        observe: &mut dyn FnMut(Observed<'_>),
+    ) -> (Option<Instant>, Option<RxFilters>) {
+        count(Counter::Passes, 1);
+        for f in &self.rx {
+            observe(Observed::Received(f));
+        }
+        let mut first = true;
+        loop {
+            let (rx, tx, events) = (&mut self.rx, &mut self.tx, &mut self.events);
+            let (deadline, filters) = shared.lock(|n| {
+                if std::mem::take(&mut first) {
+                    for f in rx.drain(..) {
+                        n.handle_frame(now, &f);
+                    }
+                    n.handle_timeout(now);
+                }
+                tx.extend(std::iter::from_fn(|| n.poll_transmit()));
+                events.extend(std::iter::from_fn(|| n.poll_event()));
+                (n.poll_timeout(), n.rx_filters())
+            });
+            if self.events.is_empty() {
+                let changed = (self.installed.as_ref() != Some(&filters)).then_some(filters);
+                return (deadline, changed);
+            }
+            for e in self.events.drain(..) {
+                observe(Observed::Event(&e));
+            }
+        }
+    }
+}
+
+/// The kernel filter list for `filters`: 11-bit data and remote frames only (29-bit frames never match,
+/// CAN-01).
+pub(crate) fn kernel_filters(filters: &[canopen_core::node::RxFilter]) -> Vec<(u32, u32)> {
+    filters.iter().map(|f| (u32::from(f.id), u32::from(f.mask) | libc::CAN_EFF_FLAG)).collect()
+}
+
+/// A core frame as the kernel's `can_frame`.
+pub(crate) fn raw_frame(frame: &CanFrame) -> std::io::Result<libc::can_frame> {
+    let f = crate::to_socket_frame(frame)?;
+    Ok(*AsRef::<libc::can_frame>::as_ref(&f))
+}
+
+/// Reports the frames `tx[..n]` as sent and removes them.
+pub(crate) fn sent(tx: &mut Vec<CanFrame>, n: usize, observe: &mut dyn FnMut(Observed<'_>)) {
+    count(Counter::SendCalls, 1);
+    count(Counter::FramesSent, n as u64);
+    for f in tx.drain(..n) {
+        observe(Observed::Sent(&f));
+    }
+}
+
+/// After a full send queue lasted [`TX_STALL_LIMIT`](crate::TX_STALL_LIMIT): the first unsent frame is
+/// dropped and reported.
+pub(crate) fn drop_first(tx: &mut Vec<CanFrame>, observe: &mut dyn FnMut(Observed<'_>)) {
+    if !tx.is_empty() {
+        let f = tx.remove(0);
+        observe(Observed::Adapter(&AdapterEvent::TxDropped(f)));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canopen_core::node::{NoApplication, Node};
+    use canopen_core::profile::NodeConfig;
+    use canopen_core::NodeId;
+    use std::cell::RefCell;
+
+    /// One pass: the frames in order at the one instant given, then the time; every frame the node
+    /// produced (including those an event observer queued) in order; the filters reported only when they
+    /// differ from the installed ones (issue 19; SDO-05: the reply to a request in the same pass).
+    #[test]
+    fn a_pass_handles_frames_in_order_and_reports_filter_changes() {
+        let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+        let shared = RefCell::new(node);
+        let mut pass = Pass::default();
+        let mut seen = Vec::new();
+        let (deadline, filters) = pass.run(&shared, Instant::ZERO, &mut |o| seen.push(format!("{o:?}")));
+        assert_eq!(pass.tx, [CanFrame::new(0x705, &[0]).unwrap()]); // boot-up
+        assert_eq!(deadline, None);
+        pass.installed = Some(filters.expect("first pass: filters to install"));
+        pass.tx.clear();
+        // Two reads of 1000h, then a write of 1016h:01 (a heartbeat consumer of node 3): three replies in
+        // order, and the receive set changed (703h).
+        for req in [[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0], [0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]] {
+            pass.rx.push(CanFrame::new(0x605, &req).unwrap());
+        }
+        pass.rx.push(CanFrame::new(0x605, &[0x23, 0x16, 0x10, 0x01, 0xF4, 0x01, 0x03, 0x00]).unwrap());
+        let mut observed = 0;
+        let (_, filters) = pass.run(&shared, Instant::from_millis(1), &mut |o| {
+            if matches!(o, Observed::Received(_)) {
+                observed += 1;
+            }
+        });
+        assert_eq!(observed, 3);
+        assert!(pass.rx.is_empty());
+        let cmds: Vec<u8> = pass.tx.iter().map(|f| f.data()[0]).collect();
+        assert_eq!(cmds, [0x43, 0x43, 0x60]);
+        let filters = filters.expect("1016h changed the receive set");
+        assert!(filters.iter().any(|f| f.id == 0x703));
+        pass.installed = Some(filters);
+        pass.tx.clear();
+        // Nothing changed: no filters to install.
+        let (_, filters) = pass.run(&shared, Instant::from_millis(2), &mut |_| {});
+        assert!(filters.is_none() && pass.tx.is_empty());
+        // An observer that queues a frame while handling an event (an EMCY on the state change): the
+        // pass drains the node again, so the EMCY goes out in the same pass (EMCY-01: 080h + node-ID).
+        pass.rx.push(CanFrame::new(0x000, &[0x01, 0x05]).unwrap()); // NMT start: an event
+        let (_, _) = pass.run(&shared, Instant::from_millis(3), &mut |o| {
+            if let Observed::Event(canopen_core::Event::StateChanged { .. }) = o {
+                shared.borrow_mut().raise_error(0x1000, [0; 5]);
+            }
+        });
+        assert_eq!(pass.tx.iter().map(|f| f.cob_id()).collect::<Vec<_>>(), [0x085]);
+        assert!(seen.iter().any(|s| s.contains("Event")), "{seen:?}");
+    }
+}
