@@ -1,7 +1,7 @@
 //! The node's emergency wiring: the public raise/clear API, the EMCY producer with 1014h/1015h, the
 //! Stopped rule and the EMCY consumer.
 
-use super::Node;
+use super::{Node, NodeSizes};
 use crate::cob::CobIdEntry;
 use crate::event::Event;
 use crate::frame::CanFrame;
@@ -11,16 +11,7 @@ use crate::storage::Storage;
 use crate::time::Instant;
 use crate::wire::emcy::Emergency;
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Raises error `code` with manufacturer bytes `manufacturer` (EMCY-05/07, ERR-02, ERR-06/07): 1001h and
     /// 1003h follow, an EMCY is queued (spaced by 1015h, held in Stopped). Returns `false` when the code is
     /// already active (nothing is repeated) or is 0000h.

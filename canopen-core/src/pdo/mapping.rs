@@ -39,8 +39,9 @@ pub struct Mapped {
 /// refused with 0604 0041h. Dummy entries are accepted in RPDOs only.
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// use canopen_core::{profile::NodeConfig, od::{PdoDir, AbortCode}, profile::CommProfile, pdo::mapping::resolve};
-/// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+/// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
 /// assert!(resolve(&od, 0x1001_0008, PdoDir::Tpdo).is_ok()); // 1001h is TPDO-mappable
 /// assert_eq!(resolve(&od, 0x1001_0008, PdoDir::Rpdo), Err(AbortCode::NotMappable));
 /// assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
@@ -94,8 +95,9 @@ impl ResolvedMap {
     /// a bad entry → its [`resolve`] error).
     ///
     /// ```
+    /// # use canopen_core::Sizes;
     /// use canopen_core::{profile::NodeConfig, od::{PdoDir, AbortCode}, profile::CommProfile, pdo::mapping::ResolvedMap};
-    /// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+    /// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
     /// let m = ResolvedMap::resolve(&od, &[0x1001_0008, 0x1001_0004], PdoDir::Tpdo).unwrap();
     /// assert_eq!((m.len(), m.bits(), m.bytes()), (2, 12, 2));
     /// assert_eq!(ResolvedMap::resolve(&od, &[0x1001_0008; 9], PdoDir::Tpdo), Err(AbortCode::PdoLengthExceeded));
