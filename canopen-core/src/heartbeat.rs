@@ -335,10 +335,7 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn ms(v: u64) -> Instant {
-        Instant::from_millis(v)
-    }
+    use crate::time::ms;
 
     /// HB-04: the boot-up is the first heartbeat; a written period takes effect at once; 0 stops.
     #[test]
