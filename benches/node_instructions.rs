@@ -7,7 +7,7 @@
 //! and divides the difference by the number of frames, so set-up and process start-up cancel out.
 //!
 //! The SDO client's frames are recorded once with our SDO client before the measured part and then
-//! replayed, so the client's own work is not counted. Scenarios, all on a `Node<_, 4, 16, 16, 4, 4>`:
+//! replayed, so the client's own work is not counted. Scenarios, all on a `Node<_, Sizes>`:
 //!
 //! - `expedited_upload` (1000h), `expedited_download` (a U32), `segmented_upload` (a 64-byte
 //!   VISIBLE_STRING), `block_download` (889·8 bytes with CRC into a DOMAIN), node Pre-operational;
@@ -25,7 +25,7 @@ use canopen::core::{
     sdo::client::{ClientEvent, Mode, SdoClient, SliceData},
     sdo::SdoClientParams,
     wire::sdo::Multiplexer,
-    CanFrame, Instant, NmtState, NodeId,
+    CanFrame, Instant, NmtState, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
 
@@ -43,7 +43,7 @@ struct App {
     blob: DomainBuf<BLOCK_LEN>,
 }
 
-type BenchNode = Node<App, 4, 16, 16, 4, 4>;
+type BenchNode = Node<App, Sizes>;
 
 fn new_node() -> BenchNode {
     let app = App::default(); // power-on (Reset Application) gives every entry its `default =` value
@@ -77,7 +77,7 @@ const TPDO: PdoDefault = PdoDefault { transmission_type: 1, mapping: MAP, ..PdoD
 const PDO_CFG: NodeConfig = NodeConfig { rpdo: &[RPDO], tpdo: &[TPDO, TPDO, TPDO, TPDO], ..NodeConfig::DEFAULT };
 
 /// A node with one RPDO and four synchronous TPDOs, Operational, queues drained.
-fn pdo_node() -> Node<Process, 4, 16, 16, 4, 4> {
+fn pdo_node() -> Node<Process, Sizes> {
     let mut node = Node::new(NodeId::new(5).unwrap(), PDO_CFG, Process::default());
     node.handle_timeout(Instant::ZERO);
     node.enter_state(NmtState::Operational);
@@ -88,7 +88,7 @@ fn pdo_node() -> Node<Process, 4, 16, 16, 4, 4> {
 
 /// Replays `script` `iterations` times, one main-loop pass per frame; returns (received, sent) frames.
 fn run<A: canopen::core::od::ObjectDictionary + canopen::core::od::OdDescribe>(
-    node: &mut Node<A, 4, 16, 16, 4, 4>,
+    node: &mut Node<A, Sizes>,
     script: &[CanFrame],
     iterations: usize,
 ) -> (usize, usize) {

@@ -4,6 +4,7 @@
 //! through the merged comm profile.
 
 use canopen_core::profile::NodeConfig;
+use canopen_core::Sizes;
 use canopen_core::{
     od::{Merged, ObjectDictionary, PdoDir},
     profile::CommProfile,
@@ -59,7 +60,8 @@ fn bench(c: &mut Criterion) {
         let mut buf = [0u8; 4];
         b.iter(|| black_box(od.pdo_read(black_box(&h), &mut buf)))
     });
-    let merged = Merged { comm: CommProfile::<4>::new(NodeConfig::DEFAULT), app: Hundred::default() };
+    let merged =
+        Merged { comm: CommProfile::<Sizes<4, 16, 16, 0, 0>>::new(NodeConfig::DEFAULT), app: Hundred::default() };
     c.bench_function("merged read 1000h", |b| {
         let mut buf = [0u8; 4];
         b.iter(|| black_box(merged.read(black_box(0x1000), 0, 0, &mut buf)))

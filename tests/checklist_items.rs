@@ -16,7 +16,7 @@ use canopen::core::{
         CommProfile, NodeConfig,
     },
     sync::SyncParams,
-    CanFrame, Instant, NmtState, NodeId,
+    CanFrame, Instant, NmtState, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
 use common::{frame, Bus};
@@ -167,7 +167,7 @@ fn sync_unconfirmed_single_producer_jitter_sync_15() {
     assert!(bus.log.iter().filter(|s| s.frame.cob_id() == 0x080).all(|s| s.from == common::Sender::Master));
 }
 
-fn merged() -> Merged<CommProfile<4, 4, 4>, App> {
+fn merged() -> Merged<CommProfile<Sizes>, App> {
     let cfg = NodeConfig { rpdo: RPDO_BYTE, tpdo: TPDO_SYNC, ..NodeConfig::DEFAULT };
     Merged { comm: CommProfile::for_node(cfg, 5), app: App::default() }
 }

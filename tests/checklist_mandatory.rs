@@ -492,7 +492,7 @@ fn pdo_carries_only_mapped_data_pdo_01() {
 /// four TPDOs are configured does; none has a second SDO server (1201h).
 #[test]
 fn identifiers_only_for_existing_objects_cob_09() {
-    let mut none: Bus<Node<App, 4, 16, 16, 0, 0>> =
+    let mut none: Bus<Node<App, canopen::core::Sizes<4, 16, 16, 0, 0>>> =
         Bus::booted(vec![Node::new(NodeId::new(6).unwrap(), NodeConfig::DEFAULT, App::default())]);
     for index in [0x1400u16, 0x1600, 0x1800, 0x1A00, 0x1201] {
         assert_eq!(upload(&mut none, 6, index, 1), Err(0x0602_0000), "{index:04X}");

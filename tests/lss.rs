@@ -20,12 +20,12 @@ use canopen::core::{
     },
     wire::lss::{BitRate, IdentityField, LssMode, LssRequest, LssResponse, Status},
     wire::sdo::Multiplexer,
-    CanFrame, Duration, Event, Instant, NmtState, NodeId,
+    CanFrame, Duration, Event, Instant, NmtState, NodeId, Sizes,
 };
 use common::{events, frame, ms, sdo_transfer, Bus, Sender, Station};
 use proptest::prelude::*;
 
-type TestNode = Node<NoApplication, 4, 32, 32>;
+type TestNode = Node<NoApplication, Sizes<4, 32, 32>>;
 
 const LSS_TIMEOUT: Duration = Duration::from_millis(20);
 

@@ -10,11 +10,11 @@ use canopen::core::{
     node::{NoApplication, Node},
     profile::NodeConfig,
     wire::error_control::StateCode,
-    CanFrame, Event, NmtState, NodeId,
+    CanFrame, Event, NmtState, NodeId, Sizes,
 };
 use common::{events, frame, ms, Bus, Sender};
 
-type TestNode = Node<NoApplication, 4>;
+type TestNode = Node<NoApplication, Sizes<4>>;
 
 fn node(id: u8, heartbeat_ms: u16) -> TestNode {
     let cfg = NodeConfig { heartbeat_time_ms: heartbeat_ms, ..NodeConfig::DEFAULT };
@@ -362,7 +362,7 @@ fn poll_timeout_is_exact() {
 #[test]
 fn full_transmit_queue_is_counted() {
     let cfg = NodeConfig::DEFAULT;
-    let mut n: Node<NoApplication, 1, 2, 4> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
+    let mut n: Node<NoApplication, Sizes<1, 2, 4>> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
     n.handle_timeout(ms(0)); // boot-up
     for _ in 0..3 {
         n.handle_frame(ms(1), &frame("705 [RTR]"));

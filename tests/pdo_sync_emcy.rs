@@ -6,7 +6,7 @@ mod common;
 
 use canopen::core::{
     node::Node, od::TimeOfDay, pdo::PdoDefault, profile::NodeConfig, sync::SyncParams, wire::emcy::Emergency, CanFrame,
-    Event, NmtState, NodeId,
+    Event, NmtState, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
 use common::{events, frame, ms, Bus};
@@ -30,7 +30,7 @@ pub struct App {
     target: i32,
 }
 
-type TestNode = Node<App, 4, 32, 64>;
+type TestNode = Node<App, Sizes<4, 32, 64>>;
 
 fn node_with(id: u8, cfg: NodeConfig) -> TestNode {
     Node::new(NodeId::new(id).unwrap(), cfg, App::default())

@@ -11,7 +11,7 @@ use canopen::core::{
     sync::SyncParams,
     wire::emcy::Emergency,
     wire::sdo::ServerResponse,
-    CanFrame, Instant, NmtState, NodeId,
+    CanFrame, Instant, NmtState, NodeId, Sizes,
 };
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
@@ -136,7 +136,7 @@ fn input() -> impl Strategy<Value = Input> {
 }
 
 /// Two heartbeat consumers, 8 frames queued, 8 events queued.
-type TestNode = Node<NoApplication, 2, 8, 8>;
+type TestNode = Node<NoApplication, Sizes<2, 8, 8>>;
 
 /// Drains the node's events. A reset communication (the server's parameters are set anew) or Stopped (NMT-18)
 /// ends any SDO transfer silently.

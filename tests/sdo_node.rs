@@ -13,7 +13,7 @@ use canopen::core::{
     sdo::client::{ClientError, ClientEvent, Mode, SdoClient, SliceData},
     sdo::SdoClientParams,
     wire::sdo::Multiplexer,
-    Event, NmtState, NodeId,
+    Event, NmtState, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
 use common::{events, frame, ms, sdo_transfer, Bus};
@@ -33,11 +33,11 @@ struct App {
 
 const CFG: NodeConfig = NodeConfig { device_type: 0x000F_0191, device_name: "sdo test node", ..NodeConfig::DEFAULT };
 
-fn node(id: u8) -> Node<App, 4, 4, 32> {
+fn node(id: u8) -> Node<App, Sizes<4, 4, 32>> {
     Node::new(NodeId::new(id).unwrap(), CFG, App::default())
 }
 
-fn replies(bus: &mut Bus<Node<App, 4, 4, 32>>) -> Vec<canopen::core::CanFrame> {
+fn replies(bus: &mut Bus<Node<App, Sizes<4, 4, 32>>>) -> Vec<canopen::core::CanFrame> {
     bus.take_master_rx().into_iter().map(|s| s.frame).filter(|f| f.cob_id() & 0x780 == 0x580).collect()
 }
 

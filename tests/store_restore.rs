@@ -12,7 +12,7 @@ use canopen::core::{
     pdo::PdoDefault,
     profile::NodeConfig,
     storage::{Storage, StorageError},
-    CanFrame, NodeId,
+    CanFrame, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
 use common::{frame, ms, Bus};
@@ -84,7 +84,7 @@ impl Storage for Ram {
     }
 }
 
-type TestNode = Node<App, 2, 32, 64, 2, 2, Ram>;
+type TestNode = Node<App, Sizes<2, 32, 64, 2, 2>, Ram>;
 
 const CFG: NodeConfig =
     NodeConfig { tpdo: &[PdoDefault { mapping: &[0x2000_0008], ..PdoDefault::EVENT }], ..NodeConfig::DEFAULT };

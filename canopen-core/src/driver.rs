@@ -178,7 +178,7 @@ where
         match wait(rx, timer, wake, deadline).await {
             Woken::Frame(Ok(frame)) => {
                 #[cfg(any(feature = "defmt", feature = "log"))]
-                crate::trace::rx(&frame);
+                crate::trace::frame("rx", &frame);
                 let now = timer.now();
                 shared.lock(|n| n.handle_frame(now, &frame));
             }
@@ -216,7 +216,7 @@ async fn service<N: SansIo, S: Shared<N>, T: CanTx>(
         }
         for f in &frames {
             #[cfg(any(feature = "defmt", feature = "log"))]
-            crate::trace::tx(f);
+            crate::trace::frame("tx", f);
             tx.transmit(f).await?;
         }
         if !frames.is_full() && !events.is_full() {

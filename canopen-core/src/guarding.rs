@@ -109,10 +109,7 @@ impl Guarding {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn ms(v: u64) -> Instant {
-        Instant::from_millis(v)
-    }
+    use crate::time::ms;
 
     /// GUARD-09/10: starts with the first RTR, times out once, resolves on the next RTR.
     #[test]

@@ -8,6 +8,7 @@
 //! guarding at once) and HB-13 (time-out is a communication error handled per 1029h) are enforced by `Node`.
 //! HB-09 (duplicate node) is enforced by `profile::CommParams::set_consumer`. HB-12/HB-14 are advice.
 
+use crate::sizes::{Sizes, Slots};
 use crate::time::{Duration, Instant};
 use crate::wire::error_control::StateCode;
 
@@ -120,15 +121,53 @@ enum Monitor {
     TimedOut { state: StateCode },
 }
 
-/// One 1016h entry and its monitoring state.
+/// One 1016h entry and its monitoring state (opaque: what a [`HeartbeatConsumer`] keeps per entry).
+///
+/// ```
+/// use canopen_core::heartbeat::ConsumerSlot;
+/// let slots = [ConsumerSlot::OFF; 2]; // what `ConsumerSizes::NO_CONSUMERS` holds for two entries
+/// assert_eq!(slots[0], ConsumerSlot::OFF);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Slot {
+pub struct ConsumerSlot {
     entry: ConsumerEntry,
     monitor: Monitor,
 }
 
-impl Slot {
-    const OFF: Slot = Slot { entry: ConsumerEntry { node_id: 0, time_ms: 0 }, monitor: Monitor::Waiting };
+impl ConsumerSlot {
+    /// An entry that monitors nothing.
+    pub const OFF: ConsumerSlot =
+        ConsumerSlot { entry: ConsumerEntry { node_id: 0, time_ms: 0 }, monitor: Monitor::Waiting };
+}
+
+/// How many 1016h consumer entries a node has, as the consumer's storage type (see [`crate::sizes`]);
+/// implemented for [`Sizes`].
+///
+/// ```
+/// use canopen_core::{heartbeat::ConsumerSizes, Sizes};
+/// assert_eq!(<Sizes<3> as ConsumerSizes>::HB, 3);
+/// ```
+pub trait ConsumerSizes {
+    /// The number of consumer entries, `HB`.
+    const HB: usize;
+    /// `[ConsumerSlot; HB]`.
+    type Consumers: Slots<ConsumerSlot> + Clone + core::fmt::Debug + PartialEq + Eq;
+    /// `[u32; HB]`: the raw 1016h values.
+    type ConsumerTimes: Slots<u32> + Copy + core::fmt::Debug + PartialEq + Eq;
+    /// Every entry off.
+    const NO_CONSUMERS: Self::Consumers;
+    /// Every raw value 0 (entry unused).
+    const ZERO_TIMES: Self::ConsumerTimes;
+}
+
+impl<const HB: usize, const TXQ: usize, const EVQ: usize, const RPDO: usize, const TPDO: usize> ConsumerSizes
+    for Sizes<HB, TXQ, EVQ, RPDO, TPDO>
+{
+    const HB: usize = HB;
+    type Consumers = [ConsumerSlot; HB];
+    type ConsumerTimes = [u32; HB];
+    const NO_CONSUMERS: [ConsumerSlot; HB] = [ConsumerSlot::OFF; HB];
+    const ZERO_TIMES: [u32; HB] = [0; HB];
 }
 
 /// A heartbeat consumer observation, reported to the application (HB-11).
@@ -176,12 +215,13 @@ pub enum ConsumerEvent {
     },
 }
 
-/// The heartbeat consumer with `N` entries (1016h:01..N).
+/// The heartbeat consumer with `Z::HB` entries (1016h:01..HB).
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// use canopen_core::{heartbeat::{ConsumerEvent, HeartbeatConsumer}, Instant};
 /// use canopen_core::wire::error_control::StateCode;
-/// let mut c: HeartbeatConsumer<4> = HeartbeatConsumer::new();
+/// let mut c: HeartbeatConsumer<canopen_core::Sizes<4>> = HeartbeatConsumer::new();
 /// c.configure(&[0x0002_0064, 0, 0, 0]); // node 2, 100 ms
 /// assert_eq!(c.poll_timeout(), None); // nothing until the first heartbeat (HB-10)
 /// let ev = c.handle_heartbeat(Instant::ZERO, 2, StateCode::PreOperational);
@@ -190,36 +230,36 @@ pub enum ConsumerEvent {
 /// assert_eq!(c.handle_timeout(Instant::from_millis(100)), Some(ConsumerEvent::Timeout { node: 2 }));
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct HeartbeatConsumer<const N: usize> {
-    slots: [Slot; N],
+pub struct HeartbeatConsumer<Z: ConsumerSizes = Sizes> {
+    slots: Z::Consumers,
 }
 
-impl<const N: usize> Default for HeartbeatConsumer<N> {
+impl<Z: ConsumerSizes> Default for HeartbeatConsumer<Z> {
     fn default() -> Self {
         HeartbeatConsumer::new()
     }
 }
 
-impl<const N: usize> HeartbeatConsumer<N> {
+impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
     /// A consumer with every entry off.
     pub const fn new() -> Self {
-        HeartbeatConsumer { slots: [Slot::OFF; N] }
+        HeartbeatConsumer { slots: Z::NO_CONSUMERS }
     }
 
     /// Loads every entry from the raw 1016h values (after reset communication).
-    pub fn configure(&mut self, raw: &[u32; N]) {
-        for (slot, &r) in self.slots.iter_mut().zip(raw.iter()) {
-            *slot = Slot { entry: ConsumerEntry::from_raw(r), monitor: Monitor::Waiting };
+    pub fn configure(&mut self, raw: &Z::ConsumerTimes) {
+        for (slot, &r) in self.slots.as_mut().iter_mut().zip(raw.as_ref()) {
+            *slot = ConsumerSlot { entry: ConsumerEntry::from_raw(r), monitor: Monitor::Waiting };
         }
     }
 
     /// Applies a written entry (0-based `i`). A changed entry restarts monitoring: it waits for the next
     /// heartbeat of its node (HB-10); disabling it resolves a pending time-out (HB-11).
     pub fn set_entry(&mut self, i: usize, raw: u32) {
-        if let Some(slot) = self.slots.get_mut(i) {
+        if let Some(slot) = self.slots.as_mut().get_mut(i) {
             let entry = ConsumerEntry::from_raw(raw);
             if slot.entry != entry {
-                *slot = Slot { entry, monitor: Monitor::Waiting };
+                *slot = ConsumerSlot { entry, monitor: Monitor::Waiting };
             }
         }
     }
@@ -228,8 +268,9 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// node is not monitored.
     ///
     /// ```
+    /// # use canopen_core::Sizes;
     /// # use canopen_core::heartbeat::HeartbeatConsumer;
-    /// let c: HeartbeatConsumer<1> = HeartbeatConsumer::new();
+    /// let c: HeartbeatConsumer<canopen_core::Sizes<1>> = HeartbeatConsumer::new();
     /// assert_eq!(c.remote_state(3), None);
     /// ```
     pub fn remote_state(&self, node: u8) -> Option<StateCode> {
@@ -247,9 +288,9 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// Whether any monitored node is currently timed out (the cause of EMCY 8130h from the consumer side).
     ///
     /// ```
-    /// use canopen_core::{heartbeat::HeartbeatConsumer, Instant};
+    /// use canopen_core::{heartbeat::HeartbeatConsumer, Instant, Sizes};
     /// use canopen_core::wire::error_control::StateCode;
-    /// let mut c: HeartbeatConsumer<2> = HeartbeatConsumer::new();
+    /// let mut c: HeartbeatConsumer<Sizes<2>> = HeartbeatConsumer::new();
     /// c.configure(&[0x0002_0064, 0x0003_0064]);
     /// c.handle_heartbeat(Instant::ZERO, 2, StateCode::Operational);
     /// assert!(!c.any_timed_out());
@@ -259,17 +300,17 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// assert!(!c.any_timed_out());
     /// ```
     pub fn any_timed_out(&self) -> bool {
-        self.slots.iter().any(|s| s.entry.is_active() && matches!(s.monitor, Monitor::TimedOut { .. }))
+        self.slots.as_ref().iter().any(|s| s.entry.is_active() && matches!(s.monitor, Monitor::TimedOut { .. }))
     }
 
-    fn slot(&self, node: u8) -> Option<&Slot> {
-        self.slots.iter().find(|s| s.entry.is_active() && s.entry.node_id == node)
+    fn slot(&self, node: u8) -> Option<&ConsumerSlot> {
+        self.slots.as_ref().iter().find(|s| s.entry.is_active() && s.entry.node_id == node)
     }
 
     /// A heartbeat (or boot-up) of `node` arrived at `now`. Returns what the application should hear, if
     /// anything. Heartbeats of nodes that no active entry monitors are ignored.
     pub fn handle_heartbeat(&mut self, now: Instant, node: u8, state: StateCode) -> Option<ConsumerEvent> {
-        let slot = self.slots.iter_mut().find(|s| s.entry.is_active() && s.entry.node_id == node)?;
+        let slot = self.slots.as_mut().iter_mut().find(|s| s.entry.is_active() && s.entry.node_id == node)?;
         let deadline = now + Duration::from_millis(u64::from(slot.entry.time_ms));
         let previous = slot.monitor;
         slot.monitor = Monitor::Alive { state, deadline };
@@ -285,6 +326,7 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// The earliest consumer deadline.
     pub fn poll_timeout(&self) -> Option<Instant> {
         self.slots
+            .as_ref()
             .iter()
             .filter_map(|s| match s.monitor {
                 Monitor::Alive { deadline, .. } => Some(deadline),
@@ -296,8 +338,11 @@ impl<const N: usize> HeartbeatConsumer<N> {
     /// Reports the first entry whose consumer time has elapsed at `now` (HB-11: one missed period is a
     /// time-out); call again until it returns `None`.
     pub fn handle_timeout(&mut self, now: Instant) -> Option<ConsumerEvent> {
-        let slot =
-            self.slots.iter_mut().find(|s| matches!(s.monitor, Monitor::Alive { deadline, .. } if deadline <= now))?;
+        let slot = self
+            .slots
+            .as_mut()
+            .iter_mut()
+            .find(|s| matches!(s.monitor, Monitor::Alive { deadline, .. } if deadline <= now))?;
         if let Monitor::Alive { state, .. } = slot.monitor {
             slot.monitor = Monitor::TimedOut { state };
         }
@@ -308,10 +353,7 @@ impl<const N: usize> HeartbeatConsumer<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn ms(v: u64) -> Instant {
-        Instant::from_millis(v)
-    }
+    use crate::time::ms;
 
     /// HB-04: the boot-up is the first heartbeat; a written period takes effect at once; 0 stops.
     #[test]
@@ -341,7 +383,7 @@ mod tests {
     /// HB-10, HB-11: start, state change, reboot, time-out, resume.
     #[test]
     fn consumer_lifecycle() {
-        let mut c: HeartbeatConsumer<2> = HeartbeatConsumer::new();
+        let mut c: HeartbeatConsumer<Sizes<2>> = HeartbeatConsumer::new();
         c.configure(&[0x0002_0064, 0x0007_0FA0]);
         assert_eq!(c.poll_timeout(), None);
         assert_eq!(c.handle_timeout(ms(10_000)), None); // node 7 never seen: no time-out (V-HBC-07)
@@ -370,7 +412,7 @@ mod tests {
     /// HB-08, HB-11: disabling an entry resolves and stops monitoring; re-enabling waits again.
     #[test]
     fn consumer_entry_changes() {
-        let mut c: HeartbeatConsumer<1> = HeartbeatConsumer::new();
+        let mut c: HeartbeatConsumer<Sizes<1>> = HeartbeatConsumer::new();
         c.set_entry(0, 0x0002_0064);
         c.handle_heartbeat(ms(0), 2, StateCode::Stopped);
         assert_eq!(c.handle_timeout(ms(100)), Some(ConsumerEvent::Timeout { node: 2 }));

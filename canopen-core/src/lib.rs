@@ -6,7 +6,7 @@
 //!
 //! The modules form layers, each importing only the ones above it in this list (`docs/ARCHITECTURE.md`):
 //! - base: [`frame`] (the CAN frame), [`cob`] (COB-IDs, node-IDs), [`abort`] (SDO abort codes), [`time`]
-//!   (`Instant`, `Duration`);
+//!   (`Instant`, `Duration`), [`sizes`] (the node's capacities as one type, [`Sizes`]);
 //! - wire: [`wire`] (parse/emit of every protocol's frames);
 //! - od: [`od`] (values, entries, tables, the `Merged` router, EDS object sections);
 //! - services, one state machine each: [`nmt`], [`heartbeat`], [`guarding`], [`sdo`], [`pdo`], [`sync`],
@@ -46,6 +46,7 @@ pub mod od;
 pub mod pdo;
 pub mod profile;
 pub mod sdo;
+pub mod sizes;
 pub mod storage;
 pub mod sync;
 pub mod time;
@@ -57,4 +58,5 @@ pub use event::Event;
 pub use frame::CanFrame;
 pub use nmt::NmtState;
 pub use node::Node;
+pub use sizes::Sizes;
 pub use time::{Duration, Instant};

@@ -4,9 +4,9 @@
 //! - [`Node::poll_transmit`] drains frames to send, [`Node::poll_event`] drains events for the application;
 //! - [`Node::poll_timeout`] says when the next deadline is, so a runner sleeps exactly until then.
 //!
-//! Both output queues are bounded (`TXQ`, `EVQ`). When one is full the newest item is dropped and counted
-//! ([`Node::tx_dropped`], [`Node::events_dropped`]); a runner that drains the transmit queue after every call
-//! never sees it full.
+//! Both output queues are bounded (`Z::TXQ`, `Z::EVQ`, see [`NodeSizes`]). When one is full the newest item
+//! is dropped and counted ([`Node::tx_dropped`], [`Node::events_dropped`]); a runner that drains the transmit
+//! queue after every call never sees it full.
 //!
 //! Receive dispatch compares the CAN-ID with the few configurable single-object IDs (NMT 000h, SYNC 1005h,
 //! TIME 1012h), then binary-searches a small sorted table of (CAN-ID → RPDO) rebuilt whenever a COB-ID
@@ -34,6 +34,8 @@ mod rx_filter;
 
 pub use rx_filter::{RxFilter, RxFilters, RX_FILTER_CAPACITY};
 
+use heapless::deque::DequeInner;
+use heapless::vec::{OwnedVecStorage, VecInner, VecStorage};
 use heapless::{Deque, Vec};
 
 mod with_lss;
@@ -49,10 +51,12 @@ use crate::nmt::{Nmt, NmtState, Service, Transition};
 use crate::od::Merged;
 pub use crate::od::NoApplication;
 use crate::od::{AbortCode, ObjectDictionary, OdDescribe};
-use crate::pdo::{rpdo::Rpdo, tpdo::Tpdo};
+use crate::pdo::{mapping::ResolvedMap, rpdo::Rpdo, tpdo::Tpdo};
+use crate::profile::ProfileSizes;
 use crate::profile::{CommParams, NodeConfig};
 use crate::profile::{CommProfile, Unchecked};
 use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
+use crate::sizes::{Sizes, Slots};
 use crate::storage::{self, Groups, NoStorage, Storage};
 use crate::sync::Sync;
 use crate::time::{earliest, Instant};
@@ -60,11 +64,11 @@ use crate::wire::error_control::{Heartbeat, StateCode};
 use crate::wire::nmt::NodeControl;
 use dict::{NodeDict, SaveFn};
 
-/// A CANopen node with application dictionary `A`, `HB` heartbeat consumer entries, a transmit queue of
-/// `TXQ` frames, an event queue of `EVQ` events, `RPDO` receive and `TPDO` transmit PDOs and non-volatile
-/// storage `S` ([`NoStorage`] unless built with [`Node::with_storage`]). The defaults keep `Node<App>` a
-/// complete CiA 301 device with 4 + 4 PDOs; the new parameters come last so that existing spellings such as
-/// `Node<App, 4, 16, 32>` keep their meaning.
+/// A CANopen node with application dictionary `A`, the capacities `Z` ([`Sizes`]`<HB, TXQ, EVQ, RPDO,
+/// TPDO>`: heartbeat consumer entries, transmit queue frames, event queue events, receive and transmit PDOs)
+/// and non-volatile storage `S` ([`NoStorage`] unless built with [`Node::with_storage`]). The defaults keep
+/// `Node<App>` a complete CiA 301 device with 4 + 4 PDOs; `Node<App, Sizes<4, 16, 32>>` has a 32-event
+/// queue.
 ///
 /// ```
 /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, CanFrame, Instant, NodeId};
@@ -83,42 +87,34 @@ use dict::{NodeDict, SaveFn};
 /// node.handle_timeout(Instant::from_millis(100));
 /// assert_eq!(node.poll_transmit(), CanFrame::new(0x705, &[0x05]));
 /// ```
-pub struct Node<
-    A,
-    const HB: usize = 4,
-    const TXQ: usize = 16,
-    const EVQ: usize = 16,
-    const RPDO: usize = 4,
-    const TPDO: usize = 4,
-    S = NoStorage,
-> {
+pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     node_id: NodeId,
-    comm: CommProfile<HB, RPDO, TPDO>,
+    comm: CommProfile<Z>,
     sdo: SdoServer,
     /// The latest time passed in, for work that `poll_transmit` resumes (block upload segments).
     now: Instant,
     nmt: Nmt,
     boot_pending: bool,
     producer: HeartbeatProducer,
-    consumer: HeartbeatConsumer<HB>,
+    consumer: HeartbeatConsumer<Z>,
     guarding: Guarding,
     /// CiA 305 LSS slave (see `node/with_lss.rs`).
     lss: LssSlave,
     app: A,
     sync: Sync,
     emcy: EmcyProducer,
-    rpdos: [Rpdo; RPDO],
-    tpdos: [Tpdo; TPDO],
+    rpdos: Z::Rpdos,
+    tpdos: Z::Tpdos,
     /// (CAN-ID, RPDO number) of the valid RPDOs, sorted by CAN-ID.
-    rx_table: Vec<(u16, u16), RPDO>,
+    rx_table: PdoTable<Z::RpdoTable>,
     /// (CAN-ID, TPDO number) of the TPDOs that answer a remote request, sorted by CAN-ID.
-    rtr_table: Vec<(u16, u16), TPDO>,
+    rtr_table: PdoTable<Z::TpdoTable>,
     storage: S,
-    save: SaveFn<S, CommProfile<HB, RPDO, TPDO>, A>,
+    save: SaveFn<S, CommProfile<Z>, A>,
     sync_length_error: bool,
     tx_overrun: bool,
-    tx: Deque<CanFrame, TXQ>,
-    events: Deque<Event, EVQ>,
+    tx: DequeInner<CanFrame, Z::TxQueue>,
+    events: DequeInner<Event, Z::EventQueue>,
     tx_dropped: u32,
     events_dropped: u32,
 }
@@ -148,16 +144,7 @@ pub trait SansIo {
     fn poll_event(&mut self) -> Option<Event>;
 }
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > SansIo for Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> SansIo for Node<A, Z, S> {
     fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
         Node::handle_frame(self, now, frame)
     }
@@ -175,20 +162,70 @@ impl<
     }
 }
 
+/// The node's capacities as its storage types: the communication profile's and the heartbeat consumer's
+/// ([`ProfileSizes`], [`ConsumerSizes`](crate::heartbeat::ConsumerSizes)) plus the node's own PDO state machines, receive tables and queues.
+/// Implemented for [`Sizes`]; a node is generic over one `Z: NodeSizes` instead of five numbers (see
+/// [`crate::sizes`]).
+///
+/// ```
+/// use canopen_core::{node::NodeSizes, Sizes};
+/// assert_eq!(<Sizes as NodeSizes>::TXQ, 16);
+/// assert_eq!(<Sizes<2, 8, 32> as NodeSizes>::EVQ, 32);
+/// ```
+pub trait NodeSizes: ProfileSizes {
+    /// Transmit queue length, frames.
+    const TXQ: usize;
+    /// Event queue length, events.
+    const EVQ: usize;
+    /// `[Rpdo; RPDO]`.
+    type Rpdos: Slots<Rpdo>;
+    /// `[Tpdo; TPDO]`.
+    type Tpdos: Slots<Tpdo>;
+    /// Storage of the (CAN-ID, RPDO) receive table: `RPDO` entries.
+    type RpdoTable: VecStorage<(u16, u16)>;
+    /// Storage of the (CAN-ID, TPDO) remote-request table: `TPDO` entries.
+    type TpdoTable: VecStorage<(u16, u16)>;
+    /// Storage of the transmit queue: `TXQ` frames.
+    type TxQueue: VecStorage<CanFrame>;
+    /// Storage of the event queue: `EVQ` events.
+    type EventQueue: VecStorage<Event>;
+    /// An empty receive table.
+    const RPDO_TABLE: PdoTable<Self::RpdoTable>;
+    /// An empty remote-request table.
+    const TPDO_TABLE: PdoTable<Self::TpdoTable>;
+    /// An empty transmit queue.
+    const TX_QUEUE: DequeInner<CanFrame, Self::TxQueue>;
+    /// An empty event queue.
+    const EVENT_QUEUE: DequeInner<Event, Self::EventQueue>;
+}
+
+/// A sorted (CAN-ID, PDO number) table in `S`'s storage (`heapless::Vec<(u16, u16), N>` for
+/// `OwnedVecStorage<_, N>`).
+pub type PdoTable<S> = VecInner<(u16, u16), usize, S>;
+
+impl<const HB: usize, const TXQ: usize, const EVQ: usize, const RPDO: usize, const TPDO: usize> NodeSizes
+    for Sizes<HB, TXQ, EVQ, RPDO, TPDO>
+{
+    const TXQ: usize = TXQ;
+    const EVQ: usize = EVQ;
+    type Rpdos = [Rpdo; RPDO];
+    type Tpdos = [Tpdo; TPDO];
+    type RpdoTable = OwnedVecStorage<(u16, u16), RPDO>;
+    type TpdoTable = OwnedVecStorage<(u16, u16), TPDO>;
+    type TxQueue = OwnedVecStorage<CanFrame, TXQ>;
+    type EventQueue = OwnedVecStorage<Event, EVQ>;
+    const RPDO_TABLE: Vec<(u16, u16), RPDO> = Vec::new();
+    const TPDO_TABLE: Vec<(u16, u16), TPDO> = Vec::new();
+    const TX_QUEUE: Deque<CanFrame, TXQ> = Deque::new();
+    const EVENT_QUEUE: Deque<Event, EVQ> = Deque::new();
+}
+
 /// Transmit-queue slots that block-upload segments never take, so that a heartbeat, an EMCY or a PDO due
 /// during a block upload is queued rather than dropped (a queue of `TXQ` frames gives block upload at least
 /// one slot).
 pub const TX_RESERVE: usize = 3;
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, NoStorage>
-{
+impl<A: ObjectDictionary, Z: NodeSizes> Node<A, Z, NoStorage> {
     /// A node in Initialization; it boots on the first call that passes the time in (NMT-03). Booting runs
     /// Reset Application, so every application entry then holds its default (for a derived dictionary, its
     /// `default =` value — the value the EDS announces), exactly as after an NMT reset node. It has no
@@ -198,22 +235,14 @@ impl<
     }
 }
 
-impl<
-        A: ObjectDictionary + OdDescribe,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
+impl<A: ObjectDictionary + OdDescribe, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// A node whose parameters can be stored in `storage` (1010h/1011h, NMT-06): communication parameters
     /// and every writable application entry the dictionary describes.
     ///
     /// ```
+    /// # use canopen_core::Sizes;
     /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, storage::NoStorage, NodeId};
-    /// let node: Node<NoApplication, 0, 8, 8, 1, 1, NoStorage> =
+    /// let node: Node<NoApplication, Sizes<0, 8, 8, 1, 1>, NoStorage> =
     ///     Node::with_storage(NodeId::new(2).unwrap(), NodeConfig::DEFAULT, NoApplication, NoStorage);
     /// assert_eq!(node.node_id().get(), 2);
     /// ```
@@ -222,23 +251,8 @@ impl<
     }
 }
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
-    fn build(
-        node_id: NodeId,
-        config: NodeConfig,
-        app: A,
-        storage: S,
-        save: SaveFn<S, CommProfile<HB, RPDO, TPDO>, A>,
-    ) -> Self {
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
+    fn build(node_id: NodeId, config: NodeConfig, app: A, storage: S, save: SaveFn<S, CommProfile<Z>, A>) -> Self {
         let mut comm = CommProfile::for_node(config, node_id.get());
         comm.storage_supported = storage.capacity() > 0;
         let sync = Sync::new(comm.params.sync);
@@ -256,16 +270,17 @@ impl<
             app,
             sync,
             emcy: EmcyProducer::new(),
-            rpdos: core::array::from_fn(|_| Rpdo::new(&Default::default(), crate::pdo::mapping::ResolvedMap::EMPTY)),
-            tpdos: core::array::from_fn(|_| Tpdo::new(&Default::default(), crate::pdo::mapping::ResolvedMap::EMPTY)),
-            rx_table: Vec::new(),
-            rtr_table: Vec::new(),
+            // Built in place, not copied from a constant: `[IDLE; N]` constants cost 992 B of .rodata.
+            rpdos: Z::Rpdos::from_fn(|_| Rpdo::new(&Default::default(), ResolvedMap::EMPTY)),
+            tpdos: Z::Tpdos::from_fn(|_| Tpdo::new(&Default::default(), ResolvedMap::EMPTY)),
+            rx_table: Z::RPDO_TABLE,
+            rtr_table: Z::TPDO_TABLE,
             storage,
             save,
             sync_length_error: false,
             tx_overrun: false,
-            tx: Deque::new(),
-            events: Deque::new(),
+            tx: Z::TX_QUEUE,
+            events: Z::EVENT_QUEUE,
             tx_dropped: 0,
             events_dropped: 0,
         }
@@ -287,18 +302,18 @@ impl<
     }
 
     /// The current communication parameters.
-    pub const fn params(&self) -> &CommParams<HB, RPDO, TPDO> {
+    pub const fn params(&self) -> &CommParams<Z> {
         &self.comm.params
     }
 
     /// The whole object dictionary as SDO, PDO and the EDS see it: the communication profile (1000h–1FFFh)
     /// merged with the application's entries.
-    pub fn dictionary(&mut self) -> Merged<&mut CommProfile<HB, RPDO, TPDO>, &mut A> {
+    pub fn dictionary(&mut self) -> Merged<&mut CommProfile<Z>, &mut A> {
         Merged { comm: &mut self.comm, app: &mut self.app }
     }
 
     /// The communication-profile dictionary (1000h–1FFFh).
-    pub const fn comm_profile(&self) -> &CommProfile<HB, RPDO, TPDO> {
+    pub const fn comm_profile(&self) -> &CommProfile<Z> {
         &self.comm
     }
 
@@ -323,7 +338,7 @@ impl<
     }
 
     /// The heartbeat consumer (remote states, time-outs).
-    pub const fn heartbeat_consumer(&self) -> &HeartbeatConsumer<HB> {
+    pub const fn heartbeat_consumer(&self) -> &HeartbeatConsumer<Z> {
         &self.consumer
     }
 
@@ -473,8 +488,9 @@ impl<
     /// Moves block-upload segments from the SDO server into the transmit queue while it has room, so a
     /// sub-block of up to 127 frames never needs a queue of that size. [`TX_RESERVE`] slots stay free for
     /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
+    #[inline(never)]
     fn pump_sdo(&mut self) {
-        while self.sdo.wants_transmit() && self.tx.len() + TX_RESERVE.min(TXQ.saturating_sub(1)) < TXQ {
+        while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
             let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
                 break;
@@ -541,7 +557,7 @@ impl<
             0x1800..=0x1BFF => self.configure_tpdo(usize::from(index & 0x1FF)),
             0x1017 => self.producer.set_period(now, p.heartbeat_time_ms),
             0x1016 => {
-                if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| p.heartbeat_consumers.get(i)) {
+                if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| p.heartbeat_consumers.as_ref().get(i)) {
                     self.consumer.set_entry(usize::from(sub) - 1, *raw);
                 }
                 self.error_control_recovered(); // the timed-out entry may be gone
@@ -600,10 +616,10 @@ impl<
         self.sync.start(now);
         self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
         self.sync_length_error = false;
-        for k in 0..RPDO {
+        for k in 0..Z::RPDO {
             self.configure_rpdo(k);
         }
-        for k in 0..TPDO {
+        for k in 0..Z::TPDO {
             self.configure_tpdo(k);
         }
     }

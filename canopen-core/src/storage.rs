@@ -375,6 +375,7 @@ pub fn write_back<D: ObjectDictionary + ?Sized>(od: &mut D, index: u16, sub: u8,
 /// newest record, so that saving one group keeps the other's stored values.
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// # use canopen_core::storage::*;
 /// # use canopen_core::{profile::{CommProfile, NodeConfig}, node::NoApplication};
 /// # struct Ram([[u8; 512]; 2]);
@@ -385,7 +386,7 @@ pub fn write_back<D: ObjectDictionary + ?Sized>(od: &mut D, index: u16, sub: u8,
 /// #     fn read(&mut self, s: u8, o: usize, b: &mut [u8]) -> Result<(), StorageError> { b.copy_from_slice(&self.0[usize::from(s)][o..o + b.len()]); Ok(()) }
 /// # }
 /// let mut ram = Ram([[0xFF; 512]; 2]);
-/// let mut od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+/// let mut od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
 /// od.params.heartbeat_time_ms = 250;
 /// save(&mut ram, Groups::ALL, &od, &NoApplication).unwrap();
 /// od.reset_communication();

@@ -250,10 +250,7 @@ impl Sync {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn ms(v: u64) -> Instant {
-        Instant::from_millis(v)
-    }
+    use crate::time::ms;
 
     /// SYNC-07, SYNC-10, SYNC-11: counter 1..=overflow, then 1 again; restart on reset.
     #[test]

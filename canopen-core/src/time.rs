@@ -173,3 +173,9 @@ pub fn earliest(a: Option<Instant>, b: Option<Instant>) -> Option<Instant> {
         (None, y) => y,
     }
 }
+
+/// `Instant::from_millis`, short for the unit tests' timelines.
+#[cfg(test)]
+pub(crate) const fn ms(v: u64) -> Instant {
+    Instant::from_millis(v)
+}

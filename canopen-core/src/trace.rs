@@ -35,24 +35,14 @@ pub(crate) fn event(e: &Event) {
     let _ = e;
 }
 
-/// Logs a received frame (trace level).
+/// Logs a frame received (`dir` "rx") or about to be sent ("tx"), trace level.
 #[cfg(any(feature = "defmt", feature = "log"))]
 #[inline]
-pub(crate) fn rx(f: &CanFrame) {
+pub(crate) fn frame(dir: &'static str, f: &CanFrame) {
     #[cfg(feature = "defmt")]
-    defmt::trace!("rx {}", f);
+    defmt::trace!("{=str} {}", dir, f);
     #[cfg(feature = "log")]
-    log::trace!("rx {f:?}");
-}
-
-/// Logs a frame about to be sent (trace level).
-#[cfg(any(feature = "defmt", feature = "log"))]
-#[inline]
-pub(crate) fn tx(f: &CanFrame) {
-    #[cfg(feature = "defmt")]
-    defmt::trace!("tx {}", f);
-    #[cfg(feature = "log")]
-    log::trace!("tx {f:?}");
+    log::trace!("{dir} {f:?}");
 }
 
 /// Logs why the driver stopped (warn level): a receive or a transmit error.

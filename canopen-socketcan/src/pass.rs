@@ -25,15 +25,8 @@ pub trait ReceiveFilters {
     fn rx_filters(&self) -> RxFilters;
 }
 
-impl<
-        A: canopen_core::od::ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: canopen_core::storage::Storage,
-    > ReceiveFilters for canopen_core::Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
+impl<A: canopen_core::od::ObjectDictionary, Z: canopen_core::node::NodeSizes, S: canopen_core::storage::Storage>
+    ReceiveFilters for canopen_core::Node<A, Z, S>
 {
     fn rx_filters(&self) -> RxFilters {
         canopen_core::Node::rx_filters(self)

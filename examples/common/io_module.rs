@@ -32,6 +32,7 @@ use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::eds::EdsInfo;
 use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::storage::{Storage, StorageError};
+use canopen_core::Sizes;
 use canopen_od_derive::ObjectDictionary;
 use canopen_socketcan::FileStorage;
 
@@ -182,7 +183,7 @@ pub const EDS_INFO: EdsInfo = EdsInfo {
 
 /// The example node type: 4 heartbeat consumers, transmit queue 32, event queue 32, 4 RPDOs, 4 TPDOs,
 /// parameters in a [`Store`].
-pub type IoNode = canopen_core::Node<IoModule, 4, 32, 32, 4, 4, Store>;
+pub type IoNode = canopen_core::Node<IoModule, Sizes<4, 32, 32, 4, 4>, Store>;
 
 /// Where the node stores its parameters (1010h/1011h).
 #[derive(Debug)]
@@ -257,7 +258,7 @@ pub fn error_injection_after_reset(node: &mut IoNode) -> (u16, u16) {
 
 /// The EDS text of the node (`storage`: whether 1010h/1011h announce that saving is supported).
 pub fn eds_text(config: NodeConfig, storage: bool) -> String {
-    let mut comm = canopen_core::profile::CommProfile::<4, 4, 4>::new(config);
+    let mut comm = canopen_core::profile::CommProfile::<Sizes>::new(config);
     comm.storage_supported = storage;
     let od = canopen_core::od::Merged { comm, app: IoModule::with_defaults() };
     let mut text = String::new();

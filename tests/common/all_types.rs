@@ -10,6 +10,7 @@ use canopen_core::od::{
 use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::CommProfile;
 use canopen_core::profile::{Identity, NodeConfig};
+use canopen_core::Sizes;
 use canopen_od_derive::ObjectDictionary;
 
 #[derive(ObjectDictionary, Debug, Default)]
@@ -144,7 +145,7 @@ pub const CONFIG: NodeConfig = NodeConfig {
 };
 
 /// The whole node dictionary: comm profile (4 heartbeat consumers, 4 RPDOs, 4 TPDOs) + application.
-pub type NodeOd = Merged<CommProfile<4, 4, 4>, AllTypes>;
+pub type NodeOd = Merged<CommProfile<Sizes>, AllTypes>;
 
 /// A fresh node dictionary (node-ID 5).
 pub fn node_od() -> NodeOd {

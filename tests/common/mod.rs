@@ -6,7 +6,12 @@
 //! injecting frames and may make the bus lose chosen frames.
 #![allow(dead_code)]
 
-use canopen::core::{node::Node, od::ObjectDictionary, storage::Storage, CanFrame, Event, Instant};
+use canopen::core::{
+    node::{Node, NodeSizes},
+    od::ObjectDictionary,
+    storage::Storage,
+    CanFrame, Event, Instant,
+};
 
 /// Something that can sit on the bus: any sans-IO node (the core's own runner contract).
 pub use canopen::core::node::SansIo as Station;
@@ -165,17 +170,7 @@ pub fn frame(text: &str) -> CanFrame {
 }
 
 /// Drains a node's events.
-pub fn events<
-    A: ObjectDictionary,
-    const HB: usize,
-    const TXQ: usize,
-    const EVQ: usize,
-    const RPDO: usize,
-    const TPDO: usize,
-    S: Storage,
->(
-    node: &mut Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>,
-) -> Vec<Event> {
+pub fn events<A: ObjectDictionary, Z: NodeSizes, S: Storage>(node: &mut Node<A, Z, S>) -> Vec<Event> {
     std::iter::from_fn(|| node.poll_event()).collect()
 }
 

@@ -11,27 +11,25 @@
 
 use crate::od::{AbortCode, Merged, ObjectDictionary, OdValue, PdoDir, PdoHandle, SubInfo};
 use crate::pdo::mapping::ResolvedMap;
-use crate::profile::CommProfile;
+use crate::profile::{CommProfile, ProfileSizes};
 use crate::storage::{self, abort_of, Groups, Storage, StorageError, LOAD_SIGNATURE, SAVE_SIGNATURE};
 
 /// Saves the groups of a record: `storage::save` with the application's description where the node has it.
 pub(crate) type SaveFn<S, C, A> = fn(&mut S, Groups, &C, &A) -> Result<(), StorageError>;
 
-pub(crate) struct NodeDict<'a, const HB: usize, const RPDO: usize, const TPDO: usize, A, S> {
-    od: Merged<&'a mut CommProfile<HB, RPDO, TPDO>, &'a mut A>,
+pub(crate) struct NodeDict<'a, Z: ProfileSizes, A, S> {
+    od: Merged<&'a mut CommProfile<Z>, &'a mut A>,
     storage: &'a mut S,
-    save: SaveFn<S, CommProfile<HB, RPDO, TPDO>, A>,
+    save: SaveFn<S, CommProfile<Z>, A>,
 }
 
-impl<'a, const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDictionary, S: Storage>
-    NodeDict<'a, HB, RPDO, TPDO, A, S>
-{
+impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S> {
     /// The node's dictionary over its profile, application and storage.
     pub(crate) fn new(
-        comm: &'a mut CommProfile<HB, RPDO, TPDO>,
+        comm: &'a mut CommProfile<Z>,
         app: &'a mut A,
         storage: &'a mut S,
-        save: SaveFn<S, CommProfile<HB, RPDO, TPDO>, A>,
+        save: SaveFn<S, CommProfile<Z>, A>,
     ) -> Self {
         NodeDict { od: Merged { comm, app }, storage, save }
     }
@@ -52,7 +50,7 @@ impl<'a, const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDiction
     fn check_mapping(&self, index: u16, sub: u8, dir: PdoDir) -> Result<(), AbortCode> {
         let k = usize::from(index & 0x1FF);
         let p = &self.od.comm.params;
-        let map = if dir == PdoDir::Rpdo { p.rpdo_map.get(k) } else { p.tpdo_map.get(k) };
+        let map = if dir == PdoDir::Rpdo { p.rpdo_map.as_ref().get(k) } else { p.tpdo_map.as_ref().get(k) };
         let Some(map) = map.copied() else { return Ok(()) };
         if sub == 0 {
             ResolvedMap::resolve(&self.od, map.active(), dir).map(|_| ())
@@ -80,9 +78,7 @@ impl<'a, const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDiction
     }
 }
 
-impl<const HB: usize, const RPDO: usize, const TPDO: usize, A: ObjectDictionary, S: Storage> ObjectDictionary
-    for NodeDict<'_, HB, RPDO, TPDO, A, S>
-{
+impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for NodeDict<'_, Z, A, S> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         self.od.info(index, sub)
     }

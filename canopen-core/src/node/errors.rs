@@ -17,7 +17,7 @@
 //! A reset communication or reset node clears them all (1001h = 0). Errors the application raises with
 //! [`Node::raise_error`] are cleared by it with [`Node::clear_error`].
 
-use super::Node;
+use super::{Node, NodeSizes};
 use crate::cob::CobIdEntry;
 use crate::event::Event;
 use crate::frame::CanFrame;
@@ -27,16 +27,7 @@ use crate::storage::Storage;
 use crate::time::Instant;
 use crate::wire::emcy::Emergency;
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Raises error `code` with manufacturer bytes `manufacturer` (EMCY-05/07, ERR-02, ERR-06/07): 1001h and
     /// 1003h follow, an EMCY is queued (spaced by 1015h, held in Stopped). Returns `false` when the code is
     /// already active (nothing is repeated) or is 0000h.

@@ -1,7 +1,7 @@
 //! The node's PDO, SYNC and TIME wiring: configuring the state machines from the communication parameters,
 //! the receive paths and the SYNC/TPDO transmit paths.
 
-use super::Node;
+use super::{Node, NodeSizes, PdoTable};
 use crate::cob::CobIdEntry;
 use crate::emcy::codes;
 use crate::event::Event;
@@ -15,23 +15,14 @@ use crate::storage::Storage;
 use crate::sync::SyncInput;
 use crate::time::{earliest, Instant};
 use crate::wire::time_stamp::TimeStamp;
-use heapless::Vec;
+use heapless::vec::VecStorage;
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Rebuilds RPDO `k` from 1400h+k / 1600h+k: the mapping is resolved once here; a mapping that no
     /// longer resolves (e.g. loaded from storage for another firmware) leaves the RPDO not valid.
     pub(super) fn configure_rpdo(&mut self, k: usize) {
         let (Some(mut comm), Some(map)) =
-            (self.comm.params.rpdo_comm.get(k).copied(), self.comm.params.rpdo_map.get(k).copied())
+            (self.comm.params.rpdo_comm.as_ref().get(k).copied(), self.comm.params.rpdo_map.as_ref().get(k).copied())
         else {
             return;
         };
@@ -40,11 +31,11 @@ impl<
             comm.cob_id |= CobIdEntry::BIT31;
             ResolvedMap::EMPTY
         });
-        if let Some(r) = self.rpdos.get_mut(k) {
+        if let Some(r) = self.rpdos.as_mut().get_mut(k) {
             *r = Rpdo::new(&comm, resolved);
         }
         self.rx_table.clear();
-        for (i, r) in self.rpdos.iter().enumerate() {
+        for (i, r) in self.rpdos.as_ref().iter().enumerate() {
             if r.is_valid() {
                 insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
             }
@@ -54,7 +45,7 @@ impl<
     /// Rebuilds TPDO `k` from 1800h+k / 1A00h+k (see [`configure_rpdo`](Self::configure_rpdo)).
     pub(super) fn configure_tpdo(&mut self, k: usize) {
         let (Some(mut comm), Some(map)) =
-            (self.comm.params.tpdo_comm.get(k).copied(), self.comm.params.tpdo_map.get(k).copied())
+            (self.comm.params.tpdo_comm.as_ref().get(k).copied(), self.comm.params.tpdo_map.as_ref().get(k).copied())
         else {
             return;
         };
@@ -63,11 +54,11 @@ impl<
             comm.cob_id |= CobIdEntry::BIT31;
             ResolvedMap::EMPTY
         });
-        if let Some(t) = self.tpdos.get_mut(k) {
+        if let Some(t) = self.tpdos.as_mut().get_mut(k) {
             *t = Tpdo::new(&comm, resolved);
         }
         self.rtr_table.clear();
-        for (i, t) in self.tpdos.iter().enumerate() {
+        for (i, t) in self.tpdos.as_ref().iter().enumerate() {
             if t.rtr_allowed() {
                 insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
             }
@@ -76,7 +67,7 @@ impl<
 
     /// Entering Operational: event-driven TPDOs go out at once (PDO-28, V-PDO-09).
     pub(super) fn start_pdos(&mut self, now: Instant) {
-        for k in 0..TPDO {
+        for k in 0..Z::TPDO {
             if self.tpdos[k].start() {
                 self.send_tpdo(now, k);
             }
@@ -85,28 +76,28 @@ impl<
 
     /// Leaving Operational: PDO timers stop, buffered RPDO data is dropped (PDO-04).
     pub(super) fn stop_pdos(&mut self) {
-        self.rpdos.iter_mut().for_each(Rpdo::stop);
-        self.tpdos.iter_mut().for_each(Tpdo::stop);
+        self.rpdos.as_mut().iter_mut().for_each(Rpdo::stop);
+        self.tpdos.as_mut().iter_mut().for_each(Tpdo::stop);
     }
 
     pub(super) fn pdo_timeout(&self) -> Option<Instant> {
         if self.nmt.state() != NmtState::Operational {
             return None;
         }
-        let t = self.tpdos.iter().fold(None, |t, p| earliest(t, p.poll_timeout()));
-        self.rpdos.iter().fold(t, |t, p| earliest(t, p.poll_timeout()))
+        let t = self.tpdos.as_ref().iter().fold(None, |t, p| earliest(t, p.poll_timeout()));
+        self.rpdos.as_ref().iter().fold(t, |t, p| earliest(t, p.poll_timeout()))
     }
 
     pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
         if self.nmt.state() != NmtState::Operational {
             return;
         }
-        for k in 0..TPDO {
+        for k in 0..Z::TPDO {
             if self.tpdos[k].handle_timeout(now) {
                 self.send_tpdo(now, k);
             }
         }
-        for k in 0..RPDO {
+        for k in 0..Z::RPDO {
             if self.rpdos[k].handle_timeout(now) {
                 self.push_event(Event::RpdoTimeout { pdo: k as u16 });
                 self.raise_error(codes::RPDO_TIMEOUT, [k as u8 + 1, 0, 0, 0, 0]);
@@ -117,7 +108,7 @@ impl<
 
     /// Samples TPDO `k` and queues it.
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
-        let Some(t) = self.tpdos.get_mut(k) else { return };
+        let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         let mut data = [0u8; 8];
         let len = if t.map.app_only() {
             t.map.pack(&self.app, &mut data)
@@ -138,7 +129,7 @@ impl<
         let Some(&(_, k)) = self.rx_table.get(i) else { return };
         let k = usize::from(k);
         let in_window = self.sync.in_window(now);
-        let Some(r) = self.rpdos.get_mut(k) else { return };
+        let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
         let outcome = r.receive(now, frame.data());
         let timed_out = core::mem::take(&mut r.timed_out);
         let exceeded = match outcome {
@@ -164,7 +155,7 @@ impl<
             }
         };
         // The cause of 8250h is gone when no RPDO is timed out any more (one code for every RPDO).
-        if timed_out && !self.rpdos.iter().any(|r| r.timed_out) {
+        if timed_out && !self.rpdos.as_ref().iter().any(|r| r.timed_out) {
             self.clear_error(codes::RPDO_TIMEOUT);
         }
         self.rpdo_length_state(k, exceeded);
@@ -172,11 +163,11 @@ impl<
 
     /// EMCY 8220h for a long RPDO; both length errors clear with the next frame of the right length.
     fn rpdo_length_state(&mut self, k: usize, exceeded: bool) {
-        let Some(r) = self.rpdos.get_mut(k) else { return };
+        let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
         if exceeded {
             r.length_error = true;
             self.raise_error(codes::PDO_LENGTH_EXCEEDED, [k as u8 + 1, 0, 0, 0, 0]);
-        } else if core::mem::take(&mut r.length_error) && !self.rpdos.iter().any(|r| r.length_error) {
+        } else if core::mem::take(&mut r.length_error) && !self.rpdos.as_ref().iter().any(|r| r.length_error) {
             // The cause is gone when no RPDO's last frame had a wrong length (one code for every RPDO).
             self.clear_error(codes::PDO_LENGTH);
             self.clear_error(codes::PDO_LENGTH_EXCEEDED);
@@ -190,7 +181,7 @@ impl<
         }
         let Some(&(_, k)) = self.rtr_table.get(i) else { return };
         let k = usize::from(k);
-        let Some(t) = self.tpdos.get_mut(k) else { return };
+        let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         if t.transmission_type() == 252 {
             if let Some((data, len)) = t.rtr_buffer {
                 let frame = CanFrame::from_parts(t.can_id(), data, len);
@@ -239,7 +230,7 @@ impl<
         if self.nmt.state() != NmtState::Operational {
             return;
         }
-        for k in 0..RPDO {
+        for k in 0..Z::RPDO {
             if let Some(data) = self.rpdos[k].take_pending() {
                 let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
                 let n = self.rpdos[k].map.bytes();
@@ -247,7 +238,7 @@ impl<
                 self.push_event(Event::RpdoReceived { pdo: k as u16 });
             }
         }
-        for k in 0..TPDO {
+        for k in 0..Z::TPDO {
             match self.tpdos[k].on_sync(counter) {
                 SyncAction::None => {}
                 SyncAction::Send => self.send_tpdo(now, k),
@@ -278,7 +269,8 @@ impl<
     /// ```
     pub fn trigger_tpdo(&mut self, k: usize) -> bool {
         let now = self.now;
-        if self.nmt.state() != NmtState::Operational || !self.tpdos.get_mut(k).is_some_and(|t| t.trigger(now)) {
+        if self.nmt.state() != NmtState::Operational || !self.tpdos.as_mut().get_mut(k).is_some_and(|t| t.trigger(now))
+        {
             return false;
         }
         self.send_tpdo(now, k);
@@ -290,7 +282,7 @@ impl<
     /// returns how many TPDOs were queued now.
     pub fn trigger_changed_tpdos(&mut self) -> usize {
         let mut sent = 0;
-        for k in 0..TPDO {
+        for k in 0..Z::TPDO {
             let t = &self.tpdos[k];
             if !t.is_valid() || t.transmission_type() < 254 {
                 continue;
@@ -356,7 +348,7 @@ impl<
 /// IDs in PDO order (what the stable small-slice path of `sort_unstable_by_key` gave). A plain insertion:
 /// `sort_unstable_by_key` linked about 4 KB of quicksort into a Cortex-M firmware for tables of at most a few
 /// entries.
-fn insert_sorted<const N: usize>(table: &mut Vec<(u16, u16), N>, e: (u16, u16)) {
+fn insert_sorted<T: VecStorage<(u16, u16)>>(table: &mut PdoTable<T>, e: (u16, u16)) {
     let at = table.iter().position(|x| x.0 > e.0).unwrap_or(table.len());
     // push and swap down rather than Vec::insert, whose ptr::copy links compiler_builtins' memmove.
     if table.push(e).is_err() {

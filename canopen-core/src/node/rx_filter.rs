@@ -10,7 +10,7 @@
 
 use heapless::Vec;
 
-use super::Node;
+use super::{Node, NodeSizes};
 use crate::cob::{CobIdEntry, FunctionCode, LSS_MASTER_ID};
 use crate::od::ObjectDictionary;
 use crate::storage::Storage;
@@ -31,16 +31,7 @@ pub const RX_FILTER_CAPACITY: usize = 32;
 /// The filters of one node, in a fixed order (two calls on an unchanged node compare equal).
 pub type RxFilters = Vec<RxFilter, RX_FILTER_CAPACITY>;
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// The acceptance filters covering every frame the node handles now: NMT, SYNC (1005h), TIME (1012h,
     /// when consumed), the valid RPDOs, the TPDOs that answer a remote request, the SDO server (1200h), the
     /// heartbeat consumers (1016h), the EMCY consumer (081h–0FFh), LSS (7E5h) and the node guarding request.
@@ -84,7 +75,7 @@ impl<
             for &(id, _) in self.rx_table.iter().chain(self.rtr_table.iter()) {
                 ok &= push(exact(id));
             }
-            for raw in self.comm.params.heartbeat_consumers {
+            for &raw in self.comm.params.heartbeat_consumers.as_ref() {
                 let entry = crate::heartbeat::ConsumerEntry::from_raw(raw);
                 if entry.is_active() {
                     ok &= push(exact(0x700 | u16::from(entry.node_id & 0x7F)));

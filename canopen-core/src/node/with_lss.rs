@@ -7,7 +7,7 @@
 //! waiting, it runs reset communication and boots (boot-up frame, Pre-operational). A node-ID configured
 //! while the node has one stays pending until the next NMT reset communication (or reset node).
 
-use super::Node;
+use super::{Node, NodeSizes};
 use crate::cob::{NodeId, LSS_SLAVE_ID};
 use crate::event::Event;
 use crate::frame::CanFrame;
@@ -18,15 +18,7 @@ use crate::storage::{NoStorage, Storage};
 use crate::time::Instant;
 use crate::wire::lss::{LssResponse, UNCONFIGURED_NODE_ID};
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, NoStorage>
-{
+impl<A: ObjectDictionary, Z: NodeSizes> Node<A, Z, NoStorage> {
     /// A node without a node-ID (FFh): after power-on it waits in Initialisation, serving LSS only, until
     /// an LSS master assigns one.
     ///
@@ -62,16 +54,7 @@ impl<
     }
 }
 
-impl<
-        A: ObjectDictionary,
-        const HB: usize,
-        const TXQ: usize,
-        const EVQ: usize,
-        const RPDO: usize,
-        const TPDO: usize,
-        S: Storage,
-    > Node<A, HB, TXQ, EVQ, RPDO, TPDO, S>
-{
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// The same node without a node-ID, waiting for an LSS master (for nodes built with
     /// [`Node::with_storage`]; [`Node::new_unconfigured`] is the short form without storage).
     ///

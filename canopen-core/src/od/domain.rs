@@ -6,6 +6,7 @@
 //! [`end_write`](Domain::end_write)); [`abort_write`](Domain::abort_write) tells it to drop a transfer.
 //! [`DomainBuf`] is a small in-memory implementation for tests and short generated data.
 
+use super::value::{chunk_end, fits};
 use super::{copy_at, AbortCode};
 
 /// A streamed DOMAIN value.
@@ -97,14 +98,11 @@ impl<const N: usize> Domain for DomainBuf<N> {
     }
 
     fn begin_write(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
-        match size {
-            Some(s) if s > N => Err(AbortCode::LengthTooHigh),
-            _ => Ok(()),
-        }
+        fits(size, N)
     }
 
     fn write_chunk(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
-        let end = offset.checked_add(data.len()).filter(|&e| e <= N).ok_or(AbortCode::LengthTooHigh)?;
+        let end = chunk_end(offset, data.len(), N)?;
         self.staged[offset..end].copy_from_slice(data);
         Ok(())
     }

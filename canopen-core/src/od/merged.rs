@@ -10,6 +10,7 @@ use super::{AbortCode, EntryDesc, ObjectDesc, ObjectDictionary, OdDescribe, PdoD
 /// index below 1000h (the derive macro refuses 0000h–1FFFh).
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// use canopen_core::profile::NodeConfig;
 /// use canopen_core::{od::{Merged, ObjectDictionary, AbortCode}, profile::CommProfile};
 /// # use canopen_core::od::{Access, DataType, PdoMapping, SubInfo};
@@ -19,7 +20,7 @@ use super::{AbortCode, EntryDesc, ObjectDesc, ObjectDictionary, OdDescribe, PdoD
 /// #     fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
 /// #     fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
 /// # }
-/// let od = Merged { comm: CommProfile::<1>::new(NodeConfig::DEFAULT), app: Empty };
+/// let od = Merged { comm: CommProfile::<Sizes<1, 16, 16, 0, 0>>::new(NodeConfig::DEFAULT), app: Empty };
 /// assert!(od.info(0x1000, 0).is_ok());
 /// assert_eq!(od.info(0x2000, 0), Err(AbortCode::ObjectDoesNotExist));
 /// ```

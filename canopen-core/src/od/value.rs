@@ -136,6 +136,21 @@ pub fn copy_at(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
     n
 }
 
+/// A streamed write of `size` bytes (when announced) into room for `cap` bytes: 0607 0012h when it cannot fit.
+#[inline]
+pub(crate) fn fits(size: Option<usize>, cap: usize) -> Result<(), AbortCode> {
+    match size {
+        Some(s) if s > cap => Err(AbortCode::LengthTooHigh),
+        _ => Ok(()),
+    }
+}
+
+/// The end of a streamed chunk of `len` bytes at `offset`, when it fits in `cap` bytes (else 0607 0012h).
+#[inline]
+pub(crate) fn chunk_end(offset: usize, len: usize, cap: usize) -> Result<usize, AbortCode> {
+    offset.checked_add(len).filter(|&e| e <= cap).ok_or(AbortCode::LengthTooHigh)
+}
+
 /// [`copy_at`] for a fixed-size encoding: the whole value at once (PDO packing, expedited SDO) is one
 /// load/store of `N` bytes instead of a call to `memcpy`.
 #[inline]
@@ -634,13 +649,10 @@ macro_rules! byte_string {
                 Self::from_bytes(data).ok_or(AbortCode::InvalidValue)
             }
             fn begin_stream(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
-                match size {
-                    Some(s) if s > N => Err(AbortCode::LengthTooHigh),
-                    _ => Ok(()),
-                }
+                fits(size, N)
             }
             fn stream_chunk(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
-                let end = offset.checked_add(data.len()).filter(|&e| e <= N).ok_or(AbortCode::LengthTooHigh)?;
+                let end = chunk_end(offset, data.len(), N)?;
                 if !data.iter().all(|&b| $check(b)) {
                     return Err(AbortCode::InvalidValue);
                 }
@@ -822,14 +834,14 @@ impl<const N: usize> OdValue for UnicodeString<N> {
         Ok(v)
     }
     fn begin_stream(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
+        fits(size, 2 * N)?;
         match size {
-            Some(s) if s > 2 * N => Err(AbortCode::LengthTooHigh),
             Some(s) if s % 2 != 0 => Err(AbortCode::LengthMismatch),
             _ => Ok(()),
         }
     }
     fn stream_chunk(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
-        offset.checked_add(data.len()).filter(|&e| e <= 2 * N).ok_or(AbortCode::LengthTooHigh)?;
+        chunk_end(offset, data.len(), 2 * N)?;
         for (i, &b) in data.iter().enumerate() {
             let pos = offset + i;
             let Some(unit) = self.units.get_mut(pos / 2) else { return Err(AbortCode::LengthTooHigh) };

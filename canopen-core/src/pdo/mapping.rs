@@ -39,8 +39,9 @@ pub struct Mapped {
 /// refused with 0604 0041h. Dummy entries are accepted in RPDOs only.
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// use canopen_core::{profile::NodeConfig, od::{PdoDir, AbortCode}, profile::CommProfile, pdo::mapping::resolve};
-/// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+/// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
 /// assert!(resolve(&od, 0x1001_0008, PdoDir::Tpdo).is_ok()); // 1001h is TPDO-mappable
 /// assert_eq!(resolve(&od, 0x1001_0008, PdoDir::Rpdo), Err(AbortCode::NotMappable));
 /// assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
@@ -94,8 +95,9 @@ impl ResolvedMap {
     /// a bad entry → its [`resolve`] error).
     ///
     /// ```
+    /// # use canopen_core::Sizes;
     /// use canopen_core::{profile::NodeConfig, od::{PdoDir, AbortCode}, profile::CommProfile, pdo::mapping::ResolvedMap};
-    /// let od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+    /// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
     /// let m = ResolvedMap::resolve(&od, &[0x1001_0008, 0x1001_0004], PdoDir::Tpdo).unwrap();
     /// assert_eq!((m.len(), m.bits(), m.bytes()), (2, 12, 2));
     /// assert_eq!(ResolvedMap::resolve(&od, &[0x1001_0008; 9], PdoDir::Tpdo), Err(AbortCode::PdoLengthExceeded));
@@ -276,12 +278,19 @@ mod tests {
         }
     }
 
+    /// Resolves `entries` as a TPDO mapping of `od` and packs it: the map, the 8 data bytes and the length.
+    fn pack(od: &Od, entries: &[u32]) -> (ResolvedMap, [u8; 8], usize) {
+        let m = ResolvedMap::resolve(od, entries, PdoDir::Tpdo).unwrap();
+        let mut out = [0u8; 8];
+        let n = m.pack(od, &mut out);
+        (m, out, n)
+    }
+
     #[test]
     fn aligned_round_trip() {
         let od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
-        let m = ResolvedMap::resolve(&od, &[0x2000_0108, 0x2000_0210, 0x2000_0320], PdoDir::Tpdo).unwrap();
-        let mut out = [0u8; 8];
-        assert_eq!(m.pack(&od, &mut out), 7);
+        let (m, out, n) = pack(&od, &[0x2000_0108, 0x2000_0210, 0x2000_0320]);
+        assert_eq!(n, 7);
         assert_eq!(out[..7], [0x11, 0x33, 0x22, 0x77, 0x66, 0x55, 0x44]);
         let mut rx = Od::default();
         assert_eq!(m.unpack(&mut rx, &out[..7]), 0);
@@ -292,9 +301,8 @@ mod tests {
     #[test]
     fn bit_granularity() {
         let od = Od { a: 0xFA, b: 0xBEEF, c: 0, d: true };
-        let tx = ResolvedMap::resolve(&od, &[0x2000_0401, 0x2000_0104, 0x2000_0210], PdoDir::Tpdo).unwrap();
-        let mut out = [0u8; 8];
-        assert_eq!(tx.pack(&od, &mut out), 3);
+        let (_, out, n) = pack(&od, &[0x2000_0401, 0x2000_0104, 0x2000_0210]);
+        assert_eq!(n, 3);
         // bit 0 = 1, bits 1..5 = 0xA, bits 5..21 = 0xBEEF
         let expect = 1u64 | (0xA << 1) | (0xBEEF << 5);
         assert_eq!(u64::from_le_bytes(out), expect);

@@ -22,7 +22,7 @@
 //!
 //! Dispatch is a `match` on the index (compiled to a jump table / comparison tree), no table search.
 
-use super::{CommParams, NodeConfig};
+use super::{CommParams, NodeConfig, ProfileSizes};
 use crate::cob::{is_restricted, CobIdEntry};
 use crate::emcy::{NodeErrors, HISTORY};
 use crate::od::{
@@ -30,16 +30,18 @@ use crate::od::{
     OdValue, PdoMapping, SubInfo, Value,
 };
 use crate::pdo::{mapping::MAX_ENTRIES, rpdo_type_ok, tpdo_type_ok, PdoComm, PdoMapParams};
+use crate::sizes::Sizes;
 use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 
-/// The communication-profile dictionary of a node with `HB` heartbeat consumer entries, `RPDO` receive and
-/// `TPDO` transmit PDOs.
+/// The communication-profile dictionary of a node with the capacities `Z` (`Z::HB` heartbeat consumer
+/// entries, `Z::RPDO` receive and `Z::TPDO` transmit PDOs; see [`Sizes`]).
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// use canopen_core::profile::{CommParams, CommProfile, NodeConfig};
 /// use canopen_core::od::{AbortCode, ObjectDictionary};
 /// const CFG: NodeConfig = NodeConfig { device_type: 0x0001_0191, ..NodeConfig::DEFAULT };
-/// let mut od: CommProfile<2> = CommProfile::new(CFG);
+/// let mut od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
 /// let mut b = [0u8; 4];
 /// assert_eq!(od.read(0x1000, 0, 0, &mut b), Ok(4));
 /// assert_eq!(b, [0x91, 0x01, 0x01, 0x00]);
@@ -48,11 +50,11 @@ use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 /// assert_eq!(od.write(0x1000, 0, &b), Err(AbortCode::WriteOfReadOnly));
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CommProfile<const HB: usize, const RPDO: usize = 0, const TPDO: usize = 0> {
+pub struct CommProfile<Z: ProfileSizes = Sizes> {
     /// The fixed description (identity, names, defaults).
     pub config: NodeConfig,
     /// The run-time values the services use.
-    pub params: CommParams<HB, RPDO, TPDO>,
+    pub params: CommParams<Z>,
     /// The node-ID the node-ID-relative defaults refer to.
     pub node_id: u8,
     /// Active errors, 1001h and the 1003h history.
@@ -83,25 +85,26 @@ enum PdoObj {
     TpdoMap(usize),
 }
 
-impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO, TPDO> {
+impl<Z: ProfileSizes> CommProfile<Z> {
     const FITS: () = {
-        assert!(HB <= 127, "1016h has at most 127 consumer entries (HB-06)");
-        assert!(RPDO <= 512 && TPDO <= 512, "at most 512 RPDOs and 512 TPDOs (PDO-02)");
+        assert!(Z::HB <= 127, "1016h has at most 127 consumer entries (HB-06)");
+        assert!(Z::RPDO <= 512 && Z::TPDO <= 512, "at most 512 RPDOs and 512 TPDOs (PDO-02)");
     };
 
     /// The power-on state of `config` for node-ID 0 (see [`for_node`](Self::for_node)).
-    pub const fn new(config: NodeConfig) -> Self {
+    pub fn new(config: NodeConfig) -> Self {
         Self::for_node(config, 0)
     }
 
     /// The power-on state of `config` for `node_id`.
     ///
     /// ```
+    /// # use canopen_core::Sizes;
     /// # use canopen_core::profile::{CommProfile, NodeConfig};
-    /// let od: CommProfile<0, 1, 1> = CommProfile::for_node(NodeConfig::DEFAULT, 3);
+    /// let od: CommProfile<Sizes<0, 16, 16, 1, 1>> = CommProfile::for_node(NodeConfig::DEFAULT, 3);
     /// assert_eq!(od.params.emcy_cob_id, 0x83);
     /// ```
-    pub const fn for_node(config: NodeConfig, node_id: u8) -> Self {
+    pub fn for_node(config: NodeConfig, node_id: u8) -> Self {
         #[allow(clippy::let_unit_value)]
         let () = Self::FITS;
         CommProfile {
@@ -117,8 +120,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
     /// history are kept: they belong to the error handling).
     ///
     /// ```
+    /// # use canopen_core::Sizes;
     /// # use canopen_core::profile::{CommProfile, NodeConfig};
-    /// let mut od: CommProfile<1> = CommProfile::new(NodeConfig::DEFAULT);
+    /// let mut od: CommProfile<Sizes<1, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
     /// od.params.heartbeat_time_ms = 5;
     /// od.reset_communication();
     /// assert_eq!(od.params.heartbeat_time_ms, 0);
@@ -132,22 +136,22 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
     fn pdo_obj(index: u16) -> Option<PdoObj> {
         let k = usize::from(index & 0x1FF);
         match index {
-            0x1400..=0x15FF if k < RPDO => Some(PdoObj::RpdoComm(k)),
-            0x1600..=0x17FF if k < RPDO => Some(PdoObj::RpdoMap(k)),
-            0x1800..=0x19FF if k < TPDO => Some(PdoObj::TpdoComm(k)),
-            0x1A00..=0x1BFF if k < TPDO => Some(PdoObj::TpdoMap(k)),
+            0x1400..=0x15FF if k < Z::RPDO => Some(PdoObj::RpdoComm(k)),
+            0x1600..=0x17FF if k < Z::RPDO => Some(PdoObj::RpdoMap(k)),
+            0x1800..=0x19FF if k < Z::TPDO => Some(PdoObj::TpdoComm(k)),
+            0x1A00..=0x1BFF if k < Z::TPDO => Some(PdoObj::TpdoMap(k)),
             _ => None,
         }
     }
 
     /// The index of the `n`-th object (increasing order).
     fn index_at(n: usize) -> Option<u16> {
-        let fixed = OBJECTS.len() - usize::from(HB == 0);
+        let fixed = OBJECTS.len() - usize::from(Z::HB == 0);
         if n < fixed {
-            return OBJECTS.iter().copied().filter(|&i| i != 0x1016 || HB > 0).nth(n);
+            return OBJECTS.iter().copied().filter(|&i| i != 0x1016 || Z::HB > 0).nth(n);
         }
         let mut m = n - fixed;
-        for (base, count) in [(0x1400u16, RPDO), (0x1600, RPDO), (0x1800, TPDO), (0x1A00, TPDO)] {
+        for (base, count) in [(0x1400u16, Z::RPDO), (0x1600, Z::RPDO), (0x1800, Z::TPDO), (0x1A00, Z::TPDO)] {
             if m < count {
                 return Some(base + m as u16);
             }
@@ -215,7 +219,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
             0x100C | 0x1015 | 0x1017 => var(Unsigned16, Rw),
             0x100D | 0x1019 => var(Unsigned8, Rw),
             0x1010 | 0x1011 => arr(3, Unsigned32, Rw),
-            0x1016 if HB > 0 => arr(HB, Unsigned32, Rw),
+            0x1016 if Z::HB > 0 => arr(Z::HB, Unsigned32, Rw),
             0x1018 => arr(4, Unsigned32, Ro),
             0x1029 => arr(1, Unsigned8, Rw),
             _ => Err(AbortCode::ObjectDoesNotExist),
@@ -269,9 +273,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
             0x1012 => var("COB-ID time stamp object", Unsigned32, Rw, uint(c.time_cob_id)),
             0x1014 => var("COB-ID EMCY", Unsigned32, Rw, Value::NodeIdPlus(0x80)),
             0x1015 => var("Inhibit time EMCY", Unsigned16, Rw, uint(c.emcy_inhibit_100us.into())),
-            0x1016 if HB > 0 => match sub {
-                0 => Ok(count_entry(index, HB as u8)),
-                s if usize::from(s) <= HB => Ok(EntryDesc {
+            0x1016 if Z::HB > 0 => match sub {
+                0 => Ok(count_entry(index, Z::HB as u8)),
+                s if usize::from(s) <= Z::HB => Ok(EntryDesc {
                     numbered: true,
                     ..EntryDesc::var(index, s, "Consumer heartbeat time", Unsigned32, Rw).with_default(uint(0))
                 }),
@@ -355,10 +359,10 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
         let c = &self.config;
         if let Some(obj) = Self::pdo_obj(index) {
             return Ok(match obj {
-                PdoObj::RpdoComm(k) => comm_value(p.rpdo_comm.get(k), sub, 5),
-                PdoObj::TpdoComm(k) => comm_value(p.tpdo_comm.get(k), sub, 6),
-                PdoObj::RpdoMap(k) => map_value(p.rpdo_map.get(k), sub),
-                PdoObj::TpdoMap(k) => map_value(p.tpdo_map.get(k), sub),
+                PdoObj::RpdoComm(k) => comm_value(p.rpdo_comm.as_ref().get(k), sub, 5),
+                PdoObj::TpdoComm(k) => comm_value(p.tpdo_comm.as_ref().get(k), sub, 6),
+                PdoObj::RpdoMap(k) => map_value(p.rpdo_map.as_ref().get(k), sub),
+                PdoObj::TpdoMap(k) => map_value(p.tpdo_map.as_ref().get(k), sub),
             });
         }
         Ok(match (index, sub) {
@@ -375,7 +379,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
             (0x1012, _) => p.time_cob_id,
             (0x1014, _) => p.emcy_cob_id,
             (0x1015, _) => p.emcy_inhibit_100us.into(),
-            (0x1016, 0) => HB as u32,
+            (0x1016, 0) => Z::HB as u32,
             (0x1016, s) => p.consumer(s).map_or(0, |e| e.raw()),
             (0x1017, _) => p.heartbeat_time_ms.into(),
             (0x1018, 0) => 4,
@@ -447,8 +451,12 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
     fn set_pdo(&mut self, obj: PdoObj, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let p = &mut self.params;
         let (comm, map, tx) = match obj {
-            PdoObj::RpdoComm(k) | PdoObj::RpdoMap(k) => (p.rpdo_comm.get_mut(k), p.rpdo_map.get_mut(k), false),
-            PdoObj::TpdoComm(k) | PdoObj::TpdoMap(k) => (p.tpdo_comm.get_mut(k), p.tpdo_map.get_mut(k), true),
+            PdoObj::RpdoComm(k) | PdoObj::RpdoMap(k) => {
+                (p.rpdo_comm.as_mut().get_mut(k), p.rpdo_map.as_mut().get_mut(k), false)
+            }
+            PdoObj::TpdoComm(k) | PdoObj::TpdoMap(k) => {
+                (p.tpdo_comm.as_mut().get_mut(k), p.tpdo_map.as_mut().get_mut(k), true)
+            }
         };
         let (Some(comm), Some(map)) = (comm, map) else {
             return Err(AbortCode::ObjectDoesNotExist);
@@ -539,7 +547,7 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool)
     Ok(())
 }
 
-impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO, TPDO> {
+impl<Z: ProfileSizes> CommProfile<Z> {
     fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
         let (data_type, access, _) = Self::meta(index, sub)?;
         if !access.writable() {
@@ -560,8 +568,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
     /// consistent when it was saved; PDO mappings are resolved again when the node applies them).
     ///
     /// ```
+    /// # use canopen_core::Sizes;
     /// # use canopen_core::profile::{CommProfile, NodeConfig};
-    /// let mut od: CommProfile<0, 1, 0> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
+    /// let mut od: CommProfile<Sizes<0, 16, 16, 1, 0>> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
     /// od.load_value(0x1600, 1, &[8, 0, 1, 0x10]).unwrap(); // entry while sub 00h = 0 is fine anyway
     /// od.load_value(0x1400, 1, &[0x01, 0x02, 0, 0]).unwrap();
     /// od.load_value(0x1600, 0, &[1]).unwrap(); // count while the PDO is valid: only without rules
@@ -576,16 +585,15 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommProfile<HB, RPDO
 /// writes stored communication values through.
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// # use canopen_core::{profile::NodeConfig, od::ObjectDictionary, profile::{CommProfile, Unchecked}};
-/// let mut od: CommProfile<0> = CommProfile::new(NodeConfig::DEFAULT);
+/// let mut od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
 /// Unchecked(&mut od).write(0x1017, 0, &[10, 0]).unwrap();
 /// assert_eq!(od.params.heartbeat_time_ms, 10);
 /// ```
-pub struct Unchecked<'a, const HB: usize, const RPDO: usize, const TPDO: usize>(
-    pub &'a mut CommProfile<HB, RPDO, TPDO>,
-);
+pub struct Unchecked<'a, Z: ProfileSizes>(pub &'a mut CommProfile<Z>);
 
-impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for Unchecked<'_, HB, RPDO, TPDO> {
+impl<Z: ProfileSizes> ObjectDictionary for Unchecked<'_, Z> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         self.0.info(index, sub)
     }
@@ -600,7 +608,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
     }
 }
 
-impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for CommProfile<HB, RPDO, TPDO> {
+impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         let (data_type, access, pdo) = Self::meta(index, sub)?;
         let size = match self.current_size(index) {
@@ -668,9 +676,9 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> ObjectDictionary for
     }
 }
 
-impl<const HB: usize, const RPDO: usize, const TPDO: usize> OdDescribe for CommProfile<HB, RPDO, TPDO> {
+impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
     fn object_count(&self) -> usize {
-        OBJECTS.len() - usize::from(HB == 0) + 2 * RPDO + 2 * TPDO + 1
+        OBJECTS.len() - usize::from(Z::HB == 0) + 2 * Z::RPDO + 2 * Z::TPDO + 1
     }
 
     fn object(&self, n: usize) -> Option<ObjectDesc> {
@@ -683,7 +691,7 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> OdDescribe for CommP
             (0x1003, _) => ("Pre-defined error field", ObjectCode::Array, HISTORY as u16 + 1),
             (0x1010, _) => ("Store parameters", ObjectCode::Array, 4),
             (0x1011, _) => ("Restore default parameters", ObjectCode::Array, 4),
-            (0x1016, _) => ("Consumer heartbeat time", ObjectCode::Array, HB as u16 + 1),
+            (0x1016, _) => ("Consumer heartbeat time", ObjectCode::Array, Z::HB as u16 + 1),
             (0x1018, _) => ("Identity object", ObjectCode::Record, 5),
             (0x1029, _) => ("Error behaviour", ObjectCode::Array, 2),
             _ => (self.desc(index, 0).ok()?.name, ObjectCode::Var, 1),
@@ -717,7 +725,7 @@ mod tests {
 
     #[test]
     fn reads_the_configuration() {
-        let od: CommProfile<3> = CommProfile::new(CFG);
+        let od: CommProfile<Sizes<3, 16, 16, 0, 0>> = CommProfile::new(CFG);
         assert_eq!(read(&od, 0x1000, 0).unwrap()[..], [0x91, 0x01, 0x04, 0x00]);
         assert_eq!(read(&od, 0x1001, 0).unwrap()[..], [0]);
         assert_eq!(read(&od, 0x1008, 0).unwrap()[..], *b"rust node");
@@ -738,7 +746,7 @@ mod tests {
     /// V-HBC-01..05 through the dictionary, and the seed's wrong writes of §4.
     #[test]
     fn writes_heartbeat_consumers() {
-        let mut od: CommProfile<4> = CommProfile::new(CFG);
+        let mut od: CommProfile<Sizes<4, 16, 16, 0, 0>> = CommProfile::new(CFG);
         assert_eq!(od.write(0x1016, 0, &[3]), Err(AbortCode::WriteOfReadOnly));
         assert_eq!(od.write(0x1016, 1, &[0x64, 0, 2]), Err(AbortCode::LengthTooLow));
         od.write(0x1016, 1, &[0x64, 0, 2, 0]).unwrap();
@@ -759,11 +767,11 @@ mod tests {
     }
 
     /// `meta` (the SDO/PDO path) and `desc` (the EDS path) describe every sub-entry the same way.
-    fn check_meta<const HB: usize, const RPDO: usize, const TPDO: usize>() {
-        let od: CommProfile<HB, RPDO, TPDO> = CommProfile::new(CFG);
+    fn check_meta<Z: ProfileSizes>() {
+        let od: CommProfile<Z> = CommProfile::new(CFG);
         for index in (0x1000..=0x1BFF).chain(0x1F00..=0x1FFF) {
             for sub in 0..=255u8 {
-                let m = CommProfile::<HB, RPDO, TPDO>::meta(index, sub);
+                let m = CommProfile::<Z>::meta(index, sub);
                 let d = od.desc(index, sub).map(|d| (d.data_type, d.access, d.pdo));
                 assert_eq!(m, d, "{index:04X}h sub {sub}");
                 if let Ok(d) = od.desc(index, sub) {
@@ -776,25 +784,25 @@ mod tests {
 
     #[test]
     fn meta_agrees_with_desc() {
-        check_meta::<4, 4, 4>();
-        check_meta::<0, 2, 3>();
-        check_meta::<1, 0, 0>();
+        check_meta::<Sizes<4, 16, 16, 4, 4>>();
+        check_meta::<Sizes<0, 16, 16, 2, 3>>();
+        check_meta::<Sizes<1, 16, 16, 0, 0>>();
     }
 
     #[test]
     fn describes_itself() {
         extern crate std;
-        let od: CommProfile<2> = CommProfile::new(CFG);
+        let od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
         assert_eq!(od.object_count(), 22);
         assert_eq!(od.object(16).unwrap().index, 0x1016);
         assert_eq!(od.object(16).unwrap().code, ObjectCode::Array);
         assert_eq!(od.object(16).unwrap().subs, 3);
         assert!(od.entry(0x1016, 2).unwrap().numbered);
-        let none: CommProfile<0> = CommProfile::new(CFG);
+        let none: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(CFG);
         assert_eq!(none.object_count(), 21);
         assert_eq!(none.info(0x1016, 0), Err(AbortCode::ObjectDoesNotExist));
         assert_eq!(none.object(16).unwrap().index, 0x1017);
-        let pdos: CommProfile<0, 2, 3> = CommProfile::new(CFG);
+        let pdos: CommProfile<Sizes<0, 16, 16, 2, 3>> = CommProfile::new(CFG);
         let all: std::vec::Vec<u16> = (0..pdos.object_count()).map(|n| pdos.object(n).unwrap().index).collect();
         assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
         assert_eq!(all[20..], [0x1400, 0x1401, 0x1600, 0x1601, 0x1800, 0x1801, 0x1802, 0x1A00, 0x1A01, 0x1A02, 0x1F80]);

@@ -99,8 +99,9 @@ fn identity<D: OdDescribe + ?Sized>(od: &D, sub: u8) -> u64 {
 /// Writes the complete EDS of `od`.
 ///
 /// ```
+/// # use canopen_core::Sizes;
 /// use canopen_core::profile::{eds::{write_eds, EdsInfo}, CommProfile, NodeConfig};
-/// let od: CommProfile<1> = CommProfile::new(NodeConfig::DEFAULT);
+/// let od: CommProfile<Sizes<1, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
 /// let mut s = heapless::String::<8192>::new();
 /// write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
 /// assert!(s.contains("[1018sub1]\nParameterName=Vendor-ID\nObjectType=0x7\nDataType=0x0007\n"));
@@ -157,6 +158,7 @@ pub fn write_eds<W: Write, D: OdDescribe + ?Sized>(w: &mut W, info: &EdsInfo, od
 mod tests {
     use super::*;
     use crate::profile::{CommProfile, Identity, NodeConfig};
+    use crate::Sizes;
 
     #[test]
     fn comm_profile_eds() {
@@ -165,7 +167,7 @@ mod tests {
             device_name: "dev",
             ..NodeConfig::DEFAULT
         };
-        let od: CommProfile<2> = CommProfile::new(CFG);
+        let od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
         let mut s = heapless::String::<16384>::new();
         write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
         assert!(s.contains("VendorNumber=0x2B6\n"));
@@ -192,7 +194,7 @@ mod tests {
     #[test]
     fn pdo_objects_in_the_eds() {
         extern crate std;
-        let od: CommProfile<0, 3, 2> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
+        let od: CommProfile<Sizes<0, 16, 16, 3, 2>> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
         let mut s = std::string::String::new();
         write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
         assert!(s.contains("NrOfRXPDO=3\nNrOfTXPDO=2\n"));

@@ -21,7 +21,9 @@ pub use crate::lss::Identity;
 pub use dict::{CommProfile, Unchecked};
 
 use crate::abort::AbortCode;
+use crate::heartbeat::ConsumerSizes;
 use crate::pdo::{PdoComm, PdoDefault, PdoMapParams};
+use crate::sizes::{Sizes, Slots};
 use crate::sync::SyncParams;
 
 /// The fixed description of a node and the defaults of its communication parameters.
@@ -113,21 +115,70 @@ impl Default for NodeConfig {
     }
 }
 
-/// Run-time values of the communication objects, for a node with `HB` heartbeat consumer entries, `RPDO`
-/// receive and `TPDO` transmit PDOs.
+/// How many PDOs the communication profile holds, as its storage types (see [`crate::sizes`]); implemented
+/// for [`Sizes`].
 ///
 /// ```
-/// use canopen_core::profile::{CommParams, NodeConfig};
-/// let mut p: CommParams<4> = CommParams::new(&NodeConfig::DEFAULT);
+/// use canopen_core::{profile::ProfileSizes, Sizes};
+/// assert_eq!(<Sizes<0, 8, 8, 2, 1> as ProfileSizes>::RPDO, 2);
+/// ```
+pub trait ProfileSizes: ConsumerSizes {
+    /// The number of receive PDOs.
+    const RPDO: usize;
+    /// The number of transmit PDOs.
+    const TPDO: usize;
+    /// `[PdoComm; RPDO]`.
+    type RpdoComm: Slots<PdoComm> + Copy + core::fmt::Debug + PartialEq + Eq;
+    /// `[PdoMapParams; RPDO]`.
+    type RpdoMap: Slots<PdoMapParams> + Copy + core::fmt::Debug + PartialEq + Eq;
+    /// `[PdoComm; TPDO]`.
+    type TpdoComm: Slots<PdoComm> + Copy + core::fmt::Debug + PartialEq + Eq;
+    /// `[PdoMapParams; TPDO]`.
+    type TpdoMap: Slots<PdoMapParams> + Copy + core::fmt::Debug + PartialEq + Eq;
+    /// Every RPDO communication parameter zero (filled in by [`CommParams::for_node`]).
+    const RPDO_COMM: Self::RpdoComm;
+    /// Every RPDO mapping empty.
+    const RPDO_MAP: Self::RpdoMap;
+    /// Every TPDO communication parameter zero.
+    const TPDO_COMM: Self::TpdoComm;
+    /// Every TPDO mapping empty.
+    const TPDO_MAP: Self::TpdoMap;
+}
+
+const NO_COMM: PdoComm =
+    PdoComm { cob_id: 0, transmission_type: 0, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 };
+const NO_MAP: PdoMapParams = PdoMapParams { count: 0, entries: [0; crate::pdo::mapping::MAX_ENTRIES] };
+
+impl<const HB: usize, const TXQ: usize, const EVQ: usize, const RPDO: usize, const TPDO: usize> ProfileSizes
+    for Sizes<HB, TXQ, EVQ, RPDO, TPDO>
+{
+    const RPDO: usize = RPDO;
+    const TPDO: usize = TPDO;
+    type RpdoComm = [PdoComm; RPDO];
+    type RpdoMap = [PdoMapParams; RPDO];
+    type TpdoComm = [PdoComm; TPDO];
+    type TpdoMap = [PdoMapParams; TPDO];
+    const RPDO_COMM: [PdoComm; RPDO] = [NO_COMM; RPDO];
+    const RPDO_MAP: [PdoMapParams; RPDO] = [NO_MAP; RPDO];
+    const TPDO_COMM: [PdoComm; TPDO] = [NO_COMM; TPDO];
+    const TPDO_MAP: [PdoMapParams; TPDO] = [NO_MAP; TPDO];
+}
+
+/// Run-time values of the communication objects, for a node with the capacities `Z` (`Z::HB` heartbeat
+/// consumer entries, `Z::RPDO` receive and `Z::TPDO` transmit PDOs; see [`Sizes`]).
+///
+/// ```
+/// use canopen_core::{profile::{CommParams, NodeConfig}, Sizes};
+/// let mut p: CommParams<Sizes<4>> = CommParams::new(&NodeConfig::DEFAULT);
 /// p.set_consumer(1, 0x0002_0064).unwrap();
 /// assert!(p.set_consumer(2, 0x0002_00C8).is_err()); // node 2 monitored twice (HB-09)
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CommParams<const HB: usize, const RPDO: usize = 0, const TPDO: usize = 0> {
+pub struct CommParams<Z: ProfileSizes = Sizes> {
     /// 1017h producer heartbeat time, ms (HB-01).
     pub heartbeat_time_ms: u16,
     /// 1016h:01..HB raw consumer entries (HB-06, HB-07).
-    pub heartbeat_consumers: [u32; HB],
+    pub heartbeat_consumers: Z::ConsumerTimes,
     /// 100Ch guard time, ms (GUARD-02).
     pub guard_time_ms: u16,
     /// 100Dh life time factor (GUARD-03).
@@ -147,54 +198,39 @@ pub struct CommParams<const HB: usize, const RPDO: usize = 0, const TPDO: usize 
     /// 1F80h NMT startup.
     pub nmt_startup: u32,
     /// 1400h+k RPDO communication parameters.
-    pub rpdo_comm: [PdoComm; RPDO],
+    pub rpdo_comm: Z::RpdoComm,
     /// 1600h+k RPDO mapping.
-    pub rpdo_map: [PdoMapParams; RPDO],
+    pub rpdo_map: Z::RpdoMap,
     /// 1800h+k TPDO communication parameters.
-    pub tpdo_comm: [PdoComm; TPDO],
+    pub tpdo_comm: Z::TpdoComm,
     /// 1A00h+k TPDO mapping.
-    pub tpdo_map: [PdoMapParams; TPDO],
+    pub tpdo_map: Z::TpdoMap,
 }
 
-impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO, TPDO> {
+impl<Z: ProfileSizes> CommParams<Z> {
     /// The power-on defaults of `config` (nothing stored) for node-ID 0 (node-ID-relative defaults such as
     /// the PDO COB-IDs are then relative to 0; a node uses [`for_node`](Self::for_node)).
-    pub const fn new(config: &NodeConfig) -> Self {
+    pub fn new(config: &NodeConfig) -> Self {
         Self::for_node(config, 0)
     }
 
-    /// The power-on defaults of `config` for `node_id` (COB-04/05/06, COB-10).
+    /// The power-on defaults of `config` for `node_id` (COB-04/05/06, COB-10). Not a `const fn` (it fills
+    /// the PDO tables through `Z`'s storage types); a `static` node is built at run time (`StaticCell`).
     ///
     /// ```
-    /// use canopen_core::profile::{CommParams, NodeConfig};
-    /// let p: CommParams<0, 4, 4> = CommParams::for_node(&NodeConfig::DEFAULT, 5);
+    /// use canopen_core::{profile::{CommParams, NodeConfig}, Sizes};
+    /// let p: CommParams<Sizes<0, 16, 16, 4, 4>> = CommParams::for_node(&NodeConfig::DEFAULT, 5);
     /// assert_eq!(p.emcy_cob_id, 0x85);
     /// assert_eq!(p.rpdo_comm[1].cob_id, 0x8000_0305); // no default mapping: not valid
     /// ```
-    pub const fn for_node(config: &NodeConfig, node_id: u8) -> Self {
-        let mut rpdo_comm =
-            [PdoComm { cob_id: 0, transmission_type: 0, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 }; RPDO];
-        let mut rpdo_map = [PdoMapParams { count: 0, entries: [0; crate::pdo::mapping::MAX_ENTRIES] }; RPDO];
-        let mut k = 0;
-        while k < RPDO {
-            let (c, m) = config.rpdo_default(k).params(k, 0x200, node_id);
-            rpdo_comm[k] = c;
-            rpdo_map[k] = m;
-            k += 1;
-        }
-        let mut tpdo_comm =
-            [PdoComm { cob_id: 0, transmission_type: 0, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0 }; TPDO];
-        let mut tpdo_map = [PdoMapParams { count: 0, entries: [0; crate::pdo::mapping::MAX_ENTRIES] }; TPDO];
-        let mut k = 0;
-        while k < TPDO {
-            let (c, m) = config.tpdo_default(k).params(k, 0x180, node_id);
-            tpdo_comm[k] = c;
-            tpdo_map[k] = m;
-            k += 1;
-        }
+    pub fn for_node(config: &NodeConfig, node_id: u8) -> Self {
+        let (mut rpdo_comm, mut rpdo_map) = (Z::RPDO_COMM, Z::RPDO_MAP);
+        pdo_defaults(rpdo_comm.as_mut(), rpdo_map.as_mut(), |k| config.rpdo_default(k).params(k, 0x200, node_id));
+        let (mut tpdo_comm, mut tpdo_map) = (Z::TPDO_COMM, Z::TPDO_MAP);
+        pdo_defaults(tpdo_comm.as_mut(), tpdo_map.as_mut(), |k| config.tpdo_default(k).params(k, 0x180, node_id));
         CommParams {
             heartbeat_time_ms: config.heartbeat_time_ms,
-            heartbeat_consumers: [0; HB],
+            heartbeat_consumers: Z::ZERO_TIMES,
             guard_time_ms: config.guard_time_ms,
             life_time_factor: config.life_time_factor,
             error_register: 0,
@@ -214,29 +250,29 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO,
     /// The decoded consumer entry at 1016h sub-index `sub` (1-based), if it exists.
     ///
     /// ```
-    /// # use canopen_core::profile::{CommParams, NodeConfig};
-    /// let p: CommParams<2> = CommParams::new(&NodeConfig::DEFAULT);
+    /// # use canopen_core::{profile::{CommParams, NodeConfig}, Sizes};
+    /// let p: CommParams<Sizes<2>> = CommParams::new(&NodeConfig::DEFAULT);
     /// assert!(p.consumer(1).is_some());
     /// assert!(p.consumer(3).is_none());
     /// ```
     pub fn consumer(&self, sub: u8) -> Option<ConsumerEntry> {
         let i = usize::from(sub).checked_sub(1)?;
-        self.heartbeat_consumers.get(i).map(|&raw| ConsumerEntry::from_raw(raw))
+        self.heartbeat_consumers.as_ref().get(i).map(|&raw| ConsumerEntry::from_raw(raw))
     }
 
     /// Writes 1016h sub-index `sub`: refuses a missing sub-index (0609 0011h) and a second active entry for
     /// a node-ID that another active entry already monitors (HB-09, 0604 0043h).
     ///
     /// ```
-    /// # use canopen_core::{profile::{CommParams, NodeConfig}, od::AbortCode};
-    /// let mut p: CommParams<2> = CommParams::new(&NodeConfig::DEFAULT);
+    /// # use canopen_core::{profile::{CommParams, NodeConfig}, od::AbortCode, Sizes};
+    /// let mut p: CommParams<Sizes<2>> = CommParams::new(&NodeConfig::DEFAULT);
     /// assert_eq!(p.set_consumer(3, 0), Err(AbortCode::SubIndexDoesNotExist));
     /// ```
     pub fn set_consumer(&mut self, sub: u8, raw: u32) -> Result<(), AbortCode> {
-        let i = usize::from(sub).checked_sub(1).filter(|&i| i < HB).ok_or(AbortCode::SubIndexDoesNotExist)?;
+        let i = usize::from(sub).checked_sub(1).filter(|&i| i < Z::HB).ok_or(AbortCode::SubIndexDoesNotExist)?;
         let new = ConsumerEntry::from_raw(raw);
         if new.is_active() {
-            let duplicate = self.heartbeat_consumers.iter().enumerate().any(|(j, &other)| {
+            let duplicate = self.heartbeat_consumers.as_ref().iter().enumerate().any(|(j, &other)| {
                 j != i
                     && ConsumerEntry::from_raw(other).is_active()
                     && ConsumerEntry::from_raw(other).node_id == new.node_id
@@ -250,6 +286,13 @@ impl<const HB: usize, const RPDO: usize, const TPDO: usize> CommParams<HB, RPDO,
     }
 }
 
+/// Fills PDO `k`'s communication and mapping parameters from `default(k)`, for every PDO of one direction.
+fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], default: impl Fn(usize) -> (PdoComm, PdoMapParams)) {
+    for (k, (c, m)) in comm.iter_mut().zip(map).enumerate() {
+        (*c, *m) = default(k);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -257,7 +300,7 @@ mod tests {
     /// V-ENC-20 and V-HBC-01..05.
     #[test]
     fn consumer_entries_vectors() {
-        let mut p: CommParams<4> = CommParams::new(&NodeConfig::DEFAULT);
+        let mut p: CommParams<Sizes<4>> = CommParams::new(&NodeConfig::DEFAULT);
         assert_eq!(
             ConsumerEntry::from_raw(u32::from_le_bytes([0x64, 0, 2, 0])),
             ConsumerEntry { node_id: 2, time_ms: 100 }

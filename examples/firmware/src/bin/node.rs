@@ -21,6 +21,7 @@
 use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::driver::{self, Shared};
 use canopen_core::pdo::PdoDefault;
+use canopen_core::Sizes;
 use canopen_core::{Event, NmtState, Node, NodeId};
 use canopen_firmware::{AppWake, BxCanRx, BxCanTx, EmbassyClock, NodeCell};
 use canopen_od_derive::ObjectDictionary;
@@ -73,7 +74,7 @@ struct Device {
 /// transmit and event queues of 8: the driver drains both after every frame and every deadline, and the
 /// largest burst one step makes is entering Operational or a SYNC (4 TPDOs, plus an EMCY or an SDO
 /// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 20 B of events).
-type DeviceNode = Node<Device, 4, 8, 8, 4, 4>;
+type DeviceNode = Node<Device, Sizes<4, 8, 8, 4, 4>>;
 
 const NODE_ID: u8 = 5;
 const BITRATE: u32 = 250_000;
