@@ -1,4 +1,4 @@
-//! CHECKLIST items that no other test exercised (issue 21, item 4), through whole nodes on the in-memory bus
+//! Requirements (`docs/CONFORMANCE.md`) that no other test exercised (issue 21, item 4), through whole nodes on the in-memory bus
 //! with simulated time: PDO-10 (RPDO side), SYNC-15, OD-07, OD-10, OD-17, OD-19, DT-04, DT-09, DT-16, DT-18,
 //! DT-19, NMT-19, NMT-20, SDO-04, SDO-10, SDO-34, ERR-12, DEV-02. Each test names the items it proves.
 //!

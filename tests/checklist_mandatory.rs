@@ -1,5 +1,5 @@
-//! Mandatory CHECKLIST items that no test cited (issue 21, item 6 follow-up), frame by frame through whole
-//! nodes on the in-memory bus with the byte values of CHECKLIST.md and VECTORS.md: the pre-defined
+//! Mandatory requirements (`docs/CONFORMANCE.md`) that no test cited (issue 21, item 6 follow-up), frame by frame through whole
+//! nodes on the in-memory bus with the byte values of the CiA 301 requirements (`docs/CONFORMANCE.md`) and their test vectors: the pre-defined
 //! connection set (COB-*), the SDO frame layout and command specifiers (SDO-*, ABORT-03), the identity and
 //! device type objects (DEV-01, DEV-03), object addressing (OD-01, OD-03), COB-ID entries (COB-14, DT-22)
 //! and PDO content (PDO-01). Each test names the items it proves.

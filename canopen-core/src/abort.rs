@@ -1,4 +1,4 @@
-//! SDO abort codes (CHECKLIST ABORT-01..ABORT-31, 000 §7.2.4.3.17 Table 22).
+//! SDO abort codes (ABORT-01..ABORT-31, 000 §7.2.4.3.17 Table 22).
 //!
 //! Every error that can reach the bus through SDO is one of these variants, so no error can be lost or
 //! mistranslated on the way out: [`AbortCode::code`] is the UNSIGNED32 of bytes 4–7 of the abort frame.

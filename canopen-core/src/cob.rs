@@ -1,4 +1,4 @@
-//! Node-IDs, the pre-defined connection set and the COB-ID entry layout (CHECKLIST COB-01..COB-17).
+//! Node-IDs, the pre-defined connection set and the COB-ID entry layout (COB-01..COB-17).
 //!
 //! Implemented: COB-01 (function code ‖ node-ID), COB-02 ([`NodeId`] 1..127, 0 = broadcast), COB-03..COB-08
 //! (the default identifiers of [`FunctionCode`]), COB-11 (11-bit only), COB-13 ([`is_restricted`]), COB-14 and

@@ -1,4 +1,4 @@
-//! Emergency producer, error register and pre-defined error field (CHECKLIST EMCY-01..EMCY-12, EEC-01..23,
+//! Emergency producer, error register and pre-defined error field (EMCY-01..EMCY-12, EEC-01..23,
 //! ERR-01..ERR-09, NMT-22).
 //!
 //! [`ErrorState`] keeps the set of active errors, derives the error register 1001h from it (ERR-02: bit 0 set

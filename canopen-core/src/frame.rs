@@ -1,4 +1,4 @@
-//! The CAN frame the core consumes and produces (CHECKLIST CAN-01, CAN-06, COB-11).
+//! The CAN frame the core consumes and produces (CAN-01, CAN-06, COB-11).
 //!
 //! CANopen's pre-defined connection set uses 11-bit identifiers only, so [`CanFrame`] carries an 11-bit
 //! identifier, 0–8 data bytes, and the RTR flag. It implements [`embedded_can::Frame`], so any

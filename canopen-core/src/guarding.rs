@@ -1,4 +1,4 @@
-//! Node guarding and life guarding, slave side (100Ch, 100Dh; CHECKLIST GUARD-01..GUARD-13).
+//! Node guarding and life guarding, slave side (100Ch, 100Dh; GUARD-01..GUARD-13).
 //!
 //! Implemented: GUARD-04 (node life time = 100Ch × 100Dh, 0 = no life guarding), GUARD-05/06 (answer an RTR on
 //! 700h + node with toggle ‖ state), GUARD-07 (toggle starts at 0, alternates, only reset communication

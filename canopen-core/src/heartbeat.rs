@@ -1,4 +1,4 @@
-//! Heartbeat producer (1017h) and consumer (1016h) (CHECKLIST HB-01..HB-14).
+//! Heartbeat producer (1017h) and consumer (1016h) (HB-01..HB-14).
 //!
 //! Implemented: HB-02 (frame), HB-03 (cyclic in Pre-operational, Operational and Stopped), HB-04 (the boot-up
 //! counts as the first heartbeat; a written period takes effect at once: the next heartbeat is one new

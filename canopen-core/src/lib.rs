@@ -21,8 +21,8 @@
 //! driver errors and frames are logged through defmt) and `log` (the same trace points through the `log`
 //! facade, for std users). Both are off by default; the trace points sit in the [`driver`].
 //!
-//! Requirement IDs (NMT-03, SDO-17, ...) refer to `shared/spec/CHECKLIST.md`; each module's docs say which
-//! it implements.
+//! Requirement IDs (NMT-03, SDO-17, ...) are those of the repository's `docs/CONFORMANCE.md` (statement,
+//! CiA 301 clause and the tests that prove each); each module's docs say which it implements.
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

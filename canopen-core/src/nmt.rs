@@ -1,4 +1,4 @@
-//! NMT slave state machine (CHECKLIST NMT-01..NMT-27).
+//! NMT slave state machine (NMT-01..NMT-27).
 //!
 //! Implemented here: NMT-02 ([`NmtState`]), NMT-09..NMT-13 and NMT-15 (every command from every
 //! operational state, [`Nmt::handle_command`]), NMT-14 (no reply: this module produces none), NMT-16 (only

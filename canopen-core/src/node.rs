@@ -15,7 +15,7 @@
 //! The PDO, SYNC, TIME and EMCY wiring lives in `node/pdo.rs` and `node/errors.rs`; the dictionary SDO sees
 //! (mapping checks, store/restore commands) in `node/dict.rs`.
 //!
-//! CHECKLIST items carried out here: NMT-03 (power-on: Initialising → reset application → reset
+//! Requirements (`docs/CONFORMANCE.md`) carried out here: NMT-03 (power-on: Initialising → reset application → reset
 //! communication → boot-up → Pre-operational, on the first call), NMT-04/NMT-05 (what the resets restore),
 //! NMT-08 (own node-ID or broadcast), NMT-14 (never replies on 000h), NMT-18 (services per state),
 //! NMT-23/NMT-24 (boot-up on 700h + node, once per Initialization → Pre-operational), NMT-26/ERR-12 (a

@@ -1,4 +1,4 @@
-//! Store/restore of parameters (1010h/1011h; CHECKLIST STORE-01..STORE-11, NMT-06).
+//! Store/restore of parameters (1010h/1011h; STORE-01..STORE-11, NMT-06).
 //!
 //! # The contract: two slots, never torn
 //!

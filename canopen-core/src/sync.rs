@@ -1,4 +1,4 @@
-//! SYNC consumer and producer (CHECKLIST SYNC-01..SYNC-15).
+//! SYNC consumer and producer (SYNC-01..SYNC-15).
 //!
 //! Implemented: SYNC-02/03 (1005h gen bit and COB-ID rules, [`Sync::set_cob_id`]), SYNC-04 (DLC 0, or 1 with the
 //! counter when 1019h > 1), SYNC-06/07 (1006h period; the first SYNC goes out one period after it becomes

@@ -1,7 +1,7 @@
 //! LSS (CiA 305 layer setting services): the slave state machine ([`LssSlave`]) and, in [`master`], the
 //! master side. Sans-IO, no heap, no `unsafe`, no panics on peer data.
 //!
-//! The seeds stop at CiA 301 (CHECKLIST.md has no LSS items), so this module relies on public sources, read
+//! CiA 305 is not among the CiA 301 sources behind `docs/CONFORMANCE.md`, so this module relies on public sources, read
 //! and cross-checked; none of their code is copied:
 //!
 //! - python `canopen` 2.4.1 `canopen/lss.py`, the master we must interoperate with: command specifiers,

@@ -1,7 +1,7 @@
 //! The object dictionary contract between the services (SDO, PDO, store/restore, EDS) and whatever holds
 //! the values: the `#[derive]`-generated application dictionary and the core's communication profile.
 //!
-//! Covers the shape of CHECKLIST OD-01 (16-bit index, 8-bit sub-index), OD-03/OD-04 (VAR at sub 0,
+//! Covers the shape of OD-01 (16-bit index, 8-bit sub-index), OD-03/OD-04 (VAR at sub 0,
 //! ARRAY/RECORD count at sub 0), OD-06 ([`ObjectCode`]), OD-08/OD-09 ([`Access`], with `rwr`/`rww` as rw plus
 //! a PDO direction hint), OD-16 (access errors map to fixed [`AbortCode`]s) and DT-17 ([`DataType`] indices).
 //!

@@ -1,7 +1,7 @@
 //! Static description of a dictionary: the `const` entry tables the derive macro generates, and the
 //! [`OdDescribe`] view that the EDS writer (and tools) walk.
 //!
-//! Covers CHECKLIST OD-04 (sub 00h of ARRAY/RECORD is the UNSIGNED8 count, [`count_entry`]), OD-06 (object
+//! Covers OD-04 (sub 00h of ARRAY/RECORD is the UNSIGNED8 count, [`count_entry`]), OD-06 (object
 //! codes per object), OD-11 (each entry: name, data type, access, PDO mapping, value range, default) and
 //! OD-16 (unknown index → 0602 0000h, unknown sub-index → 0609 0011h, in [`lookup`]).
 //!

@@ -1,6 +1,6 @@
 //! Rust value types for every CiA 301 basic data type and their exact bus encoding.
 //!
-//! Covers CHECKLIST DT-01 (little-endian), DT-02/DT-05/DT-06 (n-bit integers in ⌈n/8⌉ octets, including the
+//! Covers DT-01 (little-endian), DT-02/DT-05/DT-06 (n-bit integers in ⌈n/8⌉ octets, including the
 //! 24/40/48/56-bit widths as [`I24`] … [`U56`]), DT-03 (BOOLEAN as one octet 0/1 on SDO), DT-07/DT-08 (REAL32/64
 //! copied as IEEE 754 bytes), DT-10/DT-11/DT-12 ([`OctetString`], [`VisibleString`], [`UnicodeString`]: fixed
 //! capacity with a tracked current length, no heap), DT-13/DT-14 ([`TimeOfDay`], [`TimeDifference`]) and

@@ -1,7 +1,7 @@
 //! Resolved PDO mappings: each mapping entry is checked and resolved once (when it is written, or when
 //! the PDO is configured) into a [`PdoHandle`], so packing and unpacking a PDO never searches the dictionary.
 //!
-//! CHECKLIST: PDO-31 (entry layout), PDO-32 (packed in entry order from bit 0, LE, ≤ 64 bits), PDO-33
+//! Requirements (`docs/CONFORMANCE.md`): PDO-31 (entry layout), PDO-32 (packed in entry order from bit 0, LE, ≤ 64 bits), PDO-33
 //! (mappability per direction, through [`ObjectDictionary::pdo_resolve`]), PDO-34 (dummy entries in RPDOs),
 //! PDO-36/PDO-37 (abort codes of a bad entry / a bad count). Bit granularity: an entry may map fewer bits
 //! than its object holds (e.g. a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits); the low bits are transferred and,

@@ -1,4 +1,4 @@
-//! Process data objects (CHECKLIST PDO-01..PDO-40): communication and mapping parameters, the RPDO and TPDO
+//! Process data objects (PDO-01..PDO-40): communication and mapping parameters, the RPDO and TPDO
 //! state machines, and the resolved mappings that move process data without searching the dictionary.
 //!
 //! - [`PdoComm`] / [`PdoMapParams`] are the values of 1400h–15FFh / 1800h–19FFh and 1600h–17FFh /

@@ -1,4 +1,4 @@
-//! The RPDO state machine (CHECKLIST PDO-06..PDO-13, PDO-38..PDO-40).
+//! The RPDO state machine (PDO-06..PDO-13, PDO-38..PDO-40).
 //!
 //! - 00h–F0h (synchronous): the received data is kept and handed to the application at the next SYNC; a
 //!   frame that arrives after the synchronous window (1007h) closed is discarded (SYNC-09, PDO-40).

@@ -1,4 +1,4 @@
-//! The TPDO state machine (CHECKLIST PDO-15..PDO-29).
+//! The TPDO state machine (PDO-15..PDO-29).
 //!
 //! - 00h (PDO-19): an application event marks the TPDO; the next SYNC samples and sends it.
 //! - 01h–F0h (PDO-20): sent on every n-th SYNC; with a SYNC start value (PDO-26/27) and the SYNC counter on,

@@ -1,4 +1,4 @@
-//! Block-transfer helpers shared by server and client (CHECKLIST SDO-37..SDO-51).
+//! Block-transfer helpers shared by server and client (SDO-37..SDO-51).
 //!
 //! - [`Crc16`]: the running CRC-16/XMODEM of SDO-49 (poly 1021h, init 0, no reflection, no final XOR), a
 //!   byte at a time from a 256-entry table built at compile time (one lookup per byte; the `crc` crate's

@@ -1,6 +1,6 @@
 //! The SDO server: a sans-IO state machine serving an [`ObjectDictionary`] (CiA 301 §7.2.4).
 //!
-//! Implements CHECKLIST SDO-01..SDO-51 (SDO-52 partly: out of memory is passed through from the OD, no
+//! Implements SDO-01..SDO-51 (SDO-52 partly: out of memory is passed through from the OD, no
 //! 060A 0023h because each server has its own channel), SDO-53/54/55 as [`SdoServerParams`] (the lead wires
 //! them into 1200h–127Fh), ABORT-01..ABORT-11, ABORT-16..ABORT-31 as far as the OD reports them.
 //! Not yet: SDO in NMT Stopped is the node's business (NMT-18: the node must not feed frames then).

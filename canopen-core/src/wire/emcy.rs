@@ -1,4 +1,4 @@
-//! EMCY frame (CHECKLIST EMCY-04): DLC 8; bytes 0–1 emergency error code (LE), byte 2 error register (1001h),
+//! EMCY frame (EMCY-04): DLC 8; bytes 0–1 emergency error code (LE), byte 2 error register (1001h),
 //! bytes 3–7 manufacturer-specific error field.
 
 use super::WireError;

@@ -1,4 +1,4 @@
-//! NMT error-control frames on 700h + node (CHECKLIST NMT-23..NMT-25, HB-02, GUARD-05, GUARD-06, GUARD-13):
+//! NMT error-control frames on 700h + node (NMT-23..NMT-25, HB-02, GUARD-05, GUARD-06, GUARD-13):
 //! boot-up (`00h`), heartbeat (state code, bit 7 = 0) and the node-guarding reply (bit 7 = toggle,
 //! bits 6–0 = state). The guarding request is an RTR frame on the same identifier.
 

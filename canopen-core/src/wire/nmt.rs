@@ -1,4 +1,4 @@
-//! NMT node-control frame (CHECKLIST NMT-07..NMT-14): CAN-ID 000h, DLC 2, byte 0 command specifier,
+//! NMT node-control frame (NMT-07..NMT-14): CAN-ID 000h, DLC 2, byte 0 command specifier,
 //! byte 1 target node-ID (00h = all nodes).
 
 use super::WireError;

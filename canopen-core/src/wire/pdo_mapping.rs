@@ -1,4 +1,4 @@
-//! PDO mapping entry (CHECKLIST PDO-31, PDO-34): an UNSIGNED32 in 1600h–17FFh / 1A00h–1BFFh sub 01h–40h,
+//! PDO mapping entry (PDO-31, PDO-34): an UNSIGNED32 in 1600h–17FFh / 1A00h–1BFFh sub 01h–40h,
 //! bits 31–16 index, bits 15–8 sub-index, bits 7–0 length in bits; on the bus (SDO) little-endian.
 
 use super::WireError;

@@ -1,4 +1,4 @@
-//! SDO frame formats (CiA 301 §7.2.4.3, CHECKLIST SDO-02, SDO-03, SDO-08, SDO-11..SDO-28, SDO-32,
+//! SDO frame formats (CiA 301 §7.2.4.3, SDO-02, SDO-03, SDO-08, SDO-11..SDO-28, SDO-32,
 //! SDO-35..SDO-47).
 //!
 //! Every SDO frame is 8 bytes (SDO-02). Byte 0 is the command byte; the command specifier is in bits 7–5

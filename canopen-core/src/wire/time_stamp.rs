@@ -1,4 +1,4 @@
-//! TIME frame (CHECKLIST TIME-04): DLC 6, the TIME_OF_DAY payload (DT-13: ms after midnight in 28 bits,
+//! TIME frame (TIME-04): DLC 6, the TIME_OF_DAY payload (DT-13: ms after midnight in 28 bits,
 //! 4 reserved bits, days since 1984-01-01 in 16 bits). The node turns it into an `od::TimeOfDay` for the
 //! application.
 

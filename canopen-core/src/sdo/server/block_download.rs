@@ -1,4 +1,4 @@
-//! Block download (CiA 301 §7.2.4.3.9–§7.2.4.3.14; CHECKLIST SDO-35, SDO-36, SDO-38..SDO-42, SDO-47..SDO-51):
+//! Block download (CiA 301 §7.2.4.3.9–§7.2.4.3.14; SDO-35, SDO-36, SDO-38..SDO-42, SDO-47..SDO-51):
 //! initiate (SDO-35, SDO-36), sub-block segments and their acknowledge (SDO-38..SDO-40, go-back-n), end with
 //! the CRC check (SDO-41, SDO-48, SDO-49).
 //!

@@ -1,4 +1,4 @@
-//! Block upload (CiA 301 §7.2.4.3.15–§7.2.4.3.20; CHECKLIST SDO-37, SDO-43..SDO-51): initiate with the
+//! Block upload (CiA 301 §7.2.4.3.15–§7.2.4.3.20; SDO-37, SDO-43..SDO-51): initiate with the
 //! protocol switch (SDO-43, SDO-44), start, sub-blocks pulled one frame at a time through
 //! [`SdoServer::poll_transmit`] (SDO-37, SDO-46), the client's acknowledge with go-back-n and a new block
 //! size (SDO-45), end with the CRC (SDO-47..SDO-49).
