@@ -377,6 +377,24 @@ fn full_transmit_queue_is_counted() {
     assert_eq!(n.poll_transmit(), None);
 }
 
+/// Issue 22: the stack clears only the 8110h it raised itself; an 8110h the application raises (the example
+/// node's 2100h error injection does) stays until the application clears it.
+#[test]
+fn application_raised_overrun_is_the_applications_to_clear() {
+    let mut n: Node<NoApplication, Sizes<1, 4, 4>> =
+        Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    n.handle_timeout(ms(0));
+    while n.poll_transmit().is_some() {}
+    assert!(n.raise_error(0x8110, [0; 5]));
+    assert_eq!(n.poll_transmit(), Some(frame("085 [8] 10 81 11 00 00 00 00 00")));
+    for _ in 0..3 {
+        assert_eq!(n.poll_transmit(), None);
+    }
+    assert_eq!(n.error_register(), 0x11);
+    assert!(n.clear_error(0x8110));
+    assert_eq!(n.poll_transmit(), Some(frame("085 [8] 00 00 00 00 00 00 00 00")));
+}
+
 /// Node 9 consumes the heartbeats of nodes 2 and 3 (100 ms each) and says so on its EMCY COB-ID 089h.
 fn watcher_bus() -> Bus<TestNode> {
     let mut bus = Bus::booted(vec![node(9, 0), node(2, 50), node(3, 50)]);

@@ -113,6 +113,9 @@ pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     save: SaveFn<S, CommProfile<Z>, A>,
     sync_length_error: bool,
     tx_overrun: bool,
+    /// The stack raised 8110h for a transmit-queue overflow and has not cleared it yet (an 8110h the
+    /// application raises itself is the application's to clear).
+    tx_overrun_raised: bool,
     tx: DequeInner<CanFrame, Z::TxQueue>,
     events: DequeInner<Event, Z::EventQueue>,
     tx_dropped: u32,
@@ -279,6 +282,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             save,
             sync_length_error: false,
             tx_overrun: false,
+            tx_overrun_raised: false,
             tx: Z::TX_QUEUE,
             events: Z::EVENT_QUEUE,
             tx_dropped: 0,
@@ -361,9 +365,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.tx_overrun {
             // EEC-10: frames were lost; reported once there is room for the EMCY.
             self.tx_overrun = false;
-            self.raise_error(codes::CAN_OVERRUN, [0; 5]);
-        } else if self.tx.is_empty() && self.comm.errors.is_active(codes::CAN_OVERRUN) {
+            self.tx_overrun_raised |= self.raise_error(codes::CAN_OVERRUN, [0; 5]);
+        } else if self.tx_overrun_raised && self.tx.is_empty() {
             // The cause is gone: every frame queued since the overflow (the 8110h EMCY included) went out.
+            self.tx_overrun_raised = false;
             self.clear_error(codes::CAN_OVERRUN);
         }
         self.pump_emcy(self.now);
@@ -589,6 +594,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let configured = self.lss_reset_communication(now); // CiA 305: a pending node-ID becomes active
         self.comm.reset_communication();
         self.comm.errors.reset();
+        self.tx_overrun_raised = false;
         self.comm.params.error_register = 0;
         let _ = storage::load(&mut self.storage, Groups::COMM, &mut Unchecked(&mut self.comm));
         self.apply_comm_params(now);

@@ -8,7 +8,7 @@
 //!
 //! | code | raised when | cleared when |
 //! |---|---|---|
-//! | 8110h CAN overrun | the transmit queue was full and a frame was dropped (EEC-10), once there is room for the EMCY | the transmit queue has drained empty: every frame queued since the overflow, the 8110h EMCY included, went out |
+//! | 8110h CAN overrun | the transmit queue was full and a frame was dropped (EEC-10), once there is room for the EMCY | the transmit queue has drained empty: every frame queued since the overflow, the 8110h EMCY included, went out (only an 8110h the stack raised; one the application raises is the application's to clear) |
 //! | 8130h heartbeat / life guarding | a monitored node's heartbeat times out (HB-11, HB-13) or life guarding times out (GUARD-11) | no monitored node is timed out (each lost one heard again, or its 1016h entry removed) and life guarding is not (the guarding master's next request, or 100Ch/100Dh rewritten) |
 //! | 8210h / 8220h PDO length | an RPDO shorter / longer than its mapping (PDO-39) | no RPDO's last frame had a wrong length |
 //! | 8240h SYNC length | a SYNC with the wrong DLC (SYNC-14) | the next SYNC of the right length |
