@@ -47,9 +47,7 @@ use std::time::{Duration, Instant as StdInstant};
 
 use canopen_core::od::ObjectDictionary;
 use canopen_core::{Event, NmtState, NodeId};
-use canopen_socketcan::{
-    run_blocking, run_tokio, AdapterEvent, BlockingBus, FileStorage, MutexShared, NotifyWake, Observed,
-};
+use canopen_socketcan::{run_blocking, run_tokio, BlockingBus, FileStorage, MutexShared, NotifyWake, Observed};
 use clap::Parser;
 use io_module::{IoNode, Store, CONFIG};
 
@@ -315,18 +313,11 @@ impl Printer {
             Observed::Sent(f) if !self.quiet => println!("({:10.6}) {}  tx  {f}", t(), self.iface),
             Observed::Sent(_) => {}
             Observed::Event(e) => self.event(t(), e),
-            Observed::Adapter(a) => {
-                println!("({:10.6}) adapter {a}", t());
-                if *a == AdapterEvent::BusOff {
-                    // ERR-13/ERR-12: bus-off is a communication error: Operational -> Pre-operational
-                    // (the 1029h default behaviour).
-                    self.shared.with(|n| {
-                        if n.state() == NmtState::Operational {
-                            n.enter_state(NmtState::PreOperational);
-                        }
-                    });
-                }
-            }
+            Observed::Adapter(a) => match a.bus_state() {
+                // The runner feeds the state to the node (8120h, 8140h, 1029h:01 on bus-off); this prints it.
+                Some(state) => println!("({:10.6}) CAN bus state: {state} ({a})", t()),
+                None => println!("({:10.6}) adapter {a}", t()),
+            },
         }
     }
 

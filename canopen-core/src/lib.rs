@@ -32,6 +32,7 @@
 extern crate self as canopen_core;
 
 pub mod abort;
+pub mod bus;
 pub mod cob;
 pub mod driver;
 pub mod emcy;

@@ -40,6 +40,7 @@ use heapless::{Deque, Vec};
 
 mod with_lss;
 
+use crate::bus::BusState;
 use crate::cob::{FunctionCode, NodeId};
 use crate::emcy::{codes, EmcyProducer};
 use crate::event::Event;
@@ -116,6 +117,10 @@ pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     /// The stack raised 8110h for a transmit-queue overflow and has not cleared it yet (an 8110h the
     /// application raises itself is the application's to clear).
     tx_overrun_raised: bool,
+    /// The controller's last reported state (see [`crate::bus`]).
+    bus: BusState,
+    /// 8140h is active and the next received frame clears it.
+    bus_recovered: bool,
     tx: DequeInner<CanFrame, Z::TxQueue>,
     events: DequeInner<Event, Z::EventQueue>,
     tx_dropped: u32,
@@ -145,6 +150,8 @@ pub trait SansIo {
     fn poll_transmit(&mut self) -> Option<CanFrame>;
     /// The next event for the application.
     fn poll_event(&mut self) -> Option<Event>;
+    /// The CAN controller's state changed (see [`crate::bus`]).
+    fn handle_bus_state(&mut self, now: Instant, state: BusState);
 }
 
 impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> SansIo for Node<A, Z, S> {
@@ -156,6 +163,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> SansIo for Node<A, Z, S> {
     }
     fn poll_timeout(&self) -> Option<Instant> {
         Node::poll_timeout(self)
+    }
+    fn handle_bus_state(&mut self, now: Instant, state: BusState) {
+        Node::set_bus_state(self, now, state)
     }
     fn poll_transmit(&mut self) -> Option<CanFrame> {
         Node::poll_transmit(self)
@@ -283,6 +293,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             sync_length_error: false,
             tx_overrun: false,
             tx_overrun_raised: false,
+            bus: BusState::ErrorActive,
+            bus_recovered: false,
             tx: Z::TX_QUEUE,
             events: Z::EVENT_QUEUE,
             tx_dropped: 0,
@@ -425,6 +437,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Feeds one received frame.
     pub fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
         self.ensure_booted(now);
+        if self.bus_recovered {
+            self.bus_works_again();
+        }
         if frame.cob_id() == crate::cob::LSS_MASTER_ID {
             return self.handle_lss(now, frame); // CiA 305: LSS in every NMT state
         }
@@ -596,6 +611,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.comm.errors.reset();
         self.tx_overrun_raised = false;
         self.comm.params.error_register = 0;
+        self.bus_recovered = false;
         let _ = storage::load(&mut self.storage, Groups::COMM, &mut Unchecked(&mut self.comm));
         self.apply_comm_params(now);
         self.push_event(Event::ResetCommunication);

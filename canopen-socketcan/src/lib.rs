@@ -12,11 +12,14 @@
 //! Everything that happens below the node is reported to the observer as an [`AdapterEvent`]
 //! ([`Observed::Adapter`]), never swallowed:
 //!
-//! - **Error frames** (the socket accepts all error classes): [`AdapterEvent::ErrorFrame`]; the two that
-//!   matter to CANopen are decoded as [`AdapterEvent::BusOff`] and [`AdapterEvent::Restarted`]. Bus-off is
-//!   a communication error (ERR-13): the application decides what the node does (the example enters
-//!   Pre-operational, the 1029h default). The controller restarts itself (`ip link set canX type can
-//!   restart-ms N`); the runner keeps going.
+//! - **Error frames** (the socket accepts all error classes): [`AdapterEvent::ErrorFrame`]; those that
+//!   report the controller's state are decoded as [`AdapterEvent::BusOff`] (`CAN_ERR_BUSOFF`),
+//!   [`AdapterEvent::Restarted`] (`CAN_ERR_RESTARTED`) and [`AdapterEvent::Controller`] (`CAN_ERR_CRTL`:
+//!   warning, error passive, back to error active), and the runners feed each to the node
+//!   ([`AdapterEvent::bus_state`], `Node::set_bus_state`) in order with the frames: it raises 8120h on error
+//!   passive, treats bus-off as a communication error for 1029h:01 (ERR-13) and sends 8140h after the
+//!   restart. The controller restarts itself (`ip link set canX type can restart-ms N`); the runner keeps
+//!   going.
 //! - **Interface down or removed** (`ENETDOWN`, `ENODEV`, `ENXIO` on a read or write):
 //!   [`AdapterEvent::InterfaceDown`]; the runner waits until the interface is up again (it polls
 //!   `/sys/class/net/<iface>/flags` every 100 ms), opens a fresh socket (the interface index may have
@@ -36,6 +39,7 @@
 use std::io;
 use std::time::Duration as StdDuration;
 
+use canopen_core::bus::BusState;
 use canopen_core::{CanFrame, Event, Instant};
 
 /// The `socketcan` crate this adapter is built on (for raw sockets in tests and tools).
@@ -85,6 +89,9 @@ pub enum AdapterEvent {
     BusOff,
     /// The controller restarted after bus-off (`CAN_ERR_RESTARTED`).
     Restarted,
+    /// The controller changed its error state (`CAN_ERR_CRTL`: rx/tx warning, rx/tx error passive, back to
+    /// error active): [`BusState::Warning`], [`BusState::ErrorPassive`] or [`BusState::ErrorActive`].
+    Controller(BusState),
     /// The interface went down or disappeared; the runner waits for it.
     InterfaceDown {
         /// Interface name.
@@ -109,6 +116,7 @@ impl std::fmt::Display for AdapterEvent {
             AdapterEvent::ErrorFrame(e) => write!(f, "error frame: {e}"),
             AdapterEvent::BusOff => write!(f, "bus-off"),
             AdapterEvent::Restarted => write!(f, "controller restarted after bus-off"),
+            AdapterEvent::Controller(state) => write!(f, "controller {state}"),
             AdapterEvent::InterfaceDown { iface, error } => {
                 write!(f, "interface {iface} down ({error}); waiting for it to come back")
             }
@@ -117,6 +125,26 @@ impl std::fmt::Display for AdapterEvent {
             AdapterEvent::TxDropped(frame) => {
                 write!(f, "frame {frame} dropped: not sent within {} ms", TX_STALL_LIMIT.as_millis())
             }
+        }
+    }
+}
+
+impl AdapterEvent {
+    /// The controller state this event reports, which the runners feed to the node
+    /// ([`canopen_core::Node::set_bus_state`]): bus-off, the restart after it, and the `CAN_ERR_CRTL` states.
+    ///
+    /// ```
+    /// use canopen_core::bus::BusState;
+    /// use canopen_socketcan::AdapterEvent;
+    /// assert_eq!(AdapterEvent::Restarted.bus_state(), Some(BusState::Recovered));
+    /// assert_eq!(AdapterEvent::TxBufferFull.bus_state(), None);
+    /// ```
+    pub fn bus_state(&self) -> Option<BusState> {
+        match self {
+            AdapterEvent::BusOff => Some(BusState::BusOff),
+            AdapterEvent::Restarted => Some(BusState::Recovered),
+            AdapterEvent::Controller(state) => Some(*state),
+            _ => None,
         }
     }
 }
@@ -227,15 +255,48 @@ pub(crate) fn open_error(iface: &str, e: io::Error) -> io::Error {
 /// Maps a received socket frame: data and remote frames with an 11-bit identifier become a core frame;
 /// 29-bit frames are ignored (`None`); error frames become an [`AdapterEvent`].
 pub(crate) fn map_received(frame: &socketcan::CanFrame) -> Option<Result<CanFrame, AdapterEvent>> {
-    use socketcan::{CanError, EmbeddedFrame};
+    use socketcan::EmbeddedFrame;
     match frame {
-        socketcan::CanFrame::Error(err) => Some(Err(match err.into_error() {
-            CanError::BusOff => AdapterEvent::BusOff,
-            CanError::Restarted => AdapterEvent::Restarted,
-            other => AdapterEvent::ErrorFrame(other.to_string()),
+        socketcan::CanFrame::Error(err) => Some(Err(match controller_state(err.error_bits(), err.data()) {
+            Some(BusState::BusOff) => AdapterEvent::BusOff,
+            Some(BusState::Recovered) => AdapterEvent::Restarted,
+            Some(state) => AdapterEvent::Controller(state),
+            None => AdapterEvent::ErrorFrame(err.into_error().to_string()),
         })),
         f if f.is_extended() => None,
         f => CanFrame::from_frame(f).map(Ok),
+    }
+}
+
+/// The controller state an error frame reports (`linux/can/error.h`), read from the class bits and
+/// `data[1]` directly: drivers combine classes (`CAN_ERR_CRTL | CAN_ERR_CNT` with the counters in
+/// `data[6..8]`), which `socketcan`'s one-class decoding reports as unknown. Bus-off wins over a restart,
+/// which wins over `CAN_ERR_CRTL`; there the worst state named wins (passive over warning over active).
+/// Buffer overflows and other classes are no state (`None`).
+fn controller_state(class: u32, data: &[u8]) -> Option<BusState> {
+    const CRTL: u32 = 0x004;
+    const BUSOFF: u32 = 0x040;
+    const RESTARTED: u32 = 0x100;
+    const RX_WARNING: u8 = 0x04;
+    const TX_WARNING: u8 = 0x08;
+    const RX_PASSIVE: u8 = 0x10;
+    const TX_PASSIVE: u8 = 0x20;
+    const ACTIVE: u8 = 0x40;
+    if class & BUSOFF != 0 {
+        return Some(BusState::BusOff);
+    }
+    if class & RESTARTED != 0 {
+        return Some(BusState::Recovered);
+    }
+    if class & CRTL == 0 {
+        return None;
+    }
+    let d1 = data.get(1).copied().unwrap_or(0);
+    match () {
+        _ if d1 & (RX_PASSIVE | TX_PASSIVE) != 0 => Some(BusState::ErrorPassive),
+        _ if d1 & (RX_WARNING | TX_WARNING) != 0 => Some(BusState::Warning),
+        _ if d1 & ACTIVE != 0 => Some(BusState::ErrorActive),
+        _ => None,
     }
 }
 
@@ -259,6 +320,37 @@ mod tests {
         assert_eq!(map_received(&ext), None);
         let busoff = socketcan::CanFrame::Error(socketcan::CanErrorFrame::new_error(0x40, &[]).unwrap());
         assert_eq!(map_received(&busoff), Some(Err(AdapterEvent::BusOff)));
+    }
+
+    /// CAN_ERR_CRTL as drivers send it (with CAN_ERR_CNT and the counters), bus-off and restart, each to the
+    /// state the node is given (EEC-11, EEC-13, ERR-13); an overflow is no state.
+    #[test]
+    fn controller_errors_map_to_bus_states() {
+        let err = |class: u32, d1: u8| {
+            let f = socketcan::CanErrorFrame::new_error(class, &[0, d1, 0, 0, 0, 0, 0x80, 0x10]).unwrap();
+            map_received(&socketcan::CanFrame::Error(f))
+        };
+        let state = |class: u32, d1: u8| match err(class, d1) {
+            Some(Err(e)) => e.bus_state(),
+            other => panic!("not an adapter event: {other:?}"),
+        };
+        assert_eq!(state(0x204, 0x08), Some(BusState::Warning)); // tx warning
+        assert_eq!(state(0x204, 0x04), Some(BusState::Warning)); // rx warning
+        assert_eq!(state(0x204, 0x20), Some(BusState::ErrorPassive)); // tx passive
+        assert_eq!(state(0x004, 0x10), Some(BusState::ErrorPassive)); // rx passive
+        assert_eq!(state(0x004, 0x30), Some(BusState::ErrorPassive));
+        assert_eq!(state(0x204, 0x40), Some(BusState::ErrorActive));
+        assert_eq!(state(0x040, 0x00), Some(BusState::BusOff));
+        assert_eq!(state(0x044, 0x20), Some(BusState::BusOff)); // bus-off wins
+        assert_eq!(state(0x100, 0x00), Some(BusState::Recovered));
+        assert_eq!(err(0x004, 0x40), Some(Err(AdapterEvent::Controller(BusState::ErrorActive))));
+        assert_eq!(state(0x004, 0x01), None); // rx overflow: reported as an error frame, no state
+        assert!(matches!(err(0x004, 0x01), Some(Err(AdapterEvent::ErrorFrame(_)))));
+        assert_eq!(state(0x020, 0x00), None); // no ACK
+    }
+
+    #[test]
+    fn core_frames_map_to_socket_frames() {
         let out = to_socket_frame(&CanFrame::new(0x185, &[1, 2, 3]).unwrap()).unwrap();
         assert_eq!((out.raw_id(), out.data()), (0x185, &[1u8, 2, 3][..]));
     }

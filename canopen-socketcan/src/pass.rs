@@ -5,6 +5,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use canopen_core::bus::BusState;
 use canopen_core::driver::Shared;
 use canopen_core::node::{RxFilters, SansIo};
 use canopen_core::{CanFrame, Event, Instant};
@@ -88,11 +89,20 @@ pub fn runner_stats() -> RunnerStats {
     }
 }
 
+/// One thing received from the socket for the node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Input {
+    /// A data or remote frame.
+    Frame(CanFrame),
+    /// An error frame that reports the controller's state.
+    Bus(BusState),
+}
+
 /// The buffers one runner reuses from pass to pass.
 #[derive(Default)]
 pub(crate) struct Pass {
-    /// Frames received since the last pass, in order.
-    pub rx: Vec<CanFrame>,
+    /// Frames and controller states received since the last pass, in order.
+    pub rx: Vec<Input>,
     /// Frames the node produced, in order, not yet sent.
     pub tx: Vec<CanFrame>,
     events: Vec<Event>,
@@ -107,8 +117,11 @@ impl Pass {
         count(Counter::FramesReceived, raw.len() as u64);
         for r in raw {
             match map_received(&socketcan::CanFrame::from(*r)) {
-                Some(Ok(frame)) => self.rx.push(frame),
-                Some(Err(event)) => observe(Observed::Adapter(&event)),
+                Some(Ok(frame)) => self.rx.push(Input::Frame(frame)),
+                Some(Err(event)) => {
+                    observe(Observed::Adapter(&event));
+                    self.rx.extend(event.bus_state().map(Input::Bus));
+                }
                 None => {}
             }
         }
@@ -124,16 +137,21 @@ impl Pass {
         observe: &mut dyn FnMut(Observed<'_>),
     ) -> (Option<Instant>, Option<RxFilters>) {
         count(Counter::Passes, 1);
-        for f in &self.rx {
-            observe(Observed::Received(f));
+        for i in &self.rx {
+            if let Input::Frame(f) = i {
+                observe(Observed::Received(f));
+            }
         }
         let mut first = true;
         loop {
             let (rx, tx, events) = (&mut self.rx, &mut self.tx, &mut self.events);
             let (deadline, filters) = shared.lock(|n| {
                 if std::mem::take(&mut first) {
-                    for f in rx.drain(..) {
-                        n.handle_frame(now, &f);
+                    for i in rx.drain(..) {
+                        match i {
+                            Input::Frame(f) => n.handle_frame(now, &f),
+                            Input::Bus(state) => n.handle_bus_state(now, state),
+                        }
                     }
                     n.handle_timeout(now);
                 }
@@ -207,9 +225,9 @@ mod tests {
         // Two reads of 1000h, then a write of 1016h:01 (a heartbeat consumer of node 3): three replies in
         // order, and the receive set changed (703h).
         for req in [[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0], [0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]] {
-            pass.rx.push(CanFrame::new(0x605, &req).unwrap());
+            pass.rx.push(Input::Frame(CanFrame::new(0x605, &req).unwrap()));
         }
-        pass.rx.push(CanFrame::new(0x605, &[0x23, 0x16, 0x10, 0x01, 0xF4, 0x01, 0x03, 0x00]).unwrap());
+        pass.rx.push(Input::Frame(CanFrame::new(0x605, &[0x23, 0x16, 0x10, 0x01, 0xF4, 0x01, 0x03, 0x00]).unwrap()));
         let mut observed = 0;
         let (_, filters) = pass.run(&shared, Instant::from_millis(1), &mut |o| {
             if matches!(o, Observed::Received(_)) {
@@ -229,7 +247,7 @@ mod tests {
         assert!(filters.is_none() && pass.tx.is_empty());
         // An observer that queues a frame while handling an event (an EMCY on the state change): the
         // pass drains the node again, so the EMCY goes out in the same pass (EMCY-01: 080h + node-ID).
-        pass.rx.push(CanFrame::new(0x000, &[0x01, 0x05]).unwrap()); // NMT start: an event
+        pass.rx.push(Input::Frame(CanFrame::new(0x000, &[0x01, 0x05]).unwrap())); // NMT start: an event
         let (_, _) = pass.run(&shared, Instant::from_millis(3), &mut |o| {
             if let Observed::Event(canopen_core::Event::StateChanged { .. }) = o {
                 shared.borrow_mut().raise_error(0x1000, [0; 5]);
@@ -237,5 +255,39 @@ mod tests {
         });
         assert_eq!(pass.tx.iter().map(|f| f.cob_id()).collect::<Vec<_>>(), [0x085]);
         assert!(seen.iter().any(|s| s.contains("Event")), "{seen:?}");
+    }
+
+    /// Error frames from the socket reach the node in order with the data frames (issue 22): a tx error
+    /// passive (`CAN_ERR_CRTL`) raises 8120h (EEC-11), a bus-off in Operational is a communication error
+    /// (ERR-13: Pre-operational), the restart sends 8140h (EEC-13) and the next frame clears it (EMCY-07).
+    #[test]
+    fn error_frames_from_the_socket_reach_the_node_in_order() {
+        let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+        let shared = RefCell::new(node);
+        let mut pass = Pass::default();
+        pass.run(&shared, Instant::ZERO, &mut |_| {});
+        pass.tx.clear();
+        let error = |class: u32, d1: u8| {
+            let f = socketcan::CanErrorFrame::new_error(class, &[0, d1, 0, 0, 0, 0, 0x80, 0]).unwrap();
+            *AsRef::<libc::can_frame>::as_ref(&socketcan::CanFrame::Error(f))
+        };
+        let data = |id: u16, d: &[u8]| raw_frame(&CanFrame::new(id, d).unwrap()).unwrap();
+        let mut adapter = Vec::new();
+        let raw = [data(0x000, &[0x01, 0x05]), error(0x204, 0x20), error(0x040, 0)];
+        pass.take_raw(&raw, &mut |o| adapter.push(format!("{o:?}")));
+        assert_eq!(adapter, ["Adapter(Controller(ErrorPassive))", "Adapter(BusOff)"]);
+        pass.run(&shared, Instant::from_millis(1), &mut |_| {});
+        let emcys: Vec<[u8; 8]> = pass.tx.drain(..).filter(|f| f.cob_id() == 0x085).map(|f| f.padded()).collect();
+        assert_eq!(emcys, [[0x20, 0x81, 0x11, 0, 0, 0, 0, 0]]);
+        assert_eq!(shared.borrow().state(), canopen_core::NmtState::PreOperational);
+        pass.take_raw(&[error(0x100, 0), data(0x701, &[0x05])], &mut |_| {});
+        pass.run(&shared, Instant::from_millis(2), &mut |_| {});
+        let emcys: Vec<[u8; 8]> = pass.tx.drain(..).map(|f| f.padded()).collect();
+        assert_eq!(
+            emcys,
+            [[0x40, 0x81, 0x11, 0, 0, 0, 0, 0], [0, 0, 0x11, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0, 0, 0]],
+            "8140h, 8120h cleared, 8140h cleared by the frame after the restart"
+        );
+        assert_eq!(shared.borrow().error_register(), 0);
     }
 }

@@ -36,6 +36,14 @@ fn soon(bus: &BlockingBus, ms: u64) -> Option<Instant> {
     Some(Instant::from_micros(bus.now().as_micros() + ms * 1000))
 }
 
+/// Error frames written on vcan0 reach every node on it, which now acts on them (a bus-off moves an
+/// Operational node to Pre-operational): tests that write them and tests whose node's state on vcan0 is
+/// checked hold this lock.
+fn error_frames_lock() -> std::sync::MutexGuard<'static, ()> {
+    static LOCK: Mutex<()> = Mutex::new(());
+    LOCK.lock().unwrap_or_else(|p| p.into_inner())
+}
+
 /// The next frame with `cob_id` (other tests share vcan0).
 fn recv_cob(bus: &BlockingBus, cob_id: u16) -> Rx {
     let deadline = soon(bus, 2000);
@@ -86,6 +94,7 @@ fn remote_frames_pass_and_29_bit_frames_are_ignored() {
 #[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
 fn error_frames_are_reported_not_swallowed() {
     let ifc = iface("vcan0");
+    let _g = error_frames_lock();
     let raw = socketcan::CanSocket::open(ifc).unwrap();
     let mut bus = BlockingBus::open(ifc).unwrap();
     bus.set_filters(&[(0x7FF, 0x7FF)]).unwrap();
@@ -125,6 +134,7 @@ fn node(id: u8, heartbeat_ms: u16) -> TestNode {
 #[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
 fn tokio_runner_serves_a_master_and_wakes_on_application_changes() {
     let ifc = iface("vcan0");
+    let _g = error_frames_lock();
     let shared = Arc::new(MutexShared::new(node(21, 0)));
     let wake = Arc::new(NotifyWake::new());
     let stop = Arc::new(AtomicBool::new(false));
@@ -266,4 +276,65 @@ fn a_burst_arrives_complete_and_in_order() {
             other => panic!("frame {i}: {other:?}"),
         }
     }
+}
+
+/// The next frame with `cob_id`, skipping error frames and other frames.
+fn next_frame(bus: &BlockingBus, cob_id: u16) -> [u8; 8] {
+    let deadline = soon(bus, 2000);
+    loop {
+        match bus.recv_until(deadline).unwrap() {
+            Rx::Frame(f) if f.cob_id() == cob_id => return f.padded(),
+            Rx::Timeout => panic!("no frame {cob_id:03X}h within 2 s"),
+            _ => continue,
+        }
+    }
+}
+
+/// Issue 22 item 2 over SocketCAN: error frames written with a raw socket (as a controller driver delivers
+/// them) reach the node through the blocking runner: tx error passive (`CAN_ERR_CRTL` with `CAN_ERR_CNT`)
+/// sends EMCY 8120h (EEC-11), bus-off moves the Operational node to Pre-operational (ERR-12/13), the restart
+/// sends 8140h and the 8120h clearing (EEC-13, EMCY-07), and the next frame received clears 8140h.
+#[test]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+fn controller_error_frames_make_the_node_send_emcys() {
+    let ifc = iface("vcan0");
+    let _g = error_frames_lock();
+    let shared = Arc::new(MutexShared::new(node(24, 0)));
+    let stop = Arc::new(AtomicBool::new(false));
+    let runner = {
+        let (shared, stop) = (shared.clone(), stop.clone());
+        std::thread::spawn(move || {
+            let mut bus = BlockingBus::open(ifc).unwrap();
+            run_blocking(&*shared, &mut bus, |_| {}, || !stop.load(Ordering::Relaxed)).unwrap();
+        })
+    };
+    std::thread::sleep(Duration::from_millis(200));
+    let raw = socketcan::CanSocket::open(ifc).unwrap();
+    let mut watch = BlockingBus::open(ifc).unwrap();
+    watch.set_filters(&[(0x098, 0x7FF)]).unwrap();
+    let mut m = Master::new(BlockingBus::open(ifc).unwrap(), NodeId::new(24).unwrap()).unwrap();
+    m.nmt(NmtCommand::Start, false).unwrap();
+    std::thread::sleep(Duration::from_millis(100));
+    assert_eq!(shared.with(|n| n.state()), NmtState::Operational);
+    let error = |class: u32, d1: u8| {
+        let f = socketcan::CanFrame::Error(CanErrorFrame::new_error(class, &[0, d1, 0, 0, 0, 0, 0x80, 0]).unwrap());
+        raw.write_frame(&f).unwrap_or_else(|e| panic!("this kernel refuses application error frames on {ifc}: {e}"));
+    };
+    error(0x204, 0x20); // CAN_ERR_CRTL | CAN_ERR_CNT, CAN_ERR_CRTL_TX_PASSIVE
+    assert_eq!(next_frame(&watch, 0x098), [0x20, 0x81, 0x11, 0, 0, 0, 0, 0]);
+    assert_eq!(shared.with(|n| n.error_register()), 0x11);
+    error(0x040, 0); // CAN_ERR_BUSOFF
+    let t0 = std::time::Instant::now();
+    while shared.with(|n| n.state()) != NmtState::PreOperational {
+        assert!(t0.elapsed() < Duration::from_secs(2), "bus-off did not move the node to Pre-operational");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    error(0x100, 0); // CAN_ERR_RESTARTED
+    assert_eq!(next_frame(&watch, 0x098), [0x40, 0x81, 0x11, 0, 0, 0, 0, 0]);
+    assert_eq!(next_frame(&watch, 0x098), [0, 0, 0x11, 0, 0, 0, 0, 0]);
+    // The master's request is the first frame after the restart: 8140h is cleared before it is answered.
+    assert_eq!(m.upload(0x1001, 0, Mode::Auto, 1).unwrap(), [0x00]);
+    assert_eq!(next_frame(&watch, 0x098), [0; 8]);
+    stop.store(true, Ordering::Relaxed);
+    runner.join().unwrap();
 }

@@ -9,7 +9,9 @@
 //! | code | raised when | cleared when |
 //! |---|---|---|
 //! | 8110h CAN overrun | the transmit queue was full and a frame was dropped (EEC-10), once there is room for the EMCY | the transmit queue has drained empty: every frame queued since the overflow, the 8110h EMCY included, went out (only an 8110h the stack raised; one the application raises is the application's to clear) |
+//! | 8120h CAN in error passive | the controller reports error passive, [`BusState::ErrorPassive`] (EEC-11) | the controller reports error active again, [`BusState::ErrorActive`], or restarts after bus-off, [`BusState::Recovered`] |
 //! | 8130h heartbeat / life guarding | a monitored node's heartbeat times out (HB-11, HB-13) or life guarding times out (GUARD-11) | no monitored node is timed out (each lost one heard again, or its 1016h entry removed) and life guarding is not (the guarding master's next request, or 100Ch/100Dh rewritten) |
+//! | 8140h recovered from bus-off | the controller restarts after bus-off, [`BusState::Recovered`] (EEC-13); the bus-off itself is a communication error for 1029h:01 (ERR-13) and sends nothing, the controller being off the bus | the first frame received after the restart (the bus carries frames again), or the controller reports [`BusState::ErrorActive`] |
 //! | 8210h / 8220h PDO length | an RPDO shorter / longer than its mapping (PDO-39) | no RPDO's last frame had a wrong length |
 //! | 8240h SYNC length | a SYNC with the wrong DLC (SYNC-14) | the next SYNC of the right length |
 //! | 8250h RPDO time-out | an RPDO event-timer deadline passes (PDO-12, EEC-20) | no RPDO is timed out (each received again) |
@@ -18,7 +20,9 @@
 //! [`Node::raise_error`] are cleared by it with [`Node::clear_error`].
 
 use super::{Node, NodeSizes};
+use crate::bus::BusState;
 use crate::cob::CobIdEntry;
+use crate::emcy::codes;
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::nmt::{NmtState, Service};
@@ -56,6 +60,57 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.comm.params.error_register = self.comm.errors.register();
         self.pump_emcy(self.now);
         cleared
+    }
+
+    /// The CAN controller's state changed (see [`crate::bus`] and the table above): error passive raises
+    /// 8120h (EEC-11), error active clears it, bus-off is a communication error for 1029h:01 (ERR-10..13),
+    /// the restart after bus-off sends 8140h (EEC-13). A state equal to the last one reported does nothing.
+    ///
+    /// ```
+    /// use canopen_core::{bus::BusState, profile::NodeConfig, node::{Node, NoApplication}, Instant, NodeId};
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// node.handle_timeout(Instant::ZERO);
+    /// while node.poll_transmit().is_some() {}
+    /// node.set_bus_state(Instant::ZERO, BusState::ErrorPassive);
+    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0x20, 0x81, 0x11, 0, 0, 0, 0, 0]);
+    /// node.set_bus_state(Instant::ZERO, BusState::ErrorActive);
+    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0; 8]);
+    /// assert_eq!(node.bus_state(), BusState::ErrorActive);
+    /// ```
+    pub fn set_bus_state(&mut self, now: Instant, state: BusState) {
+        self.ensure_booted(now);
+        if state == self.bus {
+            return;
+        }
+        self.bus = state;
+        match state {
+            BusState::ErrorActive => {
+                self.clear_error(codes::CAN_ERROR_PASSIVE);
+                self.bus_works_again();
+            }
+            BusState::Warning => {}
+            BusState::ErrorPassive => {
+                self.raise_error(codes::CAN_ERROR_PASSIVE, [0; 5]);
+            }
+            BusState::BusOff => self.communication_error(now),
+            BusState::Recovered => {
+                self.raise_error(codes::RECOVERED_FROM_BUS_OFF, [0; 5]);
+                self.bus_recovered = true;
+                self.clear_error(codes::CAN_ERROR_PASSIVE);
+            }
+        }
+    }
+
+    /// The CAN controller's last reported state ([`BusState::ErrorActive`] until one is reported).
+    pub const fn bus_state(&self) -> BusState {
+        self.bus
+    }
+
+    /// 8140h is cleared: the bus carries frames again.
+    pub(super) fn bus_works_again(&mut self) {
+        if core::mem::take(&mut self.bus_recovered) {
+            self.clear_error(codes::RECOVERED_FROM_BUS_OFF);
+        }
     }
 
     /// The error register 1001h.
