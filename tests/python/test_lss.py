@@ -115,3 +115,49 @@ def test_fastscan_configure_store_and_reboot(network, tmp_path):
         assert int.from_bytes(node.sdo.upload(0x1018, 4), "little") == SERIAL
     finally:
         stop_node(proc)
+
+
+# Issue 16 item 1: the example node (`examples/node.rs`) stores the LSS configuration through its --store,
+# and at the next start the stored node-ID wins over --node-id (the factory default, CiA 305).
+NODE_EXAMPLE_BIN = os.environ.get("NODE_EXAMPLE_BIN", str(ROOT / "target/debug/examples/node"))
+
+
+def test_node_example_stores_lss_config_and_boots_with_it_over_node_id(network, tmp_path):
+    store = tmp_path / "state"
+    log = tmp_path / "node.log"
+    boot = Recorder(network, 0x700 + NEW_ID)
+
+    def start(node_id):
+        out = open(log, "a")
+        proc = subprocess.Popen(
+            [NODE_EXAMPLE_BIN, "--iface", IFACE, "--store", str(store), "--node-id", str(node_id),
+             "--heartbeat", "0", "--quiet"],
+            stdout=out,
+            stderr=subprocess.STDOUT,
+        )
+        time.sleep(0.5)
+        assert proc.poll() is None, log.read_text()
+        return proc
+
+    proc = start(255)
+    try:
+        network.lss.send_switch_state_global(network.lss.CONFIGURATION_STATE)
+        assert network.lss.inquire_node_id() == 0xFF
+        network.lss.configure_node_id(NEW_ID)
+        network.lss.store_configuration()
+        assert (tmp_path / "state.lss.a").exists(), log.read_text()
+        network.lss.send_switch_state_global(network.lss.WAITING_STATE)
+        assert boot.wait() == [b"\x00"], log.read_text()
+    finally:
+        stop_node(proc)
+
+    boot.frames.clear()
+    boot.event.clear()
+    proc = start(5)
+    try:
+        assert boot.wait() == [b"\x00"], log.read_text()
+        node = network.add_node(NEW_ID, canopen.ObjectDictionary())
+        assert int.from_bytes(node.sdo.upload(0x1018, 2), "little") == 0x401
+    finally:
+        stop_node(proc)
+    assert "node-ID 34 from the LSS store" in log.read_text()
