@@ -76,6 +76,9 @@ struct Args {
     /// factory default: a node-ID an LSS master stored in `--store` wins at power-on (CiA 305).
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u8).range(1..=255))]
     node_id: u8,
+    /// Serial number (1018h:04, the last part of the LSS address), decimal or 0x-hex.
+    #[arg(long, default_value = "1", value_parser = parse_u32)]
+    serial: u32,
     /// Producer heartbeat time 1017h in ms (0 = off).
     #[arg(long, default_value_t = 1000)]
     heartbeat: u16,
@@ -104,9 +107,21 @@ struct Args {
 
 type SharedNode = MutexShared<IoNode>;
 
+fn parse_u32(s: &str) -> Result<u32, String> {
+    let r = match s.strip_prefix("0x") {
+        Some(hex) => u32::from_str_radix(hex, 16),
+        None => s.parse(),
+    };
+    r.map_err(|e| e.to_string())
+}
+
 fn main() -> ExitCode {
     let args = Args::parse();
-    let config = canopen_core::profile::NodeConfig { heartbeat_time_ms: args.heartbeat, ..CONFIG };
+    let config = canopen_core::profile::NodeConfig {
+        heartbeat_time_ms: args.heartbeat,
+        identity: canopen_core::profile::Identity { serial: args.serial, ..CONFIG.identity },
+        ..CONFIG
+    };
     if let Some(path) = &args.eds {
         return match std::fs::write(path, io_module::eds_text(config, args.store.is_some())) {
             Ok(()) => {
