@@ -141,7 +141,7 @@ fn a_damaged_lss_record_is_reported_and_the_node_id_argument_is_used() {
     reached_the_socket(&out, &stderr);
 }
 
-/// CiA 305 store configuration: what LSS stored is used at the next power-on over `--node-id` (the factory
+/// LSS-09, CiA 305 store configuration: what LSS stored is used at the next power-on over `--node-id` (the factory
 /// default), written through the node's own store code and read back by the binary.
 #[test]
 fn a_stored_lss_node_id_wins_over_the_node_id_argument_at_the_next_start() {

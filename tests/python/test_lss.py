@@ -118,9 +118,8 @@ def test_fastscan_configure_store_and_reboot(network, tmp_path):
         stop_node(proc)
 
 
-# Issue 16 item 1: the stored node-ID wins over --node-id (the factory default, CiA 305) at the next start.
-
-
+# LSS-09 (issue 16 item 1): the stored node-ID wins over --node-id (the factory default, CiA 305) at the
+# next start.
 def test_node_example_stores_lss_config_and_boots_with_it_over_node_id(network, tmp_path):
     store = tmp_path / "state"
     log = tmp_path / "node.log"
