@@ -441,7 +441,6 @@ impl Printer {
                 if let Some(lss) = &self.lss {
                     let mut lss = lss.lock().unwrap_or_else(|p| p.into_inner());
                     self.shared.with(|n| n.complete_lss_store(&mut *lss));
-                    println!("({t:10.6}) LSS configuration stored in {}", lss.path().display());
                     self.wake.signal();
                 }
             }

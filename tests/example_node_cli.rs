@@ -167,3 +167,16 @@ fn a_stored_lss_node_id_wins_over_the_node_id_argument_at_the_next_start() {
     assert!(!stdout.contains("LSS store"), "{stdout}");
     reached_the_socket(&out, &stderr);
 }
+
+/// LSS-09: a store that fails while the node runs (its directory gone) is answered with error 02h
+/// (storage media access error), not a panic.
+#[test]
+fn an_lss_store_that_cannot_be_written_answers_a_media_access_error() {
+    let dir = TempDir::new("lssgone");
+    let base = dir.0.join("gone/s");
+    let mut lss = store_file::LssFile::new(base.to_str().unwrap());
+    assert_eq!(lss.store(42, BitRate::K125), Err(canopen_core::lss::StoreError::MediaAccess));
+    // Nothing half-stored is read back as a configuration: the error names the file and the OS error.
+    let expected = format!("writing {}.lss.a: No such file or directory (os error 2)", base.display());
+    assert_eq!(lss.load(), Err(expected));
+}

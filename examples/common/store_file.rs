@@ -75,10 +75,16 @@ impl LssStore for LssFile {
         rec[5] = bit_rate.index();
         rec[6] = crc8(&rec[..6]);
         // Offset 0 replaces the file at once (temp file, fsync, rename).
-        self.0.erase(0).and_then(|()| self.0.write(0, 0, &rec)).map_err(|_| {
-            eprintln!("node: LSS store configuration: {}", self.0.last_error().unwrap_or("write error"));
-            StoreError::MediaAccess
-        })
+        match self.0.erase(0).and_then(|()| self.0.write(0, 0, &rec)) {
+            Ok(()) => {
+                println!("node: LSS configuration (node-ID {node_id}) stored in {}", self.path().display());
+                Ok(())
+            }
+            Err(_) => {
+                eprintln!("node: LSS store configuration: {}", self.0.last_error().unwrap_or("write error"));
+                Err(StoreError::MediaAccess)
+            }
+        }
     }
 }
 
