@@ -6,6 +6,7 @@
 //! cargo run --example node -- --blocking                     # the blocking runner instead of tokio
 //! cargo run --example node -- --eds io_module.eds            # write the node's EDS and exit
 //! cargo run --example node -- --store /var/tmp/node5         # 1010h/1011h in /var/tmp/node5.a and .b
+//! cargo run --example node -- --node-id 255 --store /tmp/n   # wait for an LSS master, keep what it stores
 //! cargo run --example node -- --help
 //! ```
 //!
@@ -35,16 +36,27 @@
 //! at every reset; 1011h:01..03 = "load" brings the defaults back at the next reset (or restart). Without
 //! `--store`, 1010h/1011h answer 0606 0000h.
 //!
+//! **LSS (CiA 305)**: the node answers an LSS master (fastscan, configure node-ID, ...). With `--store FILE`,
+//! "store configuration" keeps the node-ID and bit rate in `FILE.lss.a` (the same [`FileStorage`] scheme),
+//! and at power-on a stored node-ID wins over `--node-id`, which is only the factory default.
+//!
+//! **The store is checked at start** (`examples/common/store_file.rs`): a path that cannot be created or
+//! written ends the program before the node starts (the path and the OS error, exit code 2); a file that
+//! fails its format or CRC check is reported, moved aside to `<file>.bad`, and the node starts on defaults.
+//!
 //! **Error injection**: writing a non-zero code to 2100h raises it (1001h, 1003h and an EMCY frame); writing
 //! another code clears the old one first, 0 clears it.
 
 #[path = "common/io_module.rs"]
 mod io_module;
+#[path = "common/store_file.rs"]
+mod store_file;
 
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::{Duration, Instant as StdInstant};
 
+use canopen_core::lss::LssEvent;
 use canopen_core::od::ObjectDictionary;
 use canopen_core::{Event, NmtState, NodeId};
 use canopen_socketcan::{run_blocking, run_tokio, BlockingBus, FileStorage, MutexShared, NotifyWake, Observed};
@@ -58,9 +70,13 @@ struct Args {
     /// SocketCAN interface.
     #[arg(long, default_value = "vcan0")]
     iface: String,
-    /// Node-ID, 1..=127, or 255 to start without one and wait for an LSS master (CiA 305).
+    /// Node-ID, 1..=127, or 255 to start without one and wait for an LSS master (CiA 305). This is the
+    /// factory default: a node-ID an LSS master stored in `--store` wins at power-on (CiA 305).
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u8).range(1..=255))]
     node_id: u8,
+    /// Serial number (1018h:04, the last part of the LSS address), decimal or 0x-hex.
+    #[arg(long, default_value = "1", value_parser = parse_u32)]
+    serial: u32,
     /// Producer heartbeat time 1017h in ms (0 = off).
     #[arg(long, default_value_t = 1000)]
     heartbeat: u16,
@@ -74,7 +90,9 @@ struct Args {
     /// Write the node's EDS (CiA 306) to FILE and exit.
     #[arg(long, value_name = "FILE")]
     eds: Option<String>,
-    /// Parameter storage (1010h/1011h) in FILE.a and FILE.b; also makes `--eds` announce 1010h/1011h.
+    /// Parameter storage (1010h/1011h) in FILE.a and FILE.b, the LSS configuration (node-ID, bit rate) in
+    /// FILE.lss.a; also makes `--eds` announce 1010h/1011h. Checked at start: an unwritable path ends the
+    /// program, a damaged file is reported and kept as FILE.x.bad, the node then starts on defaults.
     #[arg(long, value_name = "FILE")]
     store: Option<String>,
     /// Use the blocking runner instead of tokio.
@@ -87,9 +105,21 @@ struct Args {
 
 type SharedNode = MutexShared<IoNode>;
 
+fn parse_u32(s: &str) -> Result<u32, String> {
+    let r = match s.strip_prefix("0x") {
+        Some(hex) => u32::from_str_radix(hex, 16),
+        None => s.parse(),
+    };
+    r.map_err(|e| e.to_string())
+}
+
 fn main() -> ExitCode {
     let args = Args::parse();
-    let config = canopen_core::profile::NodeConfig { heartbeat_time_ms: args.heartbeat, ..CONFIG };
+    let config = canopen_core::profile::NodeConfig {
+        heartbeat_time_ms: args.heartbeat,
+        identity: canopen_core::profile::Identity { serial: args.serial, ..CONFIG.identity },
+        ..CONFIG
+    };
     if let Some(path) = &args.eds {
         return match std::fs::write(path, io_module::eds_text(config, args.store.is_some())) {
             Ok(()) => {
@@ -102,9 +132,40 @@ fn main() -> ExitCode {
             }
         };
     }
+    // The store first: an unusable one ends the program before anything starts.
+    let checked = match &args.store {
+        Some(path) => match store_file::check(path) {
+            Ok(c) => Some(c),
+            Err(e) => {
+                eprintln!("node: {e}");
+                return ExitCode::from(2);
+            }
+        },
+        None => None,
+    };
+    if let Some(c) = &checked {
+        for r in &c.reports {
+            eprintln!("node: {r}");
+        }
+        if !c.reports.is_empty() && !c.params_valid {
+            eprintln!("node: starting on defaults");
+        }
+    }
+    // CiA 305: a node-ID stored by LSS "store configuration" wins over the factory default --node-id.
+    let raw_id = match checked.as_ref().and_then(|c| c.lss) {
+        Some((stored, bit_rate)) => {
+            println!(
+                "node: node-ID {} from the LSS store (bit rate table index {bit_rate}), not --node-id {}",
+                if stored == 255 { "none (FFh)".to_owned() } else { stored.to_string() },
+                args.node_id
+            );
+            stored
+        }
+        None => args.node_id,
+    };
     // 255 (FFh): no node-ID; the node serves only LSS until a master configures one (CiA 305).
-    let unconfigured = args.node_id == 255;
-    let Some(node_id) = NodeId::new(if unconfigured { 1 } else { args.node_id }) else {
+    let unconfigured = raw_id == 255;
+    let Some(node_id) = NodeId::new(if unconfigured { 1 } else { raw_id }) else {
         eprintln!("node: node-ID must be 1..=127, or 255 to start without one (LSS)");
         return ExitCode::from(2);
     };
@@ -113,17 +174,18 @@ fn main() -> ExitCode {
         eprintln!("node: {e}");
         return ExitCode::from(2);
     }
-    let store = match &args.store {
+    let (store, lss) = match &args.store {
         Some(path) => {
-            println!("node: parameters stored in {path}.a / {path}.b (1010h/1011h)");
-            Store::File(FileStorage::new(path))
+            println!("node: parameters stored in {path}.a / {path}.b (1010h/1011h), LSS in {path}.lss.a");
+            (Store::File(FileStorage::new(path)), Some(std::sync::Mutex::new(store_file::LssFile::new(path))))
         }
-        None => Store::None,
+        None => (Store::None, None),
     };
     let mut node = io_module::new_node_with_store(node_id, config, store);
     if unconfigured {
         node = node.without_node_id();
     }
+    node.lss_mut().set_store_supported(lss.is_some());
     node.set_sdo_timeout(canopen_core::Duration::from_millis(args.sdo_timeout));
     let shared = Arc::new(MutexShared::new(node));
     println!(
@@ -143,6 +205,7 @@ fn main() -> ExitCode {
         quiet: args.quiet,
         wake: wake.clone(),
         app: Arc::default(),
+        lss,
     };
     let result = if args.blocking {
         run_on_threads(&args, &shared, &printer, limit)
@@ -295,6 +358,8 @@ struct Printer {
     wake: Arc<NotifyWake>,
     /// Wakes the application task on an NMT state change.
     app: Arc<AppWake>,
+    /// Where LSS "store configuration" goes (`--store`); without it the node answers "not supported".
+    lss: Option<std::sync::Mutex<store_file::LssFile>>,
 }
 
 impl Printer {
@@ -359,6 +424,14 @@ impl Printer {
                     if raised != 0 {
                         println!("({t:10.6}) error injection: code {raised:04X}h raised");
                     }
+                    self.wake.signal();
+                }
+            }
+            Event::Lss(LssEvent::StoreRequested { .. }) => {
+                println!("({t:10.6}) event {e:?}");
+                if let Some(lss) = &self.lss {
+                    let mut lss = lss.lock().unwrap_or_else(|p| p.into_inner());
+                    self.shared.with(|n| n.complete_lss_store(&mut *lss));
                     self.wake.signal();
                 }
             }

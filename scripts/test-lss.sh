@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
 # python canopen's LSS master (network.lss: fastscan, configure_node_id, store_configuration) against
-# examples/lss_node over vcan: tests/python/test_lss.py. Builds on the host, then runs node + pytest in ONE
-# with-vcan VM (processes in different VMs cannot see each other).
+# examples/node (--node-id 255 --store FILE) over vcan: tests/python/test_lss.py. Builds on the host, then
+# runs the node + pytest in ONE with-vcan VM (processes in different VMs cannot see each other).
 # Usage: scripts/test-lss.sh        (installs tests/python/requirements.txt first unless SKIP_PIP=1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 WITH_VCAN="${WITH_VCAN:-../shared/vcan/with-vcan}"
 # python canopen, python-can, pytest in the project's own virtual environment (target/venv).
 source scripts/python-env.sh
-cargo build --quiet --example lss_node
+cargo build --quiet --example node
 set +e
-"$WITH_VCAN" -- env LSS_NODE_BIN="$PWD/target/debug/examples/lss_node" \
+"$WITH_VCAN" -- env NODE_EXAMPLE_BIN="$PWD/target/debug/examples/node" \
     python3 -m pytest -q -p no:cacheprovider tests/python/test_lss.py
 rc=$?
 set -e

@@ -11,7 +11,7 @@ use canopen::core::{
     node::Node,
     pdo::PdoDefault,
     profile::NodeConfig,
-    storage::{Storage, StorageError},
+    storage::{slot_status, SlotStatus, Storage, StorageError},
     CanFrame, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
@@ -354,4 +354,23 @@ fn store_and_restore_object_layout_store_01_store_07() {
         let req = format!("603 [8] 40 {index:02X} 10 04 00 00 00 00");
         assert_eq!(sdo(&mut bus, &req), frame(&format!("583 [8] 80 {index:02X} 10 04 11 00 09 06")));
     }
+}
+
+/// `slot_status` (used by the example node's `--store` check, issue 16): erased, a saved record valid, one
+/// flipped payload byte a CRC failure, a broken magic a format failure.
+#[test]
+fn slot_status_tells_valid_crc_and_format_failures() {
+    let mut ram = Ram::default();
+    ram.0.borrow_mut().slots = [vec![0xFF; CAP], vec![0xFF; CAP]];
+    assert_eq!(slot_status(&mut ram, 0), Ok(SlotStatus::Erased));
+    let mut bus = boot(&ram);
+    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 65"), frame("583 [8] 60 10 10 01 00 00 00 00"));
+    assert_eq!(slot_status(&mut ram, 0), Ok(SlotStatus::Valid));
+    assert_eq!(slot_status(&mut ram, 1), Ok(SlotStatus::Erased));
+    ram.0.borrow_mut().slots[0][canopen::core::storage::HEADER_LEN] ^= 0x01;
+    assert_eq!(slot_status(&mut ram, 0), Ok(SlotStatus::BadCrc));
+    ram.0.borrow_mut().slots[0][0] ^= 0x01;
+    assert_eq!(slot_status(&mut ram, 0), Ok(SlotStatus::BadFormat));
+    ram.0.borrow_mut().fail_read = true;
+    assert_eq!(slot_status(&mut ram, 0), Err(StorageError::Io));
 }

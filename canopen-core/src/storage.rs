@@ -252,6 +252,64 @@ fn valid_header<S: Storage + ?Sized>(st: &mut S, slot: u8) -> Result<Option<Head
     Ok((d.finalize() == h.crc).then_some(h))
 }
 
+/// What a slot holds, as [`slot_status`] finds it.
+///
+/// ```
+/// use canopen_core::storage::SlotStatus;
+/// assert_ne!(SlotStatus::Valid, SlotStatus::BadCrc);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlotStatus {
+    /// Never written or erased: the header bytes are all FFh.
+    Erased,
+    /// A record whose header and CRC-32 check out.
+    Valid,
+    /// The header is not a record header of this format (magic, version, group flags or length wrong).
+    BadFormat,
+    /// A record header whose CRC-32 does not match the payload.
+    BadCrc,
+}
+
+/// Checks one slot (0 or 1) without loading anything: an application calls it at start-up to report a
+/// damaged store rather than silently starting on defaults (a record torn by a power loss during a save
+/// also shows as [`SlotStatus::BadCrc`] or [`SlotStatus::BadFormat`]; [`load`] then uses the other slot).
+///
+/// ```
+/// use canopen_core::storage::{slot_status, SlotStatus, Storage, StorageError};
+/// struct Ram([u8; 64]);
+/// impl Storage for Ram {
+///     fn capacity(&self) -> usize { 64 }
+///     fn erase(&mut self, _: u8) -> Result<(), StorageError> { self.0.fill(0xFF); Ok(()) }
+///     fn write(&mut self, _: u8, o: usize, d: &[u8]) -> Result<(), StorageError> {
+///         self.0[o..o + d.len()].copy_from_slice(d);
+///         Ok(())
+///     }
+///     fn read(&mut self, _: u8, o: usize, b: &mut [u8]) -> Result<(), StorageError> {
+///         b.copy_from_slice(&self.0[o..o + b.len()]);
+///         Ok(())
+///     }
+/// }
+/// let mut ram = Ram([0xFF; 64]);
+/// assert_eq!(slot_status(&mut ram, 0), Ok(SlotStatus::Erased));
+/// ram.write(0, 0, b"garbage").unwrap();
+/// assert_eq!(slot_status(&mut ram, 0), Ok(SlotStatus::BadFormat));
+/// ```
+pub fn slot_status<S: Storage + ?Sized>(st: &mut S, slot: u8) -> Result<SlotStatus, StorageError> {
+    if st.capacity() < HEADER_LEN {
+        return Ok(SlotStatus::Erased);
+    }
+    let mut raw = [0u8; HEADER_LEN];
+    st.read(slot, 0, &mut raw)?;
+    if raw.iter().all(|&b| b == 0xFF) {
+        return Ok(SlotStatus::Erased);
+    }
+    match Header::parse(&raw) {
+        Some(h) if h.len as usize <= st.capacity() - HEADER_LEN => {}
+        _ => return Ok(SlotStatus::BadFormat),
+    }
+    Ok(if valid_header(st, slot)?.is_some() { SlotStatus::Valid } else { SlotStatus::BadCrc })
+}
+
 /// The slot holding the newest valid record and its header (serial-number comparison of the sequences).
 fn newest<S: Storage + ?Sized>(st: &mut S) -> Result<Option<(u8, Header)>, StorageError> {
     let a = valid_header(st, 0)?;

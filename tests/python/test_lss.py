@@ -1,7 +1,7 @@
-"""python canopen's LSS master against `examples/lss_node` over vcan (run by scripts/test-lss.sh inside
+"""python canopen's LSS master against `examples/node --node-id 255 --store FILE` over vcan (run by scripts/test-lss.sh inside
 ../shared/vcan/with-vcan): fastscan finds the node started without a node-ID, configure_node_id(0x22),
 store_configuration, switch to waiting → the node boots as 0x22 and answers SDO; restarted, it boots as
-0x22 from its store file."""
+0x22 from its store (FILE.lss.a), over the --node-id argument."""
 
 import os
 import pathlib
@@ -14,10 +14,10 @@ import pytest
 from canopen.lss import LssError
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-NODE_BIN = os.environ.get("LSS_NODE_BIN", str(ROOT / "target/debug/examples/lss_node"))
+NODE_BIN = os.environ.get("NODE_EXAMPLE_BIN", str(ROOT / "target/debug/examples/node"))
 IFACE = os.environ.get("CAN_IFACE", "vcan0")
-# The LSS address of the example node (examples/lss_node.rs CONFIG, serial from --serial).
-VENDOR, PRODUCT, REVISION, SERIAL = 0x0, 0x1, 0x0001_0000, 0x8000_0001
+# The LSS address of the example node (examples/common/io_module.rs CONFIG, serial from --serial).
+VENDOR, PRODUCT, REVISION, SERIAL = 0x0, 0x401, 0x0001_0000, 0x8000_0001
 NEW_ID = 0x22
 
 
@@ -49,7 +49,8 @@ def network():
 def start_node(store, log_path):
     log = open(log_path, "a")
     proc = subprocess.Popen(
-        [NODE_BIN, "--iface", IFACE, "--store", str(store), "--serial", hex(SERIAL)],
+        [NODE_BIN, "--iface", IFACE, "--store", str(store), "--serial", hex(SERIAL), "--node-id", "255",
+         "--heartbeat", "0", "--quiet"],
         stdout=log,
         stderr=subprocess.STDOUT,
     )
@@ -65,7 +66,7 @@ def stop_node(proc):
 
 # LSS-01, LSS-03, LSS-05, LSS-06, LSS-09, LSS-10, LSS-13, LSS-14, LSS-15 against python canopen's master.
 def test_fastscan_configure_store_and_reboot(network, tmp_path):
-    store = tmp_path / "lss-node.txt"
+    store = tmp_path / "state"
     log = tmp_path / "lss-node.log"
     boot = Recorder(network, 0x700 + NEW_ID)
     lss_answers = Recorder(network, 0x7E4)
@@ -89,7 +90,7 @@ def test_fastscan_configure_store_and_reboot(network, tmp_path):
 
         network.lss.configure_node_id(NEW_ID)
         network.lss.store_configuration()
-        assert "node_id=34" in store.read_text()
+        assert (tmp_path / "state.lss.a").exists(), pathlib.Path(log).read_text()
         # The new node-ID is pending until the node leaves LSS configuration.
         assert network.lss.inquire_node_id() == 0xFF
         assert boot.frames == []
@@ -115,3 +116,46 @@ def test_fastscan_configure_store_and_reboot(network, tmp_path):
         assert int.from_bytes(node.sdo.upload(0x1018, 4), "little") == SERIAL
     finally:
         stop_node(proc)
+
+
+# LSS-09 (issue 16 item 1): the stored node-ID wins over --node-id (the factory default, CiA 305) at the
+# next start.
+def test_node_example_stores_lss_config_and_boots_with_it_over_node_id(network, tmp_path):
+    store = tmp_path / "state"
+    log = tmp_path / "node.log"
+    boot = Recorder(network, 0x700 + NEW_ID)
+
+    def start(node_id):
+        out = open(log, "a")
+        proc = subprocess.Popen(
+            [NODE_BIN, "--iface", IFACE, "--store", str(store), "--node-id", str(node_id),
+             "--heartbeat", "0", "--quiet"],
+            stdout=out,
+            stderr=subprocess.STDOUT,
+        )
+        time.sleep(0.5)
+        assert proc.poll() is None, log.read_text()
+        return proc
+
+    proc = start(255)
+    try:
+        network.lss.send_switch_state_global(network.lss.CONFIGURATION_STATE)
+        assert network.lss.inquire_node_id() == 0xFF
+        network.lss.configure_node_id(NEW_ID)
+        network.lss.store_configuration()
+        assert (tmp_path / "state.lss.a").exists(), log.read_text()
+        network.lss.send_switch_state_global(network.lss.WAITING_STATE)
+        assert boot.wait() == [b"\x00"], log.read_text()
+    finally:
+        stop_node(proc)
+
+    boot.frames.clear()
+    boot.event.clear()
+    proc = start(5)
+    try:
+        assert boot.wait() == [b"\x00"], log.read_text()
+        node = network.add_node(NEW_ID, canopen.ObjectDictionary())
+        assert int.from_bytes(node.sdo.upload(0x1018, 2), "little") == 0x401
+    finally:
+        stop_node(proc)
+    assert "node-ID 34 from the LSS store" in log.read_text()

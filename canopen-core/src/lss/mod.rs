@@ -62,7 +62,7 @@
 //! [`LssStore`] (or [`LssSlave::complete_store`] with a result). Until then the master waits (python
 //! `canopen` for 0.5 s). [`LssStore`] takes just the two values, so it can be implemented on top of the
 //! general `Storage` trait being built for 1010h (a blanket adapter that writes them into a reserved
-//! record), or on a file, as `examples/lss_node.rs` does. A slave whose application does not store
+//! record), or on a file, as `examples/common/store_file.rs` does. A slave whose application does not store
 //! ([`LssSlave::set_store_supported`] false, the default) answers 17h with error 01h at once.
 
 pub mod master;
