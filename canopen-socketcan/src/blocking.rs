@@ -308,26 +308,17 @@ pub(crate) fn receive_all(fd: RawFd, pass: &mut Pass, observe: &mut dyn FnMut(Ob
 /// Sends `pass.tx` in order, in as few calls as the socket takes; a full queue (`ENOBUFS`, `EAGAIN`) is
 /// waited out as [`BlockingBus::send`] does, nothing is lost or reordered on a partial send.
 fn send_all(bus: &BlockingBus, pass: &mut Pass, observe: &mut impl FnMut(Observed<'_>)) -> io::Result<()> {
-    let mut stalled: Option<Instant> = None;
+    let mut stall = crate::pass::TxStall::default();
     while !pass.tx.is_empty() {
         let raw = pass.tx.iter().map(crate::pass::raw_frame).collect::<io::Result<Vec<_>>>()?;
         match crate::batch::send_frames(bus.socket.as_raw_fd(), &raw) {
             Ok(n) => {
                 crate::pass::sent(&mut pass.tx, n, observe);
-                stalled = None;
+                stall.clear();
             }
             Err(e) => match classify(&e) {
                 ErrorClass::NoBufs | ErrorClass::Timeout => {
-                    // Only a stall reads the clock again.
-                    let t = bus.now();
-                    let since = *stalled.get_or_insert_with(|| {
-                        observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
-                        t
-                    });
-                    if t.as_micros().saturating_sub(since.as_micros()) >= crate::TX_STALL_LIMIT.as_micros() as u64 {
-                        crate::pass::drop_first(&mut pass.tx, observe);
-                        stalled = None;
-                    } else {
+                    if stall.full(bus.now(), &mut pass.tx, observe) {
                         std::thread::sleep(crate::ENOBUFS_BACKOFF);
                     }
                 }

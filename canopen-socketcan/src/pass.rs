@@ -193,10 +193,40 @@ pub(crate) fn sent(tx: &mut Vec<CanFrame>, n: usize, observe: &mut dyn FnMut(Obs
 
 /// After a full send queue lasted [`TX_STALL_LIMIT`](crate::TX_STALL_LIMIT): the first unsent frame is
 /// dropped and reported.
-pub(crate) fn drop_first(tx: &mut Vec<CanFrame>, observe: &mut dyn FnMut(Observed<'_>)) {
+fn drop_first(tx: &mut Vec<CanFrame>, observe: &mut dyn FnMut(Observed<'_>)) {
     if !tx.is_empty() {
         let f = tx.remove(0);
         observe(Observed::Adapter(&AdapterEvent::TxDropped(f)));
+    }
+}
+
+/// The transmit-stall rule both runners follow when the socket's queue is full (`ENOBUFS`, `EAGAIN`): the
+/// first full answer is reported as [`AdapterEvent::TxBufferFull`]; once the stall has lasted
+/// [`TX_STALL_LIMIT`](crate::TX_STALL_LIMIT), the first unsent frame is dropped and reported and the wait
+/// starts again. Only a stall reads the clock.
+#[derive(Default)]
+pub(crate) struct TxStall(Option<Instant>);
+
+impl TxStall {
+    /// A send call went through.
+    pub fn clear(&mut self) {
+        self.0 = None;
+    }
+
+    /// The queue was full at `now`. Returns `true` when the caller should back off and retry, `false` when a
+    /// frame was dropped (retry at once).
+    pub fn full(&mut self, now: Instant, tx: &mut Vec<CanFrame>, observe: &mut dyn FnMut(Observed<'_>)) -> bool {
+        let since = *self.0.get_or_insert_with(|| {
+            observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
+            now
+        });
+        if now.as_micros().saturating_sub(since.as_micros()) >= crate::TX_STALL_LIMIT.as_micros() as u64 {
+            drop_first(tx, observe);
+            self.0 = None;
+            false
+        } else {
+            true
+        }
     }
 }
 

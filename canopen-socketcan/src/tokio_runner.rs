@@ -351,25 +351,17 @@ async fn send_all(
     timer: &TokioTimer,
     observe: &mut (dyn FnMut(Observed<'_>) + Send),
 ) -> io::Result<()> {
-    let mut stalled: Option<Instant> = None;
+    let mut stall = crate::pass::TxStall::default();
     while !pass.tx.is_empty() {
         let raw = pass.tx.iter().map(crate::pass::raw_frame).collect::<io::Result<Vec<_>>>()?;
         match crate::batch::send_frames(bus.socket.as_raw_fd(), &raw) {
             Ok(n) => {
                 crate::pass::sent(&mut pass.tx, n, observe);
-                stalled = None;
+                stall.clear();
             }
             Err(e) => match classify(&e) {
                 ErrorClass::NoBufs | ErrorClass::Timeout => {
-                    let t = timer.now(); // only a stall reads the clock again
-                    let since = *stalled.get_or_insert_with(|| {
-                        observe(Observed::Adapter(&AdapterEvent::TxBufferFull));
-                        t
-                    });
-                    if t.as_micros().saturating_sub(since.as_micros()) >= crate::TX_STALL_LIMIT.as_micros() as u64 {
-                        crate::pass::drop_first(&mut pass.tx, observe);
-                        stalled = None;
-                    } else {
+                    if stall.full(timer.now(), &mut pass.tx, observe) {
                         tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
                     }
                 }
