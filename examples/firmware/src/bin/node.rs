@@ -5,7 +5,7 @@
 //! EMCY with the 1003h error history, the TIME consumer (1012h = 8000_0100h), and the application dictionary
 //! as a derived struct.
 //!
-//! Two tasks share the node (see the crate docs for the glue types):
+//! Two tasks share the node (the glue types come from `canopen-embassy`):
 //!
 //! - `canopen` runs `canopen_core::driver::run` on the CAN halves and `embassy-time`; a bus error raises
 //!   EMCY 8100h (communication, generic), which is cleared when the driver runs again;
@@ -23,7 +23,8 @@ use canopen_core::driver::{self, Shared};
 use canopen_core::pdo::PdoDefault;
 use canopen_core::Sizes;
 use canopen_core::{Event, NmtState, Node, NodeId};
-use canopen_firmware::{AppWake, BxCanRx, BxCanTx, EmbassyClock, NodeCell};
+use canopen_embassy::stm32::{Stm32CanRx, Stm32CanTx};
+use canopen_embassy::{AppWake, EmbassyClock, NodeCell};
 use canopen_od_derive::ObjectDictionary;
 use embassy_executor::Spawner;
 use embassy_stm32::bind_interrupts;
@@ -143,7 +144,7 @@ async fn main(spawner: Spawner) {
 #[embassy_executor::task]
 async fn canopen(mut can: Can<'static>, node: &'static NodeCell<DeviceNode>) {
     let (tx, rx) = can.split();
-    let (mut tx, mut rx, mut clock) = (BxCanTx(tx), BxCanRx(rx), EmbassyClock);
+    let (mut tx, mut rx, mut clock) = (Stm32CanTx(tx), Stm32CanRx(rx), EmbassyClock);
     loop {
         let Err(_error) = driver::run(node, &mut rx, &mut tx, &mut clock, &WAKE, |e| on_event(node, e)).await;
         node.lock(|n| n.raise_error(EMCY_BUS_ERROR, [0; 5]));
