@@ -39,3 +39,8 @@ mod wake;
 pub use cell::NodeCell;
 pub use clock::EmbassyClock;
 pub use wake::AppWake;
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;
