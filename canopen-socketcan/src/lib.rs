@@ -168,11 +168,16 @@ pub enum Observed<'a> {
     Adapter(&'a AdapterEvent),
 }
 
-/// The node's monotonic clock: microseconds since the runner started. It survives a reopened socket.
+/// The node's monotonic clock: microseconds since the first `Clock` of the process was made. Every clock of
+/// the process shares that zero, so a runner that is restarted (a new `run_tokio` after an error, a new
+/// [`BlockingBus`]) carries on the node's timeline instead of sending it back to zero: the node's deadlines
+/// (heartbeat, SDO time-out, inhibit times) stay right.
 ///
 /// ```
 /// let c = canopen_socketcan::Clock::new();
 /// assert!(c.now() <= c.now());
+/// let later = canopen_socketcan::Clock::new(); // a restarted runner's clock
+/// assert!(later.now() >= c.now());
 /// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Clock {
@@ -180,9 +185,10 @@ pub struct Clock {
 }
 
 impl Clock {
-    /// A clock whose zero is now.
+    /// The process's node clock (its zero is when the first one was made).
     pub fn new() -> Self {
-        Clock { epoch: std::time::Instant::now() }
+        static EPOCH: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+        Clock { epoch: *EPOCH.get_or_init(std::time::Instant::now) }
     }
 
     /// The current instant.
@@ -307,6 +313,18 @@ pub(crate) fn to_socket_frame(frame: &CanFrame) -> io::Result<socketcan::CanFram
 
 #[cfg(test)]
 mod tests {
+
+    /// Issue "cancel safety / restart": a runner restarted after an error makes a new `Clock`; the node's time
+    /// must carry on, never jump back to zero (its deadlines would all lie in the future again).
+    #[test]
+    fn a_restarted_runners_clock_never_goes_backwards() {
+        let first = Clock::new();
+        std::thread::sleep(StdDuration::from_millis(5));
+        let before = first.now();
+        assert!(before.as_micros() >= 5_000);
+        let restarted = Clock::new();
+        assert!(restarted.now() >= before, "{:?} < {before:?}", restarted.now());
+    }
     use super::*;
     use socketcan::{EmbeddedFrame, ExtendedId, Frame, StandardId};
 
