@@ -102,6 +102,41 @@ pub enum DriverError<R, T> {
     Transmit(T),
 }
 
+/// ```
+/// use canopen_core::driver::DriverError;
+/// let e: DriverError<&str, &str> = DriverError::Receive("bus off");
+/// assert_eq!(e.to_string(), "CAN receive failed: bus off");
+/// ```
+impl<R: core::fmt::Display, T: core::fmt::Display> core::fmt::Display for DriverError<R, T> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            DriverError::Receive(e) => write!(f, "CAN receive failed: {e}"),
+            DriverError::Transmit(e) => write!(f, "CAN transmit failed: {e}"),
+        }
+    }
+}
+
+/// The CAN driver's own error is the [`source`](core::error::Error::source).
+///
+/// ```
+/// use canopen_core::{abort::AbortCode, driver::DriverError};
+/// use core::error::Error;
+/// let e: DriverError<AbortCode, core::convert::Infallible> = DriverError::Receive(AbortCode::SdoTimeout);
+/// assert!(e.source().is_some());
+/// ```
+impl<R, T> core::error::Error for DriverError<R, T>
+where
+    R: core::error::Error + 'static,
+    T: core::error::Error + 'static,
+{
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            DriverError::Receive(e) => Some(e),
+            DriverError::Transmit(e) => Some(e),
+        }
+    }
+}
+
 /// What woke the driver.
 enum Woken<F> {
     Frame(F),

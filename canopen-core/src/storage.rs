@@ -54,6 +54,22 @@ pub enum StorageError {
     Unsupported,
 }
 
+/// ```
+/// use canopen_core::storage::StorageError;
+/// assert_eq!(StorageError::TooLarge.to_string(), "the parameters do not fit into a storage slot");
+/// ```
+impl core::fmt::Display for StorageError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            StorageError::Io => "the non-volatile memory failed",
+            StorageError::TooLarge => "the parameters do not fit into a storage slot",
+            StorageError::Unsupported => "no non-volatile storage",
+        })
+    }
+}
+
+impl core::error::Error for StorageError {}
+
 /// Non-volatile memory with two independent slots; see the [module docs](self) for the guarantees the core
 /// builds on it.
 ///
