@@ -61,3 +61,8 @@ pub use nmt::NmtState;
 pub use node::Node;
 pub use sizes::Sizes;
 pub use time::{Duration, Instant};
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

@@ -50,6 +50,8 @@ pub mod blocking;
 pub mod file_storage;
 pub mod master;
 mod pass;
+mod shared;
+#[cfg(feature = "tokio")]
 pub mod tokio_runner;
 
 pub use batch::BATCH;
@@ -57,7 +59,9 @@ pub use blocking::{run_blocking, BlockingBus, BusWaker, Rx};
 pub use file_storage::FileStorage;
 pub use master::{Master, MasterError, MasterStats};
 pub use pass::{runner_stats, ReceiveFilters, RunnerStats};
-pub use tokio_runner::{run_tokio, MutexShared, NotifyWake, TokioBus, TokioTimer};
+pub use shared::MutexShared;
+#[cfg(feature = "tokio")]
+pub use tokio_runner::{run_tokio, NotifyWake, TokioBus, TokioTimer};
 
 /// How long a send waits before retrying when the socket buffer is full (`ENOBUFS`).
 pub const ENOBUFS_BACKOFF: StdDuration = StdDuration::from_micros(200);
@@ -382,3 +386,8 @@ mod tests {
         assert_eq!(classify(&io::Error::from_raw_os_error(libc::EACCES)), ErrorClass::Fatal);
     }
 }
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;
