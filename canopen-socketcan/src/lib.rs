@@ -32,6 +32,18 @@
 //!   dropped and reported as [`AdapterEvent::TxDropped`], so a dead bus cannot freeze the receive side.
 //!
 //! 29-bit (extended) frames are ignored (CAN-01: CANopen uses 11-bit identifiers).
+//!
+//! ```no_run
+//! use canopen_core::{node::NoApplication, profile::NodeConfig, Node, NodeId};
+//! use canopen_socketcan::{run_blocking, BlockingBus};
+//!
+//! // sudo modprobe vcan && sudo ip link add dev vcan0 type vcan && sudo ip link set up vcan0
+//! let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+//! let shared = core::cell::RefCell::new(node);
+//! let mut bus = BlockingBus::open("vcan0")?;
+//! run_blocking(&shared, &mut bus, |seen| println!("{seen:?}"), || true)?;
+//! # Ok::<(), std::io::Error>(())
+//! ```
 
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
