@@ -27,6 +27,7 @@ use core::task::Poll;
 
 use heapless::Vec;
 
+use crate::bus::BusState;
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::node::SansIo;
@@ -47,6 +48,37 @@ pub trait CanRx {
     type Error;
     /// Waits for the next frame.
     fn receive(&mut self) -> impl Future<Output = Result<CanFrame, Self::Error>>;
+    /// Waits for the next frame or change of the controller's state ([`BusState`]: error passive, bus-off,
+    /// recovered, ...), which the driver hands to the node (EMCY 8120h/8140h, 1029h:01 on bus-off; see
+    /// [`crate::bus`]). The default reports frames only; an adapter that sees the controller's state
+    /// overrides it. Must be cancel-safe like [`receive`](CanRx::receive).
+    ///
+    /// ```
+    /// use canopen_core::{bus::BusState, driver::{CanRx, Received}, CanFrame};
+    /// struct Passive;
+    /// impl CanRx for Passive {
+    ///     type Error = ();
+    ///     async fn receive(&mut self) -> Result<CanFrame, ()> { core::future::pending().await }
+    ///     async fn receive_event(&mut self) -> Result<Received, ()> { Ok(Received::Bus(BusState::ErrorPassive)) }
+    /// }
+    /// ```
+    fn receive_event(&mut self) -> impl Future<Output = Result<Received, Self::Error>> {
+        async { self.receive().await.map(Received::Frame) }
+    }
+}
+
+/// What [`CanRx::receive_event`] delivers.
+///
+/// ```
+/// use canopen_core::{bus::BusState, driver::Received};
+/// assert_ne!(Received::Bus(BusState::BusOff), Received::Bus(BusState::Recovered));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Received {
+    /// A frame from the bus.
+    Frame(CanFrame),
+    /// The controller's state changed.
+    Bus(BusState),
 }
 
 /// The node's clock.
@@ -213,11 +245,15 @@ where
             DriverError::Transmit(e)
         })?;
         match wait(rx, timer, wake, deadline).await {
-            Woken::Frame(Ok(frame)) => {
+            Woken::Frame(Ok(Received::Frame(frame))) => {
                 #[cfg(any(feature = "defmt", feature = "log"))]
                 crate::trace::frame("rx", &frame);
                 let now = timer.now();
                 shared.lock(|n| n.handle_frame(now, &frame));
+            }
+            Woken::Frame(Ok(Received::Bus(state))) => {
+                let now = timer.now();
+                shared.lock(|n| n.handle_bus_state(now, state));
             }
             Woken::Frame(Err(e)) => {
                 crate::trace::driver_error(true);
@@ -286,8 +322,8 @@ async fn wait<R: CanRx, C: Timer, W: Wake>(
     timer: &mut C,
     wake: &W,
     deadline: Option<Instant>,
-) -> Woken<Result<CanFrame, R::Error>> {
-    let mut frame = pin!(rx.receive());
+) -> Woken<Result<Received, R::Error>> {
+    let mut frame = pin!(rx.receive_event());
     let mut sleep = pin!(async {
         match deadline {
             Some(t) => timer.sleep_until(t).await,
@@ -468,6 +504,42 @@ mod tests {
             assert_eq!(f, frames, "frames, dropped after every {polls} polls");
             assert_eq!(e, events, "events, dropped after every {polls} polls");
         }
+    }
+
+    /// A controller that reports error passive once (an adapter overriding `receive_event`).
+    struct GoesPassive(bool);
+    impl CanRx for GoesPassive {
+        type Error = ();
+        fn receive(&mut self) -> impl Future<Output = Result<CanFrame, ()>> {
+            core::future::pending()
+        }
+        fn receive_event(&mut self) -> impl Future<Output = Result<Received, ()>> {
+            let first = core::mem::take(&mut self.0);
+            poll_fn(move |_| if first { Poll::Ready(Ok(Received::Bus(BusState::ErrorPassive))) } else { Poll::Pending })
+        }
+    }
+
+    /// EEC-11 through the driver: a controller state an adapter reports reaches the node, which sends EMCY
+    /// 8120h (error passive) with 1001h bit 4 (communication error) set.
+    #[test]
+    fn a_bus_state_from_the_adapter_reaches_the_node_eec_11() {
+        let clock = Cell::new(Instant::ZERO);
+        let sent = RefCell::new(StdVec::new());
+        let shared =
+            RefCell::new(Node::<NoApplication>::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication));
+        let (mut rx, mut tx, mut timer) = (GoesPassive(true), Wire(&sent, &clock), Sim(&clock));
+        {
+            let mut fut = pin!(run(&shared, &mut rx, &mut tx, &mut timer, &NoWake, |_| {}));
+            let mut cx = Context::from_waker(Waker::noop());
+            for _ in 0..3 {
+                assert!(fut.as_mut().poll(&mut cx).is_pending());
+            }
+        }
+        let frames: StdVec<CanFrame> = sent.borrow().iter().map(|(_, f)| *f).collect();
+        assert_eq!(
+            frames,
+            [CanFrame::new(0x705, &[0]).unwrap(), CanFrame::new(0x085, &[0x20, 0x81, 0x11, 0, 0, 0, 0, 0]).unwrap()]
+        );
     }
 
     /// The driver sleeps exactly until each deadline, handles received frames at once, sends what an
