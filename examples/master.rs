@@ -24,9 +24,13 @@ use canopen_core::NodeId;
 use canopen_socketcan::{BlockingBus, Master, MasterError};
 use clap::{Parser, Subcommand, ValueEnum};
 
-/// A CANopen master: SDO read/write, block transfer of files, NMT commands, a throughput bench.
+/// A CANopen master on SocketCAN for trying a node: SDO read/write, block transfer of files, NMT
+/// commands, a throughput bench.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(
+    version,
+    after_help = "Example: cargo run --example master -- --iface vcan0 --node 5 read 0x1008 0 --type str"
+)]
 struct Args {
     /// SocketCAN interface.
     #[arg(long, default_value = "vcan0", global = true)]

@@ -63,9 +63,14 @@ use canopen_socketcan::{run_blocking, run_tokio, BlockingBus, FileStorage, Mutex
 use clap::Parser;
 use io_module::{IoNode, Store, CONFIG};
 
-/// A CiA 301 CANopen node (a CiA 401-style I/O module) on SocketCAN.
+/// A CiA 301 CANopen node (a CiA 401-style I/O module) on SocketCAN: serves SDO, PDO, SYNC, EMCY,
+/// heartbeat and LSS to any master on the bus, e.g. python canopen or `cargo run --example master`.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(
+    version,
+    after_help = "Example: cargo run --example node -- --iface vcan0 --node-id 5 --store state.bin\n\
+                  (create vcan0 first: sudo modprobe vcan && sudo ip link add dev vcan0 type vcan && sudo ip link set up vcan0)"
+)]
 struct Args {
     /// SocketCAN interface.
     #[arg(long, default_value = "vcan0")]

@@ -6,7 +6,17 @@ mod all_types;
 
 use canopen_core::profile::eds::{write_eds, EdsInfo};
 
+const HELP: &str = "write_eds: writes the EDS (CiA 306 electronic data sheet) of the all-types test device, \
+the file a CANopen master or configuration tool loads to know the device's objects.
+
+Usage: write_eds [FILE]    (stdout without FILE)
+Example: cargo run --example write_eds -- all_types.eds";
+
 fn main() {
+    if std::env::args().skip(1).any(|a| a == "--help" || a == "-h") {
+        println!("{HELP}");
+        return;
+    }
     let od = all_types::node_od();
     let info = EdsInfo {
         file_name: "all_types.eds",

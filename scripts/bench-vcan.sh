@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# SDO throughput over vcan (inside ONE with-vcan VM), release builds:
+# SDO throughput over vcan0 (here if it exists, else inside ONE with-vcan VM: scripts/vcan-run.sh), release builds:
 #   - our client (examples/master.rs `bench`) <-> our node (examples/node.rs, tokio runner): 1 MiB each way by
 #     block transfer with CRC (16 transfers of 64 KiB, the 2005h DOMAIN's capacity), 128 KiB segmented;
 #   - the same node with the blocking runner (--blocking), block+CRC only;
@@ -19,6 +19,7 @@ SIZE=${1:-1048576}
 command -v strace >/dev/null || { apt-get install -y -qq strace >/dev/null || sudo apt-get install -y -qq strace >/dev/null; }
 # python canopen, python-can, pytest in the project's own virtual environment (target/venv).
 source scripts/python-env.sh
+source scripts/vcan-run.sh
 cargo build --release --examples
 cat > target/bench-in-vm.sh <<INNER
 set -euo pipefail
@@ -59,6 +60,6 @@ for runner in tokio blocking; do
 done
 INNER
 status=0
-"$SHARED/vcan/with-vcan" -- bash target/bench-in-vm.sh || status=$?
-if [[ $status == 125 ]]; then echo "bench-vcan: the with-vcan VM could not start (exit 125)" >&2; exit 1; fi
+vcan_run vcan0 -- bash target/bench-in-vm.sh || status=$?
+if [[ $status == 125 ]]; then echo "bench-vcan: no vcan0 and the with-vcan VM could not start (exit 125)" >&2; exit 1; fi
 exit $status

@@ -26,8 +26,12 @@ for a in "$@"; do
   esac
 done
 
+# The reference feature set of DESIGN.md "Performance" stores nothing: the node is measured without the
+# firmware's `store` feature (1010h/LSS in flash), which is measured apart below as `node+store`.
 cargo build --release --bins --quiet
 T=target/thumbv7em-none-eabihf/release
+cp "$T/node" "$T/node+store"
+cargo build --release --bins --quiet --no-default-features
 
 # text data bss of a binary (Berkeley format, the conventional three numbers)
 berkeley() { size -B "$1" | awk 'NR == 2 { print $1, $2, $3 }'; }
@@ -36,7 +40,7 @@ pools() { nm -S -t d -C "$1" | awk '$3 ~ /^[bBdD]$/ && $4 ~ /::POOL$/ { n += $2 
 
 printf '%-10s %8s %8s %8s | %8s %8s %12s %12s\n' binary text data bss flash ram task-storage ram-w/o-tasks
 declare -A F R P
-for b in baseline node; do
+for b in baseline node node+store; do
   read -r text data bss < <(berkeley "$T/$b")
   F[$b]=$((text + data)) R[$b]=$((data + bss)) P[$b]=$(pools "$T/$b")
   printf '%-10s %8d %8d %8d | %8d %8d %12d %12d\n' "$b" "$text" "$data" "$bss" "${F[$b]}" "${R[$b]}" "${P[$b]}" \
@@ -51,6 +55,7 @@ echo
 echo "stack's own flash (node - baseline, text + data): $flash bytes ($(verdict $flash $FLASH_TARGET))"
 echo "stack's own RAM (node - baseline, data + bss, without task storage): $ram bytes ($(verdict $ram $RAM_TARGET))"
 echo "task storage, node - baseline (executor POOL statics, not counted above): $tasks bytes"
+echo "store/restore and LSS configuration in flash (canopen-embassy FlashStorage, firmware feature store): +$((F[node+store] - F[node])) bytes flash, +$(((R[node+store] - P[node+store]) - (R[node] - P[node]))) bytes RAM"
 echo
 echo "node binary, RAM by static (bytes):"
 nm -S -t d -C --size-sort "$T/node" | awk '$3 ~ /^[bBdD]$/ && $2 >= 16 { s = $2; $1 = $2 = $3 = ""; sub(/^ +/, ""); printf "  %6d  %s\n", s, $0 }' | sort -rn

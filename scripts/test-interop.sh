@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# Interop and SocketCAN tests on a real vcan interface, inside ONE ../shared/vcan/with-vcan VM:
+# Interop and SocketCAN tests on real vcan interfaces (vcan0, vcan1): here if they exist, else inside ONE
+# with-vcan VM (scripts/vcan-run.sh):
 #   1. canopen-socketcan's own tests on vcan0/vcan1 (send/receive, RTR, 29-bit ignored, error frames,
 #      missing interface, interface down/up recovery of both runners, tokio wake);
 #   2. tests/vcan_node.rs: OUR SDO client moves 64 KiB through the example node's DOMAIN (segmented, block
 #      with and without CRC, byte-exact) and the bounded load test (block transfers under a COB-ID flood);
 #   3. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
 #      node, on the EDS the node wrote with --eds.
-# Usage: scripts/test-interop.sh   (SKIP_PIP=1 skips the pip install). Fails (non-zero) if the VM cannot start.
+# Usage: scripts/test-interop.sh   (SKIP_PIP=1 skips the pip install). Fails (non-zero) if neither the
+# interfaces nor the VM are there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -14,6 +16,7 @@ SHARED=${SHARED:-$ROOT/../shared}
 
 # python canopen, python-can, pytest in the project's own virtual environment (target/venv).
 source scripts/python-env.sh
+source scripts/vcan-run.sh
 
 echo "== build on the host (the VM compiles ~14x slower)"
 cargo build --examples
@@ -25,20 +28,20 @@ cargo test --release --no-run --test vcan_node
 cat > target/interop-in-vm.sh <<'INNER'
 set -euo pipefail
 export CANOPEN_REQUIRE_VCAN=1 # python: fail, not skip, without vcan
-echo "== [vm] canopen-socketcan on vcan0/vcan1"
+echo "== canopen-socketcan on vcan0/vcan1"
 cargo test -q -p canopen-socketcan --test vcan -- --include-ignored
-echo "== [vm] our SDO client + load test on the example node"
+echo "== our SDO client + load test on the example node"
 cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test-threads 1
-echo "== [vm] python canopen as the master"
+echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
     python3 -m pytest -q -rs tests/python/test_interop.py
 INNER
 
-echo "== run inside with-vcan"
+echo "== run on vcan0/vcan1"
 status=0
-"$SHARED/vcan/with-vcan" --ifaces vcan0,vcan1 -- bash target/interop-in-vm.sh || status=$?
+vcan_run vcan0,vcan1 -- bash target/interop-in-vm.sh || status=$?
 if [[ $status == 125 ]]; then
-    echo "test-interop: the with-vcan VM could not start (exit 125): FAILED, not skipped" >&2
+    echo "test-interop: no vcan0/vcan1 and the with-vcan VM could not start (exit 125): FAILED, not skipped" >&2
     exit 1
 fi
 if [[ $status != 0 ]]; then

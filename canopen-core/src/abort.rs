@@ -142,6 +142,15 @@ impl core::fmt::Display for AbortCode {
     }
 }
 
+/// An abort code is also the error of the dictionary's operations.
+///
+/// ```
+/// use canopen_core::abort::AbortCode;
+/// let e: &dyn core::error::Error = &AbortCode::ObjectDoesNotExist;
+/// assert_eq!(e.to_string(), "06020000h (ObjectDoesNotExist)");
+/// ```
+impl core::error::Error for AbortCode {}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -15,8 +15,10 @@
 //! wake.signal();
 //! ```
 //!
-//! The lock is held only while the node computes, never across an `.await`: frames are drained into a small
-//! batch under the lock and sent after it is released.
+//! The lock is held only while the node computes, never across an `.await`: a frame is copied out under the
+//! lock, sent after it is released, and removed from the node's queue under the next lock once it is on the
+//! bus. So `run` is cancel-safe: dropping its future between any two polls (a `select!` that picks another
+//! branch, a task that is aborted) loses no frame and no event; the next `run` carries on where it stopped.
 
 use core::convert::Infallible;
 use core::future::{poll_fn, Future};
@@ -25,6 +27,7 @@ use core::task::Poll;
 
 use heapless::Vec;
 
+use crate::bus::BusState;
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::node::SansIo;
@@ -45,6 +48,37 @@ pub trait CanRx {
     type Error;
     /// Waits for the next frame.
     fn receive(&mut self) -> impl Future<Output = Result<CanFrame, Self::Error>>;
+    /// Waits for the next frame or change of the controller's state ([`BusState`]: error passive, bus-off,
+    /// recovered, ...), which the driver hands to the node (EMCY 8120h/8140h, 1029h:01 on bus-off; see
+    /// [`crate::bus`]). The default reports frames only; an adapter that sees the controller's state
+    /// overrides it. Must be cancel-safe like [`receive`](CanRx::receive).
+    ///
+    /// ```
+    /// use canopen_core::{bus::BusState, driver::{CanRx, Received}, CanFrame};
+    /// struct Passive;
+    /// impl CanRx for Passive {
+    ///     type Error = ();
+    ///     async fn receive(&mut self) -> Result<CanFrame, ()> { core::future::pending().await }
+    ///     async fn receive_event(&mut self) -> Result<Received, ()> { Ok(Received::Bus(BusState::ErrorPassive)) }
+    /// }
+    /// ```
+    fn receive_event(&mut self) -> impl Future<Output = Result<Received, Self::Error>> {
+        async { self.receive().await.map(Received::Frame) }
+    }
+}
+
+/// What [`CanRx::receive_event`] delivers.
+///
+/// ```
+/// use canopen_core::{bus::BusState, driver::Received};
+/// assert_ne!(Received::Bus(BusState::BusOff), Received::Bus(BusState::Recovered));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Received {
+    /// A frame from the bus.
+    Frame(CanFrame),
+    /// The controller's state changed.
+    Bus(BusState),
 }
 
 /// The node's clock.
@@ -100,6 +134,41 @@ pub enum DriverError<R, T> {
     Transmit(T),
 }
 
+/// ```
+/// use canopen_core::driver::DriverError;
+/// let e: DriverError<&str, &str> = DriverError::Receive("bus off");
+/// assert_eq!(e.to_string(), "CAN receive failed: bus off");
+/// ```
+impl<R: core::fmt::Display, T: core::fmt::Display> core::fmt::Display for DriverError<R, T> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            DriverError::Receive(e) => write!(f, "CAN receive failed: {e}"),
+            DriverError::Transmit(e) => write!(f, "CAN transmit failed: {e}"),
+        }
+    }
+}
+
+/// The CAN driver's own error is the [`source`](core::error::Error::source).
+///
+/// ```
+/// use canopen_core::{abort::AbortCode, driver::DriverError};
+/// use core::error::Error;
+/// let e: DriverError<AbortCode, core::convert::Infallible> = DriverError::Receive(AbortCode::SdoTimeout);
+/// assert!(e.source().is_some());
+/// ```
+impl<R, T> core::error::Error for DriverError<R, T>
+where
+    R: core::error::Error + 'static,
+    T: core::error::Error + 'static,
+{
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            DriverError::Receive(e) => Some(e),
+            DriverError::Transmit(e) => Some(e),
+        }
+    }
+}
+
 /// What woke the driver.
 enum Woken<F> {
     Frame(F),
@@ -107,7 +176,7 @@ enum Woken<F> {
     Application,
 }
 
-/// How many frames/events are moved per lock.
+/// How many events are moved per lock.
 const BATCH: usize = 8;
 
 /// Runs the node until the CAN driver fails. Every event goes to `on_event` (outside the lock). The node's
@@ -176,11 +245,15 @@ where
             DriverError::Transmit(e)
         })?;
         match wait(rx, timer, wake, deadline).await {
-            Woken::Frame(Ok(frame)) => {
+            Woken::Frame(Ok(Received::Frame(frame))) => {
                 #[cfg(any(feature = "defmt", feature = "log"))]
                 crate::trace::frame("rx", &frame);
                 let now = timer.now();
                 shared.lock(|n| n.handle_frame(now, &frame));
+            }
+            Woken::Frame(Ok(Received::Bus(state))) => {
+                let now = timer.now();
+                shared.lock(|n| n.handle_bus_state(now, state));
             }
             Woken::Frame(Err(e)) => {
                 crate::trace::driver_error(true);
@@ -191,7 +264,10 @@ where
     }
 }
 
-/// Lets the node act on the time, then sends its frames and hands out its events, batch by batch.
+/// Lets the node act on the time, then hands out its events and sends its frames. Cancel-safe: a frame
+/// leaves the node's queue only once `transmit` returned it sent ([`SansIo::peek_transmit`], then
+/// [`SansIo::transmitted`] under the next lock), and events are handed out in the same poll that takes
+/// them, with no `.await` between; a frame whose `transmit` failed stays first in the queue.
 async fn service<N: SansIo, S: Shared<N>, T: CanTx>(
     shared: &S,
     tx: &mut T,
@@ -199,28 +275,32 @@ async fn service<N: SansIo, S: Shared<N>, T: CanTx>(
     on_event: &mut impl FnMut(Event),
 ) -> Result<Option<Instant>, T::Error> {
     let mut first = true;
+    let mut sent: Option<CanFrame> = None;
     loop {
-        let mut frames: Vec<CanFrame, BATCH> = Vec::new();
         let mut events: Vec<Event, BATCH> = Vec::new();
-        let deadline = shared.lock(|n| {
+        let (next, deadline) = shared.lock(|n| {
             if core::mem::take(&mut first) {
                 n.handle_timeout(now);
             }
-            fill(&mut frames, || n.poll_transmit());
+            if let Some(f) = sent.take() {
+                n.transmitted(&f);
+            }
             fill(&mut events, || n.poll_event());
-            n.poll_timeout()
+            (n.peek_transmit(), n.poll_timeout())
         });
         for e in &events {
             crate::trace::event(e);
             on_event(*e);
         }
-        for f in &frames {
-            #[cfg(any(feature = "defmt", feature = "log"))]
-            crate::trace::frame("tx", f);
-            tx.transmit(f).await?;
-        }
-        if !frames.is_full() && !events.is_full() {
-            return Ok(deadline);
+        match next {
+            Some(f) => {
+                #[cfg(any(feature = "defmt", feature = "log"))]
+                crate::trace::frame("tx", &f);
+                tx.transmit(&f).await?;
+                sent = Some(f);
+            }
+            None if !events.is_full() => return Ok(deadline),
+            None => {}
         }
     }
 }
@@ -242,8 +322,8 @@ async fn wait<R: CanRx, C: Timer, W: Wake>(
     timer: &mut C,
     wake: &W,
     deadline: Option<Instant>,
-) -> Woken<Result<CanFrame, R::Error>> {
-    let mut frame = pin!(rx.receive());
+) -> Woken<Result<Received, R::Error>> {
+    let mut frame = pin!(rx.receive_event());
     let mut sleep = pin!(async {
         match deadline {
             Some(t) => timer.sleep_until(t).await,
@@ -321,6 +401,145 @@ mod tests {
         fn wait(&self) -> impl Future<Output = ()> {
             poll_fn(|_| if self.0.replace(false) { Poll::Ready(()) } else { Poll::Pending })
         }
+    }
+
+    /// A transmitter whose mailbox is busy at every other attempt (the attempt returns `Pending` once), so that
+    /// a send is an await point where the driver can be dropped. The state is the wire's, not the future's: a
+    /// send attempted again after a drop finds the mailbox free, as real hardware would.
+    struct SlowWire<'a>(&'a RefCell<StdVec<(Instant, CanFrame)>>, &'a Cell<Instant>, Cell<bool>);
+    impl CanTx for SlowWire<'_> {
+        type Error = ();
+        fn transmit(&mut self, f: &CanFrame) -> impl Future<Output = Result<(), ()>> {
+            let (log, clock, busy, f) = (self.0, self.1, &self.2, *f);
+            poll_fn(move |_| {
+                if !busy.replace(false) {
+                    busy.set(true); // the next frame finds it busy
+                    log.borrow_mut().push((clock.get(), f));
+                    return Poll::Ready(Ok(()));
+                }
+                Poll::Pending
+            })
+        }
+    }
+    /// Frames that arrive at given times: `receive` is ready once the simulated clock has reached them.
+    struct Timed<'a>(&'a RefCell<VecDeque<(Instant, CanFrame)>>, &'a Cell<Instant>);
+    impl CanRx for Timed<'_> {
+        type Error = ();
+        fn receive(&mut self) -> impl Future<Output = Result<CanFrame, ()>> {
+            poll_fn(|_| {
+                let mut q = self.0.borrow_mut();
+                match q.front() {
+                    Some((t, _)) if *t <= self.1.get() => Poll::Ready(Ok(q.pop_front().unwrap().1)),
+                    _ => Poll::Pending,
+                }
+            })
+        }
+    }
+
+    /// Simulated time that stops at the next frame's arrival: a sleep moves the clock to its deadline or to
+    /// the arrival of the next frame of `Timed`, whichever is first, so every frame is handled at its own time
+    /// whatever the polls look like.
+    struct SimTo<'a>(&'a Cell<Instant>, &'a RefCell<VecDeque<(Instant, CanFrame)>>);
+    impl Timer for SimTo<'_> {
+        fn now(&self) -> Instant {
+            self.0.get()
+        }
+        fn sleep_until(&mut self, t: Instant) -> impl Future<Output = ()> {
+            let (clock, inbox) = (self.0, self.1);
+            poll_fn(move |_| {
+                if clock.get() >= t {
+                    return Poll::Ready(());
+                }
+                let arrival = inbox.borrow().front().map_or(t, |(a, _)| *a);
+                clock.set(clock.get().max(t.min(arrival)));
+                Poll::Pending
+            })
+        }
+    }
+
+    /// What a run sent (with the times) and handed out, driving a fresh `run` future that is dropped after
+    /// every `polls` polls (`usize::MAX`: never dropped), until the simulated clock reaches 1 s.
+    fn session(polls: usize) -> (StdVec<(Instant, CanFrame)>, StdVec<Event>) {
+        let clock = Cell::new(Instant::ZERO);
+        let sent = RefCell::new(StdVec::new());
+        let at = |ms, id, data: &[u8]| (Instant::from_millis(ms), CanFrame::new(id, data).unwrap());
+        let inbox = RefCell::new(VecDeque::from([
+            at(150, 0x000, &[0x01, 0x05]),                               // NMT start
+            at(250, 0x605, &[0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]),       // SDO upload 1000h
+            at(260, 0x605, &[0x2B, 0x17, 0x10, 0x00, 0x32, 0x00, 0, 0]), // 1017h = 50 ms
+            at(270, 0x605, &[0x40, 0x08, 0x10, 0x00, 0, 0, 0, 0]),       // segmented upload 1008h
+            at(280, 0x605, &[0x60, 0, 0, 0, 0, 0, 0, 0]),                // its first segment
+            at(600, 0x000, &[0x80, 0x05]),                               // NMT enter pre-operational
+        ]));
+        let cfg = NodeConfig { heartbeat_time_ms: 100, ..NodeConfig::DEFAULT };
+        let shared = RefCell::new(Node::<NoApplication>::new(NodeId::new(5).unwrap(), cfg, NoApplication));
+        let mut events = StdVec::new();
+        let (mut rx, mut tx, mut timer) =
+            (Timed(&inbox, &clock), SlowWire(&sent, &clock, Cell::new(true)), SimTo(&clock, &inbox));
+        let mut cx = Context::from_waker(Waker::noop());
+        while clock.get() < Instant::from_millis(1000) {
+            let mut fut = pin!(run(&shared, &mut rx, &mut tx, &mut timer, &NoWake, |e| events.push(e)));
+            for _ in 0..polls {
+                assert!(fut.as_mut().poll(&mut cx).is_pending());
+                if clock.get() >= Instant::from_millis(1000) {
+                    break;
+                }
+            }
+        }
+        (sent.into_inner(), events)
+    }
+
+    /// Issue "cancel safety": dropping the driver's future between any two polls loses no frame and no event,
+    /// and sends none twice: the frames (with their times) and events equal those of a run never dropped,
+    /// whether it is dropped after every poll, every 2nd, ... every 7th.
+    #[test]
+    fn dropping_run_between_any_two_polls_loses_nothing() {
+        let (frames, events) = session(usize::MAX);
+        // The reference did work: boot-up, heartbeats (100 ms, then 50 ms), 3 SDO answers, state changes.
+        assert!(frames.len() > 15, "{frames:?}");
+        assert_eq!(frames.iter().filter(|(_, f)| f.cob_id() == 0x585).count(), 4);
+        assert!(events.len() >= 3, "{events:?}");
+        for polls in 1..=7 {
+            let (f, e) = session(polls);
+            assert_eq!(f, frames, "frames, dropped after every {polls} polls");
+            assert_eq!(e, events, "events, dropped after every {polls} polls");
+        }
+    }
+
+    /// A controller that reports error passive once (an adapter overriding `receive_event`).
+    struct GoesPassive(bool);
+    impl CanRx for GoesPassive {
+        type Error = ();
+        fn receive(&mut self) -> impl Future<Output = Result<CanFrame, ()>> {
+            core::future::pending()
+        }
+        fn receive_event(&mut self) -> impl Future<Output = Result<Received, ()>> {
+            let first = core::mem::take(&mut self.0);
+            poll_fn(move |_| if first { Poll::Ready(Ok(Received::Bus(BusState::ErrorPassive))) } else { Poll::Pending })
+        }
+    }
+
+    /// EEC-11 through the driver: a controller state an adapter reports reaches the node, which sends EMCY
+    /// 8120h (error passive) with 1001h bit 4 (communication error) set.
+    #[test]
+    fn a_bus_state_from_the_adapter_reaches_the_node_eec_11() {
+        let clock = Cell::new(Instant::ZERO);
+        let sent = RefCell::new(StdVec::new());
+        let shared =
+            RefCell::new(Node::<NoApplication>::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication));
+        let (mut rx, mut tx, mut timer) = (GoesPassive(true), Wire(&sent, &clock), Sim(&clock));
+        {
+            let mut fut = pin!(run(&shared, &mut rx, &mut tx, &mut timer, &NoWake, |_| {}));
+            let mut cx = Context::from_waker(Waker::noop());
+            for _ in 0..3 {
+                assert!(fut.as_mut().poll(&mut cx).is_pending());
+            }
+        }
+        let frames: StdVec<CanFrame> = sent.borrow().iter().map(|(_, f)| *f).collect();
+        assert_eq!(
+            frames,
+            [CanFrame::new(0x705, &[0]).unwrap(), CanFrame::new(0x085, &[0x20, 0x81, 0x11, 0, 0, 0, 0, 0]).unwrap()]
+        );
     }
 
     /// The driver sleeps exactly until each deadline, handles received frames at once, sends what an

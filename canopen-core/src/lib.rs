@@ -23,6 +23,17 @@
 //!
 //! Requirement IDs (NMT-03, SDO-17, ...) are those of the repository's `docs/CONFORMANCE.md` (statement,
 //! CiA 301 clause and the tests that prove each); each module's docs say which it implements.
+//!
+//! ```
+//! use canopen_core::{node::NoApplication, profile::NodeConfig, CanFrame, Instant, Node, NodeId};
+//!
+//! let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+//! node.handle_timeout(Instant::ZERO); // power-on: the boot-up message
+//! assert_eq!(node.poll_transmit(), CanFrame::new(0x705, &[0x00]));
+//! // NMT "start remote node" for node 5: Pre-operational -> Operational
+//! node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x000, &[0x01, 0x05]).unwrap());
+//! assert_eq!(node.state(), canopen_core::NmtState::Operational);
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -61,3 +72,8 @@ pub use nmt::NmtState;
 pub use node::Node;
 pub use sizes::Sizes;
 pub use time::{Duration, Instant};
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

@@ -148,6 +148,10 @@ pub trait SansIo {
     fn poll_timeout(&self) -> Option<Instant>;
     /// The next frame to send.
     fn poll_transmit(&mut self) -> Option<CanFrame>;
+    /// The next frame to send, left in the queue until [`transmitted`](SansIo::transmitted).
+    fn peek_transmit(&self) -> Option<CanFrame>;
+    /// `frame` (from [`peek_transmit`](SansIo::peek_transmit)) was sent.
+    fn transmitted(&mut self, frame: &CanFrame);
     /// The next event for the application.
     fn poll_event(&mut self) -> Option<Event>;
     /// The CAN controller's state changed (see [`crate::bus`]).
@@ -169,6 +173,12 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> SansIo for Node<A, Z, S> {
     }
     fn poll_transmit(&mut self) -> Option<CanFrame> {
         Node::poll_transmit(self)
+    }
+    fn peek_transmit(&self) -> Option<CanFrame> {
+        Node::peek_transmit(self)
+    }
+    fn transmitted(&mut self, frame: &CanFrame) {
+        Node::transmitted(self, frame)
     }
     fn poll_event(&mut self) -> Option<Event> {
         Node::poll_event(self)
@@ -374,12 +384,57 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return None; // CiA 305: silent from the bit-rate switch to the end of the second switch delay
         }
         let frame = self.tx.pop_front();
+        self.refill_transmit();
+        frame
+    }
+
+    /// The frame [`poll_transmit`](Self::poll_transmit) would return next, left in the queue: a runner that
+    /// may be cancelled while a frame is on its way (an `async` driver in a `select!`) takes it out only once
+    /// it was sent, with [`transmitted`](Self::transmitted), so a cancelled send loses nothing.
+    ///
+    /// ```
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, CanFrame, Instant, NodeId};
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// node.handle_timeout(Instant::ZERO);
+    /// let boot_up = CanFrame::new(0x705, &[0x00]);
+    /// assert_eq!(node.peek_transmit(), boot_up);
+    /// assert_eq!(node.peek_transmit(), boot_up); // still there: not sent yet
+    /// node.transmitted(&boot_up.unwrap());
+    /// assert_eq!(node.peek_transmit(), None);
+    /// ```
+    pub fn peek_transmit(&self) -> Option<CanFrame> {
+        if self.lss.holds_transmit(self.now) {
+            return None;
+        }
+        self.tx.front().copied()
+    }
+
+    /// `frame`, got from [`peek_transmit`](Self::peek_transmit), is on the bus: removes it from the front of
+    /// the transmit queue (and lets the node queue what follows, as [`poll_transmit`](Self::poll_transmit)
+    /// does). Does nothing when the front is another frame: the queue was emptied meanwhile (a reset).
+    ///
+    /// ```
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, CanFrame, Instant, NodeId};
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// node.handle_timeout(Instant::ZERO);
+    /// node.transmitted(&CanFrame::new(0x123, &[]).unwrap()); // not the front frame: nothing happens
+    /// assert_eq!(node.poll_transmit(), CanFrame::new(0x705, &[0x00]));
+    /// ```
+    pub fn transmitted(&mut self, frame: &CanFrame) {
+        if self.tx.front() == Some(frame) {
+            self.tx.pop_front();
+            self.refill_transmit();
+        }
+    }
+
+    /// After a frame left the queue: the transmit-overflow error's state, then the EMCY and SDO work that
+    /// waits for room in the queue.
+    fn refill_transmit(&mut self) {
         if self.tx_overrun | self.tx_overrun_raised {
             self.overrun_state();
         }
         self.pump_emcy(self.now);
         self.pump_sdo();
-        frame
     }
 
     /// EEC-10: frames were lost; 8110h is raised once there is room for the EMCY, and cleared when the cause is

@@ -54,6 +54,22 @@ pub enum StorageError {
     Unsupported,
 }
 
+/// ```
+/// use canopen_core::storage::StorageError;
+/// assert_eq!(StorageError::TooLarge.to_string(), "the parameters do not fit into a storage slot");
+/// ```
+impl core::fmt::Display for StorageError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            StorageError::Io => "the non-volatile memory failed",
+            StorageError::TooLarge => "the parameters do not fit into a storage slot",
+            StorageError::Unsupported => "no non-volatile storage",
+        })
+    }
+}
+
+impl core::error::Error for StorageError {}
+
 /// Non-volatile memory with two independent slots; see the [module docs](self) for the guarantees the core
 /// builds on it.
 ///
@@ -186,7 +202,8 @@ const MAGIC: u32 = 0x5253_4F43; // "COSR"
 pub const FORMAT_VERSION: u8 = 1;
 /// Header: magic u32, version u8, groups u8, reserved u16, sequence u32, payload length u32, CRC-32 u32.
 pub const HEADER_LEN: usize = 20;
-const CRC: crc::Crc<u32> = crc::Crc::<u32>::new(&crc::CRC_32_ISO_HDLC);
+/// Bitwise (no 1 KB table): a record is a few hundred bytes, hashed once per save or power-on.
+const CRC: crc::Crc<u32, crc::NoTable> = crc::Crc::<u32, crc::NoTable>::new(&crc::CRC_32_ISO_HDLC);
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Header {
@@ -217,7 +234,7 @@ impl Header {
     }
 
     /// The CRC covers what the header says about the payload and the payload.
-    fn digest_start(&self) -> crc::Digest<'static, u32> {
+    fn digest_start(&self) -> crc::Digest<'static, u32, crc::NoTable> {
         let mut d = CRC.digest();
         d.update(&[FORMAT_VERSION, self.groups.0]);
         d.update(&self.seq.to_le_bytes());
@@ -364,7 +381,7 @@ struct Writer<'s, S: Storage + ?Sized> {
 
 /// The payload CRC cannot be computed before the length is known, so the payload is hashed twice: the
 /// first pass counts, the second writes. `CrcBuf` hashes in the second pass only.
-struct CrcBuf(Option<crc::Digest<'static, u32>>);
+struct CrcBuf(Option<crc::Digest<'static, u32, crc::NoTable>>);
 
 impl<S: Storage + ?Sized> Writer<'_, S> {
     fn item(&mut self, index: u16, sub: u8, value: &[u8]) -> Result<(), StorageError> {

@@ -146,6 +146,7 @@ pub(crate) fn grow_receive_buffer(fd: RawFd, bytes: usize) -> io::Result<usize> 
 /// with write interest too, every send makes the socket's "writable" edge wake the runtime for nothing
 /// (seen with strace: one extra `epoll_wait` and three clock reads of tokio per frame sent). A full send
 /// queue is retried after a back-off instead ([`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF)).
+#[cfg(feature = "tokio")]
 pub(crate) fn register(socket: socketcan::CanSocket) -> io::Result<tokio::io::unix::AsyncFd<socketcan::CanSocket>> {
     // SAFETY: a `socketcan::CanSocket` owns its descriptor (an `OwnedFd`): it stays open, and `as_raw_fd`
     // returns the same one, until the socket is dropped, which the `AsyncFd` that owns it does last.

@@ -32,6 +32,18 @@
 //!   dropped and reported as [`AdapterEvent::TxDropped`], so a dead bus cannot freeze the receive side.
 //!
 //! 29-bit (extended) frames are ignored (CAN-01: CANopen uses 11-bit identifiers).
+//!
+//! ```no_run
+//! use canopen_core::{node::NoApplication, profile::NodeConfig, Node, NodeId};
+//! use canopen_socketcan::{run_blocking, BlockingBus};
+//!
+//! // sudo modprobe vcan && sudo ip link add dev vcan0 type vcan && sudo ip link set up vcan0
+//! let node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+//! let shared = core::cell::RefCell::new(node);
+//! let mut bus = BlockingBus::open("vcan0")?;
+//! run_blocking(&shared, &mut bus, |seen| println!("{seen:?}"), || true)?;
+//! # Ok::<(), std::io::Error>(())
+//! ```
 
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
@@ -50,6 +62,8 @@ pub mod blocking;
 pub mod file_storage;
 pub mod master;
 mod pass;
+mod shared;
+#[cfg(feature = "tokio")]
 pub mod tokio_runner;
 
 pub use batch::BATCH;
@@ -57,7 +71,9 @@ pub use blocking::{run_blocking, BlockingBus, BusWaker, Rx};
 pub use file_storage::FileStorage;
 pub use master::{Master, MasterError, MasterStats};
 pub use pass::{runner_stats, ReceiveFilters, RunnerStats};
-pub use tokio_runner::{run_tokio, MutexShared, NotifyWake, TokioBus, TokioTimer};
+pub use shared::MutexShared;
+#[cfg(feature = "tokio")]
+pub use tokio_runner::{run_tokio, NotifyWake, TokioBus, TokioTimer};
 
 /// How long a send waits before retrying when the socket buffer is full (`ENOBUFS`).
 pub const ENOBUFS_BACKOFF: StdDuration = StdDuration::from_micros(200);
@@ -168,11 +184,16 @@ pub enum Observed<'a> {
     Adapter(&'a AdapterEvent),
 }
 
-/// The node's monotonic clock: microseconds since the runner started. It survives a reopened socket.
+/// The node's monotonic clock: microseconds since the first `Clock` of the process was made. Every clock of
+/// the process shares that zero, so a runner that is restarted (a new `run_tokio` after an error, a new
+/// [`BlockingBus`]) carries on the node's timeline instead of sending it back to zero: the node's deadlines
+/// (heartbeat, SDO time-out, inhibit times) stay right.
 ///
 /// ```
 /// let c = canopen_socketcan::Clock::new();
 /// assert!(c.now() <= c.now());
+/// let later = canopen_socketcan::Clock::new(); // a restarted runner's clock
+/// assert!(later.now() >= c.now());
 /// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Clock {
@@ -180,9 +201,10 @@ pub struct Clock {
 }
 
 impl Clock {
-    /// A clock whose zero is now.
+    /// The process's node clock (its zero is when the first one was made).
     pub fn new() -> Self {
-        Clock { epoch: std::time::Instant::now() }
+        static EPOCH: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+        Clock { epoch: *EPOCH.get_or_init(std::time::Instant::now) }
     }
 
     /// The current instant.
@@ -307,6 +329,18 @@ pub(crate) fn to_socket_frame(frame: &CanFrame) -> io::Result<socketcan::CanFram
 
 #[cfg(test)]
 mod tests {
+
+    /// Issue "cancel safety / restart": a runner restarted after an error makes a new `Clock`; the node's time
+    /// must carry on, never jump back to zero (its deadlines would all lie in the future again).
+    #[test]
+    fn a_restarted_runners_clock_never_goes_backwards() {
+        let first = Clock::new();
+        std::thread::sleep(StdDuration::from_millis(5));
+        let before = first.now();
+        assert!(before.as_micros() >= 5_000);
+        let restarted = Clock::new();
+        assert!(restarted.now() >= before, "{:?} < {before:?}", restarted.now());
+    }
     use super::*;
     use socketcan::{EmbeddedFrame, ExtendedId, Frame, StandardId};
 
@@ -364,3 +398,8 @@ mod tests {
         assert_eq!(classify(&io::Error::from_raw_os_error(libc::EACCES)), ErrorClass::Fatal);
     }
 }
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;

@@ -32,7 +32,6 @@
 use std::convert::Infallible;
 use std::future::Future;
 use std::io;
-use std::sync::Mutex;
 
 use canopen_core::driver::{CanRx, CanTx, Shared, Timer, Wake};
 use canopen_core::node::SansIo;
@@ -185,38 +184,6 @@ impl Timer for TokioTimer {
     }
     fn sleep_until(&mut self, deadline: Instant) -> impl Future<Output = ()> {
         tokio::time::sleep_until(tokio::time::Instant::from_std(self.clock.to_std(deadline)))
-    }
-}
-
-/// The node in a `std::sync::Mutex`, shared between the driver and application tasks. A poisoned lock
-/// (a panic in another task while it held the node) is taken over: the node's state machines never
-/// leave a half-updated state visible across calls.
-///
-/// ```
-/// use canopen_core::driver::Shared;
-/// let s = canopen_socketcan::MutexShared::new(5u32);
-/// s.with(|v| *v += 1);
-/// assert_eq!(s.lock(|v| *v), 6);
-/// ```
-#[derive(Debug, Default)]
-pub struct MutexShared<N>(Mutex<N>);
-
-impl<N> MutexShared<N> {
-    /// Wraps `node`.
-    pub fn new(node: N) -> Self {
-        MutexShared(Mutex::new(node))
-    }
-
-    /// Runs `f` with the node locked (the same as [`Shared::lock`], without importing the trait).
-    pub fn with<R>(&self, f: impl FnOnce(&mut N) -> R) -> R {
-        let mut guard = self.0.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-        f(&mut guard)
-    }
-}
-
-impl<N> Shared<N> for MutexShared<N> {
-    fn lock<R>(&self, f: impl FnOnce(&mut N) -> R) -> R {
-        self.with(f)
     }
 }
 

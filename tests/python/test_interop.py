@@ -11,6 +11,7 @@ store test restarts the process (appending to the same log).
 import os
 import pathlib
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -527,3 +528,17 @@ def test_save_with_a_wrong_signature_is_refused(node):
     with pytest.raises(SdoAbortedError) as e:
         node.sdo.download(0x1010, 1, b"SAVE")
     assert abort_code(e) == 0x08000020
+
+
+# ---- the README's python snippet ---------------------------------------------------------------------------
+def test_the_readme_python_snippet_talks_to_the_node(node_process, eds_path):
+    """The README's five lines of python canopen, run as they are written (issue 16 item 3), against the node
+    (with the EDS the node wrote for `node.eds`): they print 1008h and start the node. Last in this module: it
+    leaves the node Operational."""
+    readme = (ROOT / "README.md").read_text()
+    block = readme.split("```python\n", 1)[1].split("```", 1)[0]
+    assert 'channel="vcan0"' in block and '"node.eds"' in block
+    code = block.replace('"node.eds"', repr(eds_path)).replace('"vcan0"', repr(IFACE))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=30)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "canopen example node", out.stdout

@@ -70,6 +70,17 @@ pub enum MasterEvent {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Busy;
 
+/// ```
+/// assert_eq!(canopen_core::lss::master::Busy.to_string(), "the LSS master is already running a request");
+/// ```
+impl core::fmt::Display for Busy {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("the LSS master is already running a request")
+    }
+}
+
+impl core::error::Error for Busy {}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Expect {
     Selected,

@@ -169,6 +169,22 @@ impl StoreError {
     }
 }
 
+/// ```
+/// use canopen_core::lss::StoreError;
+/// assert_eq!(StoreError::Manufacturer(4).to_string(), "LSS store failed: manufacturer error 04h");
+/// ```
+impl core::fmt::Display for StoreError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            StoreError::NotSupported => f.write_str("LSS store configuration is not supported"),
+            StoreError::MediaAccess => f.write_str("LSS store failed: storage media access error"),
+            StoreError::Manufacturer(e) => write!(f, "LSS store failed: manufacturer error {e:02X}h"),
+        }
+    }
+}
+
+impl core::error::Error for StoreError {}
+
 /// Non-volatile storage of the LSS configuration, implemented by the application.
 ///
 /// Only two values travel, so this can sit on top of a general parameter storage (the 1010h `Storage`

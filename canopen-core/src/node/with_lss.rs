@@ -138,6 +138,49 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.lss_store_result(result);
     }
 
+    /// [`complete_lss_store`](Node::complete_lss_store) through the node's own storage, for a storage that
+    /// also keeps the LSS configuration (a flash backend that owns the whole flash, for example).
+    ///
+    /// ```
+    /// use canopen_core::{lss::{LssStore, StoreError}, node::{NoApplication, Node}, profile::NodeConfig};
+    /// use canopen_core::{storage::{Storage, StorageError}, wire::lss::BitRate, CanFrame, Instant, NodeId};
+    /// #[derive(Default)]
+    /// struct Nv(Option<u8>);
+    /// impl Storage for Nv {
+    ///     fn capacity(&self) -> usize { 0 }
+    ///     fn erase(&mut self, _: u8) -> Result<(), StorageError> { Err(StorageError::Unsupported) }
+    ///     fn write(&mut self, _: u8, _: usize, _: &[u8]) -> Result<(), StorageError> { Err(StorageError::Unsupported) }
+    ///     fn read(&mut self, _: u8, _: usize, _: &mut [u8]) -> Result<(), StorageError> { Err(StorageError::Unsupported) }
+    /// }
+    /// impl LssStore for Nv {
+    ///     fn store(&mut self, node_id: u8, _: BitRate) -> Result<(), StoreError> {
+    ///         self.0 = Some(node_id);
+    ///         Ok(())
+    ///     }
+    /// }
+    /// let id = NodeId::new(1).unwrap();
+    /// let mut node: Node<NoApplication, canopen_core::Sizes, Nv> =
+    ///     Node::with_storage(id, NodeConfig::DEFAULT, NoApplication, Nv::default()).without_node_id();
+    /// node.lss_mut().set_store_supported(true);
+    /// for data in [[0x04, 1, 0, 0, 0, 0, 0, 0], [0x11, 0x22, 0, 0, 0, 0, 0, 0], [0x17, 0, 0, 0, 0, 0, 0, 0]] {
+    ///     node.handle_frame(Instant::ZERO, &CanFrame::new(0x7E5, &data).unwrap());
+    /// }
+    /// assert_eq!(node.poll_transmit(), CanFrame::new(0x7E4, &[0x11, 0, 0, 0, 0, 0, 0, 0]));
+    /// node.complete_lss_store_in_storage();
+    /// assert_eq!(node.storage_mut().0, Some(0x22));
+    /// assert_eq!(node.poll_transmit(), CanFrame::new(0x7E4, &[0x17, 0, 0, 0, 0, 0, 0, 0]));
+    /// ```
+    pub fn complete_lss_store_in_storage(&mut self)
+    where
+        S: LssStore,
+    {
+        if !self.lss.store_pending() {
+            return;
+        }
+        let result = self.storage.store(self.lss.pending_node_id(), self.lss.pending_bit_rate());
+        self.lss_store_result(result);
+    }
+
     /// Answers a pending LSS store request with a result the application got by other means.
     ///
     /// ```

@@ -271,6 +271,26 @@ impl ClientError {
     }
 }
 
+/// ```
+/// use canopen_core::{abort::AbortCode, sdo::client::ClientError};
+/// assert_eq!(ClientError::Server(0x0602_0000).to_string(), "the server aborted: 06020000h (ObjectDoesNotExist)");
+/// assert_eq!(ClientError::Server(0x1234_5678).to_string(), "the server aborted: 12345678h");
+/// assert_eq!(ClientError::Local(AbortCode::SdoTimeout).to_string(), "the client aborted: 05040000h (SdoTimeout)");
+/// ```
+impl core::fmt::Display for ClientError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            ClientError::Server(c) => match AbortCode::from_code(*c) {
+                Some(a) => write!(f, "the server aborted: {a}"),
+                None => write!(f, "the server aborted: {c:08X}h"),
+            },
+            ClientError::Local(a) => write!(f, "the client aborted: {a}"),
+        }
+    }
+}
+
+impl core::error::Error for ClientError {}
+
 /// The end of a transfer.
 ///
 /// ```
@@ -296,6 +316,17 @@ pub enum ClientEvent {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Busy;
+
+/// ```
+/// assert_eq!(canopen_core::sdo::client::Busy.to_string(), "the SDO client is already running a transfer");
+/// ```
+impl core::fmt::Display for Busy {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("the SDO client is already running a transfer")
+    }
+}
+
+impl core::error::Error for Busy {}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Phase {

@@ -25,3 +25,18 @@ pub enum WireError {
     /// A field holds a value the protocol does not define (e.g. an unknown command specifier).
     Value,
 }
+
+/// ```
+/// use canopen_core::wire::WireError;
+/// assert_eq!(WireError::Value.to_string(), "a field holds a value the protocol does not define");
+/// ```
+impl core::fmt::Display for WireError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            WireError::Length => "wrong data length for this frame",
+            WireError::Value => "a field holds a value the protocol does not define",
+        })
+    }
+}
+
+impl core::error::Error for WireError {}

@@ -50,6 +50,21 @@ pub enum ParseError {
     CommandSpecifier,
 }
 
+/// ```
+/// use canopen_core::wire::sdo::ParseError;
+/// assert_eq!(ParseError::Length.to_string(), "SDO frame without 8 data bytes");
+/// ```
+impl core::fmt::Display for ParseError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            ParseError::Length => "SDO frame without 8 data bytes",
+            ParseError::CommandSpecifier => "unknown SDO command specifier",
+        })
+    }
+}
+
+impl core::error::Error for ParseError {}
+
 /// The object addressed by an initiate or abort frame: bytes 1–2 index (LE), byte 3 sub-index (SDO-03).
 ///
 /// ```

@@ -5,7 +5,7 @@
 //! EMCY with the 1003h error history, the TIME consumer (1012h = 8000_0100h), and the application dictionary
 //! as a derived struct.
 //!
-//! Two tasks share the node (see the crate docs for the glue types):
+//! Two tasks share the node (the glue types come from `canopen-embassy`):
 //!
 //! - `canopen` runs `canopen_core::driver::run` on the CAN halves and `embassy-time`; a bus error raises
 //!   EMCY 8100h (communication, generic), which is cleared when the driver runs again;
@@ -13,17 +13,29 @@
 //!   drives the output from what the bus wrote (SDO or RPDO), triggers the event-driven TPDO 1 when an input
 //!   changed and signals the driver, which sends it at once.
 //!
+//! Parameters persist in flash (`canopen_embassy::flash::FlashStorage` on embassy-stm32's blocking `Flash`):
+//! 1010h "save" writes them to the A/B pair of 128 KB sectors 6 and 7, 1011h "load" restores the defaults at
+//! the next reset, and the LSS "store configuration" keeps the node-ID and bit rate in sector 5. At power-on
+//! a stored LSS node-ID wins over `NODE_ID`, the factory default (CiA 305), and a stored bit rate over
+//! `BITRATE`. The program itself must stay below sector 5 (0x0802_0000, 128 KB; it is about 40 KB).
+//!
 //! The node lives in a `static` (`StaticCell`), so its RAM is in `.bss` and counted by
 //! `scripts/footprint.sh`.
 #![no_std]
 #![no_main]
 
-use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::driver::{self, Shared};
+#[cfg(feature = "store")]
+use canopen_core::lss::LssEvent;
 use canopen_core::pdo::PdoDefault;
+use canopen_core::profile::{Identity, NodeConfig};
+use canopen_core::wire::lss::BitRate;
 use canopen_core::Sizes;
 use canopen_core::{Event, NmtState, Node, NodeId};
-use canopen_firmware::{AppWake, BxCanRx, BxCanTx, EmbassyClock, NodeCell};
+#[cfg(feature = "store")]
+use canopen_embassy::flash::FlashStorage;
+use canopen_embassy::stm32::{Stm32CanRx, Stm32CanTx};
+use canopen_embassy::{AppWake, EmbassyClock, NodeCell};
 use canopen_od_derive::ObjectDictionary;
 use embassy_executor::Spawner;
 use embassy_stm32::bind_interrupts;
@@ -31,6 +43,8 @@ use embassy_stm32::can::filter::Mask32;
 use embassy_stm32::can::{
     Can, Fifo, Rx0InterruptHandler, Rx1InterruptHandler, SceInterruptHandler, TxInterruptHandler,
 };
+#[cfg(feature = "store")]
+use embassy_stm32::flash::{Blocking, Flash};
 use embassy_stm32::gpio::{Input, Level, Output, Pull, Speed};
 use embassy_stm32::peripherals::CAN1;
 use embassy_time::{Duration, Ticker, Timer};
@@ -74,7 +88,24 @@ struct Device {
 /// transmit and event queues of 8: the driver drains both after every frame and every deadline, and the
 /// largest burst one step makes is entering Operational or a SYNC (4 TPDOs, plus an EMCY or an SDO
 /// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 20 B of events).
-type DeviceNode = Node<Device, Sizes<4, 8, 8, 4, 4>>;
+type DeviceNode = Node<Device, Sizes<4, 8, 8, 4, 4>, Store>;
+
+/// Parameters and LSS configuration in the on-chip flash (feature `store`, on by default).
+#[cfg(feature = "store")]
+type Store = FlashStorage<Flash<'static, Blocking>>;
+/// Without the feature `store`: the footprint reference set of DESIGN.md, which stores nothing.
+#[cfg(not(feature = "store"))]
+type Store = canopen_core::storage::NoStorage;
+
+/// Flash sectors (offsets from the flash base) of the STM32F446RE: 5 for the LSS configuration, 6 and 7
+/// for the two slots of the parameters (all 128 KB; embassy's blocking `Flash` erases in its largest
+/// sector size).
+#[cfg(feature = "store")]
+const LSS_SECTOR: core::ops::Range<u32> = 0x2_0000..0x4_0000;
+#[cfg(feature = "store")]
+const SLOT_A: core::ops::Range<u32> = 0x4_0000..0x6_0000;
+#[cfg(feature = "store")]
+const SLOT_B: core::ops::Range<u32> = 0x6_0000..0x8_0000;
 
 const NODE_ID: u8 = 5;
 const BITRATE: u32 = 250_000;
@@ -122,14 +153,38 @@ static WAKE: AppWake = AppWake::new();
 async fn main(spawner: Spawner) {
     let p = embassy_stm32::init(Default::default());
 
+    #[cfg(feature = "store")]
+    let Ok(mut store) =
+        FlashStorage::new(Flash::new_blocking(p.FLASH), SLOT_A, SLOT_B).and_then(|s| s.with_lss(LSS_SECTOR))
+    else {
+        return; // the sector constants above do not fit this chip
+    };
+    // CiA 305: a stored LSS configuration wins over the factory defaults.
+    #[cfg(feature = "store")]
+    let stored = store.lss_config();
+    #[cfg(not(feature = "store"))]
+    let (store, stored) = (canopen_core::storage::NoStorage, None::<(u8, BitRate)>);
+    let bitrate = stored.and_then(|(_, rate)| rate.kbit_per_s()).map_or(BITRATE, |k| u32::from(k) * 1000);
+
     let mut can = Can::new(p.CAN1, p.PA11, p.PA12, Irqs);
     can.modify_filters().enable_bank(0, Fifo::Fifo0, Mask32::accept_all());
-    can.modify_config().set_bitrate(BITRATE).set_automatic_retransmit(true);
+    can.modify_config().set_bitrate(bitrate).set_automatic_retransmit(true);
     can.enable().await;
 
-    let Some(id) = NodeId::new(NODE_ID) else { return };
     let device = Device { inputs: [0], outputs: [0], setpoint: 0, blink_ticks: 0, uptime_s: 0, presses: 0, time_ms: 0 };
-    let node: &'static NodeCell<DeviceNode> = NODE.init(NodeCell::new(Node::new(id, CONFIG, device)));
+    // The node-ID: the stored LSS one (FFh: unconfigured, wait for an LSS master), else the factory one.
+    let raw = stored.map_or(NODE_ID, |(raw, _)| raw);
+    let Some(factory) = NodeId::new(NODE_ID) else { return };
+    let mut node = Node::with_storage(NodeId::new(raw).unwrap_or(factory), CONFIG, device, store);
+    if NodeId::new(raw).is_none() {
+        node = node.without_node_id();
+    }
+    #[cfg(feature = "store")]
+    {
+        node.lss_mut().set_store_supported(true);
+        node.lss_mut().set_bit_rate(stored.map_or(BitRate::K250, |(_, rate)| rate));
+    }
+    let node: &'static NodeCell<DeviceNode> = NODE.init(NodeCell::new(node));
 
     let button = Input::new(p.PC13, Pull::None);
     let led = Output::new(p.PA5, Level::Low, Speed::Low);
@@ -143,7 +198,7 @@ async fn main(spawner: Spawner) {
 #[embassy_executor::task]
 async fn canopen(mut can: Can<'static>, node: &'static NodeCell<DeviceNode>) {
     let (tx, rx) = can.split();
-    let (mut tx, mut rx, mut clock) = (BxCanTx(tx), BxCanRx(rx), EmbassyClock);
+    let (mut tx, mut rx, mut clock) = (Stm32CanTx(tx), Stm32CanRx(rx), EmbassyClock);
     loop {
         let Err(_error) = driver::run(node, &mut rx, &mut tx, &mut clock, &WAKE, |e| on_event(node, e)).await;
         node.lock(|n| n.raise_error(EMCY_BUS_ERROR, [0; 5]));
@@ -161,6 +216,9 @@ fn on_event(node: &NodeCell<DeviceNode>, event: Event) {
         }
         // TIME consumer: the application keeps the time of day (2102h, mappable into TPDO 4).
         Event::Time(t) => node.lock(|n| n.app_mut().time_ms = t.ms),
+        // LSS "store configuration": node-ID and bit rate to flash, then the answer to the master.
+        #[cfg(feature = "store")]
+        Event::Lss(LssEvent::StoreRequested { .. }) => node.lock(|n| n.complete_lss_store_in_storage()),
         // The outputs are applied by the process task on its next tick, whatever wrote them (SDO or RPDO);
         // another node's EMCY, an RPDO timeout and heartbeat observations need no local reaction here.
         Event::StateChanged { to: NmtState::Operational, .. } => {}
