@@ -96,6 +96,9 @@ impl Crc16 {
     /// c.update(b"ABCDEFGHIJKLMNOP");
     /// assert_eq!(c.get(), 0x6080); // VECTORS 8.2
     /// ```
+    // Without `#[inline]`, the table choice behind a call kept `update` out of the block segment path: +36
+    // instructions per frame in `scripts/bench-node.sh` block_download.
+    #[inline]
     pub fn update(&mut self, bytes: &[u8]) {
         #[cfg(feature = "crc-table")]
         {
