@@ -7,15 +7,26 @@
 #   per-rx   instructions per received frame (for sync_4_tpdos: per SYNC)
 #   per-bus  instructions per bus frame (received + sent; for sync_4_tpdos: 1 SYNC + 4 TPDOs)
 # The target applies to per-rx, except for sync_4_tpdos, where it applies to per-bus (marked *).
+# --ratchet: exit 1 when a scenario's targeted figure grew more than 2 % over its line in
+# scripts/bench-node.baseline; a figure that went down prints the one-line update of that file.
+# Usage: scripts/bench-node.sh [--ratchet] [iterations]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-N="${1:-200}"
+ratchet=0 N=200
+for a in "$@"; do
+  case $a in
+    --ratchet) ratchet=1 ;;
+    [0-9]*) N=$a ;;
+    *) echo "usage: $0 [--ratchet] [iterations]" >&2; exit 2 ;;
+  esac
+done
 command -v valgrind >/dev/null || { echo "valgrind is needed (apt-get install valgrind)" >&2; exit 1; }
 BIN=${BENCH_NODE_BIN:-$(cargo bench --bench node_instructions --no-run --message-format=json 2>/dev/null \
   | grep '"executable":"[^"]*node_instructions' | sed 's/.*"executable":"\([^"]*\)".*/\1/' | tail -1)}
 [ -x "$BIN" ] || { echo "bench binary not found" >&2; exit 1; }
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
+: >"$TMP/figures" # "<scenario> <targeted figure>" per line, for the ratchet
 ir() { # scenario iterations -> total instructions
   valgrind --tool=callgrind --callgrind-out-file="$TMP/out" "$BIN" "$1" "$2" >"$TMP/stdout" 2>/dev/null
   grep -E '^(summary|totals):' "$TMP/out" | head -1 | awk '{print $2}'
@@ -30,9 +41,14 @@ for entry in expedited_upload:320 expedited_download:300 segmented_upload:260 bl
   full=$(ir "$s" "$n")
   rx=$(sed 's/.*: \([0-9]*\) frames.*/\1/' "$TMP/stdout")
   tx=$(sed 's/.*frames, \([0-9]*\) sent.*/\1/' "$TMP/stdout")
-  awk -v s="$s" -v rx="$rx" -v tx="$tx" -v a="$full" -v b="$base" -v t="$target" 'BEGIN {
+  awk -v s="$s" -v rx="$rx" -v tx="$tx" -v a="$full" -v b="$base" -v t="$target" -v out="$TMP/figures" 'BEGIN {
     d = a - b; prx = d / rx; pbus = d / (rx + tx)
     bus = (s == "sync_4_tpdos"); v = bus ? pbus : prx
     printf "%-20s %7d %7d %12d %9.1f %9.1f %7d%s %s\n", s, rx, tx, d, prx, pbus, t, bus ? "*" : " ", \
-      v <= t ? "ok" : sprintf("over by %.0f%%", (v / t - 1) * 100) }'
+      v <= t ? "ok" : sprintf("over by %.0f%%", (v / t - 1) * 100)
+    printf "%s %.1f\n", s, v >> out }'
 done
+if [ "$ratchet" = 1 ]; then
+  echo
+  python3 scripts/ratchet.py scripts/bench-node.baseline "instructions per frame (per-bus for sync_4_tpdos)" <"$TMP/figures"
+fi

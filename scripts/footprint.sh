@@ -1,37 +1,46 @@
 #!/usr/bin/env bash
 # Flash and RAM of the stack on a Cortex-M4F (DESIGN.md "Performance", footprint): builds the firmware
-# example (examples/firmware, STM32F446RE, embassy) and its CAN-echo baseline with the footprint profile
-# (opt-level "s", LTO, panic = "abort", codegen-units = 1), prints text/data/bss of each, and the
-# difference, which is the stack's own cost:
+# example (examples/firmware, STM32F446RE, embassy) with the footprint profile (opt-level "s", LTO,
+# panic = "abort", codegen-units = 1) in two builds, since a Cargo feature holds for a whole build:
+#   node      every canopen-core feature (the default): the full reference feature set;
+#   minimal   canopen-core without its optional features (issue 13's minimal device: NMT, heartbeat, SDO
+#             expedited + segmented, 4 RPDO + 4 TPDO, SYNC, EMCY), `--no-default-features --features minimal`;
+# and the CAN-echo baseline. It prints text/data/bss of each and each device's difference to the baseline,
+# which is the stack's own cost:
 #   flash = Δ(text + data)     (Berkeley `size`: text = .vector_table + .text + .rodata)
 #   RAM   = Δ(data + bss) minus Δ(task storage)
 # Task storage is embassy-executor's per-task `POOL` statics (each task's future; there is no shared arena
 # in embassy-executor 0.10): it is reported apart. The node itself is a `static` (StaticCell) in .bss, so it
 # is counted in RAM.
 #
-# Usage: scripts/footprint.sh [--check] [--breakdown]
-#   --check      exit 1 when the stack's own share is over the targets (flash 12,000 B, RAM 2,500 B)
+# Usage: scripts/footprint.sh [--check] [--ratchet] [--breakdown]
+#   --check      exit 1 when a device's share is over its target (node: flash 12,000 B, RAM 2,500 B;
+#                minimal: flash 8,000 B, RAM 2,500 B)
+#   --ratchet    exit 1 when a figure grew more than 2 % over its line in scripts/footprint.baseline; a
+#                figure that went down prints the one-line update of that file
 #   --breakdown  also print where the node binary's flash goes, by crate/module (DWARF line table)
 # Needs: rustup target add thumbv7em-none-eabihf; binutils `size` and `nm` (they read ARM ELF files).
 set -euo pipefail
-cd "$(dirname "$0")/../examples/firmware"
-FLASH_TARGET=12000
-RAM_TARGET=2500
-check=0 breakdown=0
+SCRIPTS=$(cd "$(dirname "$0")" && pwd)
+cd "$SCRIPTS/../examples/firmware"
+declare -A FLASH_TARGET=([node]=12000 [minimal]=8000) RAM_TARGET=([node]=2500 [minimal]=2500)
+check=0 ratchet=0 breakdown=0
 for a in "$@"; do
   case $a in
     --check) check=1 ;;
+    --ratchet) ratchet=1 ;;
     --breakdown) breakdown=1 ;;
-    *) echo "usage: $0 [--check] [--breakdown]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--check] [--ratchet] [--breakdown]" >&2; exit 2 ;;
   esac
 done
 
-# The reference feature set of DESIGN.md "Performance" stores nothing: the node is measured without the
-# firmware's `store` feature (1010h/LSS in flash), which is measured apart below as `node+store`.
-cargo build --release --bins --quiet
+# The firmware's default build stores 1010h and the LSS configuration in flash (feature `store`); DESIGN.md's
+# reference set stores nothing, so `node` is measured without it and `node+store` is reported beside it.
 T=target/thumbv7em-none-eabihf/release
+cargo build --release --bins --quiet
 cp "$T/node" "$T/node+store"
-cargo build --release --bins --quiet --no-default-features
+cargo build --release --no-default-features --features full --bin node --quiet
+cargo build --release --no-default-features --features minimal --bin minimal --quiet
 
 # text data bss of a binary (Berkeley format, the conventional three numbers)
 berkeley() { size -B "$1" | awk 'NR == 2 { print $1, $2, $3 }'; }
@@ -40,22 +49,32 @@ pools() { nm -S -t d -C "$1" | awk '$3 ~ /^[bBdD]$/ && $4 ~ /::POOL$/ { n += $2 
 
 printf '%-10s %8s %8s %8s | %8s %8s %12s %12s\n' binary text data bss flash ram task-storage ram-w/o-tasks
 declare -A F R P
-for b in baseline node node+store; do
+for b in baseline node minimal node+store; do
   read -r text data bss < <(berkeley "$T/$b")
   F[$b]=$((text + data)) R[$b]=$((data + bss)) P[$b]=$(pools "$T/$b")
   printf '%-10s %8d %8d %8d | %8d %8d %12d %12d\n' "$b" "$text" "$data" "$bss" "${F[$b]}" "${R[$b]}" "${P[$b]}" \
     $((R[$b] - P[$b]))
 done
 
-flash=$((F[node] - F[baseline]))
-ram=$(((R[node] - P[node]) - (R[baseline] - P[baseline])))
-tasks=$((P[node] - P[baseline]))
 verdict() { if [ "$1" -le "$2" ]; then echo "ok, target <= $2"; else echo "OVER target <= $2 by $(($1 - $2))"; fi; }
+declare -A FIG # "<device>.<figure>" -> bytes, the figures the ratchet compares
+over=0
+for d in node minimal; do
+  FIG[$d.flash]=$((F[$d] - F[baseline]))
+  FIG[$d.ram]=$(((R[$d] - P[$d]) - (R[baseline] - P[baseline])))
+  FIG[$d.tasks]=$((P[$d] - P[baseline]))
+  echo
+  echo "$d: stack's own flash ($d - baseline, text + data): ${FIG[$d.flash]} bytes ($(verdict "${FIG[$d.flash]}" "${FLASH_TARGET[$d]}"))"
+  echo "$d: stack's own RAM ($d - baseline, data + bss, without task storage): ${FIG[$d.ram]} bytes ($(verdict "${FIG[$d.ram]}" "${RAM_TARGET[$d]}"))"
+  echo "$d: task storage, $d - baseline (executor POOL statics, not counted above): ${FIG[$d.tasks]} bytes"
+  all=$((FIG[$d.ram] + FIG[$d.tasks]))
+  echo "$d: RAM including the task storage (issue 13's measure): $all bytes ($(verdict "$all" "${RAM_TARGET[$d]}"))"
+  if [ "${FIG[$d.flash]}" -gt "${FLASH_TARGET[$d]}" ] || [ "$all" -gt "${RAM_TARGET[$d]}" ]; then over=1; fi
+done
 echo
-echo "stack's own flash (node - baseline, text + data): $flash bytes ($(verdict $flash $FLASH_TARGET))"
-echo "stack's own RAM (node - baseline, data + bss, without task storage): $ram bytes ($(verdict $ram $RAM_TARGET))"
-echo "task storage, node - baseline (executor POOL statics, not counted above): $tasks bytes"
-echo "store/restore and LSS configuration in flash (canopen-embassy FlashStorage, firmware feature store): +$((F[node+store] - F[node])) bytes flash, +$(((R[node+store] - P[node+store]) - (R[node] - P[node]))) bytes RAM"
+echo "node+store: 1010h/1011h and the LSS configuration in flash (canopen-embassy FlashStorage, the firmware's" \
+  "default feature store) add $((F[node+store] - F[node])) bytes of flash and" \
+  "$(((R[node+store] - P[node+store]) - (R[node] - P[node]))) bytes of RAM to node"
 echo
 echo "node binary, RAM by static (bytes):"
 nm -S -t d -C --size-sort "$T/node" | awk '$3 ~ /^[bBdD]$/ && $2 >= 16 { s = $2; $1 = $2 = $3 = ""; sub(/^ +/, ""); printf "  %6d  %s\n", s, $0 }' | sort -rn
@@ -66,7 +85,14 @@ if [ "$breakdown" = 1 ]; then
   python3 ../../scripts/footprint-breakdown.py "$T/node" "$T/baseline"
 fi
 
-if [ "$check" = 1 ] && { [ "$flash" -gt "$FLASH_TARGET" ] || [ "$ram" -gt "$RAM_TARGET" ]; }; then
-  echo "FAIL: the stack's own footprint is over target" >&2
-  exit 1
+status=0
+if [ "$ratchet" = 1 ]; then
+  echo
+  for k in "${!FIG[@]}"; do echo "$k ${FIG[$k]}"; done |
+    (cd "$SCRIPTS/.." && python3 scripts/ratchet.py scripts/footprint.baseline bytes) || status=1
 fi
+if [ "$check" = 1 ] && [ "$over" = 1 ]; then
+  echo "FAIL: the stack's own footprint is over target" >&2
+  status=1
+fi
+exit $status

@@ -1,9 +1,12 @@
 //! What the node tells the application (drained with `Node::poll_event`).
 
+#[cfg(feature = "guarding")]
 use crate::guarding::LifeGuardingEvent;
 use crate::heartbeat::ConsumerEvent;
+#[cfg(feature = "lss")]
 use crate::lss::LssEvent;
 use crate::nmt::NmtState;
+#[cfg(feature = "time")]
 use crate::od::TimeOfDay;
 use crate::wire::emcy::Emergency;
 
@@ -32,6 +35,7 @@ pub enum Event {
     /// A heartbeat consumer observation (HB-10, HB-11).
     Heartbeat(ConsumerEvent),
     /// A life-guarding observation (GUARD-10).
+    #[cfg(feature = "guarding")]
     LifeGuarding(LifeGuardingEvent),
     /// An SDO download completed: the entry holds its new value (side effects of communication objects have
     /// already been applied).
@@ -55,6 +59,7 @@ pub enum Event {
     },
     /// An LSS (CiA 305) observation: state change, node-ID or bit rate configured, bit-rate switch
     /// instants, store requested.
+    #[cfg(feature = "lss")]
     Lss(LssEvent),
     /// An RPDO's data was written into the dictionary (at reception for FEh/FFh, at the SYNC for
     /// synchronous RPDOs).
@@ -68,6 +73,7 @@ pub enum Event {
         counter: Option<u8>,
     },
     /// A TIME message was received (TIME-04; 1012h bit 31 set).
+    #[cfg(feature = "time")]
     Time(TimeOfDay),
     /// Another node's EMCY was received (EMCY-11: the reaction is the application's).
     Emergency {

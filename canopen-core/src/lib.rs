@@ -17,6 +17,12 @@
 //!   application is told);
 //! - driver: [`driver`] (the async run loop) and the trace points.
 //!
+//! Services a device may leave out (Cargo features, all on by default; what is left out costs no flash and
+//! no RAM, and its objects answer SDO with 0602 0000h and are not in the EDS): `lss` (the node's CiA 305
+//! slave), `lss-master` ([`lss::master`]), `sdo-block` (SDO block transfer in the server), `sdo-client`
+//! (`sdo::client`), `time` (1012h TIME), `guarding` (100Ch/100Dh node and life guarding), and `crc-table` (the
+//! block-transfer CRC from a 512-byte table rather than a 32-byte one).
+//!
 //! Optional features: `defmt` (derives `defmt::Format` on the public types; NMT state changes, SDO aborts,
 //! driver errors and frames are logged through defmt) and `log` (the same trace points through the `log`
 //! facade, for std users). Both are off by default; the trace points sit in the [`driver`].
@@ -49,6 +55,7 @@ pub mod driver;
 pub mod emcy;
 pub mod event;
 pub mod frame;
+#[cfg(feature = "guarding")]
 pub mod guarding;
 pub mod heartbeat;
 pub mod lss;

@@ -38,6 +38,7 @@ use heapless::deque::DequeInner;
 use heapless::vec::{OwnedVecStorage, VecInner, VecStorage};
 use heapless::{Deque, Vec};
 
+#[cfg(feature = "lss")]
 mod with_lss;
 
 use crate::bus::BusState;
@@ -45,8 +46,10 @@ use crate::cob::{FunctionCode, NodeId};
 use crate::emcy::{codes, EmcyProducer};
 use crate::event::Event;
 use crate::frame::CanFrame;
+#[cfg(feature = "guarding")]
 use crate::guarding::Guarding;
 use crate::heartbeat::{ConsumerEvent, HeartbeatConsumer, HeartbeatProducer};
+#[cfg(feature = "lss")]
 use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
 use crate::od::Merged;
@@ -98,8 +101,10 @@ pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     boot_pending: bool,
     producer: HeartbeatProducer,
     consumer: HeartbeatConsumer<Z>,
+    #[cfg(feature = "guarding")]
     guarding: Guarding,
     /// CiA 305 LSS slave (see `node/with_lss.rs`).
+    #[cfg(feature = "lss")]
     lss: LssSlave,
     app: A,
     sync: Sync,
@@ -288,7 +293,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             boot_pending: true,
             producer: HeartbeatProducer::new(),
             consumer: HeartbeatConsumer::new(),
+            #[cfg(feature = "guarding")]
             guarding: Guarding::new(),
+            #[cfg(feature = "lss")]
             lss: LssSlave::new(&config.identity, Some(node_id)),
             app,
             sync,
@@ -380,6 +387,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// The next frame to send.
     pub fn poll_transmit(&mut self) -> Option<CanFrame> {
+        #[cfg(feature = "lss")]
         if self.lss.holds_transmit(self.now) {
             return None; // CiA 305: silent from the bit-rate switch to the end of the second switch delay
         }
@@ -403,6 +411,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// assert_eq!(node.peek_transmit(), None);
     /// ```
     pub fn peek_transmit(&self) -> Option<CanFrame> {
+        #[cfg(feature = "lss")]
         if self.lss.holds_transmit(self.now) {
             return None;
         }
@@ -434,6 +443,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.overrun_state();
         }
         self.pump_emcy(self.now);
+        #[cfg(feature = "sdo-block")]
         self.pump_sdo();
     }
 
@@ -463,8 +473,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return Some(Instant::ZERO);
         }
         let mut t = earliest(self.producer.poll_timeout(), self.consumer.poll_timeout());
-        t = earliest(t, self.guarding.poll_timeout());
-        t = earliest(t, self.lss.poll_timeout());
+        #[cfg(feature = "guarding")]
+        {
+            t = earliest(t, self.guarding.poll_timeout());
+        }
+        #[cfg(feature = "lss")]
+        {
+            t = earliest(t, self.lss.poll_timeout());
+        }
         t = earliest(t, self.sdo.poll_timeout());
         t = earliest(t, self.sync.poll_timeout());
         t = earliest(t, self.emcy_timeout());
@@ -474,6 +490,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Lets the node act on the time that has passed: boot, heartbeats, consumer and life-guarding time-outs.
     pub fn handle_timeout(&mut self, now: Instant) {
         self.ensure_booted(now);
+        #[cfg(feature = "lss")]
         self.lss_timeout(now);
         if self.sdo.poll_timeout().is_some_and(|t| t <= now) {
             let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
@@ -488,6 +505,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
             self.communication_error(now);
         }
+        #[cfg(feature = "guarding")]
         if let Some(ev) = self.guarding.handle_timeout(now) {
             self.push_event(Event::LifeGuarding(ev));
             self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
@@ -504,10 +522,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.bus_recovered {
             self.bus_works_again();
         }
+        #[cfg(feature = "lss")]
         if frame.cob_id() == crate::cob::LSS_MASTER_ID {
             return self.handle_lss(now, frame); // CiA 305: LSS in every NMT state
         }
-        if self.lss.active_node_id().is_none() {
+        if !self.has_node_id() {
             return; // CiA 305: no node-ID, LSS only
         }
         let id = frame.cob_id();
@@ -522,6 +541,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 return self.handle_tpdo_rtr(now, i);
             }
         }
+        #[cfg(feature = "time")]
         if id == self.time_can_id() {
             return self.handle_time(frame);
         }
@@ -530,7 +550,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         };
         match function {
             FunctionCode::Nmt if node == 0 && !frame.is_rtr() => self.handle_node_control(now, frame),
+            #[cfg(feature = "guarding")]
             FunctionCode::NmtErrorControl if node == self.node_id.get() => self.handle_guarding(now, frame),
+            #[cfg(not(feature = "guarding"))]
+            FunctionCode::NmtErrorControl if node == self.node_id.get() => {}
             FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
             FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),
             _ if Some(id) == self.sdo.rx_cob_id() => self.handle_sdo(now, frame),
@@ -547,6 +570,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
         let response = self.sdo.handle_request(now, frame.data(), &mut od);
         self.sdo_response(now, response);
+        #[cfg(feature = "sdo-block")]
         self.pump_sdo();
     }
 
@@ -572,6 +596,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Moves block-upload segments from the SDO server into the transmit queue while it has room, so a
     /// sub-block of up to 127 frames never needs a queue of that size. [`TX_RESERVE`] slots stay free for
     /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
+    #[cfg(feature = "sdo-block")]
     #[inline(never)]
     fn pump_sdo(&mut self) {
         while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
@@ -625,6 +650,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// Writes 100Ch guard time and 100Dh life time factor (GUARD-02..GUARD-04).
+    #[cfg(feature = "guarding")]
     pub fn set_life_guarding(&mut self, now: Instant, guard_time_ms: u16, life_time_factor: u8) {
         self.comm.params.guard_time_ms = guard_time_ms;
         self.comm.params.life_time_factor = life_time_factor;
@@ -646,6 +672,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 }
                 self.error_control_recovered(); // the timed-out entry may be gone
             }
+            #[cfg(feature = "guarding")]
             0x100C | 0x100D => {
                 self.guarding.set_life_time(now, p.guard_time_ms, p.life_time_factor);
                 self.error_control_recovered(); // life guarding switched off or restarted
@@ -696,6 +723,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     fn apply_comm_params(&mut self, now: Instant) {
         let p = &self.comm.params;
         self.consumer.configure(&p.heartbeat_consumers);
+        #[cfg(feature = "guarding")]
         self.guarding.reset();
         self.sdo.set_params(SdoServerParams::default_server(self.node_id));
         self.sync = Sync::new(p.sync);
@@ -727,6 +755,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
+    #[cfg(feature = "guarding")]
     fn handle_guarding(&mut self, now: Instant, frame: &CanFrame) {
         // GUARD-05: the request is an RTR; HB-05: no guarding while the heartbeat producer runs.
         if !frame.is_rtr() || self.producer.is_active() || !self.nmt.state().allows(Service::ErrorControl) {
@@ -764,7 +793,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// EMCY 8130h is cleared once its cause is gone: no monitored node is timed out and life guarding is not
     /// (the node's error state machine then sends EMCY 0000h with the remaining error register, EMCY-07).
     fn error_control_recovered(&mut self) {
-        if !self.consumer.any_timed_out() && !self.guarding.is_timed_out() {
+        #[cfg(feature = "guarding")]
+        if self.guarding.is_timed_out() {
+            return;
+        }
+        if !self.consumer.any_timed_out() {
             self.clear_error(codes::HEARTBEAT_OR_LIFE_GUARD);
         }
     }
@@ -819,5 +852,17 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.events.push_back(event).is_err() {
             self.events_dropped = self.events_dropped.saturating_add(1);
         }
+    }
+}
+
+/// Without the `lss` feature a node always has its node-ID (`node/with_lss.rs` has the CiA 305 versions).
+#[cfg(not(feature = "lss"))]
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
+    const fn has_node_id(&self) -> bool {
+        true
+    }
+
+    fn lss_reset_communication(&mut self, _now: Instant) -> bool {
+        true
     }
 }

@@ -24,8 +24,10 @@
 
 use core::ops::Range;
 
+#[cfg(feature = "lss")]
 use canopen_core::lss::{LssStore, StoreError as LssStoreError};
 use canopen_core::storage::{Storage, StorageError, HEADER_LEN};
+#[cfg(feature = "lss")]
 use canopen_core::wire::lss::BitRate;
 use embedded_storage::nor_flash::NorFlash;
 
@@ -109,8 +111,10 @@ pub struct FlashStorage<F> {
 }
 
 /// CRC-32 of the LSS record (the same polynomial as the core's parameter record), bitwise: no table.
+#[cfg(feature = "lss")]
 const LSS_CRC: crc::Crc<u32, crc::NoTable> = crc::Crc::<u32, crc::NoTable>::new(&crc::CRC_32_ISO_HDLC);
 /// "LSS" and the record version.
+#[cfg(feature = "lss")]
 const LSS_MAGIC: [u8; 4] = *b"LSS\x01";
 /// magic, node-ID, bit-rate index, two reserved bytes (FFh), CRC-32 over the first 8 bytes.
 const LSS_RECORD: usize = 12;
@@ -190,6 +194,7 @@ impl<F: NorFlash> FlashStorage<F> {
     /// node-ID wins over the factory one (CiA 305).
     ///
     /// See [`FlashStorage`] for an example.
+    #[cfg(feature = "lss")]
     pub fn lss_config(&mut self) -> Option<(u8, BitRate)> {
         let at = self.lss.as_ref()?.start;
         let mut rec = [0u8; LSS_RECORD];
@@ -332,6 +337,7 @@ impl<F: NorFlash> Storage for FlashStorage<F> {
     }
 }
 
+#[cfg(feature = "lss")]
 impl<F: NorFlash> LssStore for FlashStorage<F> {
     /// Erases the LSS range and programs the record; [`LssStoreError::NotSupported`] without an LSS range,
     /// [`LssStoreError::MediaAccess`] when the flash fails.

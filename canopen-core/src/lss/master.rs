@@ -700,7 +700,8 @@ impl Commissioning {
     }
 }
 
-#[cfg(test)]
+// The master is tested against our slave.
+#[cfg(all(test, feature = "lss"))]
 mod tests {
     extern crate std;
     use super::*;

@@ -7,13 +7,16 @@ use crate::emcy::codes;
 use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::nmt::{NmtState, Service};
-use crate::od::{Merged, ObjectDictionary, PdoDir, TimeOfDay};
+#[cfg(feature = "time")]
+use crate::od::TimeOfDay;
+use crate::od::{Merged, ObjectDictionary, PdoDir};
 use crate::pdo::mapping::ResolvedMap;
 use crate::pdo::rpdo::{Rpdo, RxOutcome};
 use crate::pdo::tpdo::{SyncAction, Tpdo};
 use crate::storage::Storage;
 use crate::sync::SyncInput;
 use crate::time::{earliest, Instant};
+#[cfg(feature = "time")]
 use crate::wire::time_stamp::TimeStamp;
 use heapless::vec::VecStorage;
 
@@ -298,6 +301,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// The CAN-ID the TIME object uses while this node consumes or produces it, else an impossible ID.
+    #[cfg(feature = "time")]
     pub(super) fn time_can_id(&self) -> u16 {
         let cob = CobIdEntry::from_raw(self.comm.params.time_cob_id);
         if cob.bit31() || cob.bit30() {
@@ -308,6 +312,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// A TIME frame (TIME-04/05): an event when consumed (1012h bit 31), in Pre-operational/Operational.
+    #[cfg(feature = "time")]
     pub(super) fn handle_time(&mut self, frame: &CanFrame) {
         let consume = CobIdEntry::from_raw(self.comm.params.time_cob_id).bit31();
         if frame.is_rtr() || !consume || !self.nmt.state().allows(Service::Time) {
@@ -331,6 +336,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// assert!(node.produce_time(TimeOfDay::new(9913, 43_200_000).unwrap()));
     /// assert_eq!(node.poll_transmit().unwrap().data(), &[0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]); // V-TIME-02
     /// ```
+    #[cfg(feature = "time")]
     pub fn produce_time(&mut self, time: TimeOfDay) -> bool {
         let cob = CobIdEntry::from_raw(self.comm.params.time_cob_id);
         if !cob.bit30() || !self.nmt.state().allows(Service::Time) {

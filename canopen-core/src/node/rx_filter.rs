@@ -11,7 +11,7 @@
 use heapless::Vec;
 
 use super::{Node, NodeSizes};
-use crate::cob::{CobIdEntry, FunctionCode, LSS_MASTER_ID};
+use crate::cob::{FunctionCode, LSS_MASTER_ID};
 use crate::od::ObjectDictionary;
 use crate::storage::Storage;
 
@@ -44,7 +44,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// let f = node.rx_filters();
     /// let accepts = |c: u16| f.iter().any(|x| c & x.mask == x.id & x.mask);
     /// assert!(accepts(0x000) && accepts(0x605) && accepts(0x705)); // NMT, SDO, guarding
-    /// assert!(accepts(0x100)); // TIME, consumed by default
+    /// assert!(accepts(0x080)); // SYNC
     /// assert!(!accepts(0x606) && !accepts(0x586)); // another node's SDO server, our own SDO replies
     /// ```
     pub fn rx_filters(&self) -> RxFilters {
@@ -56,8 +56,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             }
             true
         };
-        let mut ok = push(exact(LSS_MASTER_ID));
-        if self.lss.active_node_id().is_some() {
+        let mut ok = cfg!(not(feature = "lss")) || push(exact(LSS_MASTER_ID));
+        if self.has_node_id() {
             let own = FunctionCode::NmtErrorControl.cob_id(self.node_id);
             // NMT 000h; the EMCY consumer (every node's 081h–0FFh, which covers SYNC 080h); guarding on
             // 700h + own node-ID.
@@ -66,7 +66,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             if sync != 0 {
                 ok &= push(exact(sync));
             }
-            if CobIdEntry::from_raw(self.comm.params.time_cob_id).bit31() {
+            #[cfg(feature = "time")]
+            if crate::cob::CobIdEntry::from_raw(self.comm.params.time_cob_id).bit31() {
                 ok &= push(exact(self.time_can_id()));
             }
             if let Some(sdo) = self.sdo.rx_cob_id() {
@@ -118,16 +119,21 @@ mod tests {
         node.handle_timeout(Instant::ZERO);
         while node.poll_transmit().is_some() {}
         let before = node.rx_filters();
+        // TIME (100h) and LSS (7E5h) only in a build that has them.
+        let built = |id: u16| (id != 0x100 || cfg!(feature = "time")) && (id != 0x7E5 || cfg!(feature = "lss"));
         for id in [0x000, 0x080, 0x081, 0x0FF, 0x100, 0x605, 0x705, 0x7E5] {
-            assert!(accepts(&node, id), "{id:03X}h");
+            assert_eq!(accepts(&node, id), built(id), "{id:03X}h");
         }
         for id in [0x185, 0x205, 0x585, 0x606, 0x706, 0x7E4] {
             assert!(!accepts(&node, id), "{id:03X}h");
         }
         sdo_write(&mut node, 0x1016, 1, 0x0003_0100); // consume node 3's heartbeat, 256 ms
         assert!(accepts(&node, 0x703));
-        sdo_write(&mut node, 0x1012, 0, 0x0000_0100); // stop consuming TIME
-        assert!(!accepts(&node, 0x100));
+        #[cfg(feature = "time")]
+        {
+            sdo_write(&mut node, 0x1012, 0, 0x0000_0100); // stop consuming TIME
+            assert!(!accepts(&node, 0x100));
+        }
         sdo_write(&mut node, 0x1400, 1, 0x0000_0205); // RPDO1 valid on 205h
         assert!(accepts(&node, 0x205));
         assert_ne!(node.rx_filters(), before);
@@ -138,6 +144,7 @@ mod tests {
 
     /// CiA 305: a node without a node-ID listens to LSS only.
     #[test]
+    #[cfg(feature = "lss")]
     fn unconfigured_node_listens_to_lss_only() {
         let node: N = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication).without_node_id();
         let f = node.rx_filters();

@@ -195,6 +195,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
+    /// Whether the node has a node-ID (CiA 305: without one it serves LSS only).
+    pub(super) const fn has_node_id(&self) -> bool {
+        self.lss.active_node_id().is_some()
+    }
+
     /// A frame on 7E5h, in any NMT state.
     pub(super) fn handle_lss(&mut self, now: Instant, frame: &CanFrame) {
         if frame.is_rtr() {

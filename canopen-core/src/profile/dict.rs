@@ -63,11 +63,41 @@ pub struct CommProfile<Z: ProfileSizes = Sizes> {
     pub storage_supported: bool,
 }
 
-/// Indices of the fixed objects, in increasing order (the PDO ranges and 1F80h follow).
-const OBJECTS: [u16; 21] = [
-    0x1000, 0x1001, 0x1003, 0x1005, 0x1006, 0x1007, 0x1008, 0x1009, 0x100A, 0x100C, 0x100D, 0x1010, 0x1011, 0x1012,
-    0x1014, 0x1015, 0x1016, 0x1017, 0x1018, 0x1019, 0x1029,
+/// Indices of the fixed objects, in increasing order (the PDO ranges and 1F80h follow); without those of
+/// the services this build leaves out.
+const OBJECTS: &[u16] = &[
+    0x1000,
+    0x1001,
+    0x1003,
+    0x1005,
+    0x1006,
+    0x1007,
+    0x1008,
+    0x1009,
+    0x100A,
+    #[cfg(feature = "guarding")]
+    0x100C,
+    #[cfg(feature = "guarding")]
+    0x100D,
+    0x1010,
+    0x1011,
+    #[cfg(feature = "time")]
+    0x1012,
+    0x1014,
+    0x1015,
+    0x1016,
+    0x1017,
+    0x1018,
+    0x1019,
+    0x1029,
 ];
+
+/// The objects of a service this build leaves out (Cargo features `guarding`: 100Ch/100Dh, `time`: 1012h)
+/// do not exist: 0602 0000h (OD-16), and they are not in the EDS. A constant per build: no cost with the
+/// features on.
+const fn compiled_out(index: u16) -> bool {
+    (!cfg!(feature = "guarding") && matches!(index, 0x100C | 0x100D)) || (!cfg!(feature = "time") && index == 0x1012)
+}
 
 const STORE_NAMES: [&str; 3] = ["Save all parameters", "Save communication parameters", "Save application parameters"];
 const RESTORE_NAMES: [&str; 3] = [
@@ -186,6 +216,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             s if usize::from(s) <= n => Ok((dt, access, NO)),
             _ => Err(AbortCode::SubIndexDoesNotExist),
         };
+        if compiled_out(index) {
+            return Err(AbortCode::ObjectDoesNotExist);
+        }
         if let Some(obj) = Self::pdo_obj(index) {
             return match obj {
                 PdoObj::RpdoComm(_) | PdoObj::TpdoComm(_) => {
@@ -239,6 +272,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             }
         };
         let uint = |v: u32| Value::Uint(v.into());
+        if compiled_out(index) {
+            return Err(AbortCode::ObjectDoesNotExist);
+        }
         if let Some(obj) = Self::pdo_obj(index) {
             return self.pdo_desc(obj, index, sub);
         }
@@ -758,9 +794,12 @@ mod tests {
         assert_eq!(read(&od, 0x1016, 2).unwrap()[..], [0x90, 1, 3, 0]);
         assert_eq!(od.write(0x1018, 1, &[0; 4]), Err(AbortCode::WriteOfReadOnly));
         assert_eq!(od.write(0x1008, 0, b"x"), Err(AbortCode::WriteOfReadOnly));
-        od.write(0x100C, 0, &[10, 0]).unwrap();
-        od.write(0x100D, 0, &[3]).unwrap();
-        assert_eq!((od.params.guard_time_ms, od.params.life_time_factor), (10, 3));
+        #[cfg(feature = "guarding")]
+        {
+            od.write(0x100C, 0, &[10, 0]).unwrap();
+            od.write(0x100D, 0, &[3]).unwrap();
+            assert_eq!((od.params.guard_time_ms, od.params.life_time_factor), (10, 3));
+        }
         od.reset_communication();
         assert_eq!(od.params.heartbeat_time_ms, 250);
         assert_eq!(od.params.heartbeat_consumers, [0; 4]);
@@ -790,6 +829,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(all(feature = "guarding", feature = "time"))]
     fn describes_itself() {
         extern crate std;
         let od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
@@ -806,5 +846,33 @@ mod tests {
         let all: std::vec::Vec<u16> = (0..pdos.object_count()).map(|n| pdos.object(n).unwrap().index).collect();
         assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
         assert_eq!(all[20..], [0x1400, 0x1401, 0x1600, 0x1601, 0x1800, 0x1801, 0x1802, 0x1A00, 0x1A01, 0x1A02, 0x1F80]);
+    }
+
+    /// A build without guarding or TIME has no 100Ch/100Dh or 1012h: SDO gets 0602 0000h (OD-16), the EDS
+    /// does not list them, and the other objects keep their order.
+    #[test]
+    #[cfg(not(all(feature = "guarding", feature = "time")))]
+    fn compiled_out_objects_do_not_exist() {
+        extern crate std;
+        let mut od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
+        let gone: &[u16] = if cfg!(feature = "guarding") {
+            &[0x1012]
+        } else if cfg!(feature = "time") {
+            &[0x100C, 0x100D]
+        } else {
+            &[0x100C, 0x100D, 0x1012]
+        };
+        for &index in gone {
+            assert_eq!(od.info(index, 0), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");
+            assert_eq!(read(&od, index, 0), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");
+            assert_eq!(od.read_expedited(index, 0, &mut [0; 4]), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");
+            assert_eq!(od.write(index, 0, &[0; 4]), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");
+            assert_eq!(od.entry(index, 0), None, "{index:04X}h");
+        }
+        assert_eq!(od.object_count(), 22 - gone.len());
+        let all: std::vec::Vec<u16> = (0..od.object_count()).map(|n| od.object(n).unwrap().index).collect();
+        assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
+        assert!(gone.iter().all(|i| !all.contains(i)), "{all:X?}");
+        assert!(all.contains(&0x1017) && all.contains(&0x1F80));
     }
 }

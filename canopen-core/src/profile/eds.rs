@@ -37,7 +37,8 @@ pub struct EdsInfo {
     pub baud_rates_kbit: &'static [u16],
     /// `[DeviceInfo] Granularity`: mapping granularity in bits (8: byte-wise; 0: mapping not changeable).
     pub granularity: u8,
-    /// `[DeviceInfo] LSS_Supported`.
+    /// `[DeviceInfo] LSS_Supported` (written as 0 in a build without the `lss` feature: the node has no LSS
+    /// slave then).
     pub lss_supported: bool,
 }
 
@@ -134,7 +135,7 @@ pub fn write_eds<W: Write, D: OdDescribe + ?Sized>(w: &mut W, info: &EdsInfo, od
     writeln!(w, "DynamicChannelsSupported=0\nGroupMessaging=0")?;
     writeln!(w, "NrOfRXPDO={}", count(0x1400, 0x15FF))?;
     writeln!(w, "NrOfTXPDO={}", count(0x1800, 0x19FF))?;
-    writeln!(w, "LSS_Supported={}\n", u8::from(info.lss_supported))?;
+    writeln!(w, "LSS_Supported={}\n", u8::from(info.lss_supported && cfg!(feature = "lss")))?;
 
     writeln!(w, "[DummyUsage]")?;
     for i in 1..=7 {
@@ -202,5 +203,15 @@ mod tests {
         assert!(s.contains("[1A01]\nParameterName=TPDO mapping parameter\nObjectType=0x9\nSubNumber=0x9\n"));
         assert!(s.contains("[1801sub6]\nParameterName=SYNC start value\n"));
         assert!(!s.contains("[1400sub4]") && !s.contains("[1400sub6]"));
+    }
+
+    /// `LSS_Supported` follows the build: a node without the `lss` feature has no LSS slave to offer.
+    #[test]
+    fn lss_supported_follows_the_build() {
+        let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
+        let mut s = heapless::String::<8192>::new();
+        write_eds(&mut s, &EdsInfo { lss_supported: true, ..EdsInfo::DEFAULT }, &od).unwrap();
+        let want = if cfg!(feature = "lss") { "LSS_Supported=1\n" } else { "LSS_Supported=0\n" };
+        assert!(s.contains(want), "{s}");
     }
 }

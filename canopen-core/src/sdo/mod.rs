@@ -7,8 +7,8 @@
 //!
 //! - [`server`]: [`SdoServer`] and its 1200h-style [`SdoServerParams`]; [`SdoServers`] for the default
 //!   server plus additional servers 1201h–127Fh as a compile-time count.
-//! - [`client`]: [`SdoClient`] (1280h-style [`SdoClientParams`]).
-//! - [`block`]: the CRC-16 used by block transfer (SDO-49) and sub-block bookkeeping shared by both sides.
+//! - [`client`] (feature `sdo-client`): [`SdoClient`] (1280h-style [`SdoClientParams`]).
+//! - [`block`] (features `sdo-block`, `sdo-client`): the CRC-16 used by block transfer (SDO-49) and sub-block bookkeeping shared by both sides.
 //!
 //! ```
 //! use canopen_core::sdo::{SdoServer, SdoServerParams};
@@ -18,10 +18,13 @@
 //! assert_eq!(server.tx_cob_id(), Some(0x583));
 //! ```
 
+#[cfg(any(feature = "sdo-block", feature = "sdo-client"))]
 pub mod block;
+#[cfg(feature = "sdo-client")]
 pub mod client;
 pub mod server;
 
+#[cfg(feature = "sdo-client")]
 pub use client::{SdoClient, SdoClientParams};
 pub use server::{Response, SdoEvent, SdoServer, SdoServerParams, SdoServers, ServerState};
 

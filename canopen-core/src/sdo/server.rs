@@ -109,14 +109,21 @@
 use crate::cob::{CobIdEntry, FunctionCode};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::time::{Duration, Instant};
-use crate::wire::sdo::{abort_frame, ClientRequest, Multiplexer, MAX_BLKSIZE};
+#[cfg(feature = "sdo-block")]
+use crate::wire::sdo::MAX_BLKSIZE;
+use crate::wire::sdo::{abort_frame, ClientRequest, Multiplexer};
 use crate::NodeId;
 
+// Block transfer (feature `sdo-block`): without it, block initiate requests are answered 0504 0001h.
+#[cfg(feature = "sdo-block")]
 mod block_download;
+#[cfg(feature = "sdo-block")]
 mod block_upload;
 mod segmented;
 
+#[cfg(feature = "sdo-block")]
 use block_download::{is_late_segment, BlockDownload};
+#[cfg(feature = "sdo-block")]
 use block_upload::{BlockUpload, UploadPhase};
 
 /// 1200h–127Fh-style parameters of one server SDO (SDO-53..SDO-55).
@@ -370,7 +377,9 @@ enum State {
         offset: u32,
         size: u32,
     },
+    #[cfg(feature = "sdo-block")]
     BlockDownload(BlockDownload),
+    #[cfg(feature = "sdo-block")]
     BlockUpload(BlockUpload),
 }
 
@@ -380,8 +389,7 @@ enum State {
 /// use canopen_core::sdo::{SdoServer, SdoServerParams};
 /// use canopen_core::{Duration, NodeId};
 /// let s = SdoServer::new(SdoServerParams::default_server(NodeId::new(3).unwrap()))
-///     .with_timeout(Duration::from_millis(500))
-///     .with_block_size(16);
+///     .with_timeout(Duration::from_millis(500));
 /// assert!(s.is_idle());
 /// assert!(core::mem::size_of::<SdoServer>() <= SdoServer::RAM_BYTES);
 /// ```
@@ -389,6 +397,7 @@ enum State {
 pub struct SdoServer {
     params: SdoServerParams,
     timeout: Duration,
+    #[cfg(feature = "sdo-block")]
     block_size: u8,
     deadline: Option<Instant>,
     state: State,
@@ -413,6 +422,7 @@ impl SdoServer {
         SdoServer {
             params,
             timeout: super::DEFAULT_TIMEOUT,
+            #[cfg(feature = "sdo-block")]
             block_size: MAX_BLKSIZE,
             deadline: None,
             state: State::Idle,
@@ -453,6 +463,7 @@ impl SdoServer {
     /// let s = SdoServer::new(SdoServerParams::DISABLED).with_block_size(0);
     /// assert!(s.is_idle());
     /// ```
+    #[cfg(feature = "sdo-block")]
     pub const fn with_block_size(mut self, blksize: u8) -> Self {
         self.block_size = if blksize == 0 {
             1
@@ -551,8 +562,11 @@ impl SdoServer {
             State::Idle => ServerState::Idle,
             State::Download { .. } => ServerState::Downloading,
             State::Upload { .. } => ServerState::Uploading,
+            #[cfg(feature = "sdo-block")]
             State::BlockDownload(b) if b.ending => ServerState::BlockDownloadEnd,
+            #[cfg(feature = "sdo-block")]
             State::BlockDownload(_) => ServerState::BlockDownloadSubBlock,
+            #[cfg(feature = "sdo-block")]
             State::BlockUpload(b) => match b.phase {
                 UploadPhase::Start => ServerState::BlockUploadStart,
                 UploadPhase::Sending => ServerState::BlockUploadSending,
@@ -570,7 +584,10 @@ impl SdoServer {
     /// ```
     pub const fn poll_timeout(&self) -> Option<Instant> {
         match self.deadline {
+            #[cfg(feature = "sdo-block")]
             Some(d) => Some(self.block_download_deadline(d)),
+            #[cfg(not(feature = "sdo-block"))]
+            Some(d) => Some(d),
             None => None,
         }
     }
@@ -592,6 +609,7 @@ impl SdoServer {
     pub fn handle_timeout<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Response {
         match self.poll_timeout() {
             Some(d) if now >= d && !self.is_idle() => {
+                #[cfg(feature = "sdo-block")]
                 if let Some(ack) = self.block_download_stalled() {
                     return ack;
                 }
@@ -642,7 +660,9 @@ impl SdoServer {
         match &self.state {
             State::Idle => None,
             State::Download { mux, .. } | State::Upload { mux, .. } => Some(*mux),
+            #[cfg(feature = "sdo-block")]
             State::BlockDownload(b) => Some(b.mux),
+            #[cfg(feature = "sdo-block")]
             State::BlockUpload(b) => Some(b.mux),
         }
     }
@@ -650,8 +670,9 @@ impl SdoServer {
     /// Drops the current transfer; tells the OD when a streamed write is abandoned.
     fn reset<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) {
         match self.state {
-            State::Download { mux, sink: Sink::Stream, .. }
-            | State::BlockDownload(BlockDownload { mux, sink: Sink::Stream, .. }) => od.abort_write(mux.index, mux.sub),
+            State::Download { mux, sink: Sink::Stream, .. } => od.abort_write(mux.index, mux.sub),
+            #[cfg(feature = "sdo-block")]
+            State::BlockDownload(BlockDownload { mux, sink: Sink::Stream, .. }) => od.abort_write(mux.index, mux.sub),
             _ => {}
         }
         self.state = State::Idle;
@@ -679,6 +700,7 @@ impl SdoServer {
                 event: Some(SdoEvent::AbortReceived { index: u16::from_le_bytes([b[1], b[2]]), sub: b[3], code }),
             };
         }
+        #[cfg(feature = "sdo-block")]
         if let State::BlockDownload(bd) = &mut self.state {
             if !bd.ending {
                 return self.block_segment(b, od);
@@ -713,20 +735,33 @@ impl SdoServer {
                 self.reset(od);
                 self.initiate_upload(mux, od).unwrap_or_else(|code| self.abort(od, mux, code))
             }
+            #[cfg(feature = "sdo-block")]
             ClientRequest::BlockDownloadInitiate { mux, crc, size } => {
                 self.reset(od);
                 self.block_download_initiate(mux, crc, size, od).unwrap_or_else(|code| self.abort(od, mux, code))
             }
+            #[cfg(feature = "sdo-block")]
             ClientRequest::BlockUploadInitiate { mux, crc, blksize, pst } => {
                 self.reset(od);
                 self.block_upload_initiate(mux, crc, blksize, pst, od).unwrap_or_else(|code| self.abort(od, mux, code))
             }
             ClientRequest::DownloadSegment(seg) => self.download_segment(seg, od),
             ClientRequest::UploadSegment { toggle } => self.upload_segment(toggle, od),
+            #[cfg(feature = "sdo-block")]
             ClientRequest::BlockDownloadEnd { unused, crc } => self.block_download_end(unused, crc, od),
+            #[cfg(feature = "sdo-block")]
             ClientRequest::BlockUploadStart => self.block_upload_start(od),
+            #[cfg(feature = "sdo-block")]
             ClientRequest::BlockUploadAck { ackseq, blksize } => self.block_upload_ack(ackseq, blksize, od),
+            #[cfg(feature = "sdo-block")]
             ClientRequest::BlockUploadEnd => self.block_upload_end(od),
+            // Without block transfer: an initiate is refused for its own object, the rest is out of state.
+            #[cfg(not(feature = "sdo-block"))]
+            ClientRequest::BlockDownloadInitiate { mux, .. } | ClientRequest::BlockUploadInitiate { mux, .. } => {
+                self.abort(od, mux, AbortCode::InvalidCommandSpecifier)
+            }
+            #[cfg(not(feature = "sdo-block"))]
+            _ => self.invalid(od),
         }
     }
 

@@ -6,10 +6,12 @@
 
 pub mod emcy;
 pub mod error_control;
+#[cfg(any(feature = "lss", feature = "lss-master"))]
 pub mod lss;
 pub mod nmt;
 pub mod pdo_mapping;
 pub mod sdo;
+#[cfg(feature = "time")]
 pub mod time_stamp;
 
 /// Why a frame's payload could not be parsed.

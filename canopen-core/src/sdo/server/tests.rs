@@ -2,8 +2,10 @@
 
 use super::test_od::{TestOd, STRING64};
 use super::*;
+#[cfg(feature = "sdo-block")]
 use crate::sdo::block::Crc16;
 use crate::wire::sdo::Segment;
+#[cfg(feature = "sdo-block")]
 use crate::Duration;
 
 const T0: Instant = Instant::ZERO;
@@ -23,6 +25,7 @@ impl Bench {
         Bench { s: server(), od: TestOd::new() }
     }
 
+    #[cfg(feature = "sdo-block")]
     fn with_block_size(blksize: u8) -> Self {
         Bench { s: server().with_block_size(blksize), od: TestOd::new() }
     }
@@ -41,10 +44,15 @@ fn abort_of(index: u16, sub: u8, code: AbortCode) -> Option<[u8; 8]> {
 
 #[test]
 fn ram_bound() {
-    let (server, client) = (core::mem::size_of::<SdoServer>(), core::mem::size_of::<crate::sdo::SdoClient>());
-    std::eprintln!("size_of SdoServer = {server} B, SdoClient = {client} B");
+    let server = core::mem::size_of::<SdoServer>();
+    std::eprintln!("size_of SdoServer = {server} B");
     assert!(server <= SdoServer::RAM_BYTES, "{server}");
-    assert!(client <= 96, "{client}");
+    #[cfg(feature = "sdo-client")]
+    {
+        let client = core::mem::size_of::<crate::sdo::SdoClient>();
+        std::eprintln!("size_of SdoClient = {client} B");
+        assert!(client <= 96, "{client}");
+    }
 }
 
 #[test]
@@ -78,7 +86,7 @@ fn v_sdo_expedited_positive() {
 #[test]
 fn v_sdo_expedited_negative_and_od_abort_codes() {
     let mut t = Bench::new();
-    let cases: [([u8; 8], u16, u8, AbortCode); 16] = [
+    let cases: &[([u8; 8], u16, u8, AbortCode)] = &[
         ([0x40, 0x00, 0x50, 0x00, 0, 0, 0, 0], 0x5000, 0, AbortCode::ObjectDoesNotExist), // V-SDO-10
         ([0x40, 0x18, 0x10, 0x07, 0, 0, 0, 0], 0x1018, 7, AbortCode::SubIndexDoesNotExist), // V-SDO-11
         ([0x23, 0x00, 0x10, 0x00, 0, 0, 0, 0], 0x1000, 0, AbortCode::WriteOfReadOnly),    // V-SDO-12
@@ -94,9 +102,10 @@ fn v_sdo_expedited_negative_and_od_abort_codes() {
         ([0x23, 0x03, 0x20, 0x00, 3, 0, 0, 0], 0x2003, 0, AbortCode::CannotStoreDeviceState),
         ([0x21, 0x17, 0x10, 0x00, 3, 0, 0, 0], 0x1017, 0, AbortCode::LengthTooHigh), // SDO-18 at initiate
         ([0x21, 0x05, 0x20, 0x00, 4, 0, 0, 0], 0x2005, 0, AbortCode::LengthTooLow),
+        #[cfg(feature = "sdo-block")]
         ([0xC6, 0x00, 0x20, 0x00, 0x01, 0x00, 0x01, 0x00], 0x2000, 0, AbortCode::OutOfMemory), // 65537 bytes
     ];
-    for (req, index, sub, code) in cases {
+    for &(req, index, sub, code) in cases {
         let r = t.ex(req, abort_of(index, sub, code));
         assert_eq!(r.event, Some(SdoEvent::Aborted { index, sub, code }));
         assert!(t.s.is_idle());
@@ -164,11 +173,35 @@ fn value_shorter_than_announced_is_length_mismatch() {
     assert_eq!(r.frame, Some([0x41, 0x00, 0x30, 0x00, 10, 0, 0, 0]));
     let r = s.handle_request(T0, &[0x60, 0, 0, 0, 0, 0, 0, 0], &mut od);
     assert_eq!(r.frame, abort_of(0x3000, 0, AbortCode::LengthMismatch));
-    let r = s.handle_request(T0, &[0xA4, 0x00, 0x30, 0x00, 0x7F, 0, 0, 0], &mut od);
-    assert_eq!(r.frame, Some([0xC6, 0x00, 0x30, 0x00, 10, 0, 0, 0]));
-    s.handle_request(T0, &[0xA3, 0, 0, 0, 0, 0, 0, 0], &mut od);
-    assert_eq!(s.poll_transmit(T0, &mut od).unwrap().frame, abort_of(0x3000, 0, AbortCode::LengthMismatch));
+    #[cfg(feature = "sdo-block")]
+    {
+        let r = s.handle_request(T0, &[0xA4, 0x00, 0x30, 0x00, 0x7F, 0, 0, 0], &mut od);
+        assert_eq!(r.frame, Some([0xC6, 0x00, 0x30, 0x00, 10, 0, 0, 0]));
+        s.handle_request(T0, &[0xA3, 0, 0, 0, 0, 0, 0, 0], &mut od);
+        assert_eq!(s.poll_transmit(T0, &mut od).unwrap().frame, abort_of(0x3000, 0, AbortCode::LengthMismatch));
+    }
     assert!(s.is_idle());
+}
+
+/// Without the `sdo-block` feature the server has no block transfer: an initiate (block download C6h, block
+/// upload A4h) is refused with 0504 0001h for its object, every other block request with 0504 0001h as out
+/// of state (SDO-09), and the server stays idle.
+#[test]
+#[cfg(not(feature = "sdo-block"))]
+fn block_transfer_compiled_out() {
+    let mut t = Bench::new();
+    let invalid = AbortCode::InvalidCommandSpecifier;
+    t.ex([0xC6, 0x00, 0x20, 0x00, 9, 0, 0, 0], abort_of(0x2000, 0, invalid)); // VECTORS 8.1 initiate
+    assert!(t.s.is_idle());
+    t.ex([0xA4, 0x04, 0x20, 0x00, 0x7F, 0, 0, 0], abort_of(0x2004, 0, invalid)); // block upload initiate
+    assert!(t.s.is_idle());
+    for req in [[0xA3, 0, 0, 0, 0, 0, 0, 0], [0xA1, 0, 0, 0, 0, 0, 0, 0], [0xC1, 0, 0, 0, 0, 0, 0, 0]] {
+        t.ex(req, abort_of(0, 0, invalid));
+    }
+    // A segmented transfer under way is aborted by a block request, as by any out-of-state frame.
+    t.ex([0x40, 0x04, 0x20, 0x00, 0, 0, 0, 0], Some([0x41, 0x04, 0x20, 0x00, 64, 0, 0, 0]));
+    t.ex([0xA2, 1, 0x7F, 0, 0, 0, 0, 0], abort_of(0x2004, 0, invalid));
+    assert!(t.s.is_idle());
 }
 
 /// VECTORS 7.2, then the seed 7.1 whose step 5 repeats t = 0: abort 0503 0000h (SDO-30).
@@ -280,6 +313,7 @@ fn segmented_upload_64_byte_string_and_read_error() {
 }
 
 #[test]
+#[cfg(feature = "sdo-block")]
 fn v_sdo_block_download_8_1_and_variants() {
     let mut t = Bench::new();
     t.ex([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0]));
@@ -319,6 +353,7 @@ fn v_sdo_block_download_8_1_and_variants() {
 /// a CAN-level repeat of the segment that made the server acknowledge is ignored, not acknowledged again (a
 /// second acknowledge would read as the next sub-block's and make the client skip segments).
 #[test]
+#[cfg(feature = "sdo-block")]
 fn v_sdo_block_download_8_2_go_back_n() {
     let mut t = Bench::with_block_size(3);
     t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
@@ -344,6 +379,7 @@ fn v_sdo_block_download_8_2_go_back_n() {
 /// number 1 of a repeated sub-block, 81h) is ignored, not read as an abort with reserved bits; the end
 /// frame still completes the transfer.
 #[test]
+#[cfg(feature = "sdo-block")]
 fn late_segment_before_block_end_is_ignored() {
     let mut t = Bench::with_block_size(8);
     t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 8, 0, 0, 0]));
@@ -372,6 +408,7 @@ fn late_segment_before_block_end_is_ignored() {
 }
 
 #[test]
+#[cfg(feature = "sdo-block")]
 fn block_download_sequence_and_size_errors() {
     let mut t = Bench::with_block_size(3);
     // seqno 0 and seqno > blksize → 0504 0003h
@@ -398,6 +435,7 @@ fn block_download_sequence_and_size_errors() {
 }
 
 #[test]
+#[cfg(feature = "sdo-block")]
 fn v_sdo_block_upload_8_3() {
     let mut t = Bench::new();
     t.od.set_domain(b"123456789");
@@ -421,6 +459,7 @@ fn v_sdo_block_upload_8_3() {
 }
 
 #[test]
+#[cfg(feature = "sdo-block")]
 fn block_upload_retransmission_and_errors() {
     let mut t = Bench::new();
     t.od.set_domain(b"ABCDEFGHIJKLMNOP");
@@ -458,6 +497,7 @@ fn block_upload_retransmission_and_errors() {
 }
 
 #[test]
+#[cfg(feature = "sdo-block")]
 fn v_sdo_block_upload_8_4_protocol_switch() {
     let mut t = Bench::new();
     t.od.set_domain(b"123456789");
@@ -515,6 +555,7 @@ fn servers_table() {
 /// stalls; after a quarter of the SDO timeout the server acknowledges the in-order segments it has, the client
 /// resends the rest, and the SDO timeout still counts from the last frame received.
 #[test]
+#[cfg(feature = "sdo-block")]
 fn stalled_sub_block_is_acknowledged_after_a_quarter_of_the_timeout() {
     let mut s = server().with_block_size(4).with_timeout(Duration::from_millis(100));
     let mut od = TestOd::new();

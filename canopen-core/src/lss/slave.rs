@@ -1,0 +1,828 @@
+//! The LSS slave (CiA 305): see the [module docs](super) for what is served where, node-IDs, bit timing and store.
+
+use super::Identity;
+use crate::cob::NodeId;
+use crate::time::{Duration, Instant};
+use crate::wire::lss::{
+    BitRate, IdentifyPart, IdentityField, LssMode, LssRequest, LssResponse, Status, FASTSCAN_CONFIRM,
+    UNCONFIGURED_NODE_ID,
+};
+
+/// Something the LSS slave tells the application (inside `Event::Lss`).
+///
+/// ```
+/// use canopen_core::{lss::LssEvent, wire::lss::LssMode};
+/// let e = LssEvent::ModeChanged(LssMode::Configuration);
+/// assert!(matches!(e, LssEvent::ModeChanged(LssMode::Configuration)));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum LssEvent {
+    /// The LSS state changed (switch state global/selective, fastscan match).
+    ModeChanged(LssMode),
+    /// Configure node-ID set the pending node-ID (1–127, or FFh = unconfigured).
+    NodeIdConfigured {
+        /// The raw pending node-ID.
+        pending: u8,
+    },
+    /// Configure bit timing set the pending bit rate.
+    BitRateConfigured(BitRate),
+    /// Activate bit timing was received: the bit rate switches at `switch_at`, transmission resumes at
+    /// `resume_at` (switch delay after switch delay).
+    BitRateActivation {
+        /// The pending bit rate that becomes active.
+        bit_rate: BitRate,
+        /// End of the first delay period: switch the controller then.
+        switch_at: Instant,
+        /// End of the second delay period: the node transmits again.
+        resume_at: Instant,
+    },
+    /// The first switch delay has passed: the driver switches the controller to `bit_rate` now. The node
+    /// holds its transmit queue until [`LssEvent::TransmitResumed`].
+    SwitchBitRate(BitRate),
+    /// The second switch delay has passed; the node transmits again.
+    TransmitResumed,
+    /// Store configuration was requested; answer with `Node::complete_lss_store`.
+    StoreRequested {
+        /// The pending node-ID to store (FFh = unconfigured).
+        node_id: u8,
+        /// The pending bit rate to store.
+        bit_rate: BitRate,
+    },
+}
+
+/// Why a store failed; maps onto the 17h error codes.
+///
+/// ```
+/// use canopen_core::{lss::StoreError, wire::lss::Status};
+/// assert_eq!(StoreError::MediaAccess.status(), Status { error: 2, spec: 0 });
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum StoreError {
+    /// 01h: store configuration is not supported.
+    NotSupported,
+    /// 02h: storage media access error.
+    MediaAccess,
+    /// FFh: implementation-specific error with this code.
+    Manufacturer(u8),
+}
+
+impl StoreError {
+    /// The wire status.
+    ///
+    /// ```
+    /// use canopen_core::lss::StoreError;
+    /// assert_eq!(StoreError::Manufacturer(4).status().spec, 4);
+    /// ```
+    pub const fn status(self) -> Status {
+        match self {
+            StoreError::NotSupported => Status::NOT_SUPPORTED,
+            StoreError::MediaAccess => Status::MEDIA_ACCESS,
+            StoreError::Manufacturer(spec) => Status::manufacturer(spec),
+        }
+    }
+}
+
+/// ```
+/// use canopen_core::lss::StoreError;
+/// assert_eq!(StoreError::Manufacturer(4).to_string(), "LSS store failed: manufacturer error 04h");
+/// ```
+impl core::fmt::Display for StoreError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            StoreError::NotSupported => f.write_str("LSS store configuration is not supported"),
+            StoreError::MediaAccess => f.write_str("LSS store failed: storage media access error"),
+            StoreError::Manufacturer(e) => write!(f, "LSS store failed: manufacturer error {e:02X}h"),
+        }
+    }
+}
+
+impl core::error::Error for StoreError {}
+
+/// Non-volatile storage of the LSS configuration, implemented by the application.
+///
+/// Only two values travel, so this can sit on top of a general parameter storage (the 1010h `Storage`
+/// trait) or a file.
+///
+/// ```
+/// use canopen_core::{lss::{LssStore, StoreError}, wire::lss::BitRate};
+/// #[derive(Default)]
+/// struct Ram(Option<(u8, BitRate)>);
+/// impl LssStore for Ram {
+///     fn store(&mut self, node_id: u8, bit_rate: BitRate) -> Result<(), StoreError> {
+///         self.0 = Some((node_id, bit_rate));
+///         Ok(())
+///     }
+/// }
+/// let mut ram = Ram::default();
+/// ram.store(0x22, BitRate::K250).unwrap();
+/// assert_eq!(ram.0, Some((0x22, BitRate::K250)));
+/// ```
+pub trait LssStore {
+    /// Stores the pending node-ID (1–127 or FFh) and bit rate so that the next power-up uses them.
+    ///
+    /// ```
+    /// use canopen_core::{lss::{LssStore, StoreError}, wire::lss::BitRate};
+    /// struct ReadOnly;
+    /// impl LssStore for ReadOnly {
+    ///     fn store(&mut self, _: u8, _: BitRate) -> Result<(), StoreError> {
+    ///         Err(StoreError::NotSupported)
+    ///     }
+    /// }
+    /// assert_eq!(ReadOnly.store(1, BitRate::K125), Err(StoreError::NotSupported));
+    /// ```
+    fn store(&mut self, node_id: u8, bit_rate: BitRate) -> Result<(), StoreError>;
+}
+
+/// What one request produced.
+///
+/// ```
+/// use canopen_core::lss::LssOutput;
+/// assert_eq!(LssOutput::default().response, None);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LssOutput {
+    /// The frame to send on 7E4h, if the spec asks for one.
+    pub response: Option<LssResponse>,
+    /// What to tell the application.
+    pub event: Option<LssEvent>,
+    /// The node got its first node-ID and left LSS configuration: run NMT reset communication now.
+    pub reset_communication: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct BitSwitch {
+    bit_rate: BitRate,
+    switch_at: Instant,
+    resume_at: Instant,
+    switched: bool,
+}
+
+/// Bit mask of the CiA 301 table rates (indices 0–4, 6–8), the default set of supported bit rates.
+///
+/// ```
+/// use canopen_core::{lss::CIA301_BIT_RATES, wire::lss::BitRate};
+/// assert!(CIA301_BIT_RATES & (1 << BitRate::K500.index()) != 0);
+/// assert!(CIA301_BIT_RATES & (1 << BitRate::Auto.index()) == 0);
+/// ```
+pub const CIA301_BIT_RATES: u16 = 0b1_1101_1111;
+
+/// The LSS slave: LSS waiting / configuration, node-ID and bit-rate configuration, identification and
+/// fastscan.
+///
+/// ```
+/// use canopen_core::{lss::{Identity, LssSlave}, wire::lss::{LssMode, LssRequest, LssResponse}, Instant};
+/// let id = Identity { vendor_id: 1, product_code: 2, revision: 3, serial: 4 };
+/// let mut s = LssSlave::new(&id, None);
+/// let now = Instant::ZERO;
+/// s.handle_request(now, &LssRequest::SwitchStateGlobal(LssMode::Configuration).emit());
+/// let out = s.handle_request(now, &LssRequest::ConfigureNodeId(0x22).emit());
+/// assert_eq!(out.response, Some(LssResponse::NodeIdConfigured(canopen_core::wire::lss::Status::SUCCESS)));
+/// // Back to waiting: the node had no node-ID, so it resets communication with the new one.
+/// let out = s.handle_request(now, &LssRequest::SwitchStateGlobal(LssMode::Waiting).emit());
+/// assert!(out.reset_communication);
+/// assert_eq!(s.apply_pending().map(|n| n.get()), Some(0x22));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LssSlave {
+    address: [u32; 4],
+    mode: LssMode,
+    active: u8,
+    pending: u8,
+    bit_rate: BitRate,
+    pending_bit_rate: BitRate,
+    supported: u16,
+    store_supported: bool,
+    store_pending: bool,
+    /// The command specifier of the next expected switch-selective part (40h..43h).
+    selective_next: u8,
+    /// The command specifier of the next expected identify-remote-slave part (46h..4Bh).
+    identify_next: u8,
+    /// Fastscan LSSPos (0–3).
+    fastscan_pos: u8,
+    switch: Option<BitSwitch>,
+}
+
+impl LssSlave {
+    /// A slave in LSS waiting with the LSS address `identity` (1018h) and active node-ID `node_id`
+    /// (`None` = FFh, unconfigured). The bit rate defaults to 125 kbit/s; set the real one with
+    /// [`set_bit_rate`](Self::set_bit_rate).
+    ///
+    /// ```
+    /// use canopen_core::{lss::{Identity, LssSlave}, NodeId};
+    /// let s = LssSlave::new(&Identity::default(), NodeId::new(5));
+    /// assert_eq!(s.pending_node_id(), 5);
+    /// ```
+    pub fn new(identity: &Identity, node_id: Option<NodeId>) -> Self {
+        let raw = node_id.map_or(UNCONFIGURED_NODE_ID, NodeId::get);
+        LssSlave {
+            address: [identity.vendor_id, identity.product_code, identity.revision, identity.serial],
+            mode: LssMode::Waiting,
+            active: raw,
+            pending: raw,
+            bit_rate: BitRate::K125,
+            pending_bit_rate: BitRate::K125,
+            supported: CIA301_BIT_RATES,
+            store_supported: false,
+            store_pending: false,
+            selective_next: 0x40,
+            identify_next: 0x46,
+            fastscan_pos: 0,
+            switch: None,
+        }
+    }
+
+    /// The LSS state.
+    ///
+    /// ```
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::LssMode};
+    /// assert_eq!(LssSlave::new(&Identity::default(), None).mode(), LssMode::Waiting);
+    /// ```
+    pub const fn mode(&self) -> LssMode {
+        self.mode
+    }
+
+    /// The active node-ID, `None` while unconfigured (FFh).
+    ///
+    /// ```
+    /// # use canopen_core::{lss::{Identity, LssSlave}, NodeId};
+    /// let n = NodeId::new(3);
+    /// assert_eq!(LssSlave::new(&Identity::default(), n).active_node_id(), n);
+    /// ```
+    pub const fn active_node_id(&self) -> Option<NodeId> {
+        NodeId::new(self.active)
+    }
+
+    /// The raw pending node-ID (1–127, or FFh).
+    ///
+    /// ```
+    /// # use canopen_core::lss::{Identity, LssSlave};
+    /// assert_eq!(LssSlave::new(&Identity::default(), None).pending_node_id(), 0xFF);
+    /// ```
+    pub const fn pending_node_id(&self) -> u8 {
+        self.pending
+    }
+
+    /// Whether both the active and the pending node-ID are FFh (the fastscan and 4Ch condition).
+    ///
+    /// ```
+    /// # use canopen_core::lss::{Identity, LssSlave};
+    /// assert!(LssSlave::new(&Identity::default(), None).is_unconfigured());
+    /// ```
+    pub const fn is_unconfigured(&self) -> bool {
+        self.active == UNCONFIGURED_NODE_ID && self.pending == UNCONFIGURED_NODE_ID
+    }
+
+    /// The active bit rate as far as LSS knows (what the application set, or the last activated one).
+    ///
+    /// ```
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::BitRate};
+    /// assert_eq!(LssSlave::new(&Identity::default(), None).bit_rate(), BitRate::K125);
+    /// ```
+    pub const fn bit_rate(&self) -> BitRate {
+        self.bit_rate
+    }
+
+    /// The pending bit rate (configured, not yet activated).
+    ///
+    /// ```
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::BitRate};
+    /// assert_eq!(LssSlave::new(&Identity::default(), None).pending_bit_rate(), BitRate::K125);
+    /// ```
+    pub const fn pending_bit_rate(&self) -> BitRate {
+        self.pending_bit_rate
+    }
+
+    /// Tells LSS the bit rate the node runs at (active and pending).
+    ///
+    /// ```
+    /// # use canopen_core::{lss::{Identity, LssSlave}, wire::lss::BitRate};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// s.set_bit_rate(BitRate::K500);
+    /// assert_eq!(s.pending_bit_rate(), BitRate::K500);
+    /// ```
+    pub fn set_bit_rate(&mut self, bit_rate: BitRate) {
+        self.bit_rate = bit_rate;
+        self.pending_bit_rate = bit_rate;
+    }
+
+    /// The bit rates configure bit timing accepts: bit *i* set = table index *i* supported. Default
+    /// [`CIA301_BIT_RATES`] (every CiA 301 rate, no automatic detection).
+    ///
+    /// ```
+    /// # use canopen_core::lss::{Identity, LssSlave};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// s.set_supported_bit_rates(1 << 2 | 1 << 3); // 500 and 250 kbit/s only
+    /// ```
+    pub fn set_supported_bit_rates(&mut self, mask: u16) {
+        self.supported = mask;
+    }
+
+    /// Whether store configuration is served (the application answers [`LssEvent::StoreRequested`]);
+    /// when false (the default) it is answered with error 01h.
+    ///
+    /// ```
+    /// # use canopen_core::lss::{Identity, LssSlave};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// s.set_store_supported(true);
+    /// ```
+    pub fn set_store_supported(&mut self, supported: bool) {
+        self.store_supported = supported;
+    }
+
+    /// Whether a store request waits for [`complete_store`](Self::complete_store).
+    ///
+    /// ```
+    /// # use canopen_core::lss::{Identity, LssSlave};
+    /// assert!(!LssSlave::new(&Identity::default(), None).store_pending());
+    /// ```
+    pub const fn store_pending(&self) -> bool {
+        self.store_pending
+    }
+
+    /// NMT reset communication: the pending node-ID becomes active. Returns the active node-ID, `None`
+    /// if the node has none (it then stays in Initialisation, serving LSS only).
+    ///
+    /// ```
+    /// # use canopen_core::{lss::{Identity, LssSlave}, NodeId};
+    /// let mut s = LssSlave::new(&Identity::default(), NodeId::new(4));
+    /// assert_eq!(s.apply_pending(), NodeId::new(4));
+    /// ```
+    pub fn apply_pending(&mut self) -> Option<NodeId> {
+        self.active = self.pending;
+        NodeId::new(self.active)
+    }
+
+    /// Handles one frame received on 7E5h (its data bytes). Malformed frames and requests the current
+    /// state does not serve are ignored (an empty output).
+    ///
+    /// ```
+    /// use canopen_core::{lss::{Identity, LssSlave}, wire::lss::LssResponse, Instant};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// // Inquire node-ID in LSS waiting: silence.
+    /// assert_eq!(s.handle_request(Instant::ZERO, &[0x5E, 0, 0, 0, 0, 0, 0, 0]).response, None);
+    /// // Identify non-configured: answered 50h.
+    /// let out = s.handle_request(Instant::ZERO, &[0x4C, 0, 0, 0, 0, 0, 0, 0]);
+    /// assert_eq!(out.response, Some(LssResponse::IdentifyNonConfiguredSlave));
+    /// ```
+    pub fn handle_request(&mut self, now: Instant, data: &[u8]) -> LssOutput {
+        let Ok(request) = LssRequest::parse(data) else {
+            return LssOutput::default();
+        };
+        let configuration = self.mode == LssMode::Configuration;
+        let mut out = LssOutput::default();
+        match request {
+            LssRequest::SwitchStateGlobal(LssMode::Waiting) => {
+                // CANopenNode CO_LSSslave.c: an unconfigured node that got a node-ID resets communication.
+                out.reset_communication =
+                    configuration && self.active == UNCONFIGURED_NODE_ID && self.pending != UNCONFIGURED_NODE_ID;
+                out.event = self.enter(LssMode::Waiting);
+            }
+            LssRequest::SwitchStateGlobal(LssMode::Configuration) => out.event = self.enter(LssMode::Configuration),
+            LssRequest::SwitchStateSelective(field, value) if !configuration => {
+                let cs = 0x40 + field.index();
+                let next = if field == IdentityField::VendorId || cs == self.selective_next {
+                    (value == self.address[usize::from(field.index())]).then_some(cs + 1)
+                } else {
+                    None
+                };
+                self.selective_next = next.unwrap_or(0x40);
+                if next == Some(0x44) {
+                    self.selective_next = 0x40;
+                    out.response = Some(LssResponse::SwitchStateSelective);
+                    out.event = self.enter(LssMode::Configuration);
+                }
+            }
+            LssRequest::IdentifyRemoteSlave(part, value) => {
+                let next = if part == IdentifyPart::VendorId || part.cs() == self.identify_next {
+                    self.identify_matches(part, value).then_some(part.cs() + 1)
+                } else {
+                    None
+                };
+                self.identify_next = next.unwrap_or(0x46);
+                if next == Some(0x4C) {
+                    self.identify_next = 0x46;
+                    out.response = Some(LssResponse::IdentifySlave);
+                }
+            }
+            LssRequest::IdentifyNonConfiguredRemoteSlave if self.is_unconfigured() => {
+                out.response = Some(LssResponse::IdentifyNonConfiguredSlave);
+            }
+            LssRequest::Fastscan { id_number, bit_check, lss_sub, lss_next }
+                if !configuration && self.is_unconfigured() =>
+            {
+                out = self.fastscan(id_number, bit_check, lss_sub, lss_next);
+            }
+            LssRequest::ConfigureNodeId(id) if configuration => {
+                let status = if NodeId::new(id).is_some() || id == UNCONFIGURED_NODE_ID {
+                    self.pending = id;
+                    out.event = Some(LssEvent::NodeIdConfigured { pending: id });
+                    Status::SUCCESS
+                } else {
+                    Status::NOT_SUPPORTED
+                };
+                out.response = Some(LssResponse::NodeIdConfigured(status));
+            }
+            LssRequest::ConfigureBitTiming { table_selector, table_index } if configuration => {
+                let rate = BitRate::from_index(table_index)
+                    .filter(|r| table_selector == 0 && self.supported & (1 << r.index()) != 0);
+                let status = match rate {
+                    Some(r) => {
+                        self.pending_bit_rate = r;
+                        out.event = Some(LssEvent::BitRateConfigured(r));
+                        Status::SUCCESS
+                    }
+                    None => Status::NOT_SUPPORTED,
+                };
+                out.response = Some(LssResponse::BitTimingConfigured(status));
+            }
+            LssRequest::ActivateBitTiming { switch_delay_ms } if configuration => {
+                let delay = Duration::from_millis(u64::from(switch_delay_ms));
+                let switch_at = now + delay;
+                let resume_at = switch_at + delay;
+                self.switch =
+                    Some(BitSwitch { bit_rate: self.pending_bit_rate, switch_at, resume_at, switched: false });
+                out.event = Some(LssEvent::BitRateActivation { bit_rate: self.pending_bit_rate, switch_at, resume_at });
+            }
+            LssRequest::StoreConfiguration if configuration => {
+                if self.store_supported {
+                    self.store_pending = true;
+                    out.event =
+                        Some(LssEvent::StoreRequested { node_id: self.pending, bit_rate: self.pending_bit_rate });
+                } else {
+                    out.response = Some(LssResponse::Stored(Status::NOT_SUPPORTED));
+                }
+            }
+            LssRequest::Inquire(field) if configuration => {
+                out.response = Some(LssResponse::Identity(field, self.address[usize::from(field.index())]));
+            }
+            LssRequest::InquireNodeId if configuration => out.response = Some(LssResponse::NodeId(self.active)),
+            _ => {}
+        }
+        out
+    }
+
+    /// The answer to a pending store request, once the application has stored (or failed to); `None` if
+    /// no store was requested.
+    ///
+    /// ```
+    /// # use canopen_core::lss::{Identity, LssSlave};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// assert_eq!(s.complete_store(Ok(())), None);
+    /// ```
+    pub fn complete_store(&mut self, result: Result<(), StoreError>) -> Option<LssResponse> {
+        if !core::mem::take(&mut self.store_pending) {
+            return None;
+        }
+        Some(LssResponse::Stored(result.map_or_else(StoreError::status, |()| Status::SUCCESS)))
+    }
+
+    /// The next instant [`handle_timeout`](Self::handle_timeout) has work (the ends of the switch delays).
+    ///
+    /// ```
+    /// # use canopen_core::lss::{Identity, LssSlave};
+    /// assert_eq!(LssSlave::new(&Identity::default(), None).poll_timeout(), None);
+    /// ```
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        self.switch.map(|s| if s.switched { s.resume_at } else { s.switch_at })
+    }
+
+    /// Acts on the time that passed: reports [`LssEvent::SwitchBitRate`] at the end of the first delay and
+    /// [`LssEvent::TransmitResumed`] at the end of the second.
+    ///
+    /// ```
+    /// use canopen_core::{lss::{Identity, LssEvent, LssSlave}, wire::lss::LssMode, Instant};
+    /// let mut s = LssSlave::new(&Identity::default(), None);
+    /// s.handle_request(Instant::ZERO, &[0x04, 1, 0, 0, 0, 0, 0, 0]);
+    /// s.handle_request(Instant::ZERO, &[0x15, 10, 0, 0, 0, 0, 0, 0]); // 10 ms switch delay
+    /// assert!(matches!(s.handle_timeout(Instant::from_millis(10)), Some(LssEvent::SwitchBitRate(_))));
+    /// assert_eq!(s.handle_timeout(Instant::from_millis(20)), Some(LssEvent::TransmitResumed));
+    /// ```
+    pub fn handle_timeout(&mut self, now: Instant) -> Option<LssEvent> {
+        let s = self.switch.as_mut()?;
+        if !s.switched && now >= s.switch_at {
+            s.switched = true;
+            self.bit_rate = s.bit_rate;
+            return Some(LssEvent::SwitchBitRate(s.bit_rate));
+        }
+        if s.switched && now >= s.resume_at {
+            self.switch = None;
+            return Some(LssEvent::TransmitResumed);
+        }
+        None
+    }
+
+    /// Whether the node must not transmit at `now` (between the bit-rate switch and the end of the second
+    /// switch delay).
+    ///
+    /// ```
+    /// # use canopen_core::{lss::{Identity, LssSlave}, Instant};
+    /// assert!(!LssSlave::new(&Identity::default(), None).holds_transmit(Instant::ZERO));
+    /// ```
+    pub fn holds_transmit(&self, now: Instant) -> bool {
+        self.switch.is_some_and(|s| now >= s.switch_at && now < s.resume_at)
+    }
+
+    fn enter(&mut self, mode: LssMode) -> Option<LssEvent> {
+        self.selective_next = 0x40;
+        if self.mode == mode {
+            return None;
+        }
+        self.mode = mode;
+        Some(LssEvent::ModeChanged(mode))
+    }
+
+    fn identify_matches(&self, part: IdentifyPart, value: u32) -> bool {
+        let [vendor, product, revision, serial] = self.address;
+        match part {
+            IdentifyPart::VendorId => value == vendor,
+            IdentifyPart::ProductCode => value == product,
+            IdentifyPart::RevisionLow => value <= revision,
+            IdentifyPart::RevisionHigh => value >= revision,
+            IdentifyPart::SerialLow => value <= serial,
+            IdentifyPart::SerialHigh => value >= serial,
+        }
+    }
+
+    /// One fastscan step (CANopenNode/lely rule; see the module docs).
+    fn fastscan(&mut self, id_number: u32, bit_check: u8, sub: IdentityField, next: IdentityField) -> LssOutput {
+        let mut out = LssOutput::default();
+        if bit_check == FASTSCAN_CONFIRM {
+            self.fastscan_pos = 0;
+            out.response = Some(LssResponse::IdentifySlave);
+            return out;
+        }
+        if self.fastscan_pos != sub.index() {
+            return out;
+        }
+        // bit_check is 0..=31 here (the parser refuses anything else but 80h).
+        let mask = u32::MAX.checked_shl(u32::from(bit_check)).unwrap_or(0);
+        if (id_number ^ self.address[usize::from(sub.index())]) & mask != 0 {
+            return out;
+        }
+        self.fastscan_pos = next.index();
+        out.response = Some(LssResponse::IdentifySlave);
+        if bit_check == 0 && next.index() < sub.index() {
+            out.event = self.enter(LssMode::Configuration);
+        }
+        out
+    }
+}
+
+/// A placeholder node-ID for a node that has none yet; never used on the bus (the node serves only LSS
+/// while unconfigured).
+pub(crate) const PLACEHOLDER_NODE_ID: NodeId = match NodeId::new(127) {
+    Some(n) => n,
+    None => panic!("127 is a valid node-ID"),
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wire::lss::cs;
+
+    const ID: Identity = Identity { vendor_id: 0x0000_0123, product_code: 0x42, revision: 0x0001_0002, serial: 77 };
+    const T0: Instant = Instant::ZERO;
+
+    fn req(s: &mut LssSlave, r: LssRequest) -> LssOutput {
+        s.handle_request(T0, &r.emit())
+    }
+
+    fn config(s: &mut LssSlave) {
+        req(s, LssRequest::SwitchStateGlobal(LssMode::Configuration));
+    }
+
+    #[test]
+    fn config_services_are_silent_in_waiting() {
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        for r in [
+            LssRequest::ConfigureNodeId(9),
+            LssRequest::ConfigureBitTiming { table_selector: 0, table_index: 2 },
+            LssRequest::ActivateBitTiming { switch_delay_ms: 10 },
+            LssRequest::StoreConfiguration,
+            LssRequest::Inquire(IdentityField::Serial),
+            LssRequest::InquireNodeId,
+        ] {
+            assert_eq!(req(&mut s, r), LssOutput::default(), "{r:?}");
+        }
+        assert_eq!(s.pending_node_id(), 5);
+        assert_eq!(s.poll_timeout(), None);
+    }
+
+    #[test]
+    fn switch_selective_in_order_only() {
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        let sel = |f, v| LssRequest::SwitchStateSelective(f, v);
+        use IdentityField::*;
+        // Out of order: product first.
+        req(&mut s, sel(ProductCode, 0x42));
+        req(&mut s, sel(Revision, 0x0001_0002));
+        assert_eq!(req(&mut s, sel(Serial, 77)).response, None);
+        // One wrong part restarts.
+        req(&mut s, sel(VendorId, 0x123));
+        req(&mut s, sel(ProductCode, 0x43));
+        req(&mut s, sel(Revision, 0x0001_0002));
+        assert_eq!(req(&mut s, sel(Serial, 77)).response, None);
+        assert_eq!(s.mode(), LssMode::Waiting);
+        // Right.
+        for (f, v) in [(VendorId, 0x123), (ProductCode, 0x42), (Revision, 0x0001_0002)] {
+            assert_eq!(req(&mut s, sel(f, v)), LssOutput::default());
+        }
+        let out = req(&mut s, sel(Serial, 77));
+        assert_eq!(out.response, Some(LssResponse::SwitchStateSelective));
+        assert_eq!(out.event, Some(LssEvent::ModeChanged(LssMode::Configuration)));
+        // In configuration, selective is not served.
+        for (f, v) in [(VendorId, 0x123), (ProductCode, 0x42), (Revision, 0x0001_0002), (Serial, 77)] {
+            assert_eq!(req(&mut s, sel(f, v)), LssOutput::default());
+        }
+    }
+
+    #[test]
+    fn configure_node_id_and_inquire() {
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        config(&mut s);
+        for bad in [0u8, 128, 0xFE] {
+            assert_eq!(
+                req(&mut s, LssRequest::ConfigureNodeId(bad)).response,
+                Some(LssResponse::NodeIdConfigured(Status::NOT_SUPPORTED))
+            );
+        }
+        let out = req(&mut s, LssRequest::ConfigureNodeId(9));
+        assert_eq!(out.response, Some(LssResponse::NodeIdConfigured(Status::SUCCESS)));
+        assert_eq!(out.event, Some(LssEvent::NodeIdConfigured { pending: 9 }));
+        // Inquire reports the active node-ID until reset communication.
+        assert_eq!(req(&mut s, LssRequest::InquireNodeId).response, Some(LssResponse::NodeId(5)));
+        // A configured node does not reset by itself when switched to waiting.
+        assert!(!req(&mut s, LssRequest::SwitchStateGlobal(LssMode::Waiting)).reset_communication);
+        assert_eq!(s.apply_pending(), NodeId::new(9));
+        config(&mut s);
+        assert_eq!(req(&mut s, LssRequest::InquireNodeId).response, Some(LssResponse::NodeId(9)));
+        for f in IdentityField::ALL {
+            let v = [0x123, 0x42, 0x0001_0002, 77][usize::from(f.index())];
+            assert_eq!(req(&mut s, LssRequest::Inquire(f)).response, Some(LssResponse::Identity(f, v)));
+        }
+        // FFh is accepted and makes the node unconfigured at the next reset communication.
+        assert_eq!(
+            req(&mut s, LssRequest::ConfigureNodeId(0xFF)).response,
+            Some(LssResponse::NodeIdConfigured(Status::SUCCESS))
+        );
+        assert_eq!(s.apply_pending(), None);
+        assert!(s.is_unconfigured());
+    }
+
+    #[test]
+    fn bit_timing_configure_and_activate() {
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        config(&mut s);
+        let bt = |sel, idx| LssRequest::ConfigureBitTiming { table_selector: sel, table_index: idx };
+        for (sel, idx) in [(0u8, 5u8), (0, 9), (0, 10), (1, 2), (0x80, 2)] {
+            assert_eq!(
+                req(&mut s, bt(sel, idx)).response,
+                Some(LssResponse::BitTimingConfigured(Status::NOT_SUPPORTED))
+            );
+        }
+        let out = req(&mut s, bt(0, 3));
+        assert_eq!(out.response, Some(LssResponse::BitTimingConfigured(Status::SUCCESS)));
+        assert_eq!(out.event, Some(LssEvent::BitRateConfigured(BitRate::K250)));
+        let t = Instant::from_millis(1000);
+        let out = s.handle_request(t, &LssRequest::ActivateBitTiming { switch_delay_ms: 100 }.emit());
+        assert_eq!(out.response, None);
+        assert_eq!(
+            out.event,
+            Some(LssEvent::BitRateActivation {
+                bit_rate: BitRate::K250,
+                switch_at: Instant::from_millis(1100),
+                resume_at: Instant::from_millis(1200)
+            })
+        );
+        assert!(!s.holds_transmit(Instant::from_millis(1099)));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1100)));
+        assert_eq!(s.handle_timeout(Instant::from_millis(1099)), None);
+        assert_eq!(s.handle_timeout(Instant::from_millis(1100)), Some(LssEvent::SwitchBitRate(BitRate::K250)));
+        assert_eq!(s.bit_rate(), BitRate::K250);
+        assert!(s.holds_transmit(Instant::from_millis(1150)));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1200)));
+        assert_eq!(s.handle_timeout(Instant::from_millis(1200)), Some(LssEvent::TransmitResumed));
+        assert!(!s.holds_transmit(Instant::from_millis(1200)));
+        assert_eq!(s.poll_timeout(), None);
+        // Supported set restricted by the application.
+        s.set_supported_bit_rates(1 << 2);
+        assert_eq!(req(&mut s, bt(0, 3)).response, Some(LssResponse::BitTimingConfigured(Status::NOT_SUPPORTED)));
+    }
+
+    #[test]
+    fn store_deferred_and_not_supported() {
+        let mut s = LssSlave::new(&ID, None);
+        config(&mut s);
+        assert_eq!(
+            req(&mut s, LssRequest::StoreConfiguration).response,
+            Some(LssResponse::Stored(Status::NOT_SUPPORTED))
+        );
+        s.set_store_supported(true);
+        req(&mut s, LssRequest::ConfigureNodeId(0x22));
+        let out = req(&mut s, LssRequest::StoreConfiguration);
+        assert_eq!(out.response, None);
+        assert_eq!(out.event, Some(LssEvent::StoreRequested { node_id: 0x22, bit_rate: BitRate::K125 }));
+        assert!(s.store_pending());
+        assert_eq!(
+            s.complete_store(Err(StoreError::Manufacturer(3))),
+            Some(LssResponse::Stored(Status::manufacturer(3)))
+        );
+        assert_eq!(s.complete_store(Ok(())), None);
+        req(&mut s, LssRequest::StoreConfiguration);
+        assert_eq!(s.complete_store(Ok(())), Some(LssResponse::Stored(Status::SUCCESS)));
+    }
+
+    #[test]
+    fn identify_remote_slave_ranges() {
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        let run = |s: &mut LssSlave, v: u32, p: u32, rl: u32, rh: u32, sl: u32, sh: u32| {
+            let parts = [
+                (IdentifyPart::VendorId, v),
+                (IdentifyPart::ProductCode, p),
+                (IdentifyPart::RevisionLow, rl),
+                (IdentifyPart::RevisionHigh, rh),
+                (IdentifyPart::SerialLow, sl),
+            ];
+            for (part, x) in parts {
+                assert_eq!(req(s, LssRequest::IdentifyRemoteSlave(part, x)).response, None);
+            }
+            req(s, LssRequest::IdentifyRemoteSlave(IdentifyPart::SerialHigh, sh)).response
+        };
+        assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 0, u32::MAX), Some(LssResponse::IdentifySlave));
+        assert_eq!(run(&mut s, 0x123, 0x42, 0x0001_0002, 0x0001_0002, 77, 77), Some(LssResponse::IdentifySlave));
+        assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 78, 100), None);
+        assert_eq!(run(&mut s, 0x123, 0x42, 0, 0x0001_0001, 0, 100), None);
+        assert_eq!(run(&mut s, 0x124, 0x42, 0, u32::MAX, 0, u32::MAX), None);
+        // Served in configuration too.
+        config(&mut s);
+        assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 0, u32::MAX), Some(LssResponse::IdentifySlave));
+        // Only the last part on its own: nothing.
+        assert_eq!(req(&mut s, LssRequest::IdentifyRemoteSlave(IdentifyPart::SerialHigh, 100)).response, None);
+    }
+
+    #[test]
+    fn identify_non_configured() {
+        let r = LssRequest::IdentifyNonConfiguredRemoteSlave;
+        assert_eq!(req(&mut LssSlave::new(&ID, NodeId::new(5)), r).response, None);
+        let mut s = LssSlave::new(&ID, None);
+        assert_eq!(req(&mut s, r).response, Some(LssResponse::IdentifyNonConfiguredSlave));
+        config(&mut s);
+        assert_eq!(req(&mut s, r).response, Some(LssResponse::IdentifyNonConfiguredSlave));
+        req(&mut s, LssRequest::ConfigureNodeId(3));
+        assert_eq!(req(&mut s, r).response, None);
+    }
+
+    /// The python canopen fastscan against one slave, bit by bit.
+    #[test]
+    fn fastscan_python_sequence() {
+        let mut s = LssSlave::new(&ID, None);
+        let mut step = |id: u32, bit: u8, sub: u8, next: u8| {
+            let f = [cs::FASTSCAN, id as u8, (id >> 8) as u8, (id >> 16) as u8, (id >> 24) as u8, bit, sub, next];
+            s.handle_request(T0, &f).response == Some(LssResponse::IdentifySlave)
+        };
+        assert!(step(0, 0x80, 0, 0));
+        let mut found = [0u32; 4];
+        for sub in 0..4u8 {
+            for bit in (0..32u8).rev() {
+                if !step(found[usize::from(sub)], bit, sub, sub) {
+                    found[usize::from(sub)] |= 1 << bit;
+                }
+            }
+            assert!(step(found[usize::from(sub)], 0, sub, (sub + 1) & 3));
+        }
+        assert_eq!(found, [ID.vendor_id, ID.product_code, ID.revision, ID.serial]);
+        assert_eq!(s.mode(), LssMode::Configuration);
+        // Configured and fastscan is no longer answered, even after going back to waiting.
+        let mut s2 = LssSlave::new(&ID, NodeId::new(5));
+        assert_eq!(
+            req(
+                &mut s2,
+                LssRequest::Fastscan {
+                    id_number: 0,
+                    bit_check: 0x80,
+                    lss_sub: IdentityField::VendorId,
+                    lss_next: IdentityField::VendorId
+                }
+            )
+            .response,
+            None
+        );
+    }
+
+    #[test]
+    fn fastscan_wrong_sub_is_silent() {
+        let mut s = LssSlave::new(&ID, None);
+        let fs = |id, bit, sub: u8, next: u8| LssRequest::Fastscan {
+            id_number: id,
+            bit_check: bit,
+            lss_sub: IdentityField::from_index(sub).unwrap(),
+            lss_next: IdentityField::from_index(next).unwrap(),
+        };
+        // LSSPos is 0: a product-code step is ignored.
+        assert_eq!(req(&mut s, fs(0x42, 0, 1, 2)).response, None);
+        assert_eq!(req(&mut s, fs(0x123, 0, 0, 1)).response, Some(LssResponse::IdentifySlave));
+        assert_eq!(req(&mut s, fs(0x42, 0, 1, 2)).response, Some(LssResponse::IdentifySlave));
+        assert_eq!(s.mode(), LssMode::Waiting);
+    }
+}

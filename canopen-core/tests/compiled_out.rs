@@ -1,0 +1,104 @@
+//! A node built without an optional service (canopen-core's Cargo features, `lib.rs`): the service is
+//! silent on the bus and its objects do not exist (SDO abort 0602 0000h, OD-16; not in the EDS). Each test
+//! runs only in a build without its feature (`cargo test -p canopen-core --no-default-features`, or a
+//! feature left out); in the default build every service is in and these tests are compiled out.
+#![allow(dead_code, unused_imports)]
+
+use canopen_core::node::{NoApplication, Node};
+use canopen_core::profile::eds::{write_eds, EdsInfo};
+use canopen_core::profile::{CommProfile, NodeConfig};
+use canopen_core::{CanFrame, Event, Instant, NodeId, Sizes};
+
+type N = Node<NoApplication>;
+
+/// Node 5, booted, guarding and TIME consumption configured in its defaults, queues drained.
+fn booted() -> N {
+    let cfg = NodeConfig { guard_time_ms: 100, life_time_factor: 3, ..NodeConfig::DEFAULT };
+    let mut node: N = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
+    node.handle_timeout(Instant::ZERO);
+    drain(&mut node);
+    node
+}
+
+fn drain(node: &mut N) -> (Vec<CanFrame>, Vec<Event>) {
+    (core::iter::from_fn(|| node.poll_transmit()).collect(), core::iter::from_fn(|| node.poll_event()).collect())
+}
+
+/// The node's answer to one SDO request on 605h.
+fn sdo(node: &mut N, req: [u8; 8]) -> Vec<CanFrame> {
+    node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x605, &req).unwrap());
+    drain(node).0
+}
+
+fn abort(index: u16, code: u32) -> CanFrame {
+    let [i0, i1] = index.to_le_bytes();
+    let [c0, c1, c2, c3] = code.to_le_bytes();
+    CanFrame::new(0x585, &[0x80, i0, i1, 0, c0, c1, c2, c3]).unwrap()
+}
+
+fn eds() -> String {
+    let od: CommProfile<Sizes> = CommProfile::for_node(NodeConfig::DEFAULT, 5);
+    let mut s = String::new();
+    write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
+    s
+}
+
+/// GUARD-05 without `guarding`: a guarding RTR on 705h gets no reply, 100Ch/100Dh do not exist (OD-16)
+/// and are not in the EDS.
+#[test]
+#[cfg(not(feature = "guarding"))]
+fn without_guarding() {
+    let mut node = booted();
+    node.handle_frame(Instant::from_millis(1), &CanFrame::new_rtr(0x705, 1).unwrap());
+    assert_eq!(drain(&mut node), (vec![], vec![]));
+    for index in [0x100C, 0x100D] {
+        let [i0, i1] = u16::to_le_bytes(index);
+        assert_eq!(sdo(&mut node, [0x40, i0, i1, 0, 0, 0, 0, 0]), [abort(index, 0x0602_0000)]);
+        assert_eq!(sdo(&mut node, [0x2F, i0, i1, 0, 1, 0, 0, 0]), [abort(index, 0x0602_0000)]);
+    }
+    // No life-guarding time-out either, however long the master stays away.
+    node.handle_timeout(Instant::from_millis(10_000));
+    assert!(drain(&mut node).1.is_empty());
+    let eds = eds();
+    assert!(!eds.contains("[100C]") && !eds.contains("[100D]") && !eds.contains("=0x100C"), "{eds}");
+}
+
+/// TIME-04 without `time`: a TIME frame on 100h is no event, 1012h does not exist and is not in the EDS.
+#[test]
+#[cfg(not(feature = "time"))]
+fn without_time() {
+    let mut node = booted();
+    node.enter_state(canopen_core::NmtState::Operational);
+    drain(&mut node);
+    node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x100, &[0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]).unwrap());
+    assert_eq!(drain(&mut node), (vec![], vec![]));
+    assert_eq!(sdo(&mut node, [0x40, 0x12, 0x10, 0, 0, 0, 0, 0]), [abort(0x1012, 0x0602_0000)]);
+    assert_eq!(sdo(&mut node, [0x23, 0x12, 0x10, 0, 0, 1, 0, 0x80]), [abort(0x1012, 0x0602_0000)]);
+    let eds = eds();
+    assert!(!eds.contains("[1012]") && !eds.contains("=0x1012"), "{eds}");
+}
+
+/// CiA 305 without `lss`: requests on 7E5h get no answer, the node keeps its node-ID.
+#[test]
+#[cfg(not(feature = "lss"))]
+fn without_lss() {
+    let mut node = booted();
+    for req in [[0x04, 1, 0, 0, 0, 0, 0, 0], [0x11, 0x22, 0, 0, 0, 0, 0, 0], [0x5E, 0, 0, 0, 0, 0, 0, 0]] {
+        node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x7E5, &req).unwrap());
+    }
+    assert_eq!(drain(&mut node), (vec![], vec![]));
+    assert_eq!(node.node_id().get(), 5);
+    assert!(!node.rx_filters().iter().any(|f| f.id == 0x7E5));
+}
+
+/// SDO-09 without `sdo-block`: block download and upload initiate are refused with 0504 0001h for their
+/// object, and the server serves the next request.
+#[test]
+#[cfg(not(feature = "sdo-block"))]
+fn without_block_transfer() {
+    let mut node = booted();
+    assert_eq!(sdo(&mut node, [0xC6, 0x17, 0x10, 0, 2, 0, 0, 0]), [abort(0x1017, 0x0504_0001)]);
+    assert_eq!(sdo(&mut node, [0xA4, 0x00, 0x10, 0, 0x7F, 0, 0, 0]), [abort(0x1000, 0x0504_0001)]);
+    let reply = sdo(&mut node, [0x40, 0x17, 0x10, 0, 0, 0, 0, 0]);
+    assert_eq!(reply, [CanFrame::new(0x585, &[0x4B, 0x17, 0x10, 0, 0, 0, 0, 0]).unwrap()]);
+}
