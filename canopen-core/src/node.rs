@@ -456,6 +456,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return; // CiA 305: no node-ID, LSS only
         }
         let id = frame.cob_id();
+        if Some(id) == self.sdo.rx_cob_id() {
+            // First: the SDO CAN-ID is restricted (COB-13), no other service may use it, and SDO is the
+            // per-frame-heaviest service.
+            return self.handle_sdo(now, frame);
+        }
         if id == self.sync.can_id() && id != 0 {
             return self.handle_sync(now, frame);
         }
@@ -478,7 +483,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             FunctionCode::NmtErrorControl if node == self.node_id.get() => self.handle_guarding(now, frame),
             FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
             FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),
-            _ if Some(id) == self.sdo.rx_cob_id() => self.handle_sdo(now, frame),
             _ => {}
         }
     }
@@ -517,8 +521,15 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Moves block-upload segments from the SDO server into the transmit queue while it has room, so a
     /// sub-block of up to 127 frames never needs a queue of that size. [`TX_RESERVE`] slots stay free for
     /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
-    #[inline(never)]
+    #[inline]
     fn pump_sdo(&mut self) {
+        if self.sdo.wants_transmit() {
+            self.pump_sdo_segments();
+        }
+    }
+
+    #[inline(never)]
+    fn pump_sdo_segments(&mut self) {
         while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
             let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {

@@ -109,7 +109,7 @@
 use crate::cob::{CobIdEntry, FunctionCode};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::time::{Duration, Instant};
-use crate::wire::sdo::{abort_frame, ClientRequest, Multiplexer, MAX_BLKSIZE};
+use crate::wire::sdo::{abort_frame, Multiplexer, MAX_BLKSIZE};
 use crate::NodeId;
 
 mod block_download;
@@ -174,7 +174,8 @@ impl SdoServerParams {
     /// assert!(!SdoServerParams::DISABLED.is_valid());
     /// ```
     pub const fn is_valid(&self) -> bool {
-        !self.cob_rx.bit31() && !self.cob_tx.bit31() && !self.cob_rx.is_extended() && !self.cob_tx.is_extended()
+        // One test for all four bits: it runs for every frame received and every response sent.
+        (self.cob_rx.raw() | self.cob_tx.raw()) & (CobIdEntry::BIT31 | CobIdEntry::FRAME) == 0
     }
 
     /// The CAN-ID the server receives on, if valid.
@@ -318,23 +319,30 @@ enum Sink {
 }
 
 impl Sink {
-    /// Writes `bytes` at `offset`: into the scratch (0607 0012h past its 8 bytes) or as a chunk to the OD.
+    /// Writes the first `len` (≤ 7) of a segment's data bytes at `offset`: into the scratch (0607 0012h past
+    /// its 8 bytes) or as a chunk to the OD.
     #[inline]
     fn write<O: ObjectDictionary + ?Sized>(
         &mut self,
         mux: Multiplexer,
         offset: u32,
-        bytes: &[u8],
+        data: &[u8; 7],
+        len: usize,
         od: &mut O,
     ) -> Result<(), AbortCode> {
+        let len = len.min(7);
         match self {
             Sink::Scratch(buf) => {
-                let start = offset as usize;
-                let dst = buf.get_mut(start..start + bytes.len()).ok_or(AbortCode::LengthTooHigh)?;
-                dst.copy_from_slice(bytes);
+                if offset as usize + len > 8 {
+                    return Err(AbortCode::LengthTooHigh);
+                }
+                // Shifts and a mask, not a copy of `len` bytes (a memcpy call per segment).
+                let [a, b, c, d, e, f, g] = *data;
+                let bytes = u64::from_le_bytes([a, b, c, d, e, f, g, 0]) & ((1u64 << (8 * len)) - 1);
+                *buf = (u64::from_le_bytes(*buf) | bytes.checked_shl(8 * offset).unwrap_or(0)).to_le_bytes();
                 Ok(())
             }
-            Sink::Stream => od.write_chunk(mux.index, mux.sub, offset as usize, bytes),
+            Sink::Stream => od.write_chunk(mux.index, mux.sub, offset as usize, &data[..len]),
         }
     }
 
@@ -666,68 +674,73 @@ impl SdoServer {
         }
     }
 
+    /// One frame, dispatched on its command byte straight to the handler (no request enum in between: the
+    /// handlers read the fields they need from the frame).
     fn dispatch<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
+        let command = b[0];
         // SDO-32/SDO-33: the abort frame is 80h in every state, and is never answered.
-        if b[0] == 0x80 {
-            if self.is_idle() {
-                return Response::NONE;
-            }
-            self.reset(od);
-            let code = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
-            return Response {
-                frame: None,
-                event: Some(SdoEvent::AbortReceived { index: u16::from_le_bytes([b[1], b[2]]), sub: b[3], code }),
-            };
+        if command == 0x80 {
+            return self.abort_received(Multiplexer::of_frame(b), b, od);
         }
-        if let State::BlockDownload(bd) = &mut self.state {
+        if let State::BlockDownload(bd) = &self.state {
             if !bd.ending {
                 return self.block_segment(b, od);
             }
-            if is_late_segment(b[0], self.block_size) {
+            if is_late_segment(command, self.block_size) {
                 return Response::NONE;
             }
         }
-        let req = match ClientRequest::parse(b) {
-            Ok(r) => r,
-            Err(_) => {
-                let mux = self.mux().unwrap_or(Multiplexer::new(u16::from_le_bytes([b[1], b[2]]), b[3]));
+        let mux = Multiplexer::of_frame(b);
+        let data = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        // ccs = bits 7–5 (SDO-08); for ccs 5 and 6 the sub-command is in the low bits.
+        let initiated = match command >> 5 {
+            0 => return self.download_segment(b, od),
+            1 => {
+                self.reset(od); // SDO-29: an initiate abandons the transfer under way
+                self.initiate_download(mux, command, data, od)
+            }
+            2 => {
+                self.reset(od);
+                self.initiate_upload(mux, od)
+            }
+            3 => return self.upload_segment(command & 0x10 != 0, od),
+            4 => {
+                // ccs 4 with non-zero reserved bits: still an abort (SDO-02), never answered; it names the
+                // transfer's object.
+                let mux = self.mux().unwrap_or_default();
+                return self.abort_received(mux, b, od);
+            }
+            5 => match command & 0x03 {
+                0 => {
+                    self.reset(od);
+                    self.block_upload_initiate(mux, command & 0x04 != 0, b[4], b[5], od)
+                }
+                1 => return self.block_upload_end(od),
+                2 => return self.block_upload_ack(b[1], b[2], od),
+                _ => return self.block_upload_start(od),
+            },
+            6 if command & 0x01 == 0 => {
+                self.reset(od);
+                let size = (command & 0x02 != 0).then_some(data);
+                self.block_download_initiate(mux, command & 0x04 != 0, size, od)
+            }
+            6 => return self.block_download_end((command >> 2) & 0x07, u16::from_le_bytes([b[1], b[2]]), od),
+            _ => {
+                let mux = self.mux().unwrap_or(mux);
                 return self.abort(od, mux, AbortCode::InvalidCommandSpecifier);
             }
         };
-        match req {
-            ClientRequest::Abort { .. } => {
-                // ccs 4 with non-zero reserved bits: still an abort (SDO-02), never answered.
-                if self.is_idle() {
-                    return Response::NONE;
-                }
-                let mux = self.mux().unwrap_or_default();
-                self.reset(od);
-                let code = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
-                Response { frame: None, event: Some(SdoEvent::AbortReceived { index: mux.index, sub: mux.sub, code }) }
-            }
-            ClientRequest::InitiateDownload { mux, data } => {
-                self.reset(od); // SDO-29
-                self.initiate_download(mux, data, od).unwrap_or_else(|code| self.abort(od, mux, code))
-            }
-            ClientRequest::InitiateUpload { mux } => {
-                self.reset(od);
-                self.initiate_upload(mux, od).unwrap_or_else(|code| self.abort(od, mux, code))
-            }
-            ClientRequest::BlockDownloadInitiate { mux, crc, size } => {
-                self.reset(od);
-                self.block_download_initiate(mux, crc, size, od).unwrap_or_else(|code| self.abort(od, mux, code))
-            }
-            ClientRequest::BlockUploadInitiate { mux, crc, blksize, pst } => {
-                self.reset(od);
-                self.block_upload_initiate(mux, crc, blksize, pst, od).unwrap_or_else(|code| self.abort(od, mux, code))
-            }
-            ClientRequest::DownloadSegment(seg) => self.download_segment(seg, od),
-            ClientRequest::UploadSegment { toggle } => self.upload_segment(toggle, od),
-            ClientRequest::BlockDownloadEnd { unused, crc } => self.block_download_end(unused, crc, od),
-            ClientRequest::BlockUploadStart => self.block_upload_start(od),
-            ClientRequest::BlockUploadAck { ackseq, blksize } => self.block_upload_ack(ackseq, blksize, od),
-            ClientRequest::BlockUploadEnd => self.block_upload_end(od),
+        initiated.unwrap_or_else(|code| self.abort(od, mux, code))
+    }
+
+    /// An abort from the client (SDO-33): the transfer ends, nothing is sent; ignored when idle.
+    fn abort_received<O: ObjectDictionary + ?Sized>(&mut self, mux: Multiplexer, b: &[u8; 8], od: &mut O) -> Response {
+        if self.is_idle() {
+            return Response::NONE;
         }
+        self.reset(od);
+        let code = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+        Response { frame: None, event: Some(SdoEvent::AbortReceived { index: mux.index, sub: mux.sub, code }) }
     }
 
     /// A well-formed frame that is not valid in the current state: 0504 0001h (SDO-09).

@@ -7,7 +7,7 @@ use super::{Response, SdoEvent, SdoServer, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::{last_segment_len, Crc16};
 use crate::time::Instant;
-use crate::wire::sdo::{BlockSegment, Multiplexer, ServerResponse, MAX_BLKSIZE};
+use crate::wire::sdo::{frame, Multiplexer, MAX_BLKSIZE};
 
 /// Where a block upload is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -69,9 +69,11 @@ impl SdoServer {
         }
         let off = b.base.saturating_add(u32::from(b.sent).saturating_mul(7));
         let want = b.size.saturating_sub(off).min(7) as usize;
-        let mut seg = BlockSegment { last: false, seqno: b.sent.saturating_add(1), data: [0; 7] };
+        let seqno = b.sent.saturating_add(1);
         let mux = b.mux;
-        let n = match od.read(mux.index, mux.sub, off as usize, &mut seg.data[..want]) {
+        // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
+        let mut segment = [0u8; 8];
+        let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
             Ok(n) if n == want => n as u32,
             Ok(_) => return Some(self.abort(od, mux, AbortCode::LengthMismatch)),
             Err(code) => return Some(self.abort(od, mux, code)),
@@ -79,17 +81,19 @@ impl SdoServer {
         let end = off + n;
         if end > b.crc_len && b.crc_on {
             let skip = b.crc_len.saturating_sub(off) as usize;
-            b.crc.update(seg.data.get(skip..n as usize).unwrap_or(&[]));
+            b.crc.update(segment.get(1 + skip..1 + n as usize).unwrap_or(&[]));
         }
         b.crc_len = b.crc_len.max(end);
-        seg.last = end >= b.size;
-        b.sent = seg.seqno;
-        if seg.last || b.sent >= b.blksize {
+        let last = end >= b.size;
+        b.sent = seqno;
+        if last || b.sent >= b.blksize {
             b.phase = UploadPhase::WaitAck;
         }
+        segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
         self.touch(now);
-        Some(Response::send(seg.emit()))
+        Some(Response::send(segment))
     }
+
     pub(super) fn block_upload_initiate<O: ObjectDictionary + ?Sized>(
         &mut self,
         mux: Multiplexer,
@@ -116,7 +120,8 @@ impl SdoServer {
             sent: 0,
             phase: UploadPhase::Start,
         });
-        Ok(Response::send(ServerResponse::BlockUploadInitiate { mux, crc, size: Some(size) }.emit()))
+        // scs 6, ss 0, sc = cc, s = 1: the size in bytes 4–7 (SDO-44)
+        Ok(Response::send(frame(0xC2 | (u8::from(crc) << 2), mux.bits(), size)))
     }
 
     pub(super) fn block_upload_ack<O: ObjectDictionary + ?Sized>(
@@ -143,7 +148,8 @@ impl SdoServer {
             bu.phase = UploadPhase::WaitEnd;
             let crc = if bu.crc_on { bu.crc.get() } else { 0 };
             let unused = 7 - last_segment_len(bu.size);
-            return Response::send(ServerResponse::BlockUploadEnd { unused, crc }.emit());
+            // scs 6, ss 1: n unused bytes of the last segment, the CRC in bytes 1–2 (SDO-47)
+            return Response::send(frame(0xC1 | (unused << 2), u32::from(crc), 0));
         }
         bu.phase = UploadPhase::Sending;
         Response::NONE
