@@ -666,6 +666,9 @@ impl SdoServer {
         self.deadline = None;
     }
 
+    /// Ends the transfer with an abort frame (SDO-32) and [`SdoEvent::Aborted`]. Out of line: it is reached
+    /// from a dozen error paths, none of them hot.
+    #[inline(never)]
     fn abort<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O, mux: Multiplexer, code: AbortCode) -> Response {
         self.reset(od);
         Response {
