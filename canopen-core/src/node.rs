@@ -505,7 +505,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         match response.event {
             Some(SdoEvent::Written { index, sub }) => {
-                self.comm_written(now, index, sub);
+                if index < 0x2000 {
+                    self.comm_written(now, index, sub); // only 1000h–1FFFh have side effects here
+                }
                 self.push_event(Event::ObjectWritten { index, sub });
             }
             Some(SdoEvent::Aborted { index, sub, code }) => {
