@@ -9,8 +9,10 @@
 //!
 //! One transfer state (`State`) and one dispatcher here, one file per protocol beside it:
 //!
-//! - `server.rs` (this file): parameters (SDO-53..SDO-55), the frame dispatch, aborts sent and received
-//!   (SDO-09, SDO-29, SDO-32, SDO-33, ABORT-01..ABORT-11), the time-out (SDO-31), [`SdoServers`] (SDO-57).
+//! - `server.rs` (this file): parameters (SDO-53..SDO-55), the frame dispatch (on the command byte, SDO-08:
+//!   no request enum in between; responses are built with [`crate::wire::sdo::frame`]), aborts sent and
+//!   received (SDO-09, SDO-29, SDO-32, SDO-33, ABORT-01..ABORT-11), the time-out (SDO-31), [`SdoServers`]
+//!   (SDO-57).
 //! - `server/segmented.rs`: expedited and segmented download and upload (SDO-10..SDO-30).
 //! - `server/block_download.rs`: block download (SDO-35, SDO-36, SDO-38..SDO-42, SDO-47..SDO-51).
 //! - `server/block_upload.rs`: block upload with the protocol switch (SDO-37, SDO-43..SDO-51).
