@@ -499,24 +499,34 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.pump_sdo();
     }
 
+    /// Queues the server's frame on its tx COB-ID (SDO-02: 8 bytes) and hands its event on. Inline: most
+    /// frames have no event, and then this is the push alone.
+    #[inline]
     fn sdo_response(&mut self, now: Instant, response: Response) {
         if let (Some(data), Some(cob)) = (response.frame, self.sdo.tx_cob_id()) {
             self.transmit(CanFrame::from_parts(cob, data, 8));
         }
-        match response.event {
-            Some(SdoEvent::Written { index, sub }) => {
+        if let Some(event) = response.event {
+            self.sdo_event(now, event);
+        }
+    }
+
+    #[inline(never)]
+    fn sdo_event(&mut self, now: Instant, event: SdoEvent) {
+        match event {
+            SdoEvent::Written { index, sub } => {
                 if index < 0x2000 {
                     self.comm_written(now, index, sub); // only 1000h–1FFFh have side effects here
                 }
                 self.push_event(Event::ObjectWritten { index, sub });
             }
-            Some(SdoEvent::Aborted { index, sub, code }) => {
+            SdoEvent::Aborted { index, sub, code } => {
                 self.push_event(Event::SdoAborted { index, sub, code: code.code(), by_client: false })
             }
-            Some(SdoEvent::AbortReceived { index, sub, code }) => {
+            SdoEvent::AbortReceived { index, sub, code } => {
                 self.push_event(Event::SdoAborted { index, sub, code, by_client: true })
             }
-            Some(SdoEvent::Uploaded { .. }) | None => {}
+            SdoEvent::Uploaded { .. } => {}
         }
     }
 
