@@ -335,13 +335,10 @@ impl Sink {
         let len = len.min(7);
         match self {
             Sink::Scratch(buf) => {
-                if offset as usize + len > 8 {
-                    return Err(AbortCode::LengthTooHigh);
-                }
-                // Shifts and a mask, not a copy of `len` bytes (a memcpy call per segment).
-                let [a, b, c, d, e, f, g] = *data;
-                let bytes = u64::from_le_bytes([a, b, c, d, e, f, g, 0]) & ((1u64 << (8 * len)) - 1);
-                *buf = (u64::from_le_bytes(*buf) | bytes.checked_shl(8 * offset).unwrap_or(0)).to_le_bytes();
+                // At most two segments reach the scratch: a plain copy (64-bit shifts cost 300 B on Cortex-M).
+                let start = offset as usize;
+                let dst = buf.get_mut(start..start + len).ok_or(AbortCode::LengthTooHigh)?;
+                dst.copy_from_slice(&data[..len]);
                 Ok(())
             }
             Sink::Stream => od.write_chunk(mux.index, mux.sub, offset as usize, &data[..len]),
