@@ -364,7 +364,6 @@ enum State {
     Idle,
     /// Segmented download (`segmented.rs`).
     Download {
-        mux: Multiplexer,
         toggle: bool,
         offset: u32,
         size: Option<u32>,
@@ -372,7 +371,6 @@ enum State {
     },
     /// Segmented upload (`segmented.rs`).
     Upload {
-        mux: Multiplexer,
         toggle: bool,
         offset: u32,
         size: u32,
@@ -398,6 +396,8 @@ pub struct SdoServer {
     timeout: Duration,
     block_size: u8,
     deadline: Option<Instant>,
+    /// The object of the transfer under way (meaningless while `state` is idle).
+    mux: Multiplexer,
     state: State,
 }
 
@@ -422,6 +422,7 @@ impl SdoServer {
             timeout: super::DEFAULT_TIMEOUT,
             block_size: MAX_BLKSIZE,
             deadline: None,
+            mux: Multiplexer::new(0, 0),
             state: State::Idle,
         }
     }
@@ -646,19 +647,19 @@ impl SdoServer {
     }
 
     fn mux(&self) -> Option<Multiplexer> {
-        match &self.state {
+        match self.state {
             State::Idle => None,
-            State::Download { mux, .. } | State::Upload { mux, .. } => Some(*mux),
-            State::BlockDownload(b) => Some(b.mux),
-            State::BlockUpload(b) => Some(b.mux),
+            _ => Some(self.mux),
         }
     }
 
     /// Drops the current transfer; tells the OD when a streamed write is abandoned.
     fn reset<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) {
         match self.state {
-            State::Download { mux, sink: Sink::Stream, .. }
-            | State::BlockDownload(BlockDownload { mux, sink: Sink::Stream, .. }) => od.abort_write(mux.index, mux.sub),
+            State::Download { sink: Sink::Stream, .. }
+            | State::BlockDownload(BlockDownload { sink: Sink::Stream, .. }) => {
+                od.abort_write(self.mux.index, self.mux.sub)
+            }
             _ => {}
         }
         self.state = State::Idle;

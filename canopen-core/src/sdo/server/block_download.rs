@@ -20,7 +20,6 @@ use crate::wire::sdo::{frame, Multiplexer};
 /// The state of a block download (the shared [`State`]'s `BlockDownload`).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct BlockDownload {
-    pub(super) mux: Multiplexer,
     pub(super) sink: Sink,
     /// Bytes written to the sink so far (everything before the held segment).
     offset: u32,
@@ -52,8 +51,8 @@ impl SdoServer {
             return Err(AbortCode::WriteOfReadOnly);
         }
         let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
+        self.mux = mux;
         self.state = State::BlockDownload(BlockDownload {
-            mux,
             sink,
             offset: 0,
             size,
@@ -70,9 +69,8 @@ impl SdoServer {
     }
 
     pub(super) fn block_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
-        let blksize = self.block_size;
+        let (blksize, mux) = (self.block_size, self.mux);
         let State::BlockDownload(bd) = &mut self.state else { return Response::NONE };
-        let mux = bd.mux;
         let last = b[0] & 0x80 != 0;
         let seqno = b[0] & 0x7F;
         if seqno == 0 || seqno > blksize {
@@ -95,7 +93,7 @@ impl SdoServer {
             return Response::NONE;
         }
         if bd.held_seqno != 0 {
-            if let Err(code) = bd.flush_held(7, od) {
+            if let Err(code) = bd.flush_held(mux, 7, od) {
                 return self.abort(od, mux, code);
             }
         }
@@ -148,12 +146,12 @@ impl SdoServer {
         crc: u16,
         od: &mut O,
     ) -> Response {
+        let mux = self.mux;
         let State::BlockDownload(bd) = &mut self.state else {
             return self.invalid(od);
         };
-        let mux = bd.mux;
         let r = (|| {
-            bd.flush_held(usize::from(7 - unused.min(7)), od)?;
+            bd.flush_held(mux, usize::from(7 - unused.min(7)), od)?;
             if bd.crc_on && bd.crc.get() != crc {
                 return Err(AbortCode::CrcError); // SDO-50
             }
@@ -196,13 +194,18 @@ pub(super) const fn is_late_segment(b0: u8, blksize: u8) -> bool {
 impl BlockDownload {
     /// Writes the first `len` bytes of the held segment (in order) to the sink and the CRC.
     #[inline]
-    fn flush_held<O: ObjectDictionary + ?Sized>(&mut self, len: usize, od: &mut O) -> Result<(), AbortCode> {
+    fn flush_held<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        mux: Multiplexer,
+        len: usize,
+        od: &mut O,
+    ) -> Result<(), AbortCode> {
         let len = len.min(7);
         let end = self.offset.saturating_add(len as u32);
         if self.size.is_some_and(|s| end > s) || end == u32::MAX {
             return Err(AbortCode::LengthTooHigh);
         }
-        self.sink.write(self.mux, self.offset, &self.held, len, od)?;
+        self.sink.write(mux, self.offset, &self.held, len, od)?;
         if self.crc_on {
             self.crc.update(&self.held[..len]);
         }

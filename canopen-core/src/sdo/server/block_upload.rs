@@ -21,7 +21,6 @@ pub(super) enum UploadPhase {
 /// The state of a block upload (the shared [`State`]'s `BlockUpload`).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct BlockUpload {
-    pub(super) mux: Multiplexer,
     size: u32,
     /// Offset of the first byte of the current sub-block.
     base: u32,
@@ -63,6 +62,7 @@ impl SdoServer {
     /// assert!(s.poll_transmit(canopen_core::Instant::ZERO, &mut Empty).is_none());
     /// ```
     pub fn poll_transmit<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Option<Response> {
+        let mux = self.mux;
         let State::BlockUpload(b) = &mut self.state else { return None };
         if b.phase != UploadPhase::Sending {
             return None;
@@ -70,7 +70,6 @@ impl SdoServer {
         let off = b.base.saturating_add(u32::from(b.sent).saturating_mul(7));
         let want = b.size.saturating_sub(off).min(7) as usize;
         let seqno = b.sent.saturating_add(1);
-        let mux = b.mux;
         // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
         let mut segment = [0u8; 8];
         let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
@@ -109,8 +108,8 @@ impl SdoServer {
         if pst > 0 && size <= u32::from(pst) {
             return self.initiate_upload(mux, od); // SDO-43: protocol switch
         }
+        self.mux = mux;
         self.state = State::BlockUpload(BlockUpload {
-            mux,
             size,
             base: 0,
             crc_len: 0,
@@ -130,11 +129,11 @@ impl SdoServer {
         blksize: u8,
         od: &mut O,
     ) -> Response {
+        let mux = self.mux;
         let State::BlockUpload(bu) = &mut self.state else { return self.invalid(od) };
         if !matches!(bu.phase, UploadPhase::Sending | UploadPhase::WaitAck) {
             return self.invalid(od);
         }
-        let mux = bu.mux;
         if ackseq > bu.sent {
             return self.abort(od, mux, AbortCode::InvalidSequenceNumber);
         }
@@ -171,7 +170,7 @@ impl SdoServer {
         match self.state {
             State::BlockUpload(bu) if bu.phase == UploadPhase::WaitEnd => {
                 self.state = State::Idle;
-                Response { frame: None, event: Some(SdoEvent::Uploaded { index: bu.mux.index, sub: bu.mux.sub }) }
+                Response { frame: None, event: Some(SdoEvent::Uploaded { index: self.mux.index, sub: self.mux.sub }) }
             }
             _ => self.invalid(od),
         }

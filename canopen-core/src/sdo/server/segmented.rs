@@ -42,7 +42,8 @@ impl SdoServer {
             return Err(AbortCode::WriteOfReadOnly);
         }
         let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
-        self.state = State::Download { mux, toggle: false, offset: 0, size, sink };
+        self.mux = mux;
+        self.state = State::Download { toggle: false, offset: 0, size, sink };
         Ok(Response::send(response))
     }
 
@@ -88,16 +89,17 @@ impl SdoServer {
             let data = u32::from_le_bytes(d) & (u32::MAX >> (8 * (4 - n as u32)));
             return Ok(Response::send(frame(0x43 | ((4 - n as u8) << 2), mux.bits(), data)));
         }
-        self.state = State::Upload { mux, toggle: false, offset: 0, size };
+        self.mux = mux;
+        self.state = State::Upload { toggle: false, offset: 0, size };
         Ok(Response::send(frame(0x41, mux.bits(), size))) // e = 0, s = 1: the size (SDO-25)
     }
 
     /// Download segment (ccs 0, SDO-19..SDO-22, SDO-30): 000 ‖ t ‖ n ‖ c, bytes 1–7.
     pub(super) fn download_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
-        let State::Download { mux, toggle, offset, size, sink } = &mut self.state else {
+        let mux = self.mux;
+        let State::Download { toggle, offset, size, sink } = &mut self.state else {
             return self.invalid(od);
         };
-        let mux = *mux;
         let [command, data @ ..] = b;
         let t = command & 0x10 != 0;
         let last = command & 0x01 != 0;
@@ -138,10 +140,10 @@ impl SdoServer {
     /// Upload segment request (ccs 3, SDO-26..SDO-28, SDO-30): the next 1..7 bytes, read from the OD straight
     /// into the response frame.
     pub(super) fn upload_segment<O: ObjectDictionary + ?Sized>(&mut self, t: bool, od: &mut O) -> Response {
-        let State::Upload { mux, toggle, offset, size } = &mut self.state else {
+        let mux = self.mux;
+        let State::Upload { toggle, offset, size } = &mut self.state else {
             return self.invalid(od);
         };
-        let mux = *mux;
         if t != *toggle {
             return self.abort(od, mux, AbortCode::ToggleNotAlternated); // SDO-28, SDO-30
         }
