@@ -746,7 +746,9 @@ impl SdoServer {
         Response { frame: None, event: Some(SdoEvent::AbortReceived { index: mux.index, sub: mux.sub, code }) }
     }
 
-    /// A well-formed frame that is not valid in the current state: 0504 0001h (SDO-09).
+    /// A well-formed frame that is not valid in the current state: 0504 0001h (SDO-09). Out of line, as
+    /// [`abort`](Self::abort).
+    #[inline(never)]
     fn invalid<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) -> Response {
         // frames in the wrong state: the transfer's multiplexer, or 0000h:00 when idle
         let mux = self.mux().unwrap_or_default();
