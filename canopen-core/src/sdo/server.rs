@@ -585,6 +585,7 @@ impl SdoServer {
     /// # use canopen_core::sdo::{SdoServer, SdoServerParams};
     /// assert_eq!(SdoServer::new(SdoServerParams::DISABLED).poll_timeout(), None);
     /// ```
+    #[inline(never)] // 64-bit arithmetic for the block download stall (~130 B on Cortex-M), used in 3 places
     pub const fn poll_timeout(&self) -> Option<Instant> {
         match self.deadline {
             Some(d) => Some(self.block_download_deadline(d)),
