@@ -530,6 +530,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return; // CiA 305: no node-ID, LSS only
         }
         let id = frame.cob_id();
+        if Some(id) == self.sdo.rx_cob_id() {
+            // First: the SDO CAN-ID is restricted (COB-13), no other service may use it, and SDO is the
+            // per-frame-heaviest service.
+            return self.handle_sdo(now, frame);
+        }
         if id == self.sync.can_id() && id != 0 {
             return self.handle_sync(now, frame);
         }
@@ -556,7 +561,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             FunctionCode::NmtErrorControl if node == self.node_id.get() => {}
             FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
             FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),
-            _ if Some(id) == self.sdo.rx_cob_id() => self.handle_sdo(now, frame),
             _ => {}
         }
     }
@@ -574,22 +578,34 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.pump_sdo();
     }
 
+    /// Queues the server's frame on its tx COB-ID (SDO-02: 8 bytes) and hands its event on. Inline: most
+    /// frames have no event, and then this is the push alone.
+    #[inline]
     fn sdo_response(&mut self, now: Instant, response: Response) {
         if let (Some(data), Some(cob)) = (response.frame, self.sdo.tx_cob_id()) {
             self.transmit(CanFrame::from_parts(cob, data, 8));
         }
-        match response.event {
-            Some(SdoEvent::Written { index, sub }) => {
-                self.comm_written(now, index, sub);
+        if let Some(event) = response.event {
+            self.sdo_event(now, event);
+        }
+    }
+
+    #[inline(never)]
+    fn sdo_event(&mut self, now: Instant, event: SdoEvent) {
+        match event {
+            SdoEvent::Written { index, sub } => {
+                if index < 0x2000 {
+                    self.comm_written(now, index, sub); // only 1000h–1FFFh have side effects here
+                }
                 self.push_event(Event::ObjectWritten { index, sub });
             }
-            Some(SdoEvent::Aborted { index, sub, code }) => {
+            SdoEvent::Aborted { index, sub, code } => {
                 self.push_event(Event::SdoAborted { index, sub, code: code.code(), by_client: false })
             }
-            Some(SdoEvent::AbortReceived { index, sub, code }) => {
+            SdoEvent::AbortReceived { index, sub, code } => {
                 self.push_event(Event::SdoAborted { index, sub, code, by_client: true })
             }
-            Some(SdoEvent::Uploaded { .. }) | None => {}
+            SdoEvent::Uploaded { .. } => {}
         }
     }
 
@@ -597,8 +613,16 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// sub-block of up to 127 frames never needs a queue of that size. [`TX_RESERVE`] slots stay free for
     /// the node's own frames (heartbeat, EMCY, PDOs) that fall due while a sub-block is going out.
     #[cfg(feature = "sdo-block")]
-    #[inline(never)]
+    #[inline]
     fn pump_sdo(&mut self) {
+        if self.sdo.wants_transmit() {
+            self.pump_sdo_segments();
+        }
+    }
+
+    #[cfg(feature = "sdo-block")]
+    #[inline(never)]
+    fn pump_sdo_segments(&mut self) {
         while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
             let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {

@@ -15,12 +15,11 @@ use super::{Response, SdoEvent, SdoServer, Sink, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::Crc16;
 use crate::time::Instant;
-use crate::wire::sdo::{Multiplexer, ServerResponse};
+use crate::wire::sdo::{frame, Multiplexer};
 
 /// The state of a block download (the shared [`State`]'s `BlockDownload`).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct BlockDownload {
-    pub(super) mux: Multiplexer,
     pub(super) sink: Sink,
     /// Bytes written to the sink so far (everything before the held segment).
     offset: u32,
@@ -52,8 +51,8 @@ impl SdoServer {
             return Err(AbortCode::WriteOfReadOnly);
         }
         let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
+        self.mux = mux;
         self.state = State::BlockDownload(BlockDownload {
-            mux,
             sink,
             offset: 0,
             size,
@@ -65,14 +64,13 @@ impl SdoServer {
             ending: false,
             acked: 0,
         });
-        // INTEROP: sc = cc
-        Ok(Response::send(ServerResponse::BlockDownloadInitiate { mux, crc, blksize: self.block_size }.emit()))
+        // scs 5, ss 0, sc = cc (INTEROP), blksize in byte 4 (SDO-36)
+        Ok(Response::send(frame(0xA0 | (u8::from(crc) << 2), mux.bits(), u32::from(self.block_size))))
     }
 
     pub(super) fn block_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
-        let blksize = self.block_size;
+        let (blksize, mux) = (self.block_size, self.mux);
         let State::BlockDownload(bd) = &mut self.state else { return Response::NONE };
-        let mux = bd.mux;
         let last = b[0] & 0x80 != 0;
         let seqno = b[0] & 0x7F;
         if seqno == 0 || seqno > blksize {
@@ -90,16 +88,17 @@ impl SdoServer {
                 let ackseq = bd.expected - 1;
                 bd.expected = 1;
                 bd.acked = b[0];
-                return Response::send(ServerResponse::BlockDownloadAck { ackseq, blksize }.emit());
+                return Response::send(ack(ackseq, blksize));
             }
             return Response::NONE;
         }
         if bd.held_seqno != 0 {
-            if let Err(code) = bd.flush_held(7, od) {
+            if let Err(code) = bd.flush_held(mux, 7, od) {
                 return self.abort(od, mux, code);
             }
         }
-        bd.held.copy_from_slice(&b[1..8]);
+        let [_, data @ ..] = b;
+        bd.held = *data;
         bd.held_seqno = seqno;
         bd.expected = seqno + 1;
         bd.acked = 0;
@@ -107,7 +106,7 @@ impl SdoServer {
             bd.expected = 1;
             bd.ending = last;
             bd.acked = b[0];
-            return Response::send(ServerResponse::BlockDownloadAck { ackseq: seqno, blksize }.emit());
+            return Response::send(ack(seqno, blksize));
         }
         Response::NONE
     }
@@ -138,7 +137,7 @@ impl SdoServer {
         let ackseq = bd.expected - 1;
         bd.expected = 1;
         bd.acked = 0;
-        Some(Response::send(ServerResponse::BlockDownloadAck { ackseq, blksize }.emit()))
+        Some(Response::send(ack(ackseq, blksize)))
     }
 
     pub(super) fn block_download_end<O: ObjectDictionary + ?Sized>(
@@ -147,12 +146,12 @@ impl SdoServer {
         crc: u16,
         od: &mut O,
     ) -> Response {
+        let mux = self.mux;
         let State::BlockDownload(bd) = &mut self.state else {
             return self.invalid(od);
         };
-        let mux = bd.mux;
         let r = (|| {
-            bd.flush_held(usize::from(7 - unused.min(7)), od)?;
+            bd.flush_held(mux, usize::from(7 - unused.min(7)), od)?;
             if bd.crc_on && bd.crc.get() != crc {
                 return Err(AbortCode::CrcError); // SDO-50
             }
@@ -168,10 +167,15 @@ impl SdoServer {
         }
         self.state = State::Idle;
         Response {
-            frame: Some(ServerResponse::BlockDownloadEnd.emit()),
+            frame: Some(frame(0xA1, 0, 0)), // scs 5, ss 1 (SDO-41)
             event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
         }
     }
+}
+
+/// The sub-block acknowledge (scs 5, ss 2; SDO-39, SDO-40): ackseq in byte 1, the next blksize in byte 2.
+fn ack(ackseq: u8, blksize: u8) -> [u8; 8] {
+    frame(0xA2, u32::from_le_bytes([ackseq, blksize, 0, 0]), 0)
 }
 
 /// Whether `b0`, received while waiting for "end block download" (SDO-41), is a late segment of this transfer.
@@ -190,15 +194,20 @@ pub(super) const fn is_late_segment(b0: u8, blksize: u8) -> bool {
 impl BlockDownload {
     /// Writes the first `len` bytes of the held segment (in order) to the sink and the CRC.
     #[inline]
-    fn flush_held<O: ObjectDictionary + ?Sized>(&mut self, len: usize, od: &mut O) -> Result<(), AbortCode> {
-        let bytes = self.held.get(..len).unwrap_or(&[]);
-        let end = self.offset.saturating_add(bytes.len() as u32);
+    fn flush_held<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        mux: Multiplexer,
+        len: usize,
+        od: &mut O,
+    ) -> Result<(), AbortCode> {
+        let len = len.min(7);
+        let end = self.offset.saturating_add(len as u32);
         if self.size.is_some_and(|s| end > s) || end == u32::MAX {
             return Err(AbortCode::LengthTooHigh);
         }
-        self.sink.write(self.mux, self.offset, bytes, od)?;
+        self.sink.write(mux, self.offset, &self.held, len, od)?;
         if self.crc_on {
-            self.crc.update(bytes);
+            self.crc.update(&self.held[..len]);
         }
         self.offset = end;
         self.held_seqno = 0;

@@ -7,7 +7,7 @@ use super::{Response, SdoEvent, SdoServer, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::{last_segment_len, Crc16};
 use crate::time::Instant;
-use crate::wire::sdo::{BlockSegment, Multiplexer, ServerResponse, MAX_BLKSIZE};
+use crate::wire::sdo::{frame, Multiplexer, MAX_BLKSIZE};
 
 /// Where a block upload is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,7 +21,6 @@ pub(super) enum UploadPhase {
 /// The state of a block upload (the shared [`State`]'s `BlockUpload`).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct BlockUpload {
-    pub(super) mux: Multiplexer,
     size: u32,
     /// Offset of the first byte of the current sub-block.
     base: u32,
@@ -63,15 +62,17 @@ impl SdoServer {
     /// assert!(s.poll_transmit(canopen_core::Instant::ZERO, &mut Empty).is_none());
     /// ```
     pub fn poll_transmit<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Option<Response> {
+        let mux = self.mux;
         let State::BlockUpload(b) = &mut self.state else { return None };
         if b.phase != UploadPhase::Sending {
             return None;
         }
         let off = b.base.saturating_add(u32::from(b.sent).saturating_mul(7));
         let want = b.size.saturating_sub(off).min(7) as usize;
-        let mut seg = BlockSegment { last: false, seqno: b.sent.saturating_add(1), data: [0; 7] };
-        let mux = b.mux;
-        let n = match od.read(mux.index, mux.sub, off as usize, &mut seg.data[..want]) {
+        let seqno = b.sent.saturating_add(1);
+        // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
+        let mut segment = [0u8; 8];
+        let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
             Ok(n) if n == want => n as u32,
             Ok(_) => return Some(self.abort(od, mux, AbortCode::LengthMismatch)),
             Err(code) => return Some(self.abort(od, mux, code)),
@@ -79,17 +80,19 @@ impl SdoServer {
         let end = off + n;
         if end > b.crc_len && b.crc_on {
             let skip = b.crc_len.saturating_sub(off) as usize;
-            b.crc.update(seg.data.get(skip..n as usize).unwrap_or(&[]));
+            b.crc.update(segment.get(1 + skip..1 + n as usize).unwrap_or(&[]));
         }
         b.crc_len = b.crc_len.max(end);
-        seg.last = end >= b.size;
-        b.sent = seg.seqno;
-        if seg.last || b.sent >= b.blksize {
+        let last = end >= b.size;
+        b.sent = seqno;
+        if last || b.sent >= b.blksize {
             b.phase = UploadPhase::WaitAck;
         }
+        segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
         self.touch(now);
-        Some(Response::send(seg.emit()))
+        Some(Response::send(segment))
     }
+
     pub(super) fn block_upload_initiate<O: ObjectDictionary + ?Sized>(
         &mut self,
         mux: Multiplexer,
@@ -105,8 +108,8 @@ impl SdoServer {
         if pst > 0 && size <= u32::from(pst) {
             return self.initiate_upload(mux, od); // SDO-43: protocol switch
         }
+        self.mux = mux;
         self.state = State::BlockUpload(BlockUpload {
-            mux,
             size,
             base: 0,
             crc_len: 0,
@@ -116,7 +119,8 @@ impl SdoServer {
             sent: 0,
             phase: UploadPhase::Start,
         });
-        Ok(Response::send(ServerResponse::BlockUploadInitiate { mux, crc, size: Some(size) }.emit()))
+        // scs 6, ss 0, sc = cc, s = 1: the size in bytes 4–7 (SDO-44)
+        Ok(Response::send(frame(0xC2 | (u8::from(crc) << 2), mux.bits(), size)))
     }
 
     pub(super) fn block_upload_ack<O: ObjectDictionary + ?Sized>(
@@ -125,11 +129,11 @@ impl SdoServer {
         blksize: u8,
         od: &mut O,
     ) -> Response {
+        let mux = self.mux;
         let State::BlockUpload(bu) = &mut self.state else { return self.invalid(od) };
         if !matches!(bu.phase, UploadPhase::Sending | UploadPhase::WaitAck) {
             return self.invalid(od);
         }
-        let mux = bu.mux;
         if ackseq > bu.sent {
             return self.abort(od, mux, AbortCode::InvalidSequenceNumber);
         }
@@ -143,7 +147,8 @@ impl SdoServer {
             bu.phase = UploadPhase::WaitEnd;
             let crc = if bu.crc_on { bu.crc.get() } else { 0 };
             let unused = 7 - last_segment_len(bu.size);
-            return Response::send(ServerResponse::BlockUploadEnd { unused, crc }.emit());
+            // scs 6, ss 1: n unused bytes of the last segment, the CRC in bytes 1–2 (SDO-47)
+            return Response::send(frame(0xC1 | (unused << 2), u32::from(crc), 0));
         }
         bu.phase = UploadPhase::Sending;
         Response::NONE
@@ -165,7 +170,7 @@ impl SdoServer {
         match self.state {
             State::BlockUpload(bu) if bu.phase == UploadPhase::WaitEnd => {
                 self.state = State::Idle;
-                Response { frame: None, event: Some(SdoEvent::Uploaded { index: bu.mux.index, sub: bu.mux.sub }) }
+                Response { frame: None, event: Some(SdoEvent::Uploaded { index: self.mux.index, sub: self.mux.sub }) }
             }
             _ => self.invalid(od),
         }

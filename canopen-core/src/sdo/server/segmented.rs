@@ -7,36 +7,44 @@
 
 use super::{Response, SdoEvent, SdoServer, Sink, State};
 use crate::od::{AbortCode, ObjectDictionary};
-use crate::wire::sdo::{Expedited, InitiateData, Multiplexer, Segment, ServerResponse};
+use crate::wire::sdo::{frame, Multiplexer};
 
 impl SdoServer {
+    /// Initiate download (ccs 1, SDO-11..SDO-18): `command` is byte 0 (e, s, n), `data` bytes 4–7.
     #[inline]
     pub(super) fn initiate_download<O: ObjectDictionary + ?Sized>(
         &mut self,
         mux: Multiplexer,
-        data: InitiateData,
+        command: u8,
+        data: u32,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        match data {
-            InitiateData::Expedited(e) => {
-                // info, access, length and the write in one dictionary call (one lookup where it is derived).
-                let len = e.size_indicated.then_some(usize::from(e.len));
-                od.write_expedited(mux.index, mux.sub, &e.data, len)?;
-                Ok(Response {
-                    frame: Some(ServerResponse::InitiateDownload { mux }.emit()),
-                    event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
-                })
-            }
-            InitiateData::Segmented { size } => {
-                let info = od.info(mux.index, mux.sub)?;
-                if !info.access.writable() {
-                    return Err(AbortCode::WriteOfReadOnly);
-                }
-                let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
-                self.state = State::Download { mux, toggle: false, offset: 0, size, sink };
-                Ok(Response::send(ServerResponse::InitiateDownload { mux }.emit()))
-            }
+        let size_indicated = command & 0x01 != 0;
+        let response = frame(0x60, mux.bits(), 0); // SDO-17
+        if command & 0x02 != 0 {
+            // Expedited: info, access, length and the write in one dictionary call (one lookup where it is
+            // derived). With s = 1 the bytes past 4 − n are not data and go to the OD as 0 (SDO-12, SDO-13).
+            let (data, len) = if size_indicated {
+                let len = 4 - u32::from((command >> 2) & 0x03);
+                (data & (u32::MAX >> (8 * (4 - len))), Some(len as usize))
+            } else {
+                (data, None)
+            };
+            od.write_expedited(mux.index, mux.sub, &data.to_le_bytes(), len)?;
+            return Ok(Response {
+                frame: Some(response),
+                event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
+            });
         }
+        let size = size_indicated.then_some(data);
+        let info = od.info(mux.index, mux.sub)?;
+        if !info.access.writable() {
+            return Err(AbortCode::WriteOfReadOnly);
+        }
+        let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
+        self.mux = mux;
+        self.state = State::Download { toggle: false, offset: 0, size, sink };
+        Ok(Response::send(response))
     }
 
     pub(super) fn open_sink<O: ObjectDictionary + ?Sized>(
@@ -62,6 +70,8 @@ impl SdoServer {
         }
     }
 
+    /// Initiate upload (ccs 2, SDO-23..SDO-25): expedited when the object has 1..=4 bytes, else segmented
+    /// with the size indicated.
     #[inline]
     pub(super) fn initiate_upload<O: ObjectDictionary + ?Sized>(
         &mut self,
@@ -72,31 +82,38 @@ impl SdoServer {
         let (size, n) = od.read_expedited(mux.index, mux.sub, &mut d)?;
         let size = u32::try_from(size).map_err(|_| AbortCode::OutOfMemory)?;
         if (1..=4).contains(&size) {
-            let e = Expedited::new(d.get(..n).unwrap_or(&[])).ok_or(AbortCode::GeneralError)?;
-            return Ok(Response::send(ServerResponse::InitiateUpload { mux, data: InitiateData::Expedited(e) }.emit()));
+            // e = 1, s = 1, n = 4 − bytes; the bytes past n stay 0 (SDO-24).
+            if !(1..=4).contains(&n) {
+                return Err(AbortCode::GeneralError);
+            }
+            let data = u32::from_le_bytes(d) & (u32::MAX >> (8 * (4 - n as u32)));
+            return Ok(Response::send(frame(0x43 | ((4 - n as u8) << 2), mux.bits(), data)));
         }
-        self.state = State::Upload { mux, toggle: false, offset: 0, size };
-        Ok(Response::send(
-            ServerResponse::InitiateUpload { mux, data: InitiateData::Segmented { size: Some(size) } }.emit(),
-        ))
+        self.mux = mux;
+        self.state = State::Upload { toggle: false, offset: 0, size };
+        Ok(Response::send(frame(0x41, mux.bits(), size))) // e = 0, s = 1: the size (SDO-25)
     }
 
-    pub(super) fn download_segment<O: ObjectDictionary + ?Sized>(&mut self, seg: Segment, od: &mut O) -> Response {
-        let State::Download { mux, toggle, offset, size, sink } = &mut self.state else {
+    /// Download segment (ccs 0, SDO-19..SDO-22, SDO-30): 000 ‖ t ‖ n ‖ c, bytes 1–7.
+    pub(super) fn download_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
+        let mux = self.mux;
+        let State::Download { toggle, offset, size, sink } = &mut self.state else {
             return self.invalid(od);
         };
-        let mux = *mux;
-        if seg.toggle != *toggle {
+        let [command, data @ ..] = b;
+        let t = command & 0x10 != 0;
+        let last = command & 0x01 != 0;
+        if t != *toggle {
             return self.abort(od, mux, AbortCode::ToggleNotAlternated); // SDO-30
         }
-        let bytes = seg.bytes();
-        let end = offset.saturating_add(u32::from(seg.len));
+        let len = 7 - ((command >> 1) & 0x07);
+        let end = offset.saturating_add(u32::from(len));
         let r = (|| {
             if size.is_some_and(|s| end > s) || end == u32::MAX {
                 return Err(AbortCode::LengthTooHigh);
             }
-            sink.write(mux, *offset, bytes, od)?;
-            if seg.last {
+            sink.write(mux, *offset, data, usize::from(len), od)?;
+            if last {
                 if size.is_some_and(|s| end < s) {
                     return Err(AbortCode::LengthTooLow);
                 }
@@ -107,42 +124,48 @@ impl SdoServer {
         if let Err(code) = r {
             return self.abort(od, mux, code);
         }
-        let frame = ServerResponse::DownloadSegment { toggle: seg.toggle }.emit();
-        if seg.last {
+        let response = frame(0x20 | (command & 0x10), 0, 0); // SDO-20: t echoed
+        if last {
             self.state = State::Idle;
-            return Response { frame: Some(frame), event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }) };
+            return Response {
+                frame: Some(response),
+                event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
+            };
         }
         *offset = end;
         *toggle = !*toggle;
-        Response::send(frame)
+        Response::send(response)
     }
 
+    /// Upload segment request (ccs 3, SDO-26..SDO-28, SDO-30): the next 1..7 bytes, read from the OD straight
+    /// into the response frame.
     pub(super) fn upload_segment<O: ObjectDictionary + ?Sized>(&mut self, t: bool, od: &mut O) -> Response {
-        let State::Upload { mux, toggle, offset, size } = &mut self.state else {
+        let mux = self.mux;
+        let State::Upload { toggle, offset, size } = &mut self.state else {
             return self.invalid(od);
         };
-        let mux = *mux;
         if t != *toggle {
             return self.abort(od, mux, AbortCode::ToggleNotAlternated); // SDO-28, SDO-30
         }
         let want = size.saturating_sub(*offset).min(7) as usize;
-        let mut seg = Segment { toggle: t, last: false, len: 0, data: [0; 7] };
-        let n = match od.read(mux.index, mux.sub, *offset as usize, &mut seg.data[..want]) {
-            Ok(n) if n == want => n,
+        let mut response = [0u8; 8];
+        let n = match od.read(mux.index, mux.sub, *offset as usize, &mut response[1..1 + want]) {
+            Ok(n) if n == want => n as u8,
             Ok(_) => return self.abort(od, mux, AbortCode::LengthMismatch),
             Err(code) => return self.abort(od, mux, code),
         };
-        seg.len = n as u8;
-        *offset += n as u32;
-        seg.last = *offset >= *size;
+        *offset += u32::from(n);
+        let last = *offset >= *size;
         *toggle = !*toggle;
-        if seg.last {
+        // scs 0 (SDO-27): 000 ‖ t ‖ n ‖ c
+        response[0] = (u8::from(t) << 4) | ((7 - n) << 1) | u8::from(last);
+        if last {
             self.state = State::Idle;
             return Response {
-                frame: Some(seg.emit()),
+                frame: Some(response),
                 event: Some(SdoEvent::Uploaded { index: mux.index, sub: mux.sub }),
             };
         }
-        Response::send(seg.emit())
+        Response::send(response)
     }
 }
