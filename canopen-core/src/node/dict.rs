@@ -114,12 +114,16 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
         }
     }
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        // The communication profile through this view's own `info`/`write` (which intercepts store/restore
-        // and mappings; one instantiation for all of it), the application with its single lookup.
-        if crate::od::is_comm(index) {
-            crate::od::expedited_download(self, index, sub, data, len)
-        } else {
-            self.od.app.write_expedited(index, sub, data, len)
+        // Store/restore and mappings through this view's own `info`/`write` (which intercepts them), the
+        // rest of the communication profile and the application with their single lookup.
+        if !crate::od::is_comm(index) {
+            return self.od.app.write_expedited(index, sub, data, len);
+        }
+        match index {
+            0x1010 | 0x1011 | 0x1600..=0x17FF | 0x1A00..=0x1BFF => {
+                crate::od::expedited_download(self, index, sub, data, len)
+            }
+            _ => self.od.comm.write_expedited(index, sub, data, len),
         }
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {

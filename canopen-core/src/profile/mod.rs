@@ -15,6 +15,7 @@
 
 mod dict;
 pub mod eds;
+mod table;
 
 pub use crate::heartbeat::ConsumerEntry;
 pub use crate::lss::Identity;
