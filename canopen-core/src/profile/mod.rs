@@ -225,11 +225,7 @@ impl<Z: ProfileSizes> CommParams<Z> {
     /// assert_eq!(p.rpdo_comm[1].cob_id, 0x8000_0305); // no default mapping: not valid
     /// ```
     pub fn for_node(config: &NodeConfig, node_id: u8) -> Self {
-        let (mut rpdo_comm, mut rpdo_map) = (Z::RPDO_COMM, Z::RPDO_MAP);
-        pdo_defaults(rpdo_comm.as_mut(), rpdo_map.as_mut(), |k| config.rpdo_default(k).params(k, 0x200, node_id));
-        let (mut tpdo_comm, mut tpdo_map) = (Z::TPDO_COMM, Z::TPDO_MAP);
-        pdo_defaults(tpdo_comm.as_mut(), tpdo_map.as_mut(), |k| config.tpdo_default(k).params(k, 0x180, node_id));
-        CommParams {
+        let mut p: Self = CommParams {
             heartbeat_time_ms: config.heartbeat_time_ms,
             heartbeat_consumers: Z::ZERO_TIMES,
             guard_time_ms: config.guard_time_ms,
@@ -241,11 +237,14 @@ impl<Z: ProfileSizes> CommParams<Z> {
             emcy_inhibit_100us: config.emcy_inhibit_100us,
             error_behaviour: config.error_behaviour,
             nmt_startup: config.nmt_startup,
-            rpdo_comm,
-            rpdo_map,
-            tpdo_comm,
-            tpdo_map,
-        }
+            rpdo_comm: Z::RPDO_COMM,
+            rpdo_map: Z::RPDO_MAP,
+            tpdo_comm: Z::TPDO_COMM,
+            tpdo_map: Z::TPDO_MAP,
+        };
+        pdo_defaults(p.rpdo_comm.as_mut(), p.rpdo_map.as_mut(), config.rpdo, 0x200, node_id);
+        pdo_defaults(p.tpdo_comm.as_mut(), p.tpdo_map.as_mut(), config.tpdo, 0x180, node_id);
+        p
     }
 
     /// The decoded consumer entry at 1016h sub-index `sub` (1-based), if it exists.
@@ -287,10 +286,12 @@ impl<Z: ProfileSizes> CommParams<Z> {
     }
 }
 
-/// Fills PDO `k`'s communication and mapping parameters from `default(k)`, for every PDO of one direction.
-fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], default: impl Fn(usize) -> (PdoComm, PdoMapParams)) {
+/// Fills the communication and mapping parameters of every PDO of one direction (`base` 200h: RPDO,
+/// 180h: TPDO) from its default, [`PdoDefault::UNUSED`] beyond `defaults`. Not generic: one copy for both
+/// directions and every `Z`.
+fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], defaults: &[PdoDefault], base: u16, node_id: u8) {
     for (k, (c, m)) in comm.iter_mut().zip(map).enumerate() {
-        (*c, *m) = default(k);
+        (*c, *m) = defaults.get(k).unwrap_or(&PdoDefault::UNUSED).params(k, base, node_id);
     }
 }
 
