@@ -731,17 +731,12 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn __od_write(&mut self, pos: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
                     match pos { #(#write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
-                /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row.
-                #[inline]
-                fn __od_find(index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
+                /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
+                /// dictionary (not inlined), shared by every access.
+                fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
                     let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub)?;
                     let e = Self::__OD_INFO.get(pos).ok_or(__AbortCode::ObjectDoesNotExist)?;
                     ::core::result::Result::Ok((pos, e))
-                }
-                /// `__od_find` as one shared copy (not inlined) for every access but the two expedited SDO
-                /// paths, which inline it.
-                fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
-                    Self::__od_find(index, sub)
                 }
                 #[inline]
                 fn __od_writable(&self, index: u16, sub: u8) -> ::core::result::Result<usize, __AbortCode> {
@@ -813,7 +808,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     }
                 }
                 fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> ::core::result::Result<(usize, usize), __AbortCode> {
-                    let (pos, e) = Self::__od_find(index, sub)?;
+                    let (pos, e) = self.__od_pos(index, sub)?;
                     if !e.access.readable() {
                         return ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly);
                     }
@@ -824,7 +819,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     }
                 }
                 fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
-                    let (pos, e) = Self::__od_find(index, sub)?;
+                    let (pos, e) = self.__od_pos(index, sub)?;
                     if !e.access.writable() {
                         return ::core::result::Result::Err(__AbortCode::WriteOfReadOnly);
                     }
