@@ -4,13 +4,16 @@
 //! `match` on the slot number, so an object costs a few bytes of table instead of an arm in each of
 //! `meta`, `value` and `set`.
 //!
+//! The source is [`ROWS`]: (index, run) pairs, one object's runs together. Everything the lookup uses is
+//! computed from it at compile time: [`RUNS`] (the runs alone, 4 bytes each, the only table in flash),
+//! [`FIXED`] (where the runs of 1000h–101Fh start) and the spans of the other objects. A device that leaves
+//! an object out (a Cargo feature) puts `#[cfg(feature = "...")]` on its rows and nothing else changes
+//! here (its `desc` arm in dict.rs goes too: the test `meta_agrees_with_desc` checks the table against
+//! the EDS descriptions of every index and sub-index).
+//!
 //! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): 1000h–101Fh index a 32-entry
 //! array directly, the PDO ranges 1400h–1BFFh are computed from the index (PDO-02: PDO `k` at base + k),
-//! 1F80h is the one object above; the object's runs of sub-indices are then scanned (at most 6).
-//!
-//! A device that leaves an object out (a Cargo feature) puts `#[cfg(feature = "...")]` on its rows and on
-//! its entry in [`FIXED`]; the test `meta_agrees_with_desc` (dict.rs) checks the table against the EDS
-//! descriptions of every index and sub-index.
+//! 1029h and 1F80h are compared; the object's runs of sub-indices are then scanned (at most 6).
 
 use crate::emcy::HISTORY;
 use crate::od::{AbortCode, Access, DataType, PdoMapping};
@@ -120,71 +123,99 @@ const fn count() -> Run {
     var(Ty::U8Const, Slot::Count)
 }
 
-/// Every run, object by object; [`FIXED`] and the PDO constants point into it.
-const RUNS: [Run; 36] = [
-    var(Ty::U32Ro, Slot::DeviceType),                     // 0: 1000h
-    var(Ty::U8Ro, Slot::ErrorRegister),                   // 1: 1001h
-    var(Ty::U8Rw, Slot::History),                         // 2: 1003h sub 00h
-    run(1, HISTORY as u8, Ty::U32Ro, Slot::History),      // 3
-    var(Ty::U32Rw, Slot::SyncCob),                        // 4: 1005h
-    var(Ty::U32Rw, Slot::SyncPeriod),                     // 5: 1006h
-    var(Ty::U32Rw, Slot::SyncWindow),                     // 6: 1007h
-    var(Ty::StrConst, Slot::DeviceName),                  // 7: 1008h
-    var(Ty::StrConst, Slot::HardwareVersion),             // 8: 1009h
-    var(Ty::StrConst, Slot::SoftwareVersion),             // 9: 100Ah
-    var(Ty::U16Rw, Slot::GuardTime),                      // 10: 100Ch
-    var(Ty::U8Rw, Slot::LifeTimeFactor),                  // 11: 100Dh
-    count(),                                              // 12: 1010h
-    run(1, 3, Ty::U32Rw, Slot::Store),                    // 13
-    count(),                                              // 14: 1011h
-    run(1, 3, Ty::U32Rw, Slot::Restore),                  // 15
-    var(Ty::U32Rw, Slot::TimeCob),                        // 16: 1012h
-    var(Ty::U32Rw, Slot::EmcyCob),                        // 17: 1014h
-    var(Ty::U16Rw, Slot::EmcyInhibit),                    // 18: 1015h
-    count(),                                              // 19: 1016h
-    run(1, HB, Ty::U32Rw, Slot::Consumer),                // 20
-    var(Ty::U16Rw, Slot::HeartbeatTime),                  // 21: 1017h
-    count(),                                              // 22: 1018h
-    run(1, 4, Ty::U32Ro, Slot::Identity),                 // 23
-    var(Ty::U8Rw, Slot::SyncOverflow),                    // 24: 1019h
-    count(),                                              // 25: 1029h
-    run(1, 1, Ty::U8Rw, Slot::ErrorBehaviour),            // 26
-    var(Ty::U32Rw, Slot::NmtStartup),                     // 27: 1F80h
-    count(),                                              // 28: PDO communication (PDO-06..18)
-    run(1, 1, Ty::U32Rw, Slot::PdoCob),                   // 29
-    run(2, 2, Ty::U8Rw, Slot::PdoType),                   // 30
-    run(3, 3, Ty::U16Rw, Slot::PdoInhibit),               // 31
-    run(5, 5, Ty::U16Rw, Slot::PdoEventTimer),            // 32: RPDO: 28..33
-    run(6, 6, Ty::U8Rw, Slot::PdoSyncStart),              // 33: TPDO: 28..34
-    var(Ty::U8Rw, Slot::MapCount),                        // 34: mapping (PDO-30..37)
-    run(1, MAX_ENTRIES as u8, Ty::U32Rw, Slot::MapEntry), // 35
+/// Every object of the profile as runs, tagged with their index, one object's runs together (a count run
+/// first). The PDO records are templates: 1400h holds the communication record of every PDO (an RPDO has
+/// subs 00h–05h), 1800h adds the TPDO's sub 06h right after it, 1600h is the mapping record of both.
+const ROWS: &[(u16, Run)] = &[
+    (0x1000, var(Ty::U32Ro, Slot::DeviceType)),                     // DEV-01
+    (0x1001, var(Ty::U8Ro, Slot::ErrorRegister)),                   // ERR-01
+    (0x1003, var(Ty::U8Rw, Slot::History)),                         // ERR-04..09
+    (0x1003, run(1, HISTORY as u8, Ty::U32Ro, Slot::History)),      //
+    (0x1005, var(Ty::U32Rw, Slot::SyncCob)),                        // SYNC-01..08
+    (0x1006, var(Ty::U32Rw, Slot::SyncPeriod)),                     //
+    (0x1007, var(Ty::U32Rw, Slot::SyncWindow)),                     //
+    (0x1008, var(Ty::StrConst, Slot::DeviceName)),                  // DEV-04
+    (0x1009, var(Ty::StrConst, Slot::HardwareVersion)),             //
+    (0x100A, var(Ty::StrConst, Slot::SoftwareVersion)),             //
+    (0x100C, var(Ty::U16Rw, Slot::GuardTime)),                      // GUARD-02
+    (0x100D, var(Ty::U8Rw, Slot::LifeTimeFactor)),                  // GUARD-03
+    (0x1010, count()),                                              // STORE-01..05
+    (0x1010, run(1, 3, Ty::U32Rw, Slot::Store)),                    //
+    (0x1011, count()),                                              // STORE-08..11
+    (0x1011, run(1, 3, Ty::U32Rw, Slot::Restore)),                  //
+    (0x1012, var(Ty::U32Rw, Slot::TimeCob)),                        // TIME-01..03
+    (0x1014, var(Ty::U32Rw, Slot::EmcyCob)),                        // EMCY-02/03
+    (0x1015, var(Ty::U16Rw, Slot::EmcyInhibit)),                    // EMCY-09
+    (0x1016, count()),                                              // HB-06..09
+    (0x1016, run(1, HB, Ty::U32Rw, Slot::Consumer)),                //
+    (0x1017, var(Ty::U16Rw, Slot::HeartbeatTime)),                  // HB-01
+    (0x1018, count()),                                              // DEV-03
+    (0x1018, run(1, 4, Ty::U32Ro, Slot::Identity)),                 //
+    (0x1019, var(Ty::U8Rw, Slot::SyncOverflow)),                    // SYNC-10/12
+    (0x1029, count()),                                              // ERR-10/11
+    (0x1029, run(1, 1, Ty::U8Rw, Slot::ErrorBehaviour)),            //
+    (0x1400, count()),                                              // PDO-06..18
+    (0x1400, run(1, 1, Ty::U32Rw, Slot::PdoCob)),                   //
+    (0x1400, run(2, 2, Ty::U8Rw, Slot::PdoType)),                   //
+    (0x1400, run(3, 3, Ty::U16Rw, Slot::PdoInhibit)),               //
+    (0x1400, run(5, 5, Ty::U16Rw, Slot::PdoEventTimer)),            //
+    (0x1800, run(6, 6, Ty::U8Rw, Slot::PdoSyncStart)),              // PDO-26
+    (0x1600, var(Ty::U8Rw, Slot::MapCount)),                        // PDO-30..37
+    (0x1600, run(1, MAX_ENTRIES as u8, Ty::U32Rw, Slot::MapEntry)), //
+    (0x1F80, var(Ty::U32Rw, Slot::NmtStartup)),                     // NMT-27
 ];
 
-/// 1000h–101Fh: (first run, number of runs) of each index; 0 runs = no such object.
+/// The runs of [`ROWS`] without their tags: the table `find` walks.
+const RUNS: [Run; ROWS.len()] = {
+    let mut runs = [count(); ROWS.len()];
+    let mut i = 0;
+    while i < ROWS.len() {
+        runs[i] = ROWS[i].1;
+        i += 1;
+    }
+    runs
+};
+
+/// (first run, number of runs) of the rows tagged `index`; (0, 0) when there are none. The rows of one
+/// object must be together (checked at compile time).
+const fn span(index: u16) -> (u8, u8) {
+    let (mut first, mut n, mut i) = (0, 0, 0);
+    while i < ROWS.len() {
+        if ROWS[i].0 == index {
+            if n == 0 {
+                first = i;
+            }
+            assert!(first + n == i, "the rows of one object are together");
+            n += 1;
+        }
+        i += 1;
+    }
+    assert!(ROWS.len() <= u8::MAX as usize);
+    (first as u8, n as u8)
+}
+
+/// 1000h–101Fh: [`span`] of each index; 0 runs = no such object.
 const FIXED: [(u8, u8); 32] = {
     let mut t = [(0u8, 0u8); 32];
-    t[0x00] = (0, 1);
-    t[0x01] = (1, 1);
-    t[0x03] = (2, 2);
-    t[0x05] = (4, 1);
-    t[0x06] = (5, 1);
-    t[0x07] = (6, 1);
-    t[0x08] = (7, 1);
-    t[0x09] = (8, 1);
-    t[0x0A] = (9, 1);
-    t[0x0C] = (10, 1);
-    t[0x0D] = (11, 1);
-    t[0x10] = (12, 2);
-    t[0x11] = (14, 2);
-    t[0x12] = (16, 1);
-    t[0x14] = (17, 1);
-    t[0x15] = (18, 1);
-    t[0x16] = (19, 2);
-    t[0x17] = (21, 1);
-    t[0x18] = (22, 2);
-    t[0x19] = (24, 1);
+    let mut i = 0;
+    while i < 32 {
+        t[i] = span(0x1000 + i as u16);
+        i += 1;
+    }
     t
 };
+
+const ERROR_BEHAVIOUR: (u8, u8) = span(0x1029);
+const NMT_STARTUP: (u8, u8) = span(0x1F80);
+const PDO_COMM: (u8, u8) = span(0x1400);
+const TPDO_SYNC_START: (u8, u8) = span(0x1800);
+const PDO_MAP: (u8, u8) = span(0x1600);
+const _: () = assert!(TPDO_SYNC_START.0 == PDO_COMM.0 + PDO_COMM.1, "1800h's row follows 1400h's");
+
+/// The runs `first..first + n` of [`RUNS`].
+fn runs((first, n): (u8, u8)) -> Option<&'static [Run]> {
+    RUNS.get(usize::from(first)..usize::from(first) + usize::from(n))
+}
 
 /// The capacities the table depends on (from `ProfileSizes`), passed by value so [`find`] is not generic.
 #[derive(Debug, Clone, Copy)]
@@ -233,29 +264,29 @@ impl Found {
 
 /// The runs of object `index` and the PDO number (0 for the others; with [`TX`] for a TPDO object).
 fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
-    let (first, n) = match index {
+    let span = match index {
         0x1000..=0x101F => FIXED[usize::from(index & 0x1F)],
-        0x1029 => (25, 2),
-        0x1F80 => (27, 1),
+        0x1029 => ERROR_BEHAVIOUR,
+        0x1F80 => NMT_STARTUP,
         0x1400..=0x1BFF => {
             // PDO-02: PDO k at base + k; the runs of a communication or mapping record.
             let (k, tx) = (index & 0x1FF, index >= 0x1800);
             if usize::from(k) >= if tx { c.tpdo } else { c.rpdo } {
                 return None;
             }
-            let runs = match (index & 0x200 != 0, tx) {
-                (true, _) => &RUNS[34..36],
-                (false, false) => &RUNS[28..33],
-                (false, true) => &RUNS[28..34],
+            let span = match (index & 0x200 != 0, tx) {
+                (true, _) => PDO_MAP,
+                (false, false) => PDO_COMM,
+                (false, true) => (PDO_COMM.0, PDO_COMM.1 + TPDO_SYNC_START.1),
             };
-            return Some((runs, if tx { k | TX } else { k }));
+            return Some((runs(span)?, if tx { k | TX } else { k }));
         }
         _ => return None,
     };
-    if n == 0 || (index == 0x1016 && c.hb == 0) {
+    if span.1 == 0 || (index == 0x1016 && c.hb == 0) {
         return None;
     }
-    Some((RUNS.get(usize::from(first)..usize::from(first) + usize::from(n))?, 0))
+    Some((runs(span)?, 0))
 }
 
 /// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
