@@ -51,7 +51,7 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         let k = usize::from(index & 0x1FF);
         let p = &self.od.comm.params;
         let map = if dir == PdoDir::Rpdo { p.rpdo_map.as_ref().get(k) } else { p.tpdo_map.as_ref().get(k) };
-        let Some(map) = map.copied() else { return Ok(()) };
+        let Some(map) = map else { return Ok(()) };
         if sub == 0 {
             ResolvedMap::resolve(&self.od, map.active(), dir).map(|_| ())
         } else {
