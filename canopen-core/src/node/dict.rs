@@ -60,6 +60,26 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         }
     }
 
+    /// An expedited download to the communication profile: store/restore and mappings through this view's
+    /// own `info`/`write` (which intercept them), the rest with the profile's single table walk. Out of
+    /// line, so that `write_expedited` stays small enough to be inlined into the SDO server for the
+    /// application's downloads (bench-node.sh expedited_download: 577.2 -> 574.2 instructions per frame).
+    #[inline(never)]
+    fn comm_write_expedited(
+        &mut self,
+        index: u16,
+        sub: u8,
+        data: &[u8; 4],
+        len: Option<usize>,
+    ) -> Result<(), AbortCode> {
+        match index {
+            0x1010 | 0x1011 | 0x1600..=0x17FF | 0x1A00..=0x1BFF => {
+                crate::od::expedited_download(self, index, sub, data, len)
+            }
+            _ => self.od.comm.write_expedited(index, sub, data, len),
+        }
+    }
+
     fn store_command(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         if !self.od.comm.info(index, sub)?.access.writable() {
             return Err(AbortCode::WriteOfReadOnly);
@@ -116,14 +136,10 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
         // Store/restore and mappings through this view's own `info`/`write` (which intercepts them), the
         // rest of the communication profile and the application with their single lookup.
-        if !crate::od::is_comm(index) {
-            return self.od.app.write_expedited(index, sub, data, len);
-        }
-        match index {
-            0x1010 | 0x1011 | 0x1600..=0x17FF | 0x1A00..=0x1BFF => {
-                crate::od::expedited_download(self, index, sub, data, len)
-            }
-            _ => self.od.comm.write_expedited(index, sub, data, len),
+        if crate::od::is_comm(index) {
+            self.comm_write_expedited(index, sub, data, len)
+        } else {
+            self.od.app.write_expedited(index, sub, data, len)
         }
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
