@@ -173,9 +173,11 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         }
     }
 
+    const COUNTS: Counts = Counts::new(Z::HB, Z::RPDO, Z::TPDO);
+
     /// Where a sub-entry is, from the table of `table` (one walk; OD-16 abort codes).
     fn find(index: u16, sub: u8) -> Result<Found, AbortCode> {
-        table::find(index, sub, Counts { hb: Z::HB as u8, rpdo: Z::RPDO, tpdo: Z::TPDO })
+        table::find(index, sub, Self::COUNTS)
     }
 
     /// Data type, access and PDO mapping of one sub-entry, or the OD-16 abort code. It must agree with
@@ -184,6 +186,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     fn meta(index: u16, sub: u8) -> Result<(DataType, Access, PdoMapping), AbortCode> {
         Self::find(index, sub).map(|f| f.meta())
     }
+
     /// The description of one sub-entry, or the OD-16 abort code.
     fn desc(&self, index: u16, sub: u8) -> Result<EntryDesc, AbortCode> {
         use Access::*;
@@ -586,6 +589,9 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
         Ok(SubInfo { data_type, access, pdo, size })
     }
 
+    /// Out of line: inlined into `Merged::read` it made the application's segmented uploads pay for its
+    /// registers (bench-node.sh segmented_upload +10 instructions per frame).
+    #[inline(never)]
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
         let f = Self::find(index, sub)?;
         if let Some(text) = self.text(f.slot) {

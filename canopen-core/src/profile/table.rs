@@ -217,15 +217,26 @@ fn runs((first, n): (u8, u8)) -> Option<&'static [Run]> {
     RUNS.get(usize::from(first)..usize::from(first) + usize::from(n))
 }
 
-/// The capacities the table depends on (from `ProfileSizes`), passed by value so [`find`] is not generic.
+/// The capacities the table depends on (from `ProfileSizes`), packed in one `u32` so that [`find`] is
+/// not generic and gets them in a register: heartbeat consumers (bits 0–7; no 1016h when 0), RPDOs (bits
+/// 8–19) and TPDOs (bits 20–31), at most 512 each (PDO-02).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Counts {
-    /// Heartbeat consumer entries (1016h; no 1016h when 0).
-    pub hb: u8,
-    /// RPDOs.
-    pub rpdo: usize,
-    /// TPDOs.
-    pub tpdo: usize,
+pub(super) struct Counts(u32);
+
+impl Counts {
+    /// The capacities `hb` (at most 127, HB-06), `rpdo` and `tpdo` (at most 512).
+    pub(super) const fn new(hb: usize, rpdo: usize, tpdo: usize) -> Counts {
+        assert!(hb <= 0xFF && rpdo <= 0xFFF && tpdo <= 0xFFF);
+        Counts(hb as u32 | (rpdo as u32) << 8 | (tpdo as u32) << 20)
+    }
+
+    const fn hb(self) -> u8 {
+        self.0 as u8
+    }
+
+    const fn pdos(self, tx: bool) -> u16 {
+        (if tx { self.0 >> 20 } else { (self.0 >> 8) & 0xFFF }) as u16
+    }
 }
 
 /// One sub-entry found in the table (4 bytes: returned in registers).
@@ -271,7 +282,7 @@ fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
         0x1400..=0x1BFF => {
             // PDO-02: PDO k at base + k; the runs of a communication or mapping record.
             let (k, tx) = (index & 0x1FF, index >= 0x1800);
-            if usize::from(k) >= if tx { c.tpdo } else { c.rpdo } {
+            if k >= c.pdos(tx) {
                 return None;
             }
             let span = match (index & 0x200 != 0, tx) {
@@ -283,7 +294,7 @@ fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
         }
         _ => return None,
     };
-    if span.1 == 0 || (index == 0x1016 && c.hb == 0) {
+    if span.1 == 0 || (index == 0x1016 && c.hb() == 0) {
         return None;
     }
     Some((runs(span)?, 0))
@@ -292,7 +303,7 @@ fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
 /// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
 pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     let (runs, k) = object(index, c).ok_or(AbortCode::ObjectDoesNotExist)?;
-    let last = |r: &Run| if r.last == HB { c.hb } else { r.last };
+    let last = |r: &Run| if r.last == HB { c.hb() } else { r.last };
     for r in runs {
         if sub >= r.first && sub <= last(r) {
             // A count (sub 00h) is the highest sub-index: the `last` of the object's final run.
