@@ -4,7 +4,8 @@
 //! run-time values of the communication objects that the services read. NMT reset communication sets
 //! [`CommParams`] back to its power-on values (NMT-05, NMT-06), and store/restore (1010h/1011h) saves and
 //! loads it. [`CommProfile`] (`dict`) is the object-dictionary view over these values (SDO access to
-//! 1000h–1FFFh) and [`eds`] writes the profile's part of the EDS; the rules that belong to a value rather
+//! 1000h–1FFFh; which objects exist and where their values live is a const table, `table`) and [`eds`]
+//! writes the profile's part of the EDS; the rules that belong to a value rather
 //! than to its encoding are enforced by the setters here.
 //!
 //! Layer: the profile sits above the services (it is built from their parameter types: [`PdoComm`],
