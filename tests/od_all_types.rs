@@ -220,6 +220,9 @@ fn pdo_handles() {
     assert_eq!(od.pdo_read(&h, &mut b), Ok(1));
     assert_eq!(b[0], 0x55);
     assert_eq!(od.pdo_resolve(0x6000, 3, PdoDir::Rpdo), Err(AbortCode::NotMappable));
+    // A read-only entry has no write path at all, not even through a (TPDO) handle (OD-08).
+    assert_eq!(od.pdo_write(&h, &[0xAA]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(od.inputs[2], 0x55);
     assert_eq!(od.pdo_resolve(0x2020, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable));
     assert_eq!(od.pdo_resolve(0x2005, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable));
     assert_eq!(od.pdo_resolve(0x2030, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable)); // wo

@@ -69,6 +69,8 @@
 //!   (const, in `.rodata`), `App::OD_MAX_VALUE_SIZE` (largest non-DOMAIN value, to size an SDO buffer);
 //! - `impl ObjectDictionary for App`: a binary search of the 4-byte keys `OD_KEYS` gives a position, a `match` on the
 //!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
+//!   one copy of the search per dictionary, and no write code for a read-only entry (`ro`/`const`: every
+//!   write path, PDO handles included, answers 0601 0002h);
 //! - `impl OdDescribe for App` (for the EDS writer);
 //! - `restore_defaults` (NMT-04 Reset Application): each entry gets its `default`, or its type's
 //!   `Default` when none is given; DOMAIN fields and fields without `#[od]` are left alone.
@@ -326,6 +328,8 @@ struct Row {
     low: Ts,
     high: Ts,
     limited: bool,
+    /// SDO and RPDOs may write it (`rw`, `wo`, `rwr`, `rww`): only then is a write arm generated.
+    writable: bool,
     target: Target,
     span: Span,
     field: String,
@@ -638,6 +642,12 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     let (low, high) = (&r.low, &r.high);
                     quote!(#core::od::check_limits(&v, (#low).as_ref(), (#high).as_ref())?;)
                 };
+                // A read-only entry gets no write code: `write`, the expedited download and the streamed
+                // write refuse it first (0601 0002h) and an RPDO cannot map it (0604 0041h). Its hooks, if
+                // any, keep their arm so that they stay used.
+                if !r.writable && check.is_none() && on_write.is_none() {
+                    continue;
+                }
                 let check_call = check.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub, &v)?;));
                 let on_write_call = on_write.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub);));
                 write_arms.push(quote_spanned! {sp=>
@@ -672,6 +682,9 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             Target::Domain { member } => {
                 size_arms.push(quote!(#pos => #core::od::Domain::size(&self.#member).unwrap_or(0),));
                 read_arms.push(quote!(#pos => #core::od::Domain::read(&self.#member, offset, buf),));
+                if !r.writable {
+                    continue;
+                }
                 write_arms.push(quote! {
                     #pos => {
                         #core::od::Domain::begin_write(&mut self.#member, ::core::option::Option::Some(data.len()))?;
@@ -731,7 +744,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn __od_write(&mut self, pos: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
                     match pos { #(#write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
-                #[inline]
+                /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
+                /// dictionary (not inlined), shared by every access.
                 fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
                     let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub)?;
                     let e = Self::__OD_INFO.get(pos).ok_or(__AbortCode::ObjectDoesNotExist)?;
@@ -896,6 +910,7 @@ fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str) -> Row
         low: quote!(::core::option::Option::None),
         high: quote!(::core::option::Option::None),
         limited: false,
+        writable: false,
         target: Target::Count(highest),
         span,
         field: field.into(),
@@ -950,7 +965,7 @@ fn field_rows(
                 return Err(syn::Error::new(sp, "a DOMAIN is a VAR at sub-index 0"));
             }
         }
-        let _ = (readable, writable);
+        let _ = readable;
         type_asserts.push(quote_spanned! {ty.span()=>
             const _: fn(&#ty) -> ::core::option::Option<usize> = <#ty as #core::od::Domain>::size;
         });
@@ -967,6 +982,7 @@ fn field_rows(
             low: quote!(::core::option::Option::None),
             high: quote!(::core::option::Option::None),
             limited: false,
+            writable,
             target: Target::Domain { member: quote!(#fident) },
             span: key_span,
             field: fname.into(),
@@ -1060,7 +1076,7 @@ fn field_rows(
     let default = opt(a.default.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let low = opt(a.min.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let high = opt(a.max.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
-    let _ = (readable, writable);
+    let _ = readable;
 
     let make = |sub: u8, name: String, numbered: bool, member: Ts| Row {
         index,
@@ -1075,6 +1091,7 @@ fn field_rows(
         low: low.clone(),
         high: high.clone(),
         limited: a.min.is_some() || a.max.is_some(),
+        writable,
         target: Target::Field {
             member,
             ty: elem_ty.clone(),

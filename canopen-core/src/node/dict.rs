@@ -51,12 +51,32 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         let k = usize::from(index & 0x1FF);
         let p = &self.od.comm.params;
         let map = if dir == PdoDir::Rpdo { p.rpdo_map.as_ref().get(k) } else { p.tpdo_map.as_ref().get(k) };
-        let Some(map) = map.copied() else { return Ok(()) };
+        let Some(map) = map else { return Ok(()) };
         if sub == 0 {
             ResolvedMap::resolve(&self.od, map.active(), dir).map(|_| ())
         } else {
             let raw = map.entries.get(usize::from(sub) - 1).copied().unwrap_or(0);
             crate::pdo::mapping::resolve(&self.od, raw, dir).map(|_| ())
+        }
+    }
+
+    /// An expedited download to the communication profile: store/restore and mappings through this view's
+    /// own `info`/`write` (which intercept them), the rest with the profile's single table walk. Out of
+    /// line, so that `write_expedited` stays small enough to be inlined into the SDO server for the
+    /// application's downloads (bench-node.sh expedited_download: 577.2 -> 574.2 instructions per frame).
+    #[inline(never)]
+    fn comm_write_expedited(
+        &mut self,
+        index: u16,
+        sub: u8,
+        data: &[u8; 4],
+        len: Option<usize>,
+    ) -> Result<(), AbortCode> {
+        match index {
+            0x1010 | 0x1011 | 0x1600..=0x17FF | 0x1A00..=0x1BFF => {
+                crate::od::expedited_download(self, index, sub, data, len)
+            }
+            _ => self.od.comm.write_expedited(index, sub, data, len),
         }
     }
 
@@ -114,10 +134,10 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
         }
     }
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        // The communication profile through this view's own `info`/`write` (which intercepts store/restore
-        // and mappings; one instantiation for all of it), the application with its single lookup.
+        // Store/restore and mappings through this view's own `info`/`write` (which intercepts them), the
+        // rest of the communication profile and the application with their single lookup.
         if crate::od::is_comm(index) {
-            crate::od::expedited_download(self, index, sub, data, len)
+            self.comm_write_expedited(index, sub, data, len)
         } else {
             self.od.app.write_expedited(index, sub, data, len)
         }

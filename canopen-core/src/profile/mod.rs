@@ -4,7 +4,8 @@
 //! run-time values of the communication objects that the services read. NMT reset communication sets
 //! [`CommParams`] back to its power-on values (NMT-05, NMT-06), and store/restore (1010h/1011h) saves and
 //! loads it. [`CommProfile`] (`dict`) is the object-dictionary view over these values (SDO access to
-//! 1000h–1FFFh) and [`eds`] writes the profile's part of the EDS; the rules that belong to a value rather
+//! 1000h–1FFFh; which objects exist and where their values live is a const table, `table`) and [`eds`]
+//! writes the profile's part of the EDS; the rules that belong to a value rather
 //! than to its encoding are enforced by the setters here.
 //!
 //! Layer: the profile sits above the services (it is built from their parameter types: [`PdoComm`],
@@ -15,6 +16,7 @@
 
 mod dict;
 pub mod eds;
+mod table;
 
 pub use crate::heartbeat::ConsumerEntry;
 pub use crate::lss::Identity;
@@ -224,11 +226,7 @@ impl<Z: ProfileSizes> CommParams<Z> {
     /// assert_eq!(p.rpdo_comm[1].cob_id, 0x8000_0305); // no default mapping: not valid
     /// ```
     pub fn for_node(config: &NodeConfig, node_id: u8) -> Self {
-        let (mut rpdo_comm, mut rpdo_map) = (Z::RPDO_COMM, Z::RPDO_MAP);
-        pdo_defaults(rpdo_comm.as_mut(), rpdo_map.as_mut(), |k| config.rpdo_default(k).params(k, 0x200, node_id));
-        let (mut tpdo_comm, mut tpdo_map) = (Z::TPDO_COMM, Z::TPDO_MAP);
-        pdo_defaults(tpdo_comm.as_mut(), tpdo_map.as_mut(), |k| config.tpdo_default(k).params(k, 0x180, node_id));
-        CommParams {
+        let mut p: Self = CommParams {
             heartbeat_time_ms: config.heartbeat_time_ms,
             heartbeat_consumers: Z::ZERO_TIMES,
             guard_time_ms: config.guard_time_ms,
@@ -240,11 +238,14 @@ impl<Z: ProfileSizes> CommParams<Z> {
             emcy_inhibit_100us: config.emcy_inhibit_100us,
             error_behaviour: config.error_behaviour,
             nmt_startup: config.nmt_startup,
-            rpdo_comm,
-            rpdo_map,
-            tpdo_comm,
-            tpdo_map,
-        }
+            rpdo_comm: Z::RPDO_COMM,
+            rpdo_map: Z::RPDO_MAP,
+            tpdo_comm: Z::TPDO_COMM,
+            tpdo_map: Z::TPDO_MAP,
+        };
+        pdo_defaults(p.rpdo_comm.as_mut(), p.rpdo_map.as_mut(), config.rpdo, 0x200, node_id);
+        pdo_defaults(p.tpdo_comm.as_mut(), p.tpdo_map.as_mut(), config.tpdo, 0x180, node_id);
+        p
     }
 
     /// The decoded consumer entry at 1016h sub-index `sub` (1-based), if it exists.
@@ -286,10 +287,12 @@ impl<Z: ProfileSizes> CommParams<Z> {
     }
 }
 
-/// Fills PDO `k`'s communication and mapping parameters from `default(k)`, for every PDO of one direction.
-fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], default: impl Fn(usize) -> (PdoComm, PdoMapParams)) {
+/// Fills the communication and mapping parameters of every PDO of one direction (`base` 200h: RPDO,
+/// 180h: TPDO) from its default, [`PdoDefault::UNUSED`] beyond `defaults`. Not generic: one copy for both
+/// directions and every `Z`.
+fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], defaults: &[PdoDefault], base: u16, node_id: u8) {
     for (k, (c, m)) in comm.iter_mut().zip(map).enumerate() {
-        (*c, *m) = default(k);
+        (*c, *m) = defaults.get(k).unwrap_or(&PdoDefault::UNUSED).params(k, base, node_id);
     }
 }
 

@@ -1,0 +1,321 @@
+//! The communication profile's objects as data: which sub-indices each object of 1000h–1FFFh has, their
+//! data type and access, and the [`Slot`] that names where the value lives (and so which rule checks a
+//! write). [`find`] walks it for every SDO access; `CommProfile` (`dict`) reads and writes a slot with one
+//! `match` on the slot number, so an object costs a few bytes of table instead of an arm in each of
+//! `meta`, `value` and `set`.
+//!
+//! The source is [`ROWS`]: (index, run) pairs, one object's runs together. Everything the lookup uses is
+//! computed from it at compile time: [`RUNS`] (the runs alone, 4 bytes each, the only table in flash),
+//! [`FIXED`] (where the runs of 1000h–101Fh start) and the spans of the other objects. A device that leaves
+//! an object out (a Cargo feature) puts `#[cfg(feature = "...")]` on its rows and nothing else changes
+//! here (its `desc` arm in dict.rs goes too: the test `meta_agrees_with_desc` checks the table against
+//! the EDS descriptions of every index and sub-index).
+//!
+//! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): 1000h–101Fh index a 32-entry
+//! array directly, the PDO ranges 1400h–1BFFh are computed from the index (PDO-02: PDO `k` at base + k),
+//! 1029h and 1F80h are compared; the object's runs of sub-indices are then scanned (at most 6).
+
+use crate::emcy::HISTORY;
+use crate::od::{AbortCode, Access, DataType, PdoMapping};
+use crate::pdo::mapping::MAX_ENTRIES;
+
+/// Where a sub-entry's value lives; [`Slot::Count`] is the "highest sub-index supported" of its object
+/// (OD-04), computed from the table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Slot {
+    Count,
+    DeviceType,
+    ErrorRegister,
+    History,
+    SyncCob,
+    SyncPeriod,
+    SyncWindow,
+    DeviceName,
+    HardwareVersion,
+    SoftwareVersion,
+    #[cfg(feature = "guarding")]
+    GuardTime,
+    #[cfg(feature = "guarding")]
+    LifeTimeFactor,
+    Store,
+    Restore,
+    #[cfg(feature = "time")]
+    TimeCob,
+    EmcyCob,
+    EmcyInhibit,
+    Consumer,
+    HeartbeatTime,
+    Identity,
+    SyncOverflow,
+    ErrorBehaviour,
+    NmtStartup,
+    PdoCob,
+    PdoType,
+    PdoInhibit,
+    PdoEventTimer,
+    PdoSyncStart,
+    MapCount,
+    MapEntry,
+}
+
+/// Data type and access of a run of sub-entries (the profile uses these seven).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Ty {
+    U8Const,
+    U8Ro,
+    U8Rw,
+    U16Rw,
+    U32Ro,
+    U32Rw,
+    StrConst,
+}
+
+impl Ty {
+    /// The data type and access it stands for.
+    pub(super) const fn parts(self) -> (DataType, Access) {
+        match self {
+            Ty::U8Const => (DataType::Unsigned8, Access::Const),
+            Ty::U8Ro => (DataType::Unsigned8, Access::Ro),
+            Ty::U8Rw => (DataType::Unsigned8, Access::Rw),
+            Ty::U16Rw => (DataType::Unsigned16, Access::Rw),
+            Ty::U32Ro => (DataType::Unsigned32, Access::Ro),
+            Ty::U32Rw => (DataType::Unsigned32, Access::Rw),
+            Ty::StrConst => (DataType::VisibleString, Access::Const),
+        }
+    }
+
+    /// Whether SDO may write it.
+    pub(super) const fn writable(self) -> bool {
+        matches!(self, Ty::U8Rw | Ty::U16Rw | Ty::U32Rw)
+    }
+
+    /// The encoded size of a numeric entry (1, 2 or 4), 0 for a string.
+    pub(super) const fn size(self) -> usize {
+        match self {
+            Ty::U8Const | Ty::U8Ro | Ty::U8Rw => 1,
+            Ty::U16Rw => 2,
+            Ty::U32Ro | Ty::U32Rw => 4,
+            Ty::StrConst => 0,
+        }
+    }
+}
+
+/// Sub-indices `first..=last` of one object: type, access and value slot. `last == HB` stands for the
+/// node's number of heartbeat consumers (1016h). An object's count run (sub 00h) comes first, its highest
+/// sub-index last.
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    first: u8,
+    last: u8,
+    ty: Ty,
+    slot: Slot,
+}
+
+const HB: u8 = 0xFF;
+
+const fn run(first: u8, last: u8, ty: Ty, slot: Slot) -> Run {
+    Run { first, last, ty, slot }
+}
+
+const fn var(ty: Ty, slot: Slot) -> Run {
+    run(0, 0, ty, slot)
+}
+
+/// Sub 00h of an ARRAY/RECORD: the highest sub-index, the `last` of the object's final run.
+const fn count() -> Run {
+    var(Ty::U8Const, Slot::Count)
+}
+
+/// Every object of the profile as runs, tagged with their index, one object's runs together (a count run
+/// first). The PDO records are templates: 1400h holds the communication record of every PDO (an RPDO has
+/// subs 00h–05h), 1800h adds the TPDO's sub 06h right after it, 1600h is the mapping record of both.
+const ROWS: &[(u16, Run)] = &[
+    (0x1000, var(Ty::U32Ro, Slot::DeviceType)),                // DEV-01
+    (0x1001, var(Ty::U8Ro, Slot::ErrorRegister)),              // ERR-01
+    (0x1003, var(Ty::U8Rw, Slot::History)),                    // ERR-04..09
+    (0x1003, run(1, HISTORY as u8, Ty::U32Ro, Slot::History)), //
+    (0x1005, var(Ty::U32Rw, Slot::SyncCob)),                   // SYNC-01..08
+    (0x1006, var(Ty::U32Rw, Slot::SyncPeriod)),                //
+    (0x1007, var(Ty::U32Rw, Slot::SyncWindow)),                //
+    (0x1008, var(Ty::StrConst, Slot::DeviceName)),             // DEV-04
+    (0x1009, var(Ty::StrConst, Slot::HardwareVersion)),        //
+    (0x100A, var(Ty::StrConst, Slot::SoftwareVersion)),        //
+    #[cfg(feature = "guarding")]
+    (0x100C, var(Ty::U16Rw, Slot::GuardTime)), // GUARD-02
+    #[cfg(feature = "guarding")]
+    (0x100D, var(Ty::U8Rw, Slot::LifeTimeFactor)), // GUARD-03
+    (0x1010, count()),                                         // STORE-01..05
+    (0x1010, run(1, 3, Ty::U32Rw, Slot::Store)),               //
+    (0x1011, count()),                                         // STORE-08..11
+    (0x1011, run(1, 3, Ty::U32Rw, Slot::Restore)),             //
+    #[cfg(feature = "time")]
+    (0x1012, var(Ty::U32Rw, Slot::TimeCob)), // TIME-01..03
+    (0x1014, var(Ty::U32Rw, Slot::EmcyCob)),                   // EMCY-02/03
+    (0x1015, var(Ty::U16Rw, Slot::EmcyInhibit)),               // EMCY-09
+    (0x1016, count()),                                         // HB-06..09
+    (0x1016, run(1, HB, Ty::U32Rw, Slot::Consumer)),           //
+    (0x1017, var(Ty::U16Rw, Slot::HeartbeatTime)),             // HB-01
+    (0x1018, count()),                                         // DEV-03
+    (0x1018, run(1, 4, Ty::U32Ro, Slot::Identity)),            //
+    (0x1019, var(Ty::U8Rw, Slot::SyncOverflow)),               // SYNC-10/12
+    (0x1029, count()),                                         // ERR-10/11
+    (0x1029, run(1, 1, Ty::U8Rw, Slot::ErrorBehaviour)),       //
+    (0x1400, count()),                                         // PDO-06..18
+    (0x1400, run(1, 1, Ty::U32Rw, Slot::PdoCob)),              //
+    (0x1400, run(2, 2, Ty::U8Rw, Slot::PdoType)),              //
+    (0x1400, run(3, 3, Ty::U16Rw, Slot::PdoInhibit)),          //
+    (0x1400, run(5, 5, Ty::U16Rw, Slot::PdoEventTimer)),       //
+    (0x1800, run(6, 6, Ty::U8Rw, Slot::PdoSyncStart)),         // PDO-26
+    (0x1600, var(Ty::U8Rw, Slot::MapCount)),                   // PDO-30..37
+    (0x1600, run(1, MAX_ENTRIES as u8, Ty::U32Rw, Slot::MapEntry)), //
+    (0x1F80, var(Ty::U32Rw, Slot::NmtStartup)),                // NMT-27
+];
+
+/// The runs of [`ROWS`] without their tags: the table `find` walks.
+const RUNS: [Run; ROWS.len()] = {
+    let mut runs = [count(); ROWS.len()];
+    let mut i = 0;
+    while i < ROWS.len() {
+        runs[i] = ROWS[i].1;
+        i += 1;
+    }
+    runs
+};
+
+/// (first run, number of runs) of the rows tagged `index`; (0, 0) when there are none. The rows of one
+/// object must be together (checked at compile time).
+const fn span(index: u16) -> (u8, u8) {
+    let (mut first, mut n, mut i) = (0, 0, 0);
+    while i < ROWS.len() {
+        if ROWS[i].0 == index {
+            if n == 0 {
+                first = i;
+            }
+            assert!(first + n == i, "the rows of one object are together");
+            n += 1;
+        }
+        i += 1;
+    }
+    assert!(ROWS.len() <= u8::MAX as usize);
+    (first as u8, n as u8)
+}
+
+/// 1000h–101Fh: [`span`] of each index; 0 runs = no such object.
+const FIXED: [(u8, u8); 32] = {
+    let mut t = [(0u8, 0u8); 32];
+    let mut i = 0;
+    while i < 32 {
+        t[i] = span(0x1000 + i as u16);
+        i += 1;
+    }
+    t
+};
+
+const ERROR_BEHAVIOUR: (u8, u8) = span(0x1029);
+const NMT_STARTUP: (u8, u8) = span(0x1F80);
+const PDO_COMM: (u8, u8) = span(0x1400);
+const TPDO_SYNC_START: (u8, u8) = span(0x1800);
+const PDO_MAP: (u8, u8) = span(0x1600);
+const _: () = assert!(TPDO_SYNC_START.0 == PDO_COMM.0 + PDO_COMM.1, "1800h's row follows 1400h's");
+
+/// The runs `first..first + n` of [`RUNS`].
+fn runs((first, n): (u8, u8)) -> Option<&'static [Run]> {
+    RUNS.get(usize::from(first)..usize::from(first) + usize::from(n))
+}
+
+/// The capacities the table depends on (from `ProfileSizes`), packed in one `u32` so that [`find`] is
+/// not generic and gets them in a register: heartbeat consumers (bits 0–7; no 1016h when 0), RPDOs (bits
+/// 8–19) and TPDOs (bits 20–31), at most 512 each (PDO-02).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Counts(u32);
+
+impl Counts {
+    /// The capacities `hb` (at most 127, HB-06), `rpdo` and `tpdo` (at most 512).
+    pub(super) const fn new(hb: usize, rpdo: usize, tpdo: usize) -> Counts {
+        assert!(hb <= 0xFF && rpdo <= 0xFFF && tpdo <= 0xFFF);
+        Counts(hb as u32 | (rpdo as u32) << 8 | (tpdo as u32) << 20)
+    }
+
+    const fn hb(self) -> u8 {
+        self.0 as u8
+    }
+
+    const fn pdos(self, tx: bool) -> u16 {
+        (if tx { self.0 >> 20 } else { (self.0 >> 8) & 0xFFF }) as u16
+    }
+}
+
+/// One sub-entry found in the table (4 bytes: returned in registers).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Found {
+    /// Data type and access.
+    pub ty: Ty,
+    /// Where the value lives.
+    pub slot: Slot,
+    /// For [`Slot::Count`]: the highest sub-index; for the PDO slots: the PDO number `k` (0-based), plus
+    /// [`TX`] for a TPDO object (1800h/1A00h range).
+    pub n: u16,
+}
+
+/// The bit of [`Found::n`] that marks a TPDO object.
+const TX: u16 = 0x8000;
+
+impl Found {
+    /// A TPDO object (1800h/1A00h range).
+    pub(super) const fn tx(&self) -> bool {
+        self.n & TX != 0
+    }
+
+    /// The PDO number `k` of a PDO slot.
+    pub(super) const fn k(&self) -> usize {
+        (self.n & !TX) as usize
+    }
+
+    /// Data type, access and PDO mapping (only 1001h is mappable: TPDO, ERR-01).
+    pub(super) const fn meta(&self) -> (DataType, Access, PdoMapping) {
+        let (dt, access) = self.ty.parts();
+        let pdo = if matches!(self.slot, Slot::ErrorRegister) { PdoMapping::Tpdo } else { PdoMapping::No };
+        (dt, access, pdo)
+    }
+}
+
+/// The runs of object `index` and the PDO number (0 for the others; with [`TX`] for a TPDO object).
+fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
+    let span = match index {
+        0x1000..=0x101F => FIXED[usize::from(index & 0x1F)],
+        0x1029 => ERROR_BEHAVIOUR,
+        0x1F80 => NMT_STARTUP,
+        0x1400..=0x1BFF => {
+            // PDO-02: PDO k at base + k; the runs of a communication or mapping record.
+            let (k, tx) = (index & 0x1FF, index >= 0x1800);
+            if k >= c.pdos(tx) {
+                return None;
+            }
+            let span = match (index & 0x200 != 0, tx) {
+                (true, _) => PDO_MAP,
+                (false, false) => PDO_COMM,
+                (false, true) => (PDO_COMM.0, PDO_COMM.1 + TPDO_SYNC_START.1),
+            };
+            return Some((runs(span)?, if tx { k | TX } else { k }));
+        }
+        _ => return None,
+    };
+    if span.1 == 0 || (index == 0x1016 && c.hb() == 0) {
+        return None;
+    }
+    Some((runs(span)?, 0))
+}
+
+/// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
+pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
+    let (runs, k) = object(index, c).ok_or(AbortCode::ObjectDoesNotExist)?;
+    let last = |r: &Run| if r.last == HB { c.hb() } else { r.last };
+    for r in runs {
+        if sub >= r.first && sub <= last(r) {
+            // A count (sub 00h) is the highest sub-index: the `last` of the object's final run.
+            let n = if matches!(r.slot, Slot::Count) { runs.last().map_or(0, |f| last(f).into()) } else { k };
+            return Ok(Found { ty: r.ty, slot: r.slot, n });
+        }
+    }
+    Err(AbortCode::SubIndexDoesNotExist)
+}
