@@ -11,6 +11,7 @@ use crate::od::{Merged, ObjectDictionary, PdoDir, TimeOfDay};
 use crate::pdo::mapping::ResolvedMap;
 use crate::pdo::rpdo::{Rpdo, RxOutcome};
 use crate::pdo::tpdo::{SyncAction, Tpdo};
+use crate::profile::CommProfile;
 use crate::storage::Storage;
 use crate::sync::SyncInput;
 use crate::time::{earliest, Instant};
@@ -109,16 +110,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Samples TPDO `k` and queues it.
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
-        let mut data = [0u8; 8];
-        let len = if t.map.app_only() {
-            t.map.pack(&self.app, &mut data)
-        } else {
-            t.map.pack(&Merged { comm: &mut self.comm, app: &mut self.app }, &mut data)
-        };
-        t.sent(now);
-        t.last_sent = Some((data, len as u8));
-        let frame = CanFrame::from_parts(t.can_id(), data, len as u8);
-        self.transmit(frame);
+        let (data, len) = sample(&t.map, &mut self.comm, &mut self.app);
+        t.sent(now, (data, len));
+        let id = t.can_id();
+        self.transmit(CanFrame::from_parts(id, data, len));
     }
 
     /// An RPDO frame (PDO-04: Operational only; PDO-38/39 lengths; PDO-40 window).
@@ -183,7 +178,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let k = usize::from(k);
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         if t.transmission_type() == 252 {
-            if let Some((data, len)) = t.rtr_buffer {
+            if let Some((data, len)) = t.last() {
                 let frame = CanFrame::from_parts(t.can_id(), data, len);
                 self.transmit(frame);
             }
@@ -243,11 +238,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 SyncAction::None => {}
                 SyncAction::Send => self.send_tpdo(now, k),
                 SyncAction::Sample => {
-                    let od = Merged { comm: &mut self.comm, app: &mut self.app };
                     let t = &mut self.tpdos[k];
-                    let mut data = [0u8; 8];
-                    let len = t.map.pack(&od, &mut data);
-                    t.rtr_buffer = Some((data, len as u8));
+                    t.sampled(sample(&t.map, &mut self.comm, &mut self.app));
                 }
             }
         }
@@ -287,10 +279,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             if !t.is_valid() || t.transmission_type() < 254 {
                 continue;
             }
-            let od = Merged { comm: &mut self.comm, app: &mut self.app };
-            let mut data = [0u8; 8];
-            let len = t.map.pack(&od, &mut data);
-            if t.last_sent != Some((data, len as u8)) && self.trigger_tpdo(k) {
+            if t.last() != Some(sample(&t.map, &mut self.comm, &mut self.app)) && self.trigger_tpdo(k) {
                 sent += 1;
             }
         }
@@ -342,6 +331,18 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));
         true
     }
+}
+
+/// Samples the objects of `map` into a payload (PDO-32), through the application dictionary alone when the
+/// mapping has no communication-profile object (no routing per entry).
+fn sample<A: ObjectDictionary, Z: NodeSizes>(
+    map: &ResolvedMap,
+    comm: &mut CommProfile<Z>,
+    app: &mut A,
+) -> ([u8; 8], u8) {
+    let mut data = [0u8; 8];
+    let len = if map.app_only() { map.pack(app, &mut data) } else { map.pack(&Merged { comm, app }, &mut data) };
+    (data, len as u8)
 }
 
 /// Inserts `e` after every entry whose CAN-ID is not greater, so the table stays sorted by CAN-ID with equal

@@ -19,19 +19,29 @@ use crate::wire::pdo_mapping::MappingEntry;
 /// supported (writing sub 09h and up → 0609 0011h, a count above 8 → 0604 0042h).
 pub const MAX_ENTRIES: usize = 8;
 
-/// One resolved entry: the object (or `None` for a dummy entry) and its length in bits.
+/// One resolved entry (8 bytes): the object's handle and the mapped length in bits. A dummy entry (RPDO only,
+/// PDO-34) has a handle of size 0: its bits are skipped, nothing is read or written.
 ///
 /// ```
-/// use canopen_core::pdo::mapping::Mapped;
-/// let m = Mapped { handle: None, bits: 8 };
-/// assert_eq!(m.bits, 8);
+/// use canopen_core::{od::PdoHandle, pdo::mapping::Mapped};
+/// let m = Mapped { handle: PdoHandle { index: 5, sub: 0, size: 0, slot: PdoHandle::NO_SLOT }, bits: 8 };
+/// assert!(m.is_dummy());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Mapped {
-    /// The object, `None` for a dummy entry (RPDO only).
-    pub handle: Option<PdoHandle>,
+    /// The object; size 0 for a dummy entry.
+    pub handle: PdoHandle,
     /// Mapped length in bits (1..=64).
     pub bits: u8,
+}
+
+impl Mapped {
+    const NONE: Mapped = Mapped { handle: PdoHandle { index: 0, sub: 0, size: 0, slot: PdoHandle::NO_SLOT }, bits: 0 };
+
+    /// Whether this is a dummy entry (no object behind it).
+    pub const fn is_dummy(&self) -> bool {
+        self.handle.size == 0
+    }
 }
 
 /// Resolves one mapping entry (PDO-33, PDO-34, PDO-36): the object must exist (0602 0000h / 0609 0011h),
@@ -45,7 +55,7 @@ pub struct Mapped {
 /// assert!(resolve(&od, 0x1001_0008, PdoDir::Tpdo).is_ok()); // 1001h is TPDO-mappable
 /// assert_eq!(resolve(&od, 0x1001_0008, PdoDir::Rpdo), Err(AbortCode::NotMappable));
 /// assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
-/// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().handle.is_none()); // dummy
+/// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().is_dummy());
 /// ```
 pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
     let e = MappingEntry::from_raw(raw);
@@ -54,15 +64,16 @@ pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> R
     }
     if let Some(bits) = e.dummy_bits() {
         if dir == PdoDir::Rpdo && e.bits <= bits {
-            return Ok(Mapped { handle: None, bits: e.bits });
+            let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
+            return Ok(Mapped { handle, bits: e.bits });
         }
         return Err(AbortCode::NotMappable);
     }
     let handle = od.pdo_resolve(e.index, e.sub, dir)?;
-    if u16::from(e.bits) > u16::from(handle.size) * 8 {
+    if handle.size == 0 || u16::from(e.bits) > u16::from(handle.size) * 8 {
         return Err(AbortCode::NotMappable);
     }
-    Ok(Mapped { handle: Some(handle), bits: e.bits })
+    Ok(Mapped { handle, bits: e.bits })
 }
 
 /// A PDO's resolved mapping.
@@ -83,13 +94,8 @@ pub struct ResolvedMap {
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
-    pub const EMPTY: ResolvedMap = ResolvedMap {
-        entries: [Mapped { handle: None, bits: 0 }; MAX_ENTRIES],
-        count: 0,
-        bits: 0,
-        aligned: true,
-        app_only: true,
-    };
+    pub const EMPTY: ResolvedMap =
+        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, aligned: true, app_only: true };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
@@ -114,8 +120,8 @@ impl ResolvedMap {
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
             }
-            m.aligned &= e.bits % 8 == 0 && e.handle.is_none_or(|h| u16::from(h.size) * 8 == u16::from(e.bits));
-            m.app_only &= e.handle.is_none_or(|h| !(0x1000..=0x1FFF).contains(&h.index));
+            m.aligned &= e.bits % 8 == 0 && (e.is_dummy() || u16::from(e.handle.size) * 8 == u16::from(e.bits));
+            m.app_only &= e.is_dummy() || !(0x1000..=0x1FFF).contains(&e.handle.index);
             *slot = e;
         }
         m.count = raw.len() as u8;
@@ -157,30 +163,34 @@ impl ResolvedMap {
     /// read leaves zeros.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
         *out = [0; 8];
-        if self.aligned {
-            let mut rest: &mut [u8] = out;
-            for e in self.entries() {
-                let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
-                if let Some(h) = &e.handle {
-                    let _ = od.pdo_read(h, dst);
-                }
-                rest = tail;
-            }
-            return usize::from(self.bits >> 3);
+        if !self.aligned {
+            *out = self.pack_bits(od).to_le_bytes();
+            return self.bytes();
         }
-        let mut acc = 0u64;
-        let mut off = 0u32;
+        // Every entry is a whole object of whole bytes: read each straight into its place.
+        let mut rest: &mut [u8] = out;
         for e in self.entries() {
-            if let Some(h) = &e.handle {
-                let mut v = [0u8; 8];
-                let n = usize::from(h.size).min(8);
-                let _ = od.pdo_read(h, &mut v[..n]);
-                acc |= (u64::from_le_bytes(v) & mask(e.bits)).checked_shl(off).unwrap_or(0);
+            let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
+            if !e.is_dummy() {
+                let _ = od.pdo_read(&e.handle, dst);
             }
-            off += u32::from(e.bits);
+            rest = tail;
         }
-        *out = acc.to_le_bytes();
         self.bytes()
+    }
+
+    /// [`pack`](Self::pack) for a mapping with entries that are not whole objects of whole bytes.
+    #[inline(never)]
+    fn pack_bits<D: ObjectDictionary + ?Sized>(&self, od: &D) -> u64 {
+        let mut acc = Bits::default();
+        for e in self.entries() {
+            let mut v = [0u8; 8];
+            if let Some(buf) = v.get_mut(..usize::from(e.handle.size)).filter(|b| !b.is_empty()) {
+                let _ = od.pdo_read(&e.handle, buf);
+            }
+            acc.push(u64::from_le_bytes(v), e.bits);
+        }
+        acc.value
     }
 
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
@@ -191,27 +201,54 @@ impl ResolvedMap {
             let mut rest = data;
             for e in self.entries() {
                 let Some((src, tail)) = rest.split_at_checked(usize::from(e.bits >> 3)) else { break };
-                if let Some(h) = &e.handle {
-                    refused += usize::from(od.pdo_write(h, src).is_err());
+                if !e.is_dummy() {
+                    refused += usize::from(od.pdo_write(&e.handle, src).is_err());
                 }
                 rest = tail;
             }
             return refused;
         }
+        let mut frame = Bits::from_payload(data);
+        for e in self.entries() {
+            let v = frame.pop(e.bits).to_le_bytes();
+            if let Some(src) = v.get(..usize::from(e.handle.size)).filter(|s| !s.is_empty()) {
+                refused += usize::from(od.pdo_write(&e.handle, src).is_err());
+            }
+        }
+        refused
+    }
+}
+
+/// A PDO payload as a little-endian `u64` with a bit position (PDO-32: entries packed from bit 0 in order),
+/// for mappings that are not whole bytes: a shift and a mask per entry, never a loop over bits. Kept out
+/// of the generic `pack`/`unpack` so that each dictionary type does not get its own copy.
+#[derive(Default)]
+struct Bits {
+    value: u64,
+    off: u32,
+}
+
+impl Bits {
+    fn from_payload(data: &[u8]) -> Self {
         let mut buf = [0u8; 8];
         let n = data.len().min(8);
         buf[..n].copy_from_slice(&data[..n]);
-        let frame = u64::from_le_bytes(buf);
-        let mut off = 0u32;
-        for e in self.entries() {
-            if let Some(h) = &e.handle {
-                let v = (frame.checked_shr(off).unwrap_or(0) & mask(e.bits)).to_le_bytes();
-                let size = usize::from(h.size).min(8);
-                refused += usize::from(od.pdo_write(h, &v[..size]).is_err());
-            }
-            off += u32::from(e.bits);
-        }
-        refused
+        Bits { value: u64::from_le_bytes(buf), off: 0 }
+    }
+
+    /// Appends the low `bits` bits of `v`.
+    #[inline(never)]
+    fn push(&mut self, v: u64, bits: u8) {
+        self.value |= (v & mask(bits)).checked_shl(self.off).unwrap_or(0);
+        self.off += u32::from(bits);
+    }
+
+    /// Takes the next `bits` bits (the object's remaining high bits are 0, no sign extension).
+    #[inline(never)]
+    fn pop(&mut self, bits: u8) -> u64 {
+        let v = self.value.checked_shr(self.off).unwrap_or(0) & mask(bits);
+        self.off += u32::from(bits);
+        v
     }
 }
 

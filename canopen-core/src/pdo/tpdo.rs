@@ -62,10 +62,9 @@ pub struct Tpdo {
     timer_at: Instant,
     inhibit_set: bool,
     timer_set: bool,
-    /// Data sampled at the last SYNC for type FCh.
-    pub rtr_buffer: Option<([u8; 8], u8)>,
-    /// The payload last sent, for change-of-value detection.
-    pub last_sent: Option<([u8; 8], u8)>,
+    /// The payload sampled at the last SYNC for type FCh (sent on RTR, PDO-21), or the payload last sent for
+    /// FEh/FFh (change-of-value detection, PDO-23): one buffer, since a TPDO has one type.
+    last: Option<([u8; 8], u8)>,
 }
 
 impl Tpdo {
@@ -85,8 +84,7 @@ impl Tpdo {
             timer_at: Instant::ZERO,
             inhibit_set: false,
             timer_set: false,
-            rtr_buffer: None,
-            last_sent: None,
+            last: None,
         }
     }
 
@@ -121,8 +119,7 @@ impl Tpdo {
         self.started = false;
         self.pending = false;
         self.set_inhibit_until(None);
-        self.rtr_buffer = None;
-        self.last_sent = None;
+        self.last = None;
         self.set_timer_due(None);
         self.is_valid() && self.event_driven()
     }
@@ -223,14 +220,36 @@ impl Tpdo {
         self.timer_at = t.unwrap_or(Instant::ZERO);
     }
 
-    /// The TPDO was sent at `now`: the inhibit time and the event timer start.
-    pub fn sent(&mut self, now: Instant) {
+    /// The TPDO was sent at `now` with `payload`: the inhibit time and the event timer start; an
+    /// event-driven TPDO keeps the payload for [`last`](Self::last).
+    pub fn sent(&mut self, now: Instant, payload: ([u8; 8], u8)) {
         if self.ttype != 0 {
             self.pending = false;
         }
-        let (inhibit, timer) = (self.inhibit_100us, self.event_timer_ms);
-        self.set_inhibit_until((inhibit != 0).then(|| now + Duration::from_100us(inhibit.into())));
-        self.set_timer_due((self.event_driven() && timer != 0).then(|| now + Duration::from_millis(timer.into())));
+        // Without an inhibit time (an event timer) its deadline is never set, so there is nothing to clear.
+        let inhibit = self.inhibit_100us;
+        if inhibit != 0 {
+            self.set_inhibit_until(Some(now + Duration::from_100us(inhibit.into())));
+        }
+        if self.event_driven() {
+            // Types below FEh never run the event timer: it stays unset (start/stop clear it).
+            self.last = Some(payload);
+            let timer = self.event_timer_ms;
+            if timer != 0 {
+                self.set_timer_due(Some(now + Duration::from_millis(timer.into())));
+            }
+        }
+    }
+
+    /// Type FCh: the payload sampled at a SYNC, sent on the next remote request (PDO-21).
+    pub fn sampled(&mut self, payload: ([u8; 8], u8)) {
+        self.last = Some(payload);
+    }
+
+    /// The payload sampled at the last SYNC (type FCh) or last sent (FEh/FFh), `None` before the first one
+    /// since entering Operational.
+    pub const fn last(&self) -> Option<([u8; 8], u8)> {
+        self.last
     }
 
     /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work.
@@ -301,7 +320,7 @@ mod tests {
             ResolvedMap::EMPTY,
         );
         assert!(t.trigger(Instant::ZERO));
-        t.sent(Instant::ZERO);
+        t.sent(Instant::ZERO, ([0; 8], 0));
         assert!(!t.trigger(Instant::from_millis(5)));
         assert_eq!(t.poll_timeout(), Some(Instant::from_millis(20)));
         assert!(!t.handle_timeout(Instant::from_millis(19)));
