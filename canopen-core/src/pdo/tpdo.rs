@@ -137,38 +137,35 @@ impl Tpdo {
             return SyncAction::None;
         }
         match self.ttype {
-            0 => {
-                if core::mem::take(&mut self.pending) {
-                    SyncAction::Send
-                } else {
-                    SyncAction::None
-                }
-            }
-            n @ 1..=240 => {
-                if !self.started {
-                    match (self.sync_start, counter) {
-                        (s, Some(c)) if s != 0 => {
-                            if c != s {
-                                return SyncAction::None;
-                            }
-                            self.started = true;
-                            self.sync_count = 0;
-                            return SyncAction::Send;
-                        }
-                        _ => self.started = true,
-                    }
-                }
-                self.sync_count += 1;
-                if self.sync_count >= n {
-                    self.sync_count = 0;
-                    SyncAction::Send
-                } else {
-                    SyncAction::None
-                }
-            }
+            n @ 1..=240 => self.cyclic(n, counter),
+            0 if core::mem::take(&mut self.pending) => SyncAction::Send,
             252 => SyncAction::Sample,
             _ => SyncAction::None,
         }
+    }
+
+    /// Types 01h–F0h: every `n`-th SYNC, counted from the SYNC start value when the counter is on (PDO-20,
+    /// PDO-26).
+    fn cyclic(&mut self, n: u8, counter: Option<u8>) -> SyncAction {
+        if !self.started {
+            match (self.sync_start, counter) {
+                (s, Some(c)) if s != 0 => {
+                    if c != s {
+                        return SyncAction::None;
+                    }
+                    self.started = true;
+                    self.sync_count = 0;
+                    return SyncAction::Send;
+                }
+                _ => self.started = true,
+            }
+        }
+        self.sync_count += 1;
+        if self.sync_count < n {
+            return SyncAction::None;
+        }
+        self.sync_count = 0;
+        SyncAction::Send
     }
 
     /// An application event at `now` (PDO-19, PDO-23): returns whether to send now. Type 00h sends at the
@@ -223,16 +220,15 @@ impl Tpdo {
     /// The TPDO was sent at `now` with `payload`: the inhibit time and the event timer start; an
     /// event-driven TPDO keeps the payload for [`last`](Self::last).
     pub fn sent(&mut self, now: Instant, payload: ([u8; 8], u8)) {
-        if self.ttype != 0 {
-            self.pending = false;
-        }
         // Without an inhibit time (an event timer) its deadline is never set, so there is nothing to clear.
         let inhibit = self.inhibit_100us;
         if inhibit != 0 {
             self.set_inhibit_until(Some(now + Duration::from_100us(inhibit.into())));
         }
         if self.event_driven() {
-            // Types below FEh never run the event timer: it stays unset (start/stop clear it).
+            // Only FEh/FFh hold an event back (type 00h keeps its event for the next SYNC, the other types
+            // never have one), and only they run the event timer (start/stop clear it for the others).
+            self.pending = false;
             self.last = Some(payload);
             let timer = self.event_timer_ms;
             if timer != 0 {
