@@ -58,22 +58,36 @@ impl Mapped {
 /// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().is_dummy());
 /// ```
 pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
+    let e = match entry(raw, dir)? {
+        Ok(dummy) => return Ok(dummy),
+        Err(e) => e,
+    };
+    checked_len(od.pdo_resolve(e.index, e.sub, dir)?, e.bits)
+}
+
+/// The checks of [`resolve`] that need no dictionary (length, dummy entries): a dummy entry resolved, or the
+/// entry to look up. Not generic, so every dictionary type shares it.
+fn entry(raw: u32, dir: PdoDir) -> Result<Result<Mapped, MappingEntry>, AbortCode> {
     let e = MappingEntry::from_raw(raw);
     if e.bits == 0 || e.bits > 64 {
         return Err(AbortCode::NotMappable);
     }
-    if let Some(bits) = e.dummy_bits() {
-        if dir == PdoDir::Rpdo && e.bits <= bits {
+    match e.dummy_bits() {
+        None => Ok(Err(e)),
+        Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits => {
             let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
-            return Ok(Mapped { handle, bits: e.bits });
+            Ok(Ok(Mapped { handle, bits: e.bits }))
         }
+        Some(_) => Err(AbortCode::NotMappable),
+    }
+}
+
+/// The object must hold at least `bits` bits (PDO-36).
+fn checked_len(handle: PdoHandle, bits: u8) -> Result<Mapped, AbortCode> {
+    if handle.size == 0 || u16::from(bits) > u16::from(handle.size) * 8 {
         return Err(AbortCode::NotMappable);
     }
-    let handle = od.pdo_resolve(e.index, e.sub, dir)?;
-    if handle.size == 0 || u16::from(e.bits) > u16::from(handle.size) * 8 {
-        return Err(AbortCode::NotMappable);
-    }
-    Ok(Mapped { handle, bits: e.bits })
+    Ok(Mapped { handle, bits })
 }
 
 /// A PDO's resolved mapping.
@@ -236,28 +250,28 @@ impl Bits {
         Bits { value: u64::from_le_bytes(buf), off: 0 }
     }
 
+    // An entry has 1..=64 bits and the entries total at most 64 (ResolvedMap::resolve), so an entry starts
+    // at bit 0..=63: the shifts below never reach 64.
+
     /// Appends the low `bits` bits of `v`.
     #[inline(never)]
     fn push(&mut self, v: u64, bits: u8) {
-        self.value |= (v & mask(bits)).checked_shl(self.off).unwrap_or(0);
+        self.value |= (v & mask(bits)) << (self.off & 63);
         self.off += u32::from(bits);
     }
 
     /// Takes the next `bits` bits (the object's remaining high bits are 0, no sign extension).
     #[inline(never)]
     fn pop(&mut self, bits: u8) -> u64 {
-        let v = self.value.checked_shr(self.off).unwrap_or(0) & mask(bits);
+        let v = (self.value >> (self.off & 63)) & mask(bits);
         self.off += u32::from(bits);
         v
     }
 }
 
+/// The low `bits` (1..=64) bits set.
 const fn mask(bits: u8) -> u64 {
-    if bits >= 64 {
-        u64::MAX
-    } else {
-        (1u64 << bits) - 1
-    }
+    u64::MAX >> (64 - (bits as u32)) % 64
 }
 
 #[cfg(test)]
