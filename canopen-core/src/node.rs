@@ -60,7 +60,7 @@ use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
 use crate::sizes::{Sizes, Slots};
 use crate::storage::{self, Groups, NoStorage, Storage};
 use crate::sync::Sync;
-use crate::time::{earliest, Instant};
+use crate::time::{Deadline, Instant};
 use crate::wire::error_control::{Heartbeat, StateCode};
 use crate::wire::nmt::NodeControl;
 use dict::{NodeDict, SaveFn};
@@ -407,13 +407,17 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.boot_pending {
             return Some(Instant::ZERO);
         }
-        let mut t = earliest(self.producer.poll_timeout(), self.consumer.poll_timeout());
-        t = earliest(t, self.guarding.poll_timeout());
-        t = earliest(t, self.lss.poll_timeout());
-        t = earliest(t, self.sdo.poll_timeout());
-        t = earliest(t, self.sync.poll_timeout());
-        t = earliest(t, self.emcy_timeout());
-        earliest(t, self.pdo_timeout())
+        // As time::Deadline values (u64::MAX = none): a u64 minimum per service, not a match on two options.
+        let d = |t: Option<Instant>| Deadline::new(t);
+        let t = d(self.producer.poll_timeout())
+            .min(d(self.consumer.poll_timeout()))
+            .min(d(self.guarding.poll_timeout()))
+            .min(d(self.lss.poll_timeout()))
+            .min(d(self.sdo.poll_timeout()))
+            .min(d(self.sync.poll_timeout()))
+            .min(d(self.emcy_timeout()))
+            .min(self.pdo_timeout());
+        t.get()
     }
 
     /// Lets the node act on the time that has passed: boot, heartbeats, consumer and life-guarding time-outs.

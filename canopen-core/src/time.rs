@@ -169,7 +169,7 @@ impl Add for Duration {
 /// d.set(Some(Instant::from_millis(5)));
 /// assert!(!d.passed(Instant::from_millis(4)) && d.passed(Instant::from_millis(5)));
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Deadline(u64);
 
 impl Default for Deadline {

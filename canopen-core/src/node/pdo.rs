@@ -14,7 +14,7 @@ use crate::pdo::tpdo::{SyncAction, Tpdo};
 use crate::profile::CommProfile;
 use crate::storage::Storage;
 use crate::sync::SyncInput;
-use crate::time::{earliest, Instant};
+use crate::time::{Deadline, Instant};
 use crate::wire::time_stamp::TimeStamp;
 use heapless::vec::VecStorage;
 
@@ -81,12 +81,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.tpdos.as_mut().iter_mut().for_each(Tpdo::stop);
     }
 
-    pub(super) fn pdo_timeout(&self) -> Option<Instant> {
+    /// The earliest PDO deadline (inhibit times, event timers), in Operational only.
+    pub(super) fn pdo_timeout(&self) -> Deadline {
         if self.nmt.state() != NmtState::Operational {
-            return None;
+            return Deadline::NONE;
         }
-        let t = self.tpdos.as_ref().iter().fold(None, |t, p| earliest(t, p.poll_timeout()));
-        self.rpdos.as_ref().iter().fold(t, |t, p| earliest(t, p.poll_timeout()))
+        let t = self.tpdos.as_ref().iter().fold(Deadline::NONE, |t, p| t.min(Deadline::new(p.poll_timeout())));
+        self.rpdos.as_ref().iter().fold(t, |t, p| t.min(Deadline::new(p.poll_timeout())))
     }
 
     pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
