@@ -271,7 +271,7 @@ impl Bits {
 
 /// The low `bits` (1..=64) bits set.
 const fn mask(bits: u8) -> u64 {
-    u64::MAX >> (64 - (bits as u32)) % 64
+    u64::MAX >> ((64 - bits as u32) % 64)
 }
 
 #[cfg(test)]
