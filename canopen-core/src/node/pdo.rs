@@ -135,8 +135,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 return;
             }
             RxOutcome::Apply { exceeded } => {
-                if r.map.app_only() {
-                    r.map.unpack(&mut self.app, frame.data());
+                if r.map.direct() {
+                    r.map.unpack_bytes(&mut self.app, frame.data());
                 } else {
                     r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, frame.data());
                 }
@@ -334,15 +334,16 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 }
 
-/// Samples the objects of `map` into a payload (PDO-32), through the application dictionary alone when the
-/// mapping has no communication-profile object (no routing per entry).
+/// Samples the objects of `map` into a payload (PDO-32): through the application dictionary alone when the
+/// mapping is [`direct`](ResolvedMap::direct) (no routing per entry), else through the merged view, which
+/// alone carries the bit-granular path (one instance of it, not one per dictionary type).
 fn sample<A: ObjectDictionary, Z: NodeSizes>(
     map: &ResolvedMap,
     comm: &mut CommProfile<Z>,
     app: &mut A,
 ) -> ([u8; 8], u8) {
     let mut data = [0u8; 8];
-    let len = if map.app_only() { map.pack(app, &mut data) } else { map.pack(&Merged { comm, app }, &mut data) };
+    let len = if map.direct() { map.pack_bytes(app, &mut data) } else { map.pack(&Merged { comm, app }, &mut data) };
     (data, len as u8)
 }
 

@@ -103,13 +103,13 @@ pub struct ResolvedMap {
     count: u8,
     bits: u8,
     aligned: bool,
-    app_only: bool,
+    direct: bool,
 }
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
     pub const EMPTY: ResolvedMap =
-        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, aligned: true, app_only: true };
+        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, aligned: true, direct: true };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
@@ -135,9 +135,10 @@ impl ResolvedMap {
                 return Err(AbortCode::PdoLengthExceeded);
             }
             m.aligned &= e.bits % 8 == 0 && (e.is_dummy() || u16::from(e.handle.size) * 8 == u16::from(e.bits));
-            m.app_only &= e.is_dummy() || !(0x1000..=0x1FFF).contains(&e.handle.index);
+            m.direct &= e.is_dummy() || !(0x1000..=0x1FFF).contains(&e.handle.index);
             *slot = e;
         }
+        m.direct &= m.aligned;
         m.count = raw.len() as u8;
         m.bits = total as u8;
         Ok(m)
@@ -153,10 +154,12 @@ impl ResolvedMap {
         self.count == 0
     }
 
-    /// Whether no entry maps a communication-profile object (1000h–1FFFh): the node then moves the data
-    /// with the application dictionary directly, without the merged view's routing.
-    pub const fn app_only(&self) -> bool {
-        self.app_only
+    /// Whether every entry is a whole object of whole bytes and none maps a communication-profile object
+    /// (1000h–1FFFh): the node then moves the data with the application dictionary alone and the byte-aligned
+    /// path only ([`pack_bytes`](Self::pack_bytes), [`unpack_bytes`](Self::unpack_bytes)), without the merged
+    /// view's routing.
+    pub const fn direct(&self) -> bool {
+        self.direct
     }
 
     /// Total mapped bits.
@@ -176,12 +179,17 @@ impl ResolvedMap {
     /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
     /// read leaves zeros.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
-        *out = [0; 8];
         if !self.aligned {
             *out = self.pack_bits(od).to_le_bytes();
             return self.bytes();
         }
-        // Every entry is a whole object of whole bytes: read each straight into its place.
+        self.pack_bytes(od, out)
+    }
+
+    /// [`pack`](Self::pack) for a mapping whose entries are whole objects of whole bytes (see
+    /// [`direct`](Self::direct)): each is read straight into its place.
+    pub(crate) fn pack_bytes<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
+        *out = [0; 8];
         let mut rest: &mut [u8] = out;
         for e in self.entries() {
             let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
@@ -210,24 +218,31 @@ impl ResolvedMap {
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
     /// how many writes the dictionary refused (limits, hooks).
     pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
-        let mut refused = 0;
         if self.aligned {
-            let mut rest = data;
-            for e in self.entries() {
-                let Some((src, tail)) = rest.split_at_checked(usize::from(e.bits >> 3)) else { break };
-                if !e.is_dummy() {
-                    refused += usize::from(od.pdo_write(&e.handle, src).is_err());
-                }
-                rest = tail;
-            }
-            return refused;
+            return self.unpack_bytes(od, data);
         }
+        let mut refused = 0;
         let mut frame = Bits::from_payload(data);
         for e in self.entries() {
             let v = frame.pop(e.bits).to_le_bytes();
             if let Some(src) = v.get(..usize::from(e.handle.size)).filter(|s| !s.is_empty()) {
                 refused += usize::from(od.pdo_write(&e.handle, src).is_err());
             }
+        }
+        refused
+    }
+
+    /// [`unpack`](Self::unpack) for a mapping whose entries are whole objects of whole bytes (see
+    /// [`direct`](Self::direct)).
+    pub(crate) fn unpack_bytes<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
+        let mut refused = 0;
+        let mut rest = data;
+        for e in self.entries() {
+            let Some((src, tail)) = rest.split_at_checked(usize::from(e.bits >> 3)) else { break };
+            if !e.is_dummy() {
+                refused += usize::from(od.pdo_write(&e.handle, src).is_err());
+            }
+            rest = tail;
         }
         refused
     }
