@@ -177,25 +177,25 @@ impl ResolvedMap {
     }
 
     /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
-    /// read leaves zeros.
+    /// read leaves zeros. For a TPDO mapping: those have no dummy entries (PDO-34, [`resolve`] refuses them),
+    /// so the byte-aligned path does not test for one.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
         if !self.aligned {
             *out = self.pack_bits(od).to_le_bytes();
             return self.bytes();
         }
+        *out = [0; 8];
         self.pack_bytes(od, out)
     }
 
     /// [`pack`](Self::pack) for a mapping whose entries are whole objects of whole bytes (see
-    /// [`direct`](Self::direct)): each is read straight into its place.
+    /// [`direct`](Self::direct)) and no dummy entry (a TPDO mapping), into a zeroed `out`: each is read
+    /// straight into its place.
     pub(crate) fn pack_bytes<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
-        *out = [0; 8];
         let mut rest: &mut [u8] = out;
         for e in self.entries() {
             let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
-            if !e.is_dummy() {
-                let _ = od.pdo_read(&e.handle, dst);
-            }
+            let _ = od.pdo_read(&e.handle, dst);
             rest = tail;
         }
         self.bytes()
