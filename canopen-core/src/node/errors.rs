@@ -135,7 +135,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     pub(super) fn flush_emcy(&mut self, now: Instant) {
         let cob = CobIdEntry::from_raw(self.comm.params.emcy_cob_id);
         if cob.bit31() {
-            while self.comm.errors.pop_pending().is_some() {}
+            self.comm.errors.drop_pending();
             return;
         }
         match self.nmt.state() {
