@@ -433,14 +433,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
         }
         while let Some(ev) = self.consumer.handle_timeout(now) {
-            self.push_event(Event::Heartbeat(ev));
-            self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
-            self.communication_error(now);
+            self.error_control_lost(now, Event::Heartbeat(ev));
         }
         if let Some(ev) = self.guarding.handle_timeout(now) {
-            self.push_event(Event::LifeGuarding(ev));
-            self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
-            self.communication_error(now);
+            self.error_control_lost(now, Event::LifeGuarding(ev));
         }
         self.sync_timeout(now);
         self.pdo_handle_timeout(now);
@@ -716,6 +712,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if !self.consumer.any_timed_out() && !self.guarding.is_timed_out() {
             self.clear_error(codes::HEARTBEAT_OR_LIFE_GUARD);
         }
+    }
+
+    /// A heartbeat consumer or life guarding time-out (HB-11, GUARD-10): reported, EMCY 8130h, and a
+    /// communication error (HB-13, GUARD-11).
+    fn error_control_lost(&mut self, now: Instant, event: Event) {
+        self.push_event(event);
+        self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
+        self.communication_error(now);
     }
 
     /// HB-13, GUARD-11, NMT-26, ERR-10..13: a communication error; 1029h sub 01h says what happens: 0 (the
