@@ -156,8 +156,7 @@ impl ResolvedMap {
 
     /// Whether every entry is a whole object of whole bytes and none maps a communication-profile object
     /// (1000h–1FFFh): the node then moves the data with the application dictionary alone and the byte-aligned
-    /// path only ([`pack_bytes`](Self::pack_bytes), [`unpack_bytes`](Self::unpack_bytes)), without the merged
-    /// view's routing.
+    /// path only (`pack_bytes`, `unpack_bytes`), without the merged view's routing.
     pub const fn direct(&self) -> bool {
         self.direct
     }
