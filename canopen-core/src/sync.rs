@@ -76,6 +76,8 @@ pub struct Sync {
     params: SyncParams,
     counter: u8,
     next: Option<Instant>,
+    /// When the last SYNC went out or arrived: the start of the synchronous window (an optional instant in
+    /// 8 bytes, `Option<Instant>` takes 16).
     last_sync: Deadline,
 }
 
