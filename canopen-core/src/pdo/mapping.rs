@@ -157,6 +157,14 @@ impl ResolvedMap {
     /// Whether every entry is a whole object of whole bytes and none maps a communication-profile object
     /// (1000h–1FFFh): the node then moves the data with the application dictionary alone and the byte-aligned
     /// path only (`pack_bytes`, `unpack_bytes`), without the merged view's routing.
+    ///
+    /// ```
+    /// # use canopen_core::Sizes;
+    /// use canopen_core::{profile::{CommProfile, NodeConfig}, od::PdoDir, pdo::mapping::ResolvedMap};
+    /// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
+    /// assert!(ResolvedMap::EMPTY.direct());
+    /// assert!(!ResolvedMap::resolve(&od, &[0x1001_0008], PdoDir::Tpdo).unwrap().direct()); // 1001h: profile
+    /// ```
     pub const fn direct(&self) -> bool {
         self.direct
     }

@@ -244,6 +244,14 @@ impl Tpdo {
 
     /// The payload sampled at the last SYNC (type FCh) or last sent (FEh/FFh), `None` before the first one
     /// since entering Operational.
+    ///
+    /// ```
+    /// use canopen_core::{pdo::{tpdo::Tpdo, PdoComm, mapping::ResolvedMap}, Instant};
+    /// let mut t = Tpdo::new(&PdoComm { cob_id: 0x181, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY);
+    /// assert_eq!(t.last(), None);
+    /// t.sent(Instant::ZERO, ([7, 0, 0, 0, 0, 0, 0, 0], 1));
+    /// assert_eq!(t.last(), Some(([7, 0, 0, 0, 0, 0, 0, 0], 1))); // kept for change-of-value detection
+    /// ```
     pub const fn last(&self) -> Option<([u8; 8], u8)> {
         self.last
     }
