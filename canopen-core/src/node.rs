@@ -408,15 +408,15 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return Some(Instant::ZERO);
         }
         // As time::Deadline values (u64::MAX = none): a u64 minimum per service, not a match on two options.
-        let d = |t: Option<Instant>| Deadline::new(t);
-        let t = d(self.producer.poll_timeout())
-            .min(d(self.consumer.poll_timeout()))
-            .min(d(self.guarding.poll_timeout()))
-            .min(d(self.lss.poll_timeout()))
-            .min(d(self.sdo.poll_timeout()))
-            .min(d(self.sync.poll_timeout()))
-            .min(d(self.emcy_timeout()))
-            .min(self.pdo_timeout());
+        // One statement per service, so a service behind a Cargo feature is one `#[cfg]` line.
+        let mut t = Deadline::new(self.producer.poll_timeout());
+        t = t.min(Deadline::new(self.consumer.poll_timeout()));
+        t = t.min(Deadline::new(self.guarding.poll_timeout()));
+        t = t.min(Deadline::new(self.lss.poll_timeout()));
+        t = t.min(Deadline::new(self.sdo.poll_timeout()));
+        t = t.min(Deadline::new(self.sync.poll_timeout()));
+        t = t.min(Deadline::new(self.emcy_timeout()));
+        t = t.min(self.pdo_timeout());
         t.get()
     }
 
