@@ -237,10 +237,25 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
 
     /// Keeps only the most recent pending EMCY (NMT-22: after Stopped, the most recent one is sent).
     pub fn keep_most_recent(&mut self) {
-        while self.pending.len() > 1 {
-            self.pending.pop_front();
-            self.lost = self.lost.saturating_add(1);
+        if let Some(&last) = self.pending.back() {
+            self.lost = self.lost.saturating_add(self.pending.len() as u32 - 1);
+            self.pending.clear();
+            let _ = self.pending.push_back(last);
         }
+    }
+
+    /// Drops every pending EMCY (there is no EMCY object: 1014h bit 31 set).
+    ///
+    /// ```
+    /// use canopen_core::emcy::ErrorState;
+    /// let mut e: ErrorState<2, 4, 4> = ErrorState::new();
+    /// e.raise(0x1000, [0; 5]);
+    /// e.drop_pending();
+    /// assert!(!e.has_pending());
+    /// assert_eq!(e.register(), 0x01); // the error stays active
+    /// ```
+    pub fn drop_pending(&mut self) {
+        self.pending.clear();
     }
 
     /// EMCYs dropped because the queue was full or superseded in Stopped.

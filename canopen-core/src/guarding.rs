@@ -7,7 +7,7 @@
 //! 04h/05h/7Fh). GUARD-11 (time-out is a communication error per 1029h) and HB-05 (no guarding replies while
 //! the heartbeat producer runs) are enforced by `Node`. GUARD-12 is master behaviour (tested on the bus).
 
-use crate::time::{Duration, Instant};
+use crate::time::{Deadline, Duration, Instant};
 use crate::wire::error_control::{GuardReply, StateCode};
 
 /// A life-guarding observation for the application (GUARD-10).
@@ -39,14 +39,14 @@ pub enum LifeGuardingEvent {
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Guarding {
     toggle: bool,
-    deadline: Option<Instant>,
+    deadline: Deadline,
     timed_out: bool,
 }
 
 impl Guarding {
     /// Guarding after reset communication: toggle 0, life guarding not started.
     pub const fn new() -> Self {
-        Guarding { toggle: false, deadline: None, timed_out: false }
+        Guarding { toggle: false, deadline: Deadline::NONE, timed_out: false }
     }
 
     /// Reset communication: toggle back to 0, life guarding waits for the first request (GUARD-07, GUARD-09).
@@ -66,7 +66,7 @@ impl Guarding {
         let reply = GuardReply { toggle: self.toggle, state };
         self.toggle = !self.toggle;
         let life_ms = u64::from(guard_time_ms) * u64::from(life_time_factor);
-        self.deadline = (life_ms != 0).then(|| now + Duration::from_millis(life_ms));
+        self.deadline.set((life_ms != 0).then(|| now + Duration::from_millis(life_ms)));
         let resolved = core::mem::replace(&mut self.timed_out, false);
         (reply, resolved.then_some(LifeGuardingEvent::Resolved))
     }
@@ -76,16 +76,16 @@ impl Guarding {
     pub fn set_life_time(&mut self, now: Instant, guard_time_ms: u16, life_time_factor: u8) {
         let life_ms = u64::from(guard_time_ms) * u64::from(life_time_factor);
         if life_ms == 0 {
-            self.deadline = None;
+            self.deadline = Deadline::NONE;
             self.timed_out = false;
-        } else if self.deadline.is_some() {
-            self.deadline = Some(now + Duration::from_millis(life_ms));
+        } else if self.deadline.get().is_some() {
+            self.deadline.set(Some(now + Duration::from_millis(life_ms)));
         }
     }
 
     /// When the node life time ends.
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        self.deadline
+        self.deadline.get()
     }
 
     /// Whether life guarding is currently timed out.
@@ -95,9 +95,9 @@ impl Guarding {
 
     /// Reports [`LifeGuardingEvent::Timeout`] once when the node life time has elapsed at `now` (GUARD-10).
     pub fn handle_timeout(&mut self, now: Instant) -> Option<LifeGuardingEvent> {
-        match self.deadline {
+        match self.deadline.get() {
             Some(d) if d <= now => {
-                self.deadline = None;
+                self.deadline = Deadline::NONE;
                 self.timed_out = true;
                 Some(LifeGuardingEvent::Timeout)
             }

@@ -9,7 +9,7 @@
 //! HB-09 (duplicate node) is enforced by `profile::CommParams::set_consumer`. HB-12/HB-14 are advice.
 
 use crate::sizes::{Sizes, Slots};
-use crate::time::{Duration, Instant};
+use crate::time::{Deadline, Duration, Instant};
 use crate::wire::error_control::StateCode;
 
 /// Decoded 1016h consumer heartbeat entry (HB-07: bits 23–16 node-ID, bits 15–0 time in ms).
@@ -65,14 +65,15 @@ impl ConsumerEntry {
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct HeartbeatProducer {
-    period: Duration,
-    next: Option<Instant>,
+    /// 1017h, ms (2 bytes kept instead of an 8-byte `Duration`).
+    period_ms: u16,
+    next: Deadline,
 }
 
 impl HeartbeatProducer {
     /// A producer that is off.
     pub const fn new() -> Self {
-        HeartbeatProducer { period: Duration::ZERO, next: None }
+        HeartbeatProducer { period_ms: 0, next: Deadline::NONE }
     }
 
     /// Starts (or stops, for 0) the producer at the boot-up sent at `now` (HB-04).
@@ -82,27 +83,31 @@ impl HeartbeatProducer {
 
     /// Applies a new 1017h value written at `now`: takes effect at once (HB-04), 0 stops the producer.
     pub fn set_period(&mut self, now: Instant, period_ms: u16) {
-        self.period = Duration::from_millis(u64::from(period_ms));
-        self.next = if self.period.is_zero() { None } else { Some(now + self.period) };
+        self.period_ms = period_ms;
+        self.next.set((period_ms != 0).then(|| now + self.period()));
+    }
+
+    fn period(&self) -> Duration {
+        Duration::from_millis(u64::from(self.period_ms))
     }
 
     /// Whether the producer is running.
     pub const fn is_active(&self) -> bool {
-        self.next.is_some()
+        self.next.get().is_some()
     }
 
     /// The instant the next heartbeat is due.
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        self.next
+        self.next.get()
     }
 
     /// Whether a heartbeat is due at `now`; if so, schedules the next one. A runner that fell behind by more
     /// than a period sends one heartbeat, not a burst.
     pub fn due(&mut self, now: Instant) -> bool {
-        match self.next {
+        match self.next.get() {
             Some(next) if next <= now => {
-                let following = next + self.period;
-                self.next = Some(if following <= now { now + self.period } else { following });
+                let following = next + self.period();
+                self.next.set(Some(if following <= now { now + self.period() } else { following }));
                 true
             }
             _ => false,
@@ -115,8 +120,8 @@ impl HeartbeatProducer {
 enum Monitor {
     /// No heartbeat seen yet: no time-out (HB-10).
     Waiting,
-    /// Heartbeats arriving; the next one is due by `deadline`.
-    Alive { state: StateCode, deadline: Instant },
+    /// Heartbeats arriving; the next one is due by the slot's deadline.
+    Alive { state: StateCode },
     /// The consumer time elapsed without a heartbeat (HB-11).
     TimedOut { state: StateCode },
 }
@@ -132,12 +137,18 @@ enum Monitor {
 pub struct ConsumerSlot {
     entry: ConsumerEntry,
     monitor: Monitor,
+    /// While [`Monitor::Alive`]: when the next heartbeat is due (beside the enum, not in it, so a slot is
+    /// 16 bytes rather than 24).
+    deadline: Deadline,
 }
 
 impl ConsumerSlot {
     /// An entry that monitors nothing.
-    pub const OFF: ConsumerSlot =
-        ConsumerSlot { entry: ConsumerEntry { node_id: 0, time_ms: 0 }, monitor: Monitor::Waiting };
+    pub const OFF: ConsumerSlot = ConsumerSlot::waiting(ConsumerEntry { node_id: 0, time_ms: 0 });
+
+    const fn waiting(entry: ConsumerEntry) -> Self {
+        ConsumerSlot { entry, monitor: Monitor::Waiting, deadline: Deadline::NONE }
+    }
 }
 
 /// How many 1016h consumer entries a node has, as the consumer's storage type (see [`crate::sizes`]);
@@ -249,7 +260,7 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
     /// Loads every entry from the raw 1016h values (after reset communication).
     pub fn configure(&mut self, raw: &Z::ConsumerTimes) {
         for (slot, &r) in self.slots.as_mut().iter_mut().zip(raw.as_ref()) {
-            *slot = ConsumerSlot { entry: ConsumerEntry::from_raw(r), monitor: Monitor::Waiting };
+            *slot = ConsumerSlot::waiting(ConsumerEntry::from_raw(r));
         }
     }
 
@@ -259,7 +270,7 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
         if let Some(slot) = self.slots.as_mut().get_mut(i) {
             let entry = ConsumerEntry::from_raw(raw);
             if slot.entry != entry {
-                *slot = ConsumerSlot { entry, monitor: Monitor::Waiting };
+                *slot = ConsumerSlot::waiting(entry);
             }
         }
     }
@@ -276,7 +287,7 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
     pub fn remote_state(&self, node: u8) -> Option<StateCode> {
         self.slot(node).and_then(|s| match s.monitor {
             Monitor::Waiting => None,
-            Monitor::Alive { state, .. } | Monitor::TimedOut { state } => Some(state),
+            Monitor::Alive { state } | Monitor::TimedOut { state } => Some(state),
         })
     }
 
@@ -311,15 +322,15 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
     /// anything. Heartbeats of nodes that no active entry monitors are ignored.
     pub fn handle_heartbeat(&mut self, now: Instant, node: u8, state: StateCode) -> Option<ConsumerEvent> {
         let slot = self.slots.as_mut().iter_mut().find(|s| s.entry.is_active() && s.entry.node_id == node)?;
-        let deadline = now + Duration::from_millis(u64::from(slot.entry.time_ms));
+        slot.deadline.set(Some(now + Duration::from_millis(u64::from(slot.entry.time_ms))));
         let previous = slot.monitor;
-        slot.monitor = Monitor::Alive { state, deadline };
+        slot.monitor = Monitor::Alive { state };
         match previous {
             Monitor::Waiting => Some(ConsumerEvent::Started { node, state }),
             Monitor::TimedOut { .. } => Some(ConsumerEvent::Resumed { node, state }),
-            Monitor::Alive { state: from, .. } if from == state => None,
+            Monitor::Alive { state: from } if from == state => None,
             Monitor::Alive { .. } if state == StateCode::BootUp => Some(ConsumerEvent::Rebooted { node }),
-            Monitor::Alive { state: from, .. } => Some(ConsumerEvent::StateChanged { node, from, to: state }),
+            Monitor::Alive { state: from } => Some(ConsumerEvent::StateChanged { node, from, to: state }),
         }
     }
 
@@ -329,7 +340,7 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
             .as_ref()
             .iter()
             .filter_map(|s| match s.monitor {
-                Monitor::Alive { deadline, .. } => Some(deadline),
+                Monitor::Alive { .. } => s.deadline.get(),
                 _ => None,
             })
             .min()
@@ -342,9 +353,10 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
             .slots
             .as_mut()
             .iter_mut()
-            .find(|s| matches!(s.monitor, Monitor::Alive { deadline, .. } if deadline <= now))?;
-        if let Monitor::Alive { state, .. } = slot.monitor {
+            .find(|s| matches!(s.monitor, Monitor::Alive { .. }) && s.deadline.passed(now))?;
+        if let Monitor::Alive { state } = slot.monitor {
             slot.monitor = Monitor::TimedOut { state };
+            slot.deadline = Deadline::NONE;
         }
         Some(ConsumerEvent::Timeout { node: slot.entry.node_id })
     }

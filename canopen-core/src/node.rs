@@ -63,7 +63,7 @@ use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
 use crate::sizes::{Sizes, Slots};
 use crate::storage::{self, Groups, NoStorage, Storage};
 use crate::sync::Sync;
-use crate::time::{earliest, Instant};
+use crate::time::{Deadline, Instant};
 use crate::wire::error_control::{Heartbeat, StateCode};
 use crate::wire::nmt::NodeControl;
 use dict::{NodeDict, SaveFn};
@@ -472,19 +472,23 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.boot_pending {
             return Some(Instant::ZERO);
         }
-        let mut t = earliest(self.producer.poll_timeout(), self.consumer.poll_timeout());
+        // As time::Deadline values (u64::MAX = none): a u64 minimum per service, not a match on two options.
+        // One statement per service, so a service behind a Cargo feature is one `#[cfg]` line.
+        let mut t = Deadline::new(self.producer.poll_timeout());
+        t = t.min(Deadline::new(self.consumer.poll_timeout()));
         #[cfg(feature = "guarding")]
         {
-            t = earliest(t, self.guarding.poll_timeout());
+            t = t.min(Deadline::new(self.guarding.poll_timeout()));
         }
         #[cfg(feature = "lss")]
         {
-            t = earliest(t, self.lss.poll_timeout());
+            t = t.min(Deadline::new(self.lss.poll_timeout()));
         }
-        t = earliest(t, self.sdo.poll_timeout());
-        t = earliest(t, self.sync.poll_timeout());
-        t = earliest(t, self.emcy_timeout());
-        earliest(t, self.pdo_timeout())
+        t = t.min(Deadline::new(self.sdo.poll_timeout()));
+        t = t.min(Deadline::new(self.sync.poll_timeout()));
+        t = t.min(Deadline::new(self.emcy_timeout()));
+        t = t.min(self.pdo_timeout());
+        t.get()
     }
 
     /// Lets the node act on the time that has passed: boot, heartbeats, consumer and life-guarding time-outs.
@@ -501,15 +505,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
         }
         while let Some(ev) = self.consumer.handle_timeout(now) {
-            self.push_event(Event::Heartbeat(ev));
-            self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
-            self.communication_error(now);
+            self.error_control_lost(now, Event::Heartbeat(ev));
         }
         #[cfg(feature = "guarding")]
         if let Some(ev) = self.guarding.handle_timeout(now) {
-            self.push_event(Event::LifeGuarding(ev));
-            self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
-            self.communication_error(now);
+            self.error_control_lost(now, Event::LifeGuarding(ev));
         }
         self.sync_timeout(now);
         self.pdo_handle_timeout(now);
@@ -824,6 +824,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if !self.consumer.any_timed_out() {
             self.clear_error(codes::HEARTBEAT_OR_LIFE_GUARD);
         }
+    }
+
+    /// A heartbeat consumer or life guarding time-out (HB-11, GUARD-10): reported, EMCY 8130h, and a
+    /// communication error (HB-13, GUARD-11).
+    fn error_control_lost(&mut self, now: Instant, event: Event) {
+        self.push_event(event);
+        self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
+        self.communication_error(now);
     }
 
     /// HB-13, GUARD-11, NMT-26, ERR-10..13: a communication error; 1029h sub 01h says what happens: 0 (the

@@ -9,7 +9,7 @@
 
 use crate::abort::AbortCode;
 use crate::cob::CobIdEntry;
-use crate::time::{Duration, Instant};
+use crate::time::{Deadline, Duration, Instant};
 
 /// The SYNC parameters (1005h, 1006h, 1007h, 1019h).
 ///
@@ -76,13 +76,15 @@ pub struct Sync {
     params: SyncParams,
     counter: u8,
     next: Option<Instant>,
-    last_sync: Option<Instant>,
+    /// When the last SYNC went out or arrived: the start of the synchronous window (an optional instant in
+    /// 8 bytes, `Option<Instant>` takes 16).
+    last_sync: Deadline,
 }
 
 impl Sync {
     /// A SYNC object with `params`; call [`start`](Self::start) at boot-up.
     pub const fn new(params: SyncParams) -> Self {
-        Sync { params, counter: 1, next: None, last_sync: None }
+        Sync { params, counter: 1, next: None, last_sync: Deadline::NONE }
     }
 
     /// The parameters.
@@ -104,7 +106,7 @@ impl Sync {
     /// sends its first SYNC one period later (SYNC-07).
     pub fn start(&mut self, now: Instant) {
         self.counter = 1;
-        self.last_sync = None;
+        self.last_sync = Deadline::NONE;
         self.schedule(now);
     }
 
@@ -191,7 +193,7 @@ impl Sync {
         let following = next + period;
         self.next = Some(if following <= now { now + period } else { following });
         let counter = self.advance_counter();
-        self.last_sync = Some(now);
+        self.last_sync.set(Some(now));
         let mut data = [0u8; 8];
         let len = match counter {
             Some(c) => {
@@ -217,11 +219,11 @@ impl Sync {
         let expect_counter = self.params.counter_overflow >= 2;
         match (expect_counter, data) {
             (false, []) => {
-                self.last_sync = Some(now);
+                self.last_sync.set(Some(now));
                 SyncInput::Sync { counter: None }
             }
             (true, [c]) => {
-                self.last_sync = Some(now);
+                self.last_sync.set(Some(now));
                 SyncInput::Sync { counter: Some(*c) }
             }
             _ => SyncInput::WrongLength,
@@ -239,7 +241,7 @@ impl Sync {
     /// assert!(!s.in_window(Instant::from_micros(1600)));
     /// ```
     pub fn in_window(&self, now: Instant) -> bool {
-        match (self.params.window_us, self.last_sync) {
+        match (self.params.window_us, self.last_sync.get()) {
             (0, _) => true,
             (_, None) => false,
             (w, Some(t)) => now <= t + Duration::from_micros(u64::from(w)),

@@ -158,6 +158,58 @@ impl Add for Duration {
     }
 }
 
+/// An optional deadline in 8 bytes, where `Option<Instant>` takes 16 (a flag padded to the `u64`'s
+/// alignment): what the services keep their timers in. The instant `u64::MAX` µs (some 585,000 years after
+/// the runner's epoch) stands for "no deadline"; an instant that saturates there is never reached anyway.
+///
+/// ```
+/// use canopen_core::time::{Deadline, Instant};
+/// let mut d = Deadline::NONE;
+/// assert_eq!(d.get(), None);
+/// d.set(Some(Instant::from_millis(5)));
+/// assert!(!d.passed(Instant::from_millis(4)) && d.passed(Instant::from_millis(5)));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Deadline(u64);
+
+impl Default for Deadline {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
+
+impl Deadline {
+    /// No deadline.
+    pub const NONE: Deadline = Deadline(u64::MAX);
+
+    /// A deadline at `t`, or none.
+    pub const fn new(t: Option<Instant>) -> Self {
+        match t {
+            Some(t) => Deadline(t.0),
+            None => Self::NONE,
+        }
+    }
+
+    /// The deadline, if any.
+    pub const fn get(self) -> Option<Instant> {
+        if self.0 == u64::MAX {
+            None
+        } else {
+            Some(Instant(self.0))
+        }
+    }
+
+    /// Sets or clears the deadline.
+    pub fn set(&mut self, t: Option<Instant>) {
+        *self = Self::new(t);
+    }
+
+    /// Whether there is a deadline and `now` has reached it.
+    pub const fn passed(self, now: Instant) -> bool {
+        self.0 != u64::MAX && self.0 <= now.0
+    }
+}
+
 /// The earlier of two optional deadlines (`None` = no deadline).
 ///
 /// ```

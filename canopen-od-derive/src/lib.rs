@@ -852,6 +852,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     let info = #core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: 0 };
                     #core::od::PdoHandle::check(index, sub, &info, dir, pos as u16)
                 }
+                #[inline(always)]
                 fn pdo_read(&self, handle: &#core::od::PdoHandle, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
                     match Self::__od_slot(handle) {
                         ::core::option::Option::Some(pos) => self.__od_read(pos, 0, buf),

@@ -49,7 +49,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     pub fn raise_error(&mut self, code: u16, manufacturer: [u8; 5]) -> bool {
         let raised = self.comm.errors.raise(code, manufacturer);
         self.comm.params.error_register = self.comm.errors.register();
-        self.pump_emcy(self.now);
+        self.flush_emcy(self.now);
         raised
     }
 
@@ -58,7 +58,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     pub fn clear_error(&mut self, code: u16) -> bool {
         let cleared = self.comm.errors.clear(code);
         self.comm.params.error_register = self.comm.errors.register();
-        self.pump_emcy(self.now);
+        self.flush_emcy(self.now);
         cleared
     }
 
@@ -120,13 +120,22 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// Moves pending EMCYs to the transmit queue while the state, the 1015h inhibit time and the queue
     /// allow (EMCY-08/09, NMT-22). A not-valid 1014h (bit 31) drops them: there is no EMCY object.
+    ///
+    /// Called after every transmitted frame: the check for pending EMCYs is inlined into the caller, the
+    /// work is out of line ([`flush_emcy`](Self::flush_emcy)).
+    #[inline]
     pub(super) fn pump_emcy(&mut self, now: Instant) {
-        if !self.comm.errors.has_pending() {
-            return;
+        if self.comm.errors.has_pending() {
+            self.flush_emcy(now);
         }
+    }
+
+    /// [`pump_emcy`](Self::pump_emcy) without the inlined check: for callers that have just queued an EMCY.
+    #[inline(never)]
+    pub(super) fn flush_emcy(&mut self, now: Instant) {
         let cob = CobIdEntry::from_raw(self.comm.params.emcy_cob_id);
         if cob.bit31() {
-            while self.comm.errors.pop_pending().is_some() {}
+            self.comm.errors.drop_pending();
             return;
         }
         match self.nmt.state() {

@@ -13,9 +13,10 @@ use crate::od::{Merged, ObjectDictionary, PdoDir};
 use crate::pdo::mapping::ResolvedMap;
 use crate::pdo::rpdo::{Rpdo, RxOutcome};
 use crate::pdo::tpdo::{SyncAction, Tpdo};
+use crate::profile::CommProfile;
 use crate::storage::Storage;
 use crate::sync::SyncInput;
-use crate::time::{earliest, Instant};
+use crate::time::{Deadline, Instant};
 #[cfg(feature = "time")]
 use crate::wire::time_stamp::TimeStamp;
 use heapless::vec::VecStorage;
@@ -83,12 +84,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.tpdos.as_mut().iter_mut().for_each(Tpdo::stop);
     }
 
-    pub(super) fn pdo_timeout(&self) -> Option<Instant> {
+    /// The earliest PDO deadline (inhibit times, event timers), in Operational only.
+    pub(super) fn pdo_timeout(&self) -> Deadline {
         if self.nmt.state() != NmtState::Operational {
-            return None;
+            return Deadline::NONE;
         }
-        let t = self.tpdos.as_ref().iter().fold(None, |t, p| earliest(t, p.poll_timeout()));
-        self.rpdos.as_ref().iter().fold(t, |t, p| earliest(t, p.poll_timeout()))
+        let t = self.tpdos.as_ref().iter().fold(Deadline::NONE, |t, p| t.min(Deadline::new(p.poll_timeout())));
+        self.rpdos.as_ref().iter().fold(t, |t, p| t.min(Deadline::new(p.poll_timeout())))
     }
 
     pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
@@ -112,16 +114,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Samples TPDO `k` and queues it.
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
-        let mut data = [0u8; 8];
-        let len = if t.map.app_only() {
-            t.map.pack(&self.app, &mut data)
-        } else {
-            t.map.pack(&Merged { comm: &mut self.comm, app: &mut self.app }, &mut data)
-        };
-        t.sent(now);
-        t.last_sent = Some((data, len as u8));
-        let frame = CanFrame::from_parts(t.can_id(), data, len as u8);
-        self.transmit(frame);
+        let (data, len) = sample(&t.map, &mut self.comm, &mut self.app);
+        t.sent(now, (data, len));
+        let id = t.can_id();
+        self.transmit(CanFrame::from_parts(id, data, len));
     }
 
     /// An RPDO frame (PDO-04: Operational only; PDO-38/39 lengths; PDO-40 window).
@@ -142,8 +138,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 return;
             }
             RxOutcome::Apply { exceeded } => {
-                if r.map.app_only() {
-                    r.map.unpack(&mut self.app, frame.data());
+                if r.map.direct() {
+                    r.map.unpack_bytes(&mut self.app, frame.data());
                 } else {
                     r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, frame.data());
                 }
@@ -186,7 +182,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let k = usize::from(k);
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         if t.transmission_type() == 252 {
-            if let Some((data, len)) = t.rtr_buffer {
+            if let Some((data, len)) = t.last() {
                 let frame = CanFrame::from_parts(t.can_id(), data, len);
                 self.transmit(frame);
             }
@@ -246,11 +242,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 SyncAction::None => {}
                 SyncAction::Send => self.send_tpdo(now, k),
                 SyncAction::Sample => {
-                    let od = Merged { comm: &mut self.comm, app: &mut self.app };
                     let t = &mut self.tpdos[k];
-                    let mut data = [0u8; 8];
-                    let len = t.map.pack(&od, &mut data);
-                    t.rtr_buffer = Some((data, len as u8));
+                    t.sampled(sample(&t.map, &mut self.comm, &mut self.app));
                 }
             }
         }
@@ -290,10 +283,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             if !t.is_valid() || t.transmission_type() < 254 {
                 continue;
             }
-            let od = Merged { comm: &mut self.comm, app: &mut self.app };
-            let mut data = [0u8; 8];
-            let len = t.map.pack(&od, &mut data);
-            if t.last_sent != Some((data, len as u8)) && self.trigger_tpdo(k) {
+            if t.last() != Some(sample(&t.map, &mut self.comm, &mut self.app)) && self.trigger_tpdo(k) {
                 sent += 1;
             }
         }
@@ -348,6 +338,19 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));
         true
     }
+}
+
+/// Samples the objects of `map` into a payload (PDO-32): through the application dictionary alone when the
+/// mapping is [`direct`](ResolvedMap::direct) (no routing per entry), else through the merged view, which
+/// alone carries the bit-granular path (one instance of it, not one per dictionary type).
+fn sample<A: ObjectDictionary, Z: NodeSizes>(
+    map: &ResolvedMap,
+    comm: &mut CommProfile<Z>,
+    app: &mut A,
+) -> ([u8; 8], u8) {
+    let mut data = [0u8; 8];
+    let len = if map.direct() { map.pack_bytes(app, &mut data) } else { map.pack(&Merged { comm, app }, &mut data) };
+    (data, len as u8)
 }
 
 /// Inserts `e` after every entry whose CAN-ID is not greater, so the table stays sorted by CAN-ID with equal

@@ -19,19 +19,29 @@ use crate::wire::pdo_mapping::MappingEntry;
 /// supported (writing sub 09h and up → 0609 0011h, a count above 8 → 0604 0042h).
 pub const MAX_ENTRIES: usize = 8;
 
-/// One resolved entry: the object (or `None` for a dummy entry) and its length in bits.
+/// One resolved entry (8 bytes): the object's handle and the mapped length in bits. A dummy entry (RPDO only,
+/// PDO-34) has a handle of size 0: its bits are skipped, nothing is read or written.
 ///
 /// ```
-/// use canopen_core::pdo::mapping::Mapped;
-/// let m = Mapped { handle: None, bits: 8 };
-/// assert_eq!(m.bits, 8);
+/// use canopen_core::{od::PdoHandle, pdo::mapping::Mapped};
+/// let m = Mapped { handle: PdoHandle { index: 5, sub: 0, size: 0, slot: PdoHandle::NO_SLOT }, bits: 8 };
+/// assert!(m.is_dummy());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Mapped {
-    /// The object, `None` for a dummy entry (RPDO only).
-    pub handle: Option<PdoHandle>,
+    /// The object; size 0 for a dummy entry.
+    pub handle: PdoHandle,
     /// Mapped length in bits (1..=64).
     pub bits: u8,
+}
+
+impl Mapped {
+    const NONE: Mapped = Mapped { handle: PdoHandle { index: 0, sub: 0, size: 0, slot: PdoHandle::NO_SLOT }, bits: 0 };
+
+    /// Whether this is a dummy entry (no object behind it).
+    pub const fn is_dummy(&self) -> bool {
+        self.handle.size == 0
+    }
 }
 
 /// Resolves one mapping entry (PDO-33, PDO-34, PDO-36): the object must exist (0602 0000h / 0609 0011h),
@@ -45,24 +55,39 @@ pub struct Mapped {
 /// assert!(resolve(&od, 0x1001_0008, PdoDir::Tpdo).is_ok()); // 1001h is TPDO-mappable
 /// assert_eq!(resolve(&od, 0x1001_0008, PdoDir::Rpdo), Err(AbortCode::NotMappable));
 /// assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
-/// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().handle.is_none()); // dummy
+/// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().is_dummy());
 /// ```
 pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
+    let e = match entry(raw, dir)? {
+        Ok(dummy) => return Ok(dummy),
+        Err(e) => e,
+    };
+    checked_len(od.pdo_resolve(e.index, e.sub, dir)?, e.bits)
+}
+
+/// The checks of [`resolve`] that need no dictionary (length, dummy entries): a dummy entry resolved, or the
+/// entry to look up. Not generic, so every dictionary type shares it.
+fn entry(raw: u32, dir: PdoDir) -> Result<Result<Mapped, MappingEntry>, AbortCode> {
     let e = MappingEntry::from_raw(raw);
     if e.bits == 0 || e.bits > 64 {
         return Err(AbortCode::NotMappable);
     }
-    if let Some(bits) = e.dummy_bits() {
-        if dir == PdoDir::Rpdo && e.bits <= bits {
-            return Ok(Mapped { handle: None, bits: e.bits });
+    match e.dummy_bits() {
+        None => Ok(Err(e)),
+        Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits => {
+            let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
+            Ok(Ok(Mapped { handle, bits: e.bits }))
         }
+        Some(_) => Err(AbortCode::NotMappable),
+    }
+}
+
+/// The object must hold at least `bits` bits (PDO-36).
+fn checked_len(handle: PdoHandle, bits: u8) -> Result<Mapped, AbortCode> {
+    if handle.size == 0 || u16::from(bits) > u16::from(handle.size) * 8 {
         return Err(AbortCode::NotMappable);
     }
-    let handle = od.pdo_resolve(e.index, e.sub, dir)?;
-    if u16::from(e.bits) > u16::from(handle.size) * 8 {
-        return Err(AbortCode::NotMappable);
-    }
-    Ok(Mapped { handle: Some(handle), bits: e.bits })
+    Ok(Mapped { handle, bits })
 }
 
 /// A PDO's resolved mapping.
@@ -78,18 +103,13 @@ pub struct ResolvedMap {
     count: u8,
     bits: u8,
     aligned: bool,
-    app_only: bool,
+    direct: bool,
 }
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
-    pub const EMPTY: ResolvedMap = ResolvedMap {
-        entries: [Mapped { handle: None, bits: 0 }; MAX_ENTRIES],
-        count: 0,
-        bits: 0,
-        aligned: true,
-        app_only: true,
-    };
+    pub const EMPTY: ResolvedMap =
+        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, aligned: true, direct: true };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
@@ -114,10 +134,11 @@ impl ResolvedMap {
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
             }
-            m.aligned &= e.bits % 8 == 0 && e.handle.is_none_or(|h| u16::from(h.size) * 8 == u16::from(e.bits));
-            m.app_only &= e.handle.is_none_or(|h| !(0x1000..=0x1FFF).contains(&h.index));
+            m.aligned &= e.bits % 8 == 0 && (e.is_dummy() || u16::from(e.handle.size) * 8 == u16::from(e.bits));
+            m.direct &= e.is_dummy() || !(0x1000..=0x1FFF).contains(&e.handle.index);
             *slot = e;
         }
+        m.direct &= m.aligned;
         m.count = raw.len() as u8;
         m.bits = total as u8;
         Ok(m)
@@ -133,10 +154,19 @@ impl ResolvedMap {
         self.count == 0
     }
 
-    /// Whether no entry maps a communication-profile object (1000h–1FFFh): the node then moves the data
-    /// with the application dictionary directly, without the merged view's routing.
-    pub const fn app_only(&self) -> bool {
-        self.app_only
+    /// Whether every entry is a whole object of whole bytes and none maps a communication-profile object
+    /// (1000h–1FFFh): the node then moves the data with the application dictionary alone and the byte-aligned
+    /// path only (`pack_bytes`, `unpack_bytes`), without the merged view's routing.
+    ///
+    /// ```
+    /// # use canopen_core::Sizes;
+    /// use canopen_core::{profile::{CommProfile, NodeConfig}, od::PdoDir, pdo::mapping::ResolvedMap};
+    /// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
+    /// assert!(ResolvedMap::EMPTY.direct());
+    /// assert!(!ResolvedMap::resolve(&od, &[0x1001_0008], PdoDir::Tpdo).unwrap().direct()); // 1001h: profile
+    /// ```
+    pub const fn direct(&self) -> bool {
+        self.direct
     }
 
     /// Total mapped bits.
@@ -154,73 +184,116 @@ impl ResolvedMap {
     }
 
     /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
-    /// read leaves zeros.
+    /// read leaves zeros. For a TPDO mapping: those have no dummy entries (PDO-34, [`resolve`] refuses them),
+    /// so the byte-aligned path does not test for one.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
+        if !self.aligned {
+            *out = self.pack_bits(od).to_le_bytes();
+            return self.bytes();
+        }
         *out = [0; 8];
-        if self.aligned {
-            let mut rest: &mut [u8] = out;
-            for e in self.entries() {
-                let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
-                if let Some(h) = &e.handle {
-                    let _ = od.pdo_read(h, dst);
-                }
-                rest = tail;
-            }
-            return usize::from(self.bits >> 3);
-        }
-        let mut acc = 0u64;
-        let mut off = 0u32;
+        self.pack_bytes(od, out)
+    }
+
+    /// [`pack`](Self::pack) for a mapping whose entries are whole objects of whole bytes (see
+    /// [`direct`](Self::direct)) and no dummy entry (a TPDO mapping), into a zeroed `out`: each is read
+    /// straight into its place.
+    pub(crate) fn pack_bytes<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
+        let mut rest: &mut [u8] = out;
         for e in self.entries() {
-            if let Some(h) = &e.handle {
-                let mut v = [0u8; 8];
-                let n = usize::from(h.size).min(8);
-                let _ = od.pdo_read(h, &mut v[..n]);
-                acc |= (u64::from_le_bytes(v) & mask(e.bits)).checked_shl(off).unwrap_or(0);
-            }
-            off += u32::from(e.bits);
+            let Some((dst, tail)) = rest.split_at_mut_checked(usize::from(e.bits >> 3)) else { break };
+            let _ = od.pdo_read(&e.handle, dst);
+            rest = tail;
         }
-        *out = acc.to_le_bytes();
         self.bytes()
+    }
+
+    /// [`pack`](Self::pack) for a mapping with entries that are not whole objects of whole bytes.
+    #[inline(never)]
+    fn pack_bits<D: ObjectDictionary + ?Sized>(&self, od: &D) -> u64 {
+        let mut acc = Bits::default();
+        for e in self.entries() {
+            let mut v = [0u8; 8];
+            if let Some(buf) = v.get_mut(..usize::from(e.handle.size)).filter(|b| !b.is_empty()) {
+                let _ = od.pdo_read(&e.handle, buf);
+            }
+            acc.push(u64::from_le_bytes(v), e.bits);
+        }
+        acc.value
     }
 
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
     /// how many writes the dictionary refused (limits, hooks).
     pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
-        let mut refused = 0;
         if self.aligned {
-            let mut rest = data;
-            for e in self.entries() {
-                let Some((src, tail)) = rest.split_at_checked(usize::from(e.bits >> 3)) else { break };
-                if let Some(h) = &e.handle {
-                    refused += usize::from(od.pdo_write(h, src).is_err());
-                }
-                rest = tail;
-            }
-            return refused;
+            return self.unpack_bytes(od, data);
         }
-        let mut buf = [0u8; 8];
-        let n = data.len().min(8);
-        buf[..n].copy_from_slice(&data[..n]);
-        let frame = u64::from_le_bytes(buf);
-        let mut off = 0u32;
+        let mut refused = 0;
+        let mut frame = Bits::from_payload(data);
         for e in self.entries() {
-            if let Some(h) = &e.handle {
-                let v = (frame.checked_shr(off).unwrap_or(0) & mask(e.bits)).to_le_bytes();
-                let size = usize::from(h.size).min(8);
-                refused += usize::from(od.pdo_write(h, &v[..size]).is_err());
+            let v = frame.pop(e.bits).to_le_bytes();
+            if let Some(src) = v.get(..usize::from(e.handle.size)).filter(|s| !s.is_empty()) {
+                refused += usize::from(od.pdo_write(&e.handle, src).is_err());
             }
-            off += u32::from(e.bits);
+        }
+        refused
+    }
+
+    /// [`unpack`](Self::unpack) for a mapping whose entries are whole objects of whole bytes (see
+    /// [`direct`](Self::direct)).
+    pub(crate) fn unpack_bytes<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
+        let mut refused = 0;
+        let mut rest = data;
+        for e in self.entries() {
+            let Some((src, tail)) = rest.split_at_checked(usize::from(e.bits >> 3)) else { break };
+            if !e.is_dummy() {
+                refused += usize::from(od.pdo_write(&e.handle, src).is_err());
+            }
+            rest = tail;
         }
         refused
     }
 }
 
-const fn mask(bits: u8) -> u64 {
-    if bits >= 64 {
-        u64::MAX
-    } else {
-        (1u64 << bits) - 1
+/// A PDO payload as a little-endian `u64` with a bit position (PDO-32: entries packed from bit 0 in order),
+/// for mappings that are not whole bytes: a shift and a mask per entry, never a loop over bits. Kept out
+/// of the generic `pack`/`unpack` so that each dictionary type does not get its own copy.
+#[derive(Default)]
+struct Bits {
+    value: u64,
+    off: u32,
+}
+
+impl Bits {
+    fn from_payload(data: &[u8]) -> Self {
+        let mut buf = [0u8; 8];
+        let n = data.len().min(8);
+        buf[..n].copy_from_slice(&data[..n]);
+        Bits { value: u64::from_le_bytes(buf), off: 0 }
     }
+
+    // An entry has 1..=64 bits and the entries total at most 64 (ResolvedMap::resolve), so an entry starts
+    // at bit 0..=63: the shifts below never reach 64.
+
+    /// Appends the low `bits` bits of `v`.
+    #[inline(never)]
+    fn push(&mut self, v: u64, bits: u8) {
+        self.value |= (v & mask(bits)) << (self.off & 63);
+        self.off += u32::from(bits);
+    }
+
+    /// Takes the next `bits` bits (the object's remaining high bits are 0, no sign extension).
+    #[inline(never)]
+    fn pop(&mut self, bits: u8) -> u64 {
+        let v = (self.value >> (self.off & 63)) & mask(bits);
+        self.off += u32::from(bits);
+        v
+    }
+}
+
+/// The low `bits` (1..=64) bits set.
+const fn mask(bits: u8) -> u64 {
+    u64::MAX >> ((64 - bits as u32) % 64)
 }
 
 #[cfg(test)]

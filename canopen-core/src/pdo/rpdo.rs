@@ -114,7 +114,12 @@ impl Rpdo {
 
     /// A SYNC: the data received since the last one, if any.
     pub fn take_pending(&mut self) -> Option<[u8; 8]> {
-        self.pending.take()
+        // Checked first: the common case (nothing buffered) then writes nothing.
+        if self.pending.is_some() {
+            self.pending.take()
+        } else {
+            None
+        }
     }
 
     /// Drops buffered data (the synchronous window closed, or the node left Operational).

@@ -62,10 +62,9 @@ pub struct Tpdo {
     timer_at: Instant,
     inhibit_set: bool,
     timer_set: bool,
-    /// Data sampled at the last SYNC for type FCh.
-    pub rtr_buffer: Option<([u8; 8], u8)>,
-    /// The payload last sent, for change-of-value detection.
-    pub last_sent: Option<([u8; 8], u8)>,
+    /// The payload sampled at the last SYNC for type FCh (sent on RTR, PDO-21), or the payload last sent for
+    /// FEh/FFh (change-of-value detection, PDO-23): one buffer, since a TPDO has one type.
+    last: Option<([u8; 8], u8)>,
 }
 
 impl Tpdo {
@@ -85,8 +84,7 @@ impl Tpdo {
             timer_at: Instant::ZERO,
             inhibit_set: false,
             timer_set: false,
-            rtr_buffer: None,
-            last_sent: None,
+            last: None,
         }
     }
 
@@ -121,8 +119,7 @@ impl Tpdo {
         self.started = false;
         self.pending = false;
         self.set_inhibit_until(None);
-        self.rtr_buffer = None;
-        self.last_sent = None;
+        self.last = None;
         self.set_timer_due(None);
         self.is_valid() && self.event_driven()
     }
@@ -140,38 +137,35 @@ impl Tpdo {
             return SyncAction::None;
         }
         match self.ttype {
-            0 => {
-                if core::mem::take(&mut self.pending) {
-                    SyncAction::Send
-                } else {
-                    SyncAction::None
-                }
-            }
-            n @ 1..=240 => {
-                if !self.started {
-                    match (self.sync_start, counter) {
-                        (s, Some(c)) if s != 0 => {
-                            if c != s {
-                                return SyncAction::None;
-                            }
-                            self.started = true;
-                            self.sync_count = 0;
-                            return SyncAction::Send;
-                        }
-                        _ => self.started = true,
-                    }
-                }
-                self.sync_count += 1;
-                if self.sync_count >= n {
-                    self.sync_count = 0;
-                    SyncAction::Send
-                } else {
-                    SyncAction::None
-                }
-            }
+            n @ 1..=240 => self.cyclic(n, counter),
+            0 if core::mem::take(&mut self.pending) => SyncAction::Send,
             252 => SyncAction::Sample,
             _ => SyncAction::None,
         }
+    }
+
+    /// Types 01h–F0h: every `n`-th SYNC, counted from the SYNC start value when the counter is on (PDO-20,
+    /// PDO-26).
+    fn cyclic(&mut self, n: u8, counter: Option<u8>) -> SyncAction {
+        if !self.started {
+            match (self.sync_start, counter) {
+                (s, Some(c)) if s != 0 => {
+                    if c != s {
+                        return SyncAction::None;
+                    }
+                    self.started = true;
+                    self.sync_count = 0;
+                    return SyncAction::Send;
+                }
+                _ => self.started = true,
+            }
+        }
+        self.sync_count += 1;
+        if self.sync_count < n {
+            return SyncAction::None;
+        }
+        self.sync_count = 0;
+        SyncAction::Send
     }
 
     /// An application event at `now` (PDO-19, PDO-23): returns whether to send now. Type 00h sends at the
@@ -223,14 +217,43 @@ impl Tpdo {
         self.timer_at = t.unwrap_or(Instant::ZERO);
     }
 
-    /// The TPDO was sent at `now`: the inhibit time and the event timer start.
-    pub fn sent(&mut self, now: Instant) {
-        if self.ttype != 0 {
-            self.pending = false;
+    /// The TPDO was sent at `now` with `payload`: the inhibit time and the event timer start; an
+    /// event-driven TPDO keeps the payload for [`last`](Self::last).
+    pub fn sent(&mut self, now: Instant, payload: ([u8; 8], u8)) {
+        // Without an inhibit time (an event timer) its deadline is never set, so there is nothing to clear.
+        let inhibit = self.inhibit_100us;
+        if inhibit != 0 {
+            self.set_inhibit_until(Some(now + Duration::from_100us(inhibit.into())));
         }
-        let (inhibit, timer) = (self.inhibit_100us, self.event_timer_ms);
-        self.set_inhibit_until((inhibit != 0).then(|| now + Duration::from_100us(inhibit.into())));
-        self.set_timer_due((self.event_driven() && timer != 0).then(|| now + Duration::from_millis(timer.into())));
+        if self.event_driven() {
+            // Only FEh/FFh hold an event back (type 00h keeps its event for the next SYNC, the other types
+            // never have one), and only they run the event timer (start/stop clear it for the others).
+            self.pending = false;
+            self.last = Some(payload);
+            let timer = self.event_timer_ms;
+            if timer != 0 {
+                self.set_timer_due(Some(now + Duration::from_millis(timer.into())));
+            }
+        }
+    }
+
+    /// Type FCh: the payload sampled at a SYNC, sent on the next remote request (PDO-21).
+    pub fn sampled(&mut self, payload: ([u8; 8], u8)) {
+        self.last = Some(payload);
+    }
+
+    /// The payload sampled at the last SYNC (type FCh) or last sent (FEh/FFh), `None` before the first one
+    /// since entering Operational.
+    ///
+    /// ```
+    /// use canopen_core::{pdo::{tpdo::Tpdo, PdoComm, mapping::ResolvedMap}, Instant};
+    /// let mut t = Tpdo::new(&PdoComm { cob_id: 0x181, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY);
+    /// assert_eq!(t.last(), None);
+    /// t.sent(Instant::ZERO, ([7, 0, 0, 0, 0, 0, 0, 0], 1));
+    /// assert_eq!(t.last(), Some(([7, 0, 0, 0, 0, 0, 0, 0], 1))); // kept for change-of-value detection
+    /// ```
+    pub const fn last(&self) -> Option<([u8; 8], u8)> {
+        self.last
     }
 
     /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work.
@@ -301,7 +324,7 @@ mod tests {
             ResolvedMap::EMPTY,
         );
         assert!(t.trigger(Instant::ZERO));
-        t.sent(Instant::ZERO);
+        t.sent(Instant::ZERO, ([0; 8], 0));
         assert!(!t.trigger(Instant::from_millis(5)));
         assert_eq!(t.poll_timeout(), Some(Instant::from_millis(20)));
         assert!(!t.handle_timeout(Instant::from_millis(19)));
