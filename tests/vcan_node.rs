@@ -392,3 +392,44 @@ fn bystander(node: RunningNode) {
     );
     drop(node);
 }
+
+/// Issue 22, end to end on vcan (HB-11, HB-13, EEC-01): node 41 consumes the heartbeat of node 40 (1016h:01
+/// set by SDO, 300 ms against 40's 100 ms). When node 40 goes silent, node 41 sends EMCY 8130h (heartbeat
+/// time-out) with the communication bit of 1001h; when node 40 comes back (boot-up, then heartbeats), node 41
+/// clears it: EMCY 0000h with 1001h = 0, and 1001h reads 0 by SDO.
+#[test]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+fn a_lost_heartbeat_raises_8130h_and_its_return_clears_it() {
+    use socketcan::{EmbeddedFrame, Frame, Socket};
+    require_vcan();
+    let config = |ms| canopen_core::profile::NodeConfig { heartbeat_time_ms: ms, ..CONFIG };
+    let consumer = RunningNode::start_with(41, config(0));
+    let producer = RunningNode::start_with(40, config(100));
+    let mut m = Master::new(BlockingBus::open(IFACE).unwrap(), NodeId::new(41).unwrap()).unwrap();
+    m.download(0x1016, 1, &0x0028_012Cu32.to_le_bytes(), Mode::Auto).unwrap();
+    let raw = socketcan::CanSocket::open(IFACE).unwrap();
+    raw.set_read_timeout(Duration::from_millis(50)).unwrap();
+    // The first EMCY of node 41 (0A9h) within `limit`, as its 8 data bytes.
+    let next_emcy = |limit: Duration| {
+        let start = StdInstant::now();
+        while start.elapsed() < limit {
+            if let Ok(f) = raw.read_frame() {
+                if f.raw_id() == 0x080 + 41 {
+                    return Some(f.data().to_vec());
+                }
+            }
+        }
+        None
+    };
+    // Monitoring runs (HB-10: it started at 40's first heartbeat after the write): no EMCY while 40 beats.
+    assert_eq!(next_emcy(Duration::from_millis(800)), None, "EMCY while the producer is alive");
+    drop(producer);
+    let lost = next_emcy(Duration::from_secs(2)).expect("no EMCY after the producer went silent");
+    assert_eq!(lost[..3], [0x30, 0x81, 0x11], "8130h, 1001h = generic + communication: {lost:02X?}");
+    let producer = RunningNode::start_with(40, config(100));
+    let back = next_emcy(Duration::from_secs(2)).expect("no EMCY after the producer came back");
+    assert_eq!(back[..3], [0x00, 0x00, 0x00], "error reset, 1001h = 0: {back:02X?}");
+    assert_eq!(m.upload(0x1001, 0, Mode::Auto, 4).unwrap(), [0x00]);
+    drop(producer);
+    drop(consumer);
+}
