@@ -7,7 +7,7 @@ use canopen_core::driver::{self, DriverError};
 use canopen_core::node::NoApplication;
 use canopen_core::{Node, Sizes};
 use canopen_embassy::flash::FlashStorage;
-use canopen_embassy::stm32::{Stm32CanRx, Stm32CanTx};
+use canopen_embassy::stm32::{Stm32CanTx, Stm32FdcanRx};
 use canopen_embassy::{AppWake, EmbassyClock, NodeCell};
 use embassy_stm32::can::CanConfigurator;
 use embassy_stm32::flash::{Blocking, Flash};
@@ -20,15 +20,15 @@ pub fn storage(flash: Flash<'static, Blocking>) -> Option<FlashStorage<Flash<'st
     FlashStorage::new(flash, 0x7_D000..0x7_E000, 0x7_E000..0x7_F000).and_then(|s| s.with_lss(0x7_F000..0x8_0000)).ok()
 }
 
-/// Runs `node` on an FDCAN peripheral in classic mode.
+/// Runs `node` on an FDCAN peripheral in classic mode; the controller's state reaches the node.
 pub async fn run(
     can: CanConfigurator<'static>,
     node: &NodeCell<FlashNode>,
     wake: &AppWake,
 ) -> DriverError<embassy_stm32::can::enums::BusError, core::convert::Infallible> {
     let can = can.into_normal_mode();
-    let (tx, rx, _) = can.split();
-    let (mut tx, mut rx) = (Stm32CanTx(tx), Stm32CanRx(rx));
+    let (tx, rx, properties) = can.split();
+    let (mut tx, mut rx) = (Stm32CanTx(tx), Stm32FdcanRx::new(rx, properties));
     let Err(e) = driver::run(node, &mut rx, &mut tx, &mut EmbassyClock, wake, |_| {}).await;
     e
 }
