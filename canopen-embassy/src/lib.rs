@@ -6,7 +6,7 @@
 //! - [`NodeCell`]: the driver's [`Shared`](canopen_core::driver::Shared) on an `embassy-sync` critical-section
 //!   mutex, so tasks and interrupts change the node while the driver runs;
 //! - [`AppWake`]: the driver's [`Wake`](canopen_core::driver::Wake) on an `embassy-sync` `Signal`;
-//! - [`stm32`] (feature `stm32`): the driver's `CanTx`/`CanRx` on embassy-stm32's CAN halves, bxCAN and
+//! - `stm32` (feature `stm32`): the driver's `CanTx`/`CanRx` on embassy-stm32's CAN halves, bxCAN and
 //!   FDCAN (classic frames) alike;
 //! - [`flash`]: store/restore (1010h/1011h, STORE-01..11) and the LSS configuration (CiA 305) on any
 //!   `embedded-storage` [`NorFlash`](embedded_storage::nor_flash::NorFlash), power-cut safe.

@@ -5,7 +5,7 @@
 //!   is only taken from the socket when the read completes) and a transmit half ([`CanTx`], waits and
 //!   retries on `ENOBUFS`).
 //! - [`TokioTimer`] is the node's clock on `tokio::time`.
-//! - [`MutexShared`] holds the node (a `std::sync::Mutex`: the driver never holds it across an `.await`)
+//! - [`MutexShared`](crate::MutexShared) holds the node (a `std::sync::Mutex`: the driver never holds it across an `.await`)
 //!   and [`NotifyWake`] (a `tokio::sync::Notify`) lets another task wake the driver after it changed the
 //!   node.
 //! - [`run_tokio`] runs the node in passes (one clock reading, batched socket calls, kernel filters) and,
