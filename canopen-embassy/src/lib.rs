@@ -6,6 +6,8 @@
 //! - [`NodeCell`]: the driver's [`Shared`](canopen_core::driver::Shared) on an `embassy-sync` critical-section
 //!   mutex, so tasks and interrupts change the node while the driver runs;
 //! - [`AppWake`]: the driver's [`Wake`](canopen_core::driver::Wake) on an `embassy-sync` `Signal`;
+//! - [`bus_state`]: the CAN controller's state for the node (error passive, bus-off, recovered), from a
+//!   probe of its status register around any receive half;
 //! - `stm32` (feature `stm32`): the driver's `CanTx`/`CanRx` on embassy-stm32's CAN halves, bxCAN and
 //!   FDCAN (classic frames) alike;
 //! - [`flash`]: store/restore (1010h/1011h, STORE-01..11) and the LSS configuration (CiA 305) on any
@@ -29,6 +31,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod bus_state;
 mod cell;
 mod clock;
 pub mod flash;

@@ -6,8 +6,9 @@
 use canopen_core::driver::{self, DriverError};
 use canopen_core::node::NoApplication;
 use canopen_core::{Node, Sizes};
+use canopen_embassy::bus_state::ReportState;
 use canopen_embassy::flash::FlashStorage;
-use canopen_embassy::stm32::{Stm32CanTx, Stm32FdcanRx};
+use canopen_embassy::stm32::{fdcan_error_mode, Stm32CanRx, Stm32CanTx};
 use canopen_embassy::{AppWake, EmbassyClock, NodeCell};
 use embassy_stm32::can::CanConfigurator;
 use embassy_stm32::flash::{Blocking, Flash};
@@ -28,7 +29,7 @@ pub async fn run(
 ) -> DriverError<embassy_stm32::can::enums::BusError, core::convert::Infallible> {
     let can = can.into_normal_mode();
     let (tx, rx, properties) = can.split();
-    let (mut tx, mut rx) = (Stm32CanTx(tx), Stm32FdcanRx::new(rx, properties));
+    let (mut tx, mut rx) = (Stm32CanTx(tx), ReportState::new(Stm32CanRx(rx), move || fdcan_error_mode(&properties)));
     let Err(e) = driver::run(node, &mut rx, &mut tx, &mut EmbassyClock, wake, |_| {}).await;
     e
 }

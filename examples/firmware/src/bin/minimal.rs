@@ -9,9 +9,9 @@
 #![no_std]
 #![no_main]
 
-use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::driver::{self, Shared};
 use canopen_core::pdo::PdoDefault;
+use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::Sizes;
 use canopen_core::{Event, NmtState, Node, NodeId};
 use canopen_embassy::stm32::{Stm32CanRx, Stm32CanTx};

@@ -7,8 +7,10 @@
 //!
 //! Two tasks share the node (the glue types come from `canopen-embassy`):
 //!
-//! - `canopen` runs `canopen_core::driver::run` on the CAN halves and `embassy-time`; a bus error raises
-//!   EMCY 8100h (communication, generic), which is cleared when the driver runs again;
+//! - `canopen` runs `canopen_core::driver::run` on the CAN halves and `embassy-time`; the receive half is
+//!   wrapped in `canopen_embassy::bus_state::ReportState` with a probe of bxCAN's error status register
+//!   (ESR), so the node hears the controller's state: EMCY 8120h on error passive (cleared on error active),
+//!   bus-off as a communication error for 1029h:01, 8140h after the recovery;
 //! - `process` samples the inputs every 10 ms, writes them into the dictionary struct under the node's lock,
 //!   drives the output from what the bus wrote (SDO or RPDO), triggers the event-driven TPDO 1 when an input
 //!   changed and signals the driver, which sends it at once.
@@ -32,6 +34,7 @@ use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::wire::lss::BitRate;
 use canopen_core::Sizes;
 use canopen_core::{Event, NmtState, Node, NodeId};
+use canopen_embassy::bus_state::{ErrorMode, ReportState};
 #[cfg(feature = "store")]
 use canopen_embassy::flash::FlashStorage;
 use canopen_embassy::stm32::{Stm32CanRx, Stm32CanTx};
@@ -143,9 +146,6 @@ const CONFIG: NodeConfig = NodeConfig {
     ..NodeConfig::DEFAULT // SYNC consumer on 80h, TIME consumer on 100h, EMCY on 80h + node
 };
 
-/// EMCY 8100h: communication, generic (a bus error reported by the controller).
-const EMCY_BUS_ERROR: u16 = 0x8100;
-
 static NODE: StaticCell<NodeCell<DeviceNode>> = StaticCell::new();
 static WAKE: AppWake = AppWake::new();
 
@@ -192,16 +192,20 @@ async fn main(spawner: Spawner) {
     spawner.spawn(canopen(can, node).unwrap());
 }
 
-/// Runs the node. A receive error (a bus error reported by the controller) returns from `driver::run`
-/// with the node intact in `NODE`: the task raises EMCY 8100h (queued, with its 1003h history entry), waits a
-/// little and runs the driver again, which sends the EMCY; the error is cleared once the bus works again.
+/// Runs the node. The controller's state goes to the node (`ReportState`); should `driver::run` ever
+/// return (it does not with these halves: protocol errors show as the controller's state), the node is intact
+/// in `NODE` and the driver runs again.
 #[embassy_executor::task]
 async fn canopen(mut can: Can<'static>, node: &'static NodeCell<DeviceNode>) {
     let (tx, rx) = can.split();
-    let (mut tx, mut rx, mut clock) = (Stm32CanTx(tx), Stm32CanRx(rx), EmbassyClock);
+    // bxCAN's error status register: bus-off, error passive, error warning (the most severe wins).
+    let esr = || {
+        let esr = embassy_stm32::pac::CAN1.esr().read();
+        ErrorMode::from_flags(esr.boff(), esr.epvf(), esr.ewgf())
+    };
+    let (mut tx, mut rx, mut clock) = (Stm32CanTx(tx), ReportState::new(Stm32CanRx(rx), esr), EmbassyClock);
     loop {
         let Err(_error) = driver::run(node, &mut rx, &mut tx, &mut clock, &WAKE, |e| on_event(node, e)).await;
-        node.lock(|n| n.raise_error(EMCY_BUS_ERROR, [0; 5]));
         Timer::after(Duration::from_millis(10)).await;
     }
 }
@@ -209,11 +213,6 @@ async fn canopen(mut can: Can<'static>, node: &'static NodeCell<DeviceNode>) {
 /// The node's events, outside the lock.
 fn on_event(node: &NodeCell<DeviceNode>, event: Event) {
     match event {
-        // A frame was received and handled: the bus works, so a bus error is over (EMCY 0000h if it was the
-        // last active error).
-        Event::RpdoReceived { .. } | Event::Sync { .. } => {
-            node.lock(|n| n.clear_error(EMCY_BUS_ERROR));
-        }
         // TIME consumer: the application keeps the time of day (2102h, mappable into TPDO 4).
         Event::Time(t) => node.lock(|n| n.app_mut().time_ms = t.ms),
         // LSS "store configuration": node-ID and bit rate to flash, then the answer to the master.
@@ -223,7 +222,7 @@ fn on_event(node: &NodeCell<DeviceNode>, event: Event) {
         // another node's EMCY, an RPDO timeout and heartbeat observations need no local reaction here.
         Event::StateChanged { to: NmtState::Operational, .. } => {}
         Event::Heartbeat(_) | Event::SdoAborted { .. } | Event::ObjectWritten { .. } => {}
-        Event::Emergency { .. } | Event::RpdoTimeout { .. } => {}
+        Event::Emergency { .. } | Event::RpdoTimeout { .. } | Event::RpdoReceived { .. } | Event::Sync { .. } => {}
         _ => {}
     }
 }
