@@ -396,7 +396,7 @@ fn bystander(node: RunningNode) {
 /// Issue 22, end to end on vcan (HB-11, HB-13, EEC-01): node 41 consumes the heartbeat of node 40 (1016h:01
 /// set by SDO, 300 ms against 40's 100 ms). When node 40 goes silent, node 41 sends EMCY 8130h (heartbeat
 /// time-out) with the communication bit of 1001h; when node 40 comes back (boot-up, then heartbeats), node 41
-/// clears it: EMCY 0000h with 1001h = 0, and 1001h reads 0 by SDO.
+/// clears it: EMCY 0000h with 1001h = 0, and 1001h reads 0 by SDO; silent again, 8130h again.
 #[test]
 #[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
 fn a_lost_heartbeat_raises_8130h_and_its_return_clears_it() {
@@ -430,6 +430,9 @@ fn a_lost_heartbeat_raises_8130h_and_its_return_clears_it() {
     let back = next_emcy(Duration::from_secs(2)).expect("no EMCY after the producer came back");
     assert_eq!(back[..3], [0x00, 0x00, 0x00], "error reset, 1001h = 0: {back:02X?}");
     assert_eq!(m.upload(0x1001, 0, Mode::Auto, 4).unwrap(), [0x00]);
+    // Lost again: raised again (the consumer watches the node it heard back).
     drop(producer);
+    let again = next_emcy(Duration::from_secs(2)).expect("no EMCY after the producer went silent again");
+    assert_eq!(again[..3], [0x30, 0x81, 0x11], "8130h again: {again:02X?}");
     drop(consumer);
 }
