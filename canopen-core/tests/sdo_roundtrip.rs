@@ -180,7 +180,7 @@ fn check_faults(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: support::cases(256), ..ProptestConfig::default() })]
 
     /// Property 3: with frames lost, duplicated (adjacent, as CAN does) or reordered (adjacent), a transfer
     /// either completes with exact data or aborts with a spec code on both sides, never completes with wrong

@@ -4,7 +4,8 @@
 //! Every frame of every COB-ID goes through one wire queue. Seeded faults, each with its own rate:
 //! - **drop**: the frame never arrives (an overflowing receive buffer, a receiver that missed it);
 //! - **duplicate**: the frame arrives twice in a row (CAN's automatic retransmission after an error frame
-//!   that the receiver did not see);
+//!   that the receiver did not see), except a sub-block acknowledge of a block transfer without CRC (see
+//!   [`Bus::unprotected`]);
 //! - **reorder**: the frame overtakes up to three frames queued before it, as long as none of them has its
 //!   COB-ID. Frames of one COB-ID keep their order, as on a real bus where one sender's queue is FIFO, but
 //!   the two directions of a transfer and other traffic interleave differently.
@@ -72,6 +73,8 @@ pub struct Pair {
     pub server: SdoServer,
     pub od: Box<TestOd>,
     pub node: u8,
+    /// The block size the server asks for in block download.
+    pub server_blksize: u8,
     jobs: VecDeque<Job>,
     current: Option<Running>,
     pub done: Vec<Outcome>,
@@ -114,6 +117,7 @@ impl Pair {
                 .with_timeout(timeout),
             od: Box::new(TestOd::new()),
             node,
+            server_blksize,
             jobs: jobs.into(),
             current: None,
             done: Vec::new(),
@@ -177,7 +181,7 @@ impl Bus {
         if self.lose.as_mut().is_some_and(|rule| rule(cob, &data)) || self.rng.per_mille(self.rates.drop) {
             return;
         }
-        let copies = if self.rng.per_mille(self.rates.dup) { 2 } else { 1 };
+        let copies = if self.rng.per_mille(self.rates.dup) && !self.unprotected(cob, &data) { 2 } else { 1 };
         for _ in 0..copies {
             self.wire.push_back((cob, data));
         }
@@ -190,6 +194,30 @@ impl Bus {
                 at -= 1;
             }
         }
+    }
+
+    /// Whether `data` on `cob` is a frame of a block transfer without CRC whose duplicate no receiver can
+    /// tell from a new frame. Those are never duplicated; every other frame of those transfers is.
+    /// - The sub-block acknowledge (A2h: the server's in a download, the client's in an upload). A duplicate
+    ///   that arrives after the data sender moved on is byte-identical to the acknowledge of the next
+    ///   sub-block whenever nothing was lost (always with blksize 1: `A2 01 01 ..`).
+    /// - With blksize 1, the segments: every sub-block is the one segment 01h (81h last), so a duplicate
+    ///   matches the next segment's sequence number and, with repeating data (zeros), its bytes too.
+    ///
+    /// Either one taken as new makes the two sides disagree on the offset of a go-back-n restart, and
+    /// without the CRC (SDO-48, SDO-49) nothing catches the wrong data that follows.
+    fn unprotected(&self, cob: u16, data: &[u8; 8]) -> bool {
+        self.pairs.iter().any(|p| {
+            let Some(Running { job: Job { dir, mode: Mode::Block { crc: false, blksize, .. }, .. }, .. }) = &p.current
+            else {
+                return false;
+            };
+            let (acks, segments, sub_block) = match dir {
+                Dir::Download => (p.tx_cob(), p.rx_cob(), p.server_blksize),
+                Dir::Upload => (p.rx_cob(), p.tx_cob(), *blksize),
+            };
+            (cob == acks && data[0] == 0xA2) || (cob == segments && sub_block == 1 && data[0] & 0x7F == 1)
+        })
     }
 
     /// Runs every pair's jobs to the end. Panics if the bus is quiet while a side is busy without a deadline,
