@@ -915,7 +915,8 @@ mod tests {
         heapless::Vec::from_slice(&b[..n]).unwrap()
     }
 
-    /// VECTORS §1: V-ENC-01, 02, 04, 06, 21, 22, 23 and the DT-xx examples.
+    /// Encodings byte for byte (DT-01, DT-05..DT-07): UNSIGNED16 266 = 0A 01, INTEGER16 −266 = F6 FE, REAL32 6.25 =
+    /// 00 00 C8 40, UNSIGNED32 0102 0304h = 04 03 02 01, and the DT-xx examples.
     #[test]
     fn encoding_vectors() {
         assert_eq!(bytes(&266u16)[..], [0x0A, 0x01]); // V-ENC-01, DT-05

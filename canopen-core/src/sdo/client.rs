@@ -715,7 +715,7 @@ impl SdoClient {
                 if mux == self.mux =>
             {
                 if blksize == 0 || blksize > MAX_BLKSIZE {
-                    Err(AbortCode::InvalidBlockSize) // VECTORS 8.1 bad-blksize variant
+                    Err(AbortCode::InvalidBlockSize) // blksize 0 or > 127 from a server: 0504 0002h (SDO-36, SDO-50)
                 } else {
                     self.crc_on &= crc;
                     self.blksize = blksize;
