@@ -231,7 +231,7 @@ fn duplicates_without_crc_are_caught_only_by_the_crc_sdo_48() {
             let wrong = (0..500u64)
                 .filter(|&seed| {
                     let data = payload(300, seed);
-                    let mut link = Link::new(1, Faults { loss: 30, dup: 50, swap: 0 }, seed + 1);
+                    let mut link = Link::new(1, Faults { loss: 30, dup: 50, swap: 0, no_crc_block: None }, seed + 1);
                     let mode = Mode::Block { crc, blksize: 1, pst: 0 };
                     let out = link.transfer(dir, Multiplexer::new(0x2000, 0), &data, mode);
                     let written = out.server_events.iter().any(|e| matches!(e, SdoEvent::Written { .. }));

@@ -20,7 +20,7 @@ use canopen_core::sdo::{SdoClientParams, SdoEvent, SdoServer, SdoServerParams};
 use canopen_core::wire::sdo::Multiplexer;
 use canopen_core::{Duration, Instant, NodeId};
 
-use super::harness::{Dir, Rng};
+use super::harness::{unprotected, Dir, Rng};
 use super::od::TestOd;
 
 /// Time one frame takes on the simulated bus.
@@ -196,27 +196,17 @@ impl Bus {
         }
     }
 
-    /// Whether `data` on `cob` is a frame of a block transfer without CRC whose duplicate no receiver can
-    /// tell from a new frame. Those are never duplicated; every other frame of those transfers is.
-    /// - The sub-block acknowledge (A2h: the server's in a download, the client's in an upload). A duplicate
-    ///   that arrives after the data sender moved on is byte-identical to the acknowledge of the next
-    ///   sub-block whenever nothing was lost (always with blksize 1: `A2 01 01 ..`).
-    /// - With blksize 1, the segments: every sub-block is the one segment 01h (81h last), so a duplicate
-    ///   matches the next segment's sequence number and, with repeating data (zeros), its bytes too.
-    ///
-    /// Either one taken as new makes the two sides disagree on the offset of a go-back-n restart, and
-    /// without the CRC (SDO-48, SDO-49) nothing catches the wrong data that follows.
+    /// Whether `data` on `cob` belongs to a block transfer without CRC and is one of the frames whose duplicate
+    /// no receiver can tell from a new one ([`unprotected`]: the sub-block acknowledges, and the segments when
+    /// a sub-block is one segment long). Those are never duplicated; every other frame of those transfers is.
     fn unprotected(&self, cob: u16, data: &[u8; 8]) -> bool {
         self.pairs.iter().any(|p| {
             let Some(Running { job: Job { dir, mode: Mode::Block { crc: false, blksize, .. }, .. }, .. }) = &p.current
             else {
                 return false;
             };
-            let (acks, segments, sub_block) = match dir {
-                Dir::Download => (p.tx_cob(), p.rx_cob(), p.server_blksize),
-                Dir::Upload => (p.rx_cob(), p.tx_cob(), *blksize),
-            };
-            (cob == acks && data[0] == 0xA2) || (cob == segments && sub_block == 1 && data[0] & 0x7F == 1)
+            let sub_block = if *dir == Dir::Download { p.server_blksize } else { *blksize };
+            (cob == p.rx_cob() || cob == p.tx_cob()) && unprotected(Some((*dir, sub_block)), cob == p.rx_cob(), data)
         })
     }
 
