@@ -1,5 +1,5 @@
 //! Integration tests on the in-memory bus: NMT command sequences, heartbeat timelines, node guarding.
-//! Expected frames are those of `shared/spec/VECTORS.md` §3–§5; requirement IDs (`docs/CONFORMANCE.md`) are
+//! Expected frames are written out byte for byte; requirement IDs (`docs/CONFORMANCE.md`) are
 //! cited per test.
 
 mod common;
@@ -109,7 +109,9 @@ fn malformed_nmt_frames_are_ignored() {
     assert!(bus.take_master_rx().is_empty());
 }
 
-/// HB-02..HB-04, NMT-18, NMT-21: the derived heartbeat timeline of VECTORS.md §4 (node 5, 100 ms).
+/// HB-02..HB-04, NMT-18, NMT-21: the heartbeat timeline of node 5 at 100 ms: the boot-up 705 [1] 00, then
+/// 705 [1] 7F / 05 / 04 every 100 ms in Pre-operational / Operational / Stopped, a new boot-up after reset
+/// communication.
 /// GUARD-01 (at least one error-control protocol): the heartbeat producer is one (node guarding, the other,
 /// is proven by `guarding_toggle_sequence_vector`).
 #[test]
@@ -242,7 +244,9 @@ fn heartbeat_consumer_timeline() {
     assert!(events(&mut bus.stations[0]).is_empty());
 }
 
-/// GUARD-05..GUARD-08, V-GRD-01..V-GRD-03: the derived toggle sequence of VECTORS.md §5 (node 5).
+/// GUARD-05..GUARD-08, V-GRD-01..V-GRD-03: the toggle sequence of node 5: each 705 [RTR] is answered with the
+/// state (7Fh, 05h, 04h) and a toggle bit 7 that alternates from 0 (7F, 85, 7F, FF, ..), back to 0 after reset
+/// communication.
 /// GUARD-01: node guarding is offered as an error-control protocol.
 #[test]
 fn guarding_toggle_sequence_vector() {

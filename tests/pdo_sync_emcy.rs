@@ -1,5 +1,5 @@
 //! PDO, SYNC, EMCY, TIME, error behaviour and 1F80h through whole nodes on the in-memory bus with simulated
-//! time. The master's frames and the expected replies are the VECTORS.md §9–§12 values (IDs in the test
+//! time. The master's frames and the expected replies are written out byte for byte (IDs in the test
 //! docs); the requirement IDs (`docs/CONFORMANCE.md`) each test covers are named too.
 
 mod common;
@@ -63,7 +63,7 @@ fn on(bus: &Bus<TestNode>, id: u16) -> Vec<(u64, Vec<u8>)> {
     bus.frames_on(id)
 }
 
-/// VECTORS §9.3 (PDO-30..PDO-37, PDO-04, PDO-38/39): the master remaps RPDO1 of node 3 in the spec's order,
+/// The remapping procedure as frames (PDO-30..PDO-37, PDO-04, PDO-38/39): the master remaps RPDO1 of node 3 in the spec's order,
 /// then the RPDO carries the values; negative variants V-MAP-01..08. ABORT-13: three 32-bit entries (96 bits)
 /// are refused with 0604 0042h (V-MAP-02).
 #[test]
@@ -130,7 +130,7 @@ fn rpdo_remapping_procedure_vector() {
     assert_eq!(bus.stations[0].error_register(), 0);
 }
 
-/// VECTORS §9.1 corrected (PDO-15..20): TPDO3 of node 5 moved to 387h, every 3rd SYNC, X = 6000h:03 (16 bit),
+/// A TPDO configured by SDO (PDO-15..20): TPDO3 of node 5 moved to 387h, every 3rd SYNC, X = 6000h:03 (16 bit),
 /// Y = 2010h:21h (32 bit); and V-PDO-03/04: type 1 and 3 counted from entering Operational.
 #[test]
 fn tpdo_configuration_vector_and_cyclic_sync() {
@@ -324,7 +324,7 @@ fn rpdo_errors_clear_when_no_rpdo_has_the_cause() {
     assert_eq!(emcy(&bus).last(), Some(&vec![0; 8]));
 }
 
-/// VECTORS §11 (EMCY-04..09, ERR-01..09, NMT-22): the emergency state machine, 1001h and 1003h agree after a
+/// Emergencies (EMCY-04..09, ERR-01..09, NMT-22): the emergency state machine, 1001h and 1003h agree after a
 /// sequence of raised and cleared errors. EEC-01/EEC-02: the generic error 1000h goes out as 00 10, and
 /// 0000h (error reset) when the errors clear (EMCY-01: the producer supports at least those two). COB-04: the EMCY is on 080h + node-ID (083h). ABORT-31: 1003h:01 with an empty history is 0800 0024h (no data).
 #[test]
@@ -395,7 +395,7 @@ fn emcy_error_register_and_history_vectors() {
     assert!(ev.contains(&Event::Emergency { node: 7, emcy: e }), "{ev:?}");
 }
 
-/// TIME (TIME-01..05, VECTORS §12): node 1 produces, node 2 consumes; not in Stopped (V-TIME-04).
+/// TIME (TIME-01..05): node 1 produces, node 2 consumes; not in Stopped (V-TIME-04).
 #[test]
 fn time_round_trip() {
     let producer = NodeConfig { time_cob_id: 0x4000_0100, ..NodeConfig::DEFAULT };

@@ -1,7 +1,7 @@
 //! SDO through a whole node on the in-memory bus: the communication profile and a derived application
 //! dictionary merged (OD-12), served in the right NMT states (NMT-18), with side effects of written
 //! communication objects applied at once (HB-04, HB-09), block upload paced by a small transmit queue, and
-//! the server's time-out (SDO-31). Frames are the VECTORS.md §4, §6 values where one exists.
+//! the server's time-out (SDO-31). Frames are written out byte for byte (SDO-12, SDO-17, SDO-24).
 
 mod common;
 
@@ -68,7 +68,8 @@ fn consumer_heartbeat_written_by_sdo() {
         ("609 [8] 23 16 10 03 A0 0F 07 00", "589 [8] 60 16 10 03 00 00 00 00"),
         ("609 [8] 23 16 10 04 C8 00 02 00", "589 [8] 80 16 10 04 43 00 04 06"),
         ("609 [8] 23 16 10 01 00 00 00 00", "589 [8] 60 16 10 01 00 00 00 00"),
-        // The seed's writes (VECTORS §4 ⚠): sub 00h is const, 2Bh announces 2 of 4 bytes.
+        // A vendor manual's example writes, which a conformant node refuses: sub 00h is const, 2Bh announces 2 of 4
+        // bytes.
         ("609 [8] 2B 16 10 00 03 00 00 00", "589 [8] 80 16 10 00 02 00 01 06"),
         ("609 [8] 2B 16 10 02 90 01 03 00", "589 [8] 80 16 10 02 13 00 07 06"),
     ] {

@@ -1,4 +1,4 @@
-//! Store/restore (1010h/1011h, STORE-01..11, NMT-06) through whole nodes: VECTORS §13, store →
+//! Store/restore (1010h/1011h, STORE-01..11, NMT-06) through whole nodes: store →
 //! reset → values back, restore → reset → defaults, and a storage that fails after every possible number
 //! of written bytes leaves either the old or the new parameters after a power cycle, never a mix.
 

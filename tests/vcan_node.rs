@@ -1,6 +1,6 @@
 //! The example node's dictionary (`examples/common/io_module.rs`) on real SocketCAN, driven by OUR master
 //! (`canopen_socketcan::Master` on the core's SDO client), plus a bounded load test. Run inside the VM:
-//! `../shared/vcan/with-vcan -- cargo test --test vcan_node` (scripts/test-interop.sh does, with
+//! `cargo test --test vcan_node -- --ignored` where vcan0 is up (scripts/test-interop.sh does, with
 //! `--include-ignored`). They are `#[ignore]`d with the reason, so a plain `cargo test` lists them as ignored.
 //!
 //! - 64 KiB into and out of the 2005h DOMAIN, segmented and block with CRC (and block without CRC),
@@ -32,7 +32,7 @@ const IFACE: &str = "vcan0";
 fn require_vcan() {
     assert!(
         std::path::Path::new(&format!("/sys/class/net/{IFACE}")).exists(),
-        "no SocketCAN interface {IFACE}: run inside ../shared/vcan/with-vcan"
+        "no SocketCAN interface {IFACE}: run where it is up (scripts/vcan-run.sh)"
     );
 }
 
@@ -144,7 +144,7 @@ const BLOCK_CRC: Mode = Mode::Block { crc: true, blksize: 127, pst: 0 };
 const BLOCK_NO_CRC: Mode = Mode::Block { crc: false, blksize: 127, pst: 0 };
 
 #[test]
-#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn our_client_moves_64k_through_the_domain_segmented_and_block() {
     require_vcan();
     let node = RunningNode::start(31);
@@ -170,7 +170,7 @@ fn our_client_moves_64k_through_the_domain_segmented_and_block() {
 }
 
 #[test]
-#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     require_vcan();
     // 4 event-driven TPDOs whose event timers (1 ms) send them whether or not the values change.
@@ -326,7 +326,7 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
 /// COB-ID written by SDO (a heartbeat consumer for node 34, 1016h) opens the filter for that node's
 /// heartbeat, and an NMT reset communication closes it again.
 #[test]
-#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn frames_for_other_nodes_do_not_wake_the_tokio_node() {
     require_vcan();
     bystander(RunningNode::start_with(33, canopen_core::profile::NodeConfig { heartbeat_time_ms: 0, ..CONFIG }));
@@ -334,7 +334,7 @@ fn frames_for_other_nodes_do_not_wake_the_tokio_node() {
 
 /// The same with the blocking runner (with a `BusWaker`, so no `APP_POLL` wake-ups).
 #[test]
-#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn frames_for_other_nodes_do_not_wake_the_blocking_node() {
     require_vcan();
     bystander(RunningNode::start_blocking(33, canopen_core::profile::NodeConfig { heartbeat_time_ms: 0, ..CONFIG }));
@@ -398,7 +398,7 @@ fn bystander(node: RunningNode) {
 /// time-out) with the communication bit of 1001h; when node 40 comes back (boot-up, then heartbeats), node 41
 /// clears it: EMCY 0000h with 1001h = 0, and 1001h reads 0 by SDO; silent again, 8130h again.
 #[test]
-#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn a_lost_heartbeat_raises_8130h_and_its_return_clears_it() {
     use socketcan::{EmbeddedFrame, Frame, Socket};
     require_vcan();

@@ -73,8 +73,8 @@ impl NmtState {
         }
     }
 
-    /// Whether `service` may run in this state (NMT-18..NMT-21; seed conflicts resolved as in ERRATA §6:
-    /// no SDO in Stopped, SYNC in Pre-operational).
+    /// Whether `service` may run in this state (NMT-18..NMT-21; where CiA 301's secondary sources
+    /// disagree, CiA 301 Table 37 decides: no SDO in Stopped, SYNC in Pre-operational and Operational).
     pub const fn allows(self, service: Service) -> bool {
         match self {
             NmtState::Initialising => false,

@@ -663,16 +663,15 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 if !st.mappable {
                     begin_arms.push(quote!(#pos => #core::od::OdValue::begin_stream(&mut self.#member, size),));
                     chunk_arms.push(quote!(#pos => #core::od::OdValue::stream_chunk(&mut self.#member, offset, data),));
-                    let check_end = check.as_ref().map(|c| {
-                        quote!(if let ::core::result::Result::Err(e) = self.#c(#sub, &self.#member) {
-                            #core::od::OdValue::end_stream(&mut self.#member, 0)?;
-                            return ::core::result::Result::Err(e);
-                        })
-                    });
-                    end_arms.push(quote! {
+                    // The streamed bytes are staged in the value (`end_stream` returns the new one): it is
+                    // checked like a whole write and stored only then, so an aborted or refused download
+                    // leaves the old value.
+                    end_arms.push(quote_spanned! {sp=>
                         #pos => {
-                            #core::od::OdValue::end_stream(&mut self.#member, total)?;
-                            #check_end
+                            let v = #core::od::OdValue::end_stream(&self.#member, total)?;
+                            #limits
+                            #check_call
+                            self.#member = v;
                             #on_write_call
                             ::core::result::Result::Ok(())
                         }

@@ -1,4 +1,4 @@
-//! The adapter on real SocketCAN: `../shared/vcan/with-vcan --ifaces vcan0,vcan1 -- cargo test -p
+//! The adapter on real SocketCAN: `cargo test -p
 //! canopen-socketcan` (scripts/test-interop.sh runs it that way).
 //!
 //! Every test here is `#[ignore]`d with the reason, so a plain `cargo test` lists them as ignored instead of
@@ -27,7 +27,7 @@ use socketcan::{CanErrorFrame, EmbeddedFrame, ExtendedId, Socket, StandardId};
 fn iface(name: &'static str) -> &'static str {
     assert!(
         std::path::Path::new(&format!("/sys/class/net/{name}")).exists(),
-        "no SocketCAN interface {name}: run inside ../shared/vcan/with-vcan --ifaces vcan0,vcan1"
+        "no SocketCAN interface {name}: run where vcan0 and vcan1 are up (scripts/vcan-run.sh)"
     );
     name
 }
@@ -56,7 +56,7 @@ fn recv_cob(bus: &BlockingBus, cob_id: u16) -> Rx {
 }
 
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn send_and_receive_between_two_sockets() {
     let ifc = iface("vcan0");
     let a = BlockingBus::open(ifc).unwrap();
@@ -70,7 +70,7 @@ fn send_and_receive_between_two_sockets() {
 }
 
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn remote_frames_pass_and_29_bit_frames_are_ignored() {
     let ifc = iface("vcan0");
     let raw = socketcan::CanSocket::open(ifc).unwrap();
@@ -91,7 +91,7 @@ fn remote_frames_pass_and_29_bit_frames_are_ignored() {
 }
 
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn error_frames_are_reported_not_swallowed() {
     let ifc = iface("vcan0");
     let _g = error_frames_lock();
@@ -110,7 +110,7 @@ fn error_frames_are_reported_not_swallowed() {
 }
 
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn a_missing_interface_says_how_to_create_one() {
     iface("vcan0");
     let e = BlockingBus::open("nocan7").err().expect("no such interface");
@@ -131,7 +131,7 @@ fn node(id: u8, heartbeat_ms: u16) -> TestNode {
 /// The tokio runner serves SDO and NMT to our master on another socket; another task changes the node and
 /// wakes the driver, which acts at once.
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn tokio_runner_serves_a_master_and_wakes_on_application_changes() {
     let ifc = iface("vcan0");
     let _g = error_frames_lock();
@@ -175,7 +175,7 @@ fn ip(args: &str) -> bool {
 /// The interface goes down under a running node and comes back: the adapter reports it, reopens, and the
 /// node resumes with its state (Operational, its heartbeat period) intact. Tokio runner.
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn tokio_runner_survives_the_interface_going_down_and_up() {
     let ifc = iface("vcan1");
     let shared = Arc::new(MutexShared::new(node(22, 100)));
@@ -207,7 +207,7 @@ fn tokio_runner_survives_the_interface_going_down_and_up() {
 
 /// The same with the blocking runner.
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn blocking_runner_survives_the_interface_going_down_and_up() {
     let ifc = iface("vcan1");
     let shared = Arc::new(MutexShared::new(node(23, 100)));
@@ -260,7 +260,7 @@ fn outage_and_recovery(ifc: &str, id: u8, seen: &Mutex<Vec<AdapterEvent>>, state
 /// burst stays within what a default receive buffer holds (SO_RCVBUF: about 280 classic frames measured
 /// in the VM); a block transfer sub-block is at most 127.
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn a_burst_arrives_complete_and_in_order() {
     let ifc = iface("vcan0");
     let a = BlockingBus::open(ifc).unwrap();
@@ -295,7 +295,7 @@ fn next_frame(bus: &BlockingBus, cob_id: u16) -> [u8; 8] {
 /// sends EMCY 8120h (EEC-11), bus-off moves the Operational node to Pre-operational (ERR-12/13), the restart
 /// sends 8140h and the 8120h clearing (EEC-13, EMCY-07), and the next frame received clears 8140h.
 #[test]
-#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it inside ../shared/vcan/with-vcan"]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn controller_error_frames_make_the_node_send_emcys() {
     let ifc = iface("vcan0");
     let _g = error_frames_lock();

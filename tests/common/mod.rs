@@ -156,7 +156,7 @@ impl<S: Station> Bus<S> {
     }
 }
 
-/// Builds a frame from a VECTORS.md-style notation: `frame("000 [2] 01 05")`, `frame("705 [RTR]")`.
+/// Builds a frame from the notation "COB-ID [DLC] bytes" (hex): `frame("000 [2] 01 05")`, `frame("705 [RTR]")`.
 pub fn frame(text: &str) -> CanFrame {
     let mut parts = text.split_whitespace();
     let id = u16::from_str_radix(parts.next().expect("id"), 16).expect("hex id");

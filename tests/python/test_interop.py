@@ -1,5 +1,5 @@
 """python canopen 2.4.1 + python-can 4.6.1 as the master of our example node (`examples/node.rs`) over a real
-SocketCAN interface. Runs only where `vcan0` exists: inside `../shared/vcan/with-vcan` (scripts/test-interop.sh);
+SocketCAN interface. Runs only where `vcan0` exists: through scripts/vcan-run.sh (scripts/test-interop.sh);
 elsewhere every test is skipped with the reason.
 
 The node is started once per module from NODE_BIN (default target/debug/examples/node) with `--store` in a fresh
@@ -25,7 +25,7 @@ NODE_ID = 5
 if not pathlib.Path(f"/sys/class/net/{IFACE}").exists():
     if os.environ.get("CANOPEN_REQUIRE_VCAN") == "1":  # CI: a skip would hide that nothing ran
         raise RuntimeError(f"no SocketCAN interface {IFACE} but CANOPEN_REQUIRE_VCAN=1")
-    pytest.skip(f"no SocketCAN interface {IFACE}: run inside ../shared/vcan/with-vcan (scripts/test-interop.sh)",
+    pytest.skip(f"no SocketCAN interface {IFACE}: run through scripts/vcan-run.sh (scripts/test-interop.sh)",
                 allow_module_level=True)
 
 import canopen  # noqa: E402

@@ -1,5 +1,5 @@
 """python canopen's LSS master against `examples/node --node-id 255 --store FILE` over vcan (run by scripts/test-lss.sh inside
-../shared/vcan/with-vcan): fastscan finds the node started without a node-ID, configure_node_id(0x22),
+scripts/vcan-run.sh): fastscan finds the node started without a node-ID, configure_node_id(0x22),
 store_configuration, switch to waiting → the node boots as 0x22 and answers SDO; restarted, it boots as
 0x22 from its store (FILE.lss.a), over the --node-id argument."""
 

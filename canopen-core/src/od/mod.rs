@@ -247,9 +247,11 @@ pub struct SubInfo {
 ///   [`begin_write`](Self::begin_write), [`write_chunk`](Self::write_chunk) in increasing offsets, and
 ///   [`end_write`](Self::end_write); a transfer that is abandoned calls [`abort_write`](Self::abort_write).
 ///   Fixed-size values (at most 8 bytes) are always written whole with `write`; the derive-generated
-///   dictionaries answer `begin_write` on them with 0601 0000h. Strings are streamed in place (the new
-///   length is taken at `end_write`), so a server that wants the "refused write changes nothing" guarantee
-///   for strings too should collect values up to its buffer size and use `write`.
+///   dictionaries answer `begin_write` on them with 0601 0000h. The derived dictionaries stage a streamed
+///   string apart from its value ([`OdValue::end_stream`]) and store it at `end_write` after the same checks
+///   as `write`, so an aborted or refused string download changes nothing. A DOMAIN streams into the
+///   application's [`Domain`] as the bytes arrive: its content is the application's (DT-15), which decides
+///   in [`Domain::abort_write`] what an abandoned transfer leaves.
 /// - Every `Ok` from `write`/`end_write`/[`pdo_write`](Self::pdo_write) is an accepted change: the caller
 ///   (the node) reports it to the application as an event.
 /// - PDO mapping resolves each mapped entry once with [`pdo_resolve`](Self::pdo_resolve) and then moves

@@ -112,8 +112,11 @@ pub trait OdValue: Sized {
         Err(AbortCode::UnsupportedAccess)
     }
 
-    /// Streamed write, step 3: the transfer is complete with `total` bytes.
-    fn end_stream(&mut self, total: usize) -> Result<(), AbortCode> {
+    /// Streamed write, step 3: the transfer is complete with `total` bytes; returns the value they make.
+    /// The streamed bytes are staged apart from the current value, which stays as it is: the caller checks
+    /// the new value and stores it, so a transfer that is aborted, or whose value is refused, changes
+    /// nothing (a segmented or block download aborted midway leaves the old string).
+    fn end_stream(&self, total: usize) -> Result<Self, AbortCode> {
         let _ = total;
         Err(AbortCode::UnsupportedAccess)
     }
@@ -564,16 +567,33 @@ time_type!(
 macro_rules! byte_string {
     ($(#[$doc:meta])* $name:ident, $dt:ident, $check:expr) => {
         $(#[$doc])*
-        #[derive(Clone, Copy, PartialEq, Eq, Hash)]
+        #[derive(Clone, Copy)]
         pub struct $name<const N: usize> {
             buf: [u8; N],
             len: usize,
+            /// The bytes of a streamed write under way ([`OdValue::stream_chunk`]); they become the value only
+            /// at [`OdValue::end_stream`], so an aborted download leaves the old value.
+            staged: [u8; N],
+        }
+
+        impl<const N: usize> PartialEq for $name<N> {
+            fn eq(&self, other: &Self) -> bool {
+                self.as_bytes() == other.as_bytes()
+            }
+        }
+
+        impl<const N: usize> Eq for $name<N> {}
+
+        impl<const N: usize> core::hash::Hash for $name<N> {
+            fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
+                self.as_bytes().hash(state)
+            }
         }
 
         impl<const N: usize> $name<N> {
             /// The empty value.
             pub const fn new() -> Self {
-                $name { buf: [0; N], len: 0 }
+                $name { buf: [0; N], len: 0, staged: [0; N] }
             }
 
             /// The value holding `bytes`; `None` if longer than `N` or with invalid content.
@@ -590,7 +610,7 @@ macro_rules! byte_string {
                     buf[i] = bytes[i];
                     i += 1;
                 }
-                Some($name { buf, len: bytes.len() })
+                Some($name { buf, len: bytes.len(), staged: [0; N] })
             }
 
             /// The current content.
@@ -656,15 +676,15 @@ macro_rules! byte_string {
                 if !data.iter().all(|&b| $check(b)) {
                     return Err(AbortCode::InvalidValue);
                 }
-                self.buf[offset..end].copy_from_slice(data);
+                self.staged[offset..end].copy_from_slice(data);
                 Ok(())
             }
-            fn end_stream(&mut self, total: usize) -> Result<(), AbortCode> {
-                if total > N {
-                    return Err(AbortCode::LengthTooHigh);
-                }
-                self.len = total;
-                Ok(())
+            fn end_stream(&self, total: usize) -> Result<Self, AbortCode> {
+                let bytes = self.staged.get(..total).ok_or(AbortCode::LengthTooHigh)?;
+                let mut v = *self;
+                v.buf[..total].copy_from_slice(bytes);
+                v.len = total;
+                Ok(v)
             }
         }
     };
@@ -745,16 +765,33 @@ impl<const N: usize> VisibleString<N> {
 /// assert_eq!(&b[..4], &[0x68, 0x00, 0xE9, 0x00]);
 /// assert_eq!(UnicodeString::<4>::decode(&[1, 2, 3]), Err(AbortCode::LengthMismatch));
 /// ```
-#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy)]
 pub struct UnicodeString<const N: usize> {
     units: [u16; N],
     len: usize,
+    /// The code units of a streamed write under way; they become the value only at
+    /// [`OdValue::end_stream`], so an aborted download leaves the old value.
+    staged: [u16; N],
+}
+
+impl<const N: usize> PartialEq for UnicodeString<N> {
+    fn eq(&self, other: &Self) -> bool {
+        self.units() == other.units()
+    }
+}
+
+impl<const N: usize> Eq for UnicodeString<N> {}
+
+impl<const N: usize> core::hash::Hash for UnicodeString<N> {
+    fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
+        self.units().hash(state)
+    }
 }
 
 impl<const N: usize> UnicodeString<N> {
     /// The empty value.
     pub const fn new() -> Self {
-        UnicodeString { units: [0; N], len: 0 }
+        UnicodeString { units: [0; N], len: 0, staged: [0; N] }
     }
 
     /// A value from `s` encoded as UTF-16; `None` if it needs more than `N` code units.
@@ -844,22 +881,22 @@ impl<const N: usize> OdValue for UnicodeString<N> {
         chunk_end(offset, data.len(), 2 * N)?;
         for (i, &b) in data.iter().enumerate() {
             let pos = offset + i;
-            let Some(unit) = self.units.get_mut(pos / 2) else { return Err(AbortCode::LengthTooHigh) };
+            let Some(unit) = self.staged.get_mut(pos / 2) else { return Err(AbortCode::LengthTooHigh) };
             let mut le = unit.to_le_bytes();
             le[pos % 2] = b;
             *unit = u16::from_le_bytes(le);
         }
         Ok(())
     }
-    fn end_stream(&mut self, total: usize) -> Result<(), AbortCode> {
-        if total > 2 * N {
-            return Err(AbortCode::LengthTooHigh);
-        }
+    fn end_stream(&self, total: usize) -> Result<Self, AbortCode> {
         if total % 2 != 0 {
             return Err(AbortCode::LengthMismatch);
         }
-        self.len = total / 2;
-        Ok(())
+        let units = self.staged.get(..total / 2).ok_or(AbortCode::LengthTooHigh)?;
+        let mut v = *self;
+        v.units[..total / 2].copy_from_slice(units);
+        v.len = total / 2;
+        Ok(v)
     }
 }
 
@@ -878,7 +915,8 @@ mod tests {
         heapless::Vec::from_slice(&b[..n]).unwrap()
     }
 
-    /// VECTORS §1: V-ENC-01, 02, 04, 06, 21, 22, 23 and the DT-xx examples.
+    /// Encodings byte for byte (DT-01, DT-05..DT-07): UNSIGNED16 266 = 0A 01, INTEGER16 −266 = F6 FE, REAL32 6.25 =
+    /// 00 00 C8 40, UNSIGNED32 0102 0304h = 04 03 02 01, and the DT-xx examples.
     #[test]
     fn encoding_vectors() {
         assert_eq!(bytes(&266u16)[..], [0x0A, 0x01]); // V-ENC-01, DT-05
@@ -949,14 +987,19 @@ mod tests {
         s.stream_chunk(0, b"hel").unwrap();
         s.stream_chunk(3, b"lo").unwrap();
         assert_eq!(s.stream_chunk(5, b"xx"), Err(AbortCode::LengthTooHigh));
-        s.end_stream(5).unwrap();
+        // until the end the old value stays: an abandoned stream changes nothing
+        assert_eq!(s.as_str(), "old");
+        assert_eq!(s, VisibleString::<6>::literal("old"));
+        s = s.end_stream(5).unwrap();
         assert_eq!(s.as_str(), "hello");
-        let mut u = UnicodeString::<2>::new();
+        let mut u = UnicodeString::<2>::from_str("z").unwrap();
         u.begin_stream(None).unwrap();
         u.stream_chunk(0, &[0x41]).unwrap();
         u.stream_chunk(1, &[0x00, 0x42, 0x00]).unwrap();
+        assert_eq!(u.units(), &[0x7A]);
         assert_eq!(u.end_stream(3), Err(AbortCode::LengthMismatch));
-        u.end_stream(4).unwrap();
+        assert_eq!(u.end_stream(6), Err(AbortCode::LengthTooHigh));
+        u = u.end_stream(4).unwrap();
         assert_eq!(u.units(), &[0x41, 0x42]);
     }
 

@@ -8,7 +8,7 @@
 //!   and right after entering Operational; the inhibit time holds a transmission back (the TPDO stays
 //!   pending and is sampled when the inhibit time ends, so the latest value goes out, PDO-24).
 //! - The event timer restarts at every transmission of the TPDO (the CANopenNode choice; the CiA text does
-//!   not say, ERRATA §0), so "no data change" gives one TPDO per event-timer period (V-PDO-08).
+//!   not say), so "no data change" gives one TPDO per event-timer period (V-PDO-08).
 //! - RTR (PDO-29): any valid TPDO with COB-ID bit 30 = 0 answers a remote frame.
 //!
 //! The state machine decides *when*; the `Node` samples the mapped objects and queues the frame.

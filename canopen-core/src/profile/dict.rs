@@ -13,7 +13,7 @@
 //!
 //! PDO change rules (PDO-17, PDO-35): a COB-ID's CAN-ID changes only while bit 31 = 1 (else 0609 0030h); a
 //! CAN-ID from the restricted set (COB-13) cannot be made valid (0609 0030h); the inhibit time and SYNC start
-//! value change only while the PDO is not valid (0609 0030h: the seeds name no code, ERRATA §0); mapping
+//! value change only while the PDO is not valid (0609 0030h: CiA 301 names no code for it); mapping
 //! sub 00h and entries change only while the PDO is not valid, and entries only while sub 00h = 0 (0601 0000h,
 //! as CANopenNode answers); sub 04h and RPDO sub 06h do not exist (0609 0011h, PDO-11/13); an unsupported
 //! transmission type is 0609 0030h (PDO-09/18). Whether a mapping entry names a mappable object (0602 0000h,

@@ -94,7 +94,7 @@ impl Crc16 {
     /// # use canopen_core::sdo::block::Crc16;
     /// let mut c = Crc16::new();
     /// c.update(b"ABCDEFGHIJKLMNOP");
-    /// assert_eq!(c.get(), 0x6080); // VECTORS 8.2
+    /// assert_eq!(c.get(), 0x6080); // SDO-49: the CRC of "ABCDEFGHIJKLMNOP"
     /// ```
     // Without `#[inline]`, the table choice behind a call kept `update` out of the block segment path: +36
     // instructions per frame in `scripts/bench-node.sh` block_download.
@@ -141,7 +141,7 @@ pub const fn segment_count(size: u32) -> u32 {
 ///
 /// ```
 /// use canopen_core::sdo::block::last_segment_len;
-/// assert_eq!(last_segment_len(9), 2); // VECTORS 8.1: n = 5
+/// assert_eq!(last_segment_len(9), 2); // 9 bytes: the end frame says n = 5 (D5h, SDO-41)
 /// assert_eq!(last_segment_len(14), 7);
 /// assert_eq!(last_segment_len(0), 0);
 /// ```

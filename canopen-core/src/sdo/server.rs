@@ -16,7 +16,7 @@
 //! - `server/segmented.rs`: expedited and segmented download and upload (SDO-10..SDO-30).
 //! - `server/block_download.rs`: block download (SDO-35, SDO-36, SDO-38..SDO-42, SDO-47..SDO-51).
 //! - `server/block_upload.rs`: block upload with the protocol switch (SDO-37, SDO-43..SDO-51).
-//! - `server/tests.rs`: the unit tests (VECTORS 7.x and 8.x).
+//! - `server/tests.rs`: the unit tests (segmented and block exchanges byte for byte).
 //!
 //! The per-frame paths cross these files, so [`SdoServer::handle_request`] and the helpers it reaches on every
 //! segment (`Sink::write`, the block download flush, the initiate handlers) are `#[inline]`: without it, a
@@ -66,7 +66,7 @@
 //!   abort frame `80h` is a segment (byte 0 is c ‖ seqno there), so an initiate cannot be recognised then.
 //! - **Block sequence numbers** (SDO-50): seqno 0 or > blksize → 0504 0003h. An out-of-order segment is
 //!   discarded; the server acknowledges the last in-order one when the segment with seqno = blksize or c = 1
-//!   arrives (go-back-n, VECTORS 8.2). A repeat of the last accepted segment or of the one that made the
+//!   arrives (go-back-n: with segment 2 of 3 lost, 83h closes the sub-block and is answered A2 01). A repeat of the last accepted segment or of the one that made the
 //!   server acknowledge (a CAN-level duplicate) is ignored without an acknowledgement: the server has that
 //!   sequence number already, and a second acknowledge would read as the next sub-block's.
 //! - **Stalled sub-block** (SDO-40, as CANopenNode does at 70 % of its timeout): when a sub-block has

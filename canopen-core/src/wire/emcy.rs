@@ -44,7 +44,8 @@ impl Emergency {
 mod tests {
     use super::*;
 
-    /// V-EMCY vectors: life-guarding error (VECTORS §5) and the error-reset frame.
+    /// EMCY frames (EMCY-04): the life-guarding error 8130h with error register 11h, and the error-reset frame
+    /// (code 0000h, all zeros).
     #[test]
     fn emcy_vectors() {
         let e = Emergency::parse(&[0x30, 0x81, 0x11, 0, 0, 0, 0, 0]).unwrap();

@@ -22,7 +22,8 @@ pub enum NmtCommand {
     EnterPreOperational = 0x80,
     /// 81h: reset node → Reset Application (NMT-12).
     ResetNode = 0x81,
-    /// 82h: reset communication (NMT-13; 000 §7.2.8.3.1.5 misprints 129, see ERRATA 1.1).
+    /// 82h: reset communication (NMT-13; the Chinese translation of CiA 301 §7.2.8.3.1.5
+    /// misprints 129, the value of Reset Node).
     ResetCommunication = 0x82,
 }
 

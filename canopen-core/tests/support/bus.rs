@@ -4,7 +4,8 @@
 //! Every frame of every COB-ID goes through one wire queue. Seeded faults, each with its own rate:
 //! - **drop**: the frame never arrives (an overflowing receive buffer, a receiver that missed it);
 //! - **duplicate**: the frame arrives twice in a row (CAN's automatic retransmission after an error frame
-//!   that the receiver did not see);
+//!   that the receiver did not see), except a sub-block acknowledge of a block transfer without CRC (see
+//!   [`Bus::unprotected`]);
 //! - **reorder**: the frame overtakes up to three frames queued before it, as long as none of them has its
 //!   COB-ID. Frames of one COB-ID keep their order, as on a real bus where one sender's queue is FIFO, but
 //!   the two directions of a transfer and other traffic interleave differently.
@@ -19,7 +20,7 @@ use canopen_core::sdo::{SdoClientParams, SdoEvent, SdoServer, SdoServerParams};
 use canopen_core::wire::sdo::Multiplexer;
 use canopen_core::{Duration, Instant, NodeId};
 
-use super::harness::{Dir, Rng};
+use super::harness::{unprotected, Dir, Rng};
 use super::od::TestOd;
 
 /// Time one frame takes on the simulated bus.
@@ -72,6 +73,8 @@ pub struct Pair {
     pub server: SdoServer,
     pub od: Box<TestOd>,
     pub node: u8,
+    /// The block size the server asks for in block download.
+    pub server_blksize: u8,
     jobs: VecDeque<Job>,
     current: Option<Running>,
     pub done: Vec<Outcome>,
@@ -114,6 +117,7 @@ impl Pair {
                 .with_timeout(timeout),
             od: Box::new(TestOd::new()),
             node,
+            server_blksize,
             jobs: jobs.into(),
             current: None,
             done: Vec::new(),
@@ -177,7 +181,7 @@ impl Bus {
         if self.lose.as_mut().is_some_and(|rule| rule(cob, &data)) || self.rng.per_mille(self.rates.drop) {
             return;
         }
-        let copies = if self.rng.per_mille(self.rates.dup) { 2 } else { 1 };
+        let copies = if self.rng.per_mille(self.rates.dup) && !self.unprotected(cob, &data) { 2 } else { 1 };
         for _ in 0..copies {
             self.wire.push_back((cob, data));
         }
@@ -190,6 +194,20 @@ impl Bus {
                 at -= 1;
             }
         }
+    }
+
+    /// Whether `data` on `cob` belongs to a block transfer without CRC and is one of the frames whose duplicate
+    /// no receiver can tell from a new one ([`unprotected`]: the sub-block acknowledges, and the segments when
+    /// a sub-block is one segment long). Those are never duplicated; every other frame of those transfers is.
+    fn unprotected(&self, cob: u16, data: &[u8; 8]) -> bool {
+        self.pairs.iter().any(|p| {
+            let Some(Running { job: Job { dir, mode: Mode::Block { crc: false, blksize, .. }, .. }, .. }) = &p.current
+            else {
+                return false;
+            };
+            let sub_block = if *dir == Dir::Download { p.server_blksize } else { *blksize };
+            (cob == p.rx_cob() || cob == p.tx_cob()) && unprotected(Some((*dir, sub_block)), cob == p.rx_cob(), data)
+        })
     }
 
     /// Runs every pair's jobs to the end. Panics if the bus is quiet while a side is busy without a deadline,

@@ -20,6 +20,20 @@ pub struct Faults {
     pub loss: u32,
     pub dup: u32,
     pub swap: u32,
+    /// A block transfer without CRC in this direction, with this many segments per sub-block: its frames
+    /// that no receiver can tell from new ones when repeated are never duplicated (see [`unprotected`]).
+    pub no_crc_block: Option<(Dir, u8)>,
+}
+
+/// Whether `f` (client → server when `c2s`) is a frame of a block transfer without CRC whose duplicate no
+/// receiver can tell from a new frame: the sub-block acknowledge A2h (a repeat arriving after the sender moved
+/// on is byte-identical to the next acknowledge when nothing was lost), and with one segment per sub-block the
+/// segments 01h/81h (a repeat matches the next segment's sequence number, and its bytes with repeating data).
+/// Without the CRC (SDO-48, SDO-49) nothing catches the wrong data either one causes.
+pub fn unprotected(no_crc_block: Option<(Dir, u8)>, c2s: bool, f: &[u8; 8]) -> bool {
+    let Some((dir, sub_block)) = no_crc_block else { return false };
+    let acks_c2s = dir == Dir::Upload;
+    (c2s == acks_c2s && f[0] == 0xA2) || (c2s != acks_c2s && sub_block == 1 && f[0] & 0x7F == 1)
 }
 
 /// A tiny deterministic PRNG (xorshift64*).
@@ -93,12 +107,12 @@ impl Link {
         }
     }
 
-    fn push(q: &mut VecDeque<[u8; 8]>, f: [u8; 8], faults: Faults, rng: &mut Rng) {
+    fn push(q: &mut VecDeque<[u8; 8]>, f: [u8; 8], faults: Faults, rng: &mut Rng, c2s: bool) {
         if rng.per_mille(faults.loss) {
             return;
         }
         q.push_back(f);
-        if rng.per_mille(faults.dup) {
+        if rng.per_mille(faults.dup) && !unprotected(faults.no_crc_block, c2s, &f) {
             q.push_back(f);
         }
         let n = q.len();
@@ -137,12 +151,12 @@ impl Link {
             };
             // client frames out
             while let Some(f) = self.client.poll_transmit(self.now, &mut data) {
-                Self::push(&mut self.c2s, f, self.faults, &mut self.rng);
+                Self::push(&mut self.c2s, f, self.faults, &mut self.rng, true);
             }
             // server sub-block frames out (one per step: a bounded TX queue)
             if let Some(r) = self.server.poll_transmit(self.now, &mut *self.od) {
                 if let Some(f) = r.frame {
-                    Self::push(&mut self.s2c, f, self.faults, &mut self.rng);
+                    Self::push(&mut self.s2c, f, self.faults, &mut self.rng, false);
                 }
                 server_events.extend(r.event);
             }
@@ -152,7 +166,7 @@ impl Link {
                 frames.0 += 1;
                 let r = self.server.handle_request(self.now, &f, &mut *self.od);
                 if let Some(f) = r.frame {
-                    Self::push(&mut self.s2c, f, self.faults, &mut self.rng);
+                    Self::push(&mut self.s2c, f, self.faults, &mut self.rng, false);
                 }
                 server_events.extend(r.event);
                 moved = true;
@@ -173,7 +187,7 @@ impl Link {
             }
             // nothing in flight: check for more client frames, else jump to the next deadline
             if let Some(f) = self.client.poll_transmit(self.now, &mut data) {
-                Self::push(&mut self.c2s, f, self.faults, &mut self.rng);
+                Self::push(&mut self.c2s, f, self.faults, &mut self.rng, true);
                 continue;
             }
             if self.client.is_idle() && self.server.is_idle() {
@@ -188,7 +202,7 @@ impl Link {
             }
             let r = self.server.handle_timeout(self.now, &mut *self.od);
             if let Some(f) = r.frame {
-                Self::push(&mut self.s2c, f, self.faults, &mut self.rng);
+                Self::push(&mut self.s2c, f, self.faults, &mut self.rng, false);
             }
             server_events.extend(r.event);
         }

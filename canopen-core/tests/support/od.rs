@@ -3,7 +3,7 @@
 //! `#![no_std]` library under `cfg(test)`.
 //!
 //! Entries (node 3 in the vectors):
-//! - 1000h:00 U32 ro; 1009h:00 VISIBLE_STRING ro "N10 - WT1209-V1.00-8MB\0" (VECTORS §7.2);
+//! - 1000h:00 U32 ro; 1009h:00 VISIBLE_STRING ro "N10 - WT1209-V1.00-8MB\0" (23 bytes);
 //!   100Dh:00 U8 rw; 1017h:00 U16 rw = 100; 1018h:00 U8 const = 4, 1018h:01..04 U32 ro (01 = 2B6h);
 //!   1400h:02 U8 rw (refuses FDh with 0609 0030h); 1603h:01 U32 rw = 6012 0208h; 6041h:00 U16 ro = 0240h;
 //!   607Ah:00 I32 rw.

@@ -7,7 +7,7 @@
 //!
 //! Loss and duplicates (SDO-40, go-back-n): an out-of-order segment is dropped and the last in-order one is
 //! acknowledged when the sub-block ends; a repeat of the segment just accepted or just acknowledged is
-//! ignored; a sub-block that stalls for a quarter of the SDO timeout after in-order segments is acknowledged
+//! ignored, as is a repeat of the initiate request before the first segment; a sub-block that stalls for a quarter of the SDO timeout after in-order segments is acknowledged
 //! up to them, so a lost last segment costs a quarter of the timeout instead of the whole transfer (see the
 //! server's module docs for why once, and why not without in-order segments).
 
@@ -77,7 +77,7 @@ impl SdoServer {
             return self.abort(od, mux, AbortCode::InvalidSequenceNumber); // SDO-50
         }
         if seqno != bd.expected {
-            if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) {
+            if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) || bd.is_repeated_initiate(b, mux) {
                 // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
                 // has that sequence number already; a second acknowledge would read as one for the next
                 // sub-block and make the client skip segments
@@ -192,6 +192,19 @@ pub(super) const fn is_late_segment(b0: u8, blksize: u8) -> bool {
 }
 
 impl BlockDownload {
+    /// Whether `b` is a byte-exact repeat of the initiate request that opened this transfer (a CAN-level
+    /// duplicate: C0h–C6h reads as a segment with c = 1 and seqno 64..70), received before any segment.
+    /// Taken as a segment, it would be out of order with c = 1 and the server would acknowledge it with
+    /// ackseq 0, an acknowledge the client reads as the answer to its first sub-block (SDO-40): it resends
+    /// that sub-block, while the server, which acknowledges the real sub-block too, moves on, and from
+    /// there the client's data lands at the wrong offset.
+    #[inline]
+    fn is_repeated_initiate(&self, b: &[u8; 8], mux: Multiplexer) -> bool {
+        let size = self.size.unwrap_or(0);
+        let b0 = 0xC0 | (u8::from(self.crc_on) << 2) | (u8::from(self.size.is_some()) << 1);
+        self.offset == 0 && self.held_seqno == 0 && self.acked == 0 && *b == frame(b0, mux.bits(), size)
+    }
+
     /// Writes the first `len` bytes of the held segment (in order) to the sink and the CRC.
     #[inline]
     fn flush_held<O: ObjectDictionary + ?Sized>(

@@ -1,4 +1,5 @@
-//! Unit tests of the SDO server: the VECTORS 7.x and 8.x exchanges and the choices in the module docs.
+//! Unit tests of the SDO server: the segmented and block exchanges of node 3 byte for byte (SDO-14..SDO-51)
+//! and the choices in the module docs.
 
 use super::test_od::{TestOd, STRING64};
 use super::*;
@@ -191,7 +192,7 @@ fn value_shorter_than_announced_is_length_mismatch() {
 fn block_transfer_compiled_out() {
     let mut t = Bench::new();
     let invalid = AbortCode::InvalidCommandSpecifier;
-    t.ex([0xC6, 0x00, 0x20, 0x00, 9, 0, 0, 0], abort_of(0x2000, 0, invalid)); // VECTORS 8.1 initiate
+    t.ex([0xC6, 0x00, 0x20, 0x00, 9, 0, 0, 0], abort_of(0x2000, 0, invalid)); // a block initiate (C6h, size 9)
     assert!(t.s.is_idle());
     t.ex([0xA4, 0x04, 0x20, 0x00, 0x7F, 0, 0, 0], abort_of(0x2004, 0, invalid)); // block upload initiate
     assert!(t.s.is_idle());
@@ -204,7 +205,8 @@ fn block_transfer_compiled_out() {
     assert!(t.s.is_idle());
 }
 
-/// VECTORS 7.2, then the seed 7.1 whose step 5 repeats t = 0: abort 0503 0000h (SDO-30).
+/// The segmented upload of 1009h "N10 - WT1209-V1.00-8MB\0" (23 bytes, SDO-25..SDO-28), then the same upload with
+/// the second segment request repeating t = 0 (60h instead of 70h): abort 0503 0000h (SDO-30).
 #[test]
 fn v_sdo_segmented_upload_7_2_and_toggle_error() {
     let mut t = Bench::new();
@@ -349,7 +351,8 @@ fn v_sdo_block_download_8_1_and_variants() {
     assert_eq!(t.od.get(0x607A, 0), Some(10_000));
 }
 
-/// VECTORS 8.2 (segment 2 lost, 83h closes the sub-block: acknowledge 1, go back), with SDO-40's duplicates:
+/// Block download of "ABCDEFGHIJKLMNOP" with blksize 3 (segment 2 lost, 83h closes the sub-block: acknowledge 1,
+/// go back, CRC 6080h), with SDO-40's duplicates:
 /// a CAN-level repeat of the segment that made the server acknowledge is ignored, not acknowledged again (a
 /// second acknowledge would read as the next sub-block's and make the client skip segments).
 #[test]

@@ -1,4 +1,5 @@
-//! Unit tests of the SDO frame formats: every command specifier both ways, and the VECTORS frames.
+//! Unit tests of the SDO frame formats: every command specifier both ways (SDO-08), and the frames of the
+//! expedited, segmented and block exchanges byte for byte.
 
 use super::*;
 use ClientRequest as Req;
