@@ -17,9 +17,10 @@
 //! bus-off) need the CAN controller's state, which the core does not see: the driver or application raises
 //! them with `Node::raise_error`.
 
-use heapless::{Deque, Vec};
+use heapless::Vec;
 
 use crate::abort::AbortCode;
+use crate::queue::Queue;
 use crate::time::{Duration, Instant};
 use crate::wire::emcy::Emergency;
 
@@ -113,7 +114,7 @@ pub struct ErrorState<const ACTIVE: usize, const HIST: usize, const QUEUE: usize
     active: Vec<Active, ACTIVE>,
     /// Newest first (sub-index 1 = newest).
     history: Vec<u32, HIST>,
-    pending: Deque<Emergency, QUEUE>,
+    pending: Queue<Emergency, [Emergency; QUEUE]>,
     lost: u32,
 }
 
@@ -126,7 +127,12 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> Default for Err
 impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTIVE, HIST, QUEUE> {
     /// Error-free (EMCY-07: after initialisation nothing is sent).
     pub const fn new() -> Self {
-        ErrorState { active: Vec::new(), history: Vec::new(), pending: Deque::new(), lost: 0 }
+        ErrorState {
+            active: Vec::new(),
+            history: Vec::new(),
+            pending: Queue::new([Emergency { code: 0, register: 0, manufacturer: [0; 5] }; QUEUE]),
+            lost: 0,
+        }
     }
 
     /// The error register 1001h (ERR-01, ERR-02).

@@ -64,6 +64,7 @@ pub mod node;
 pub mod od;
 pub mod pdo;
 pub mod profile;
+pub mod queue;
 pub mod sdo;
 pub mod sizes;
 pub mod storage;
