@@ -27,7 +27,9 @@ def classify(path):
         return "canopen-core::" + mod
     if "canopen-od-derive" in path:
         return "canopen-od-derive"
-    if path.endswith("src/bin/node.rs") or path.endswith("src/bin/baseline.rs"):
+    # Before the registry match: a unit's relative "src/bin/minimal.rs" may have been resolved against a
+    # dependency's root.
+    if re.search(r"src/bin/(node|minimal|baseline)\.rs$", path):
         return "firmware bin (app, tasks, derived dictionary)"
     if re.search(r"examples/firmware/src/lib\.rs$", path) or path == "src/lib.rs":
         return "firmware glue (lib.rs)"
@@ -57,7 +59,7 @@ def symbol_crate(name):
     crate = m.group(1).replace("_", "-")
     if crate == "compiler-builtins":
         return "compiler_builtins"
-    if crate in ("node", "baseline"):
+    if crate in ("node", "minimal", "baseline"):
         return "firmware bin (app, tasks, derived dictionary)"
     if crate == "canopen-firmware":
         return "firmware glue (lib.rs)"

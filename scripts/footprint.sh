@@ -18,7 +18,8 @@
 #                minimal: flash 8,000 B, RAM 2,500 B)
 #   --ratchet    exit 1 when a figure grew more than 2 % over its line in scripts/footprint.baseline; a
 #                figure that went down prints the one-line update of that file
-#   --breakdown  also print where the node binary's flash goes, by crate/module (DWARF line table)
+#   --breakdown  also print where the node and minimal binaries' flash goes, by crate/module (DWARF line
+#                table)
 # Needs: rustup target add thumbv7em-none-eabihf; binutils `size` and `nm` (they read ARM ELF files).
 set -euo pipefail
 SCRIPTS=$(cd "$(dirname "$0")" && pwd)
@@ -83,6 +84,9 @@ if [ "$breakdown" = 1 ]; then
   echo
   echo "node binary, flash (.text + .rodata code/data with line info) by source, bytes (see footprint-breakdown.py):"
   python3 ../../scripts/footprint-breakdown.py "$T/node" "$T/baseline"
+  echo
+  echo "minimal binary, flash by source, bytes:"
+  python3 ../../scripts/footprint-breakdown.py "$T/minimal" "$T/baseline"
 fi
 
 status=0

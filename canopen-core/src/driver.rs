@@ -307,18 +307,14 @@ async fn wait<R: CanRx, C: Timer, W: Wake>(
     deadline: Option<Instant>,
 ) -> Woken<Result<Received, R::Error>> {
     let mut frame = pin!(rx.receive_event());
-    let mut sleep = pin!(async {
-        match deadline {
-            Some(t) => timer.sleep_until(t).await,
-            None => core::future::pending().await,
-        }
-    });
+    // No deadline, no sleep (an Option, not an async block around `pending()`: one state machine less).
+    let mut sleep = pin!(deadline.map(|t| timer.sleep_until(t)));
     let mut app = pin!(wake.wait());
     poll_fn(|cx| {
         if let Poll::Ready(r) = frame.as_mut().poll(cx) {
             return Poll::Ready(Woken::Frame(r));
         }
-        if sleep.as_mut().poll(cx).is_ready() {
+        if sleep.as_mut().as_pin_mut().is_some_and(|s| s.poll(cx).is_ready()) {
             return Poll::Ready(Woken::Deadline);
         }
         if app.as_mut().poll(cx).is_ready() {

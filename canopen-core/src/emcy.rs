@@ -17,10 +17,11 @@
 //! bus-off) need the CAN controller's state, which the core does not see: the driver or application raises
 //! them with `Node::raise_error`.
 
-use heapless::{Deque, Vec};
+use heapless::Vec;
 
 use crate::abort::AbortCode;
-use crate::time::{Duration, Instant};
+use crate::queue::Queue;
+use crate::time::{Deadline, Duration, Instant};
 use crate::wire::emcy::Emergency;
 
 /// Emergency error codes of CiA 301 Table 26 used by the stack itself (EEC-01..EEC-23 are all representable
@@ -113,7 +114,7 @@ pub struct ErrorState<const ACTIVE: usize, const HIST: usize, const QUEUE: usize
     active: Vec<Active, ACTIVE>,
     /// Newest first (sub-index 1 = newest).
     history: Vec<u32, HIST>,
-    pending: Deque<Emergency, QUEUE>,
+    pending: Queue<Emergency, [Emergency; QUEUE]>,
     lost: u32,
 }
 
@@ -126,7 +127,12 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> Default for Err
 impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTIVE, HIST, QUEUE> {
     /// Error-free (EMCY-07: after initialisation nothing is sent).
     pub const fn new() -> Self {
-        ErrorState { active: Vec::new(), history: Vec::new(), pending: Deque::new(), lost: 0 }
+        ErrorState {
+            active: Vec::new(),
+            history: Vec::new(),
+            pending: Queue::new([Emergency { code: 0, register: 0, manufacturer: [0; 5] }; QUEUE]),
+            lost: 0,
+        }
     }
 
     /// The error register 1001h (ERR-01, ERR-02).
@@ -301,35 +307,40 @@ pub const HISTORY: usize = 8;
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct EmcyProducer {
     inhibit: Duration,
-    next_allowed: Option<Instant>,
+    next_allowed: Deadline,
 }
 
 impl EmcyProducer {
     /// A producer with no inhibit time.
     pub const fn new() -> Self {
-        EmcyProducer { inhibit: Duration::ZERO, next_allowed: None }
+        EmcyProducer { inhibit: Duration::ZERO, next_allowed: Deadline::NONE }
     }
 
     /// Sets 1015h, in 100 µs units (0 = off).
     pub fn set_inhibit_100us(&mut self, n: u16) {
         self.inhibit = Duration::from_100us(u64::from(n));
         if self.inhibit.is_zero() {
-            self.next_allowed = None;
+            self.next_allowed = Deadline::NONE;
         }
     }
 
     /// Whether an EMCY may go out at `now`.
     pub fn may_send(&self, now: Instant) -> bool {
-        self.next_allowed.is_none_or(|t| now >= t)
+        self.next_allowed.get().is_none_or(|t| now >= t)
     }
 
     /// An EMCY went out at `now`.
     pub fn sent(&mut self, now: Instant) {
-        self.next_allowed = (!self.inhibit.is_zero()).then(|| now + self.inhibit);
+        self.next_allowed.set((!self.inhibit.is_zero()).then(|| now + self.inhibit));
     }
 
     /// When the inhibit time of the last EMCY ends.
     pub const fn next_allowed(&self) -> Option<Instant> {
+        self.next_allowed.get()
+    }
+
+    /// [`next_allowed`](Self::next_allowed) as a [`Deadline`], for the node's minimum over its services.
+    pub(crate) const fn deadline(&self) -> Deadline {
         self.next_allowed
     }
 }

@@ -88,6 +88,11 @@ impl Guarding {
         self.deadline.get()
     }
 
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
+    pub(crate) const fn deadline(&self) -> Deadline {
+        self.deadline
+    }
+
     /// Whether life guarding is currently timed out.
     pub const fn is_timed_out(&self) -> bool {
         self.timed_out

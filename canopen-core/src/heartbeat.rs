@@ -101,6 +101,11 @@ impl HeartbeatProducer {
         self.next.get()
     }
 
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
+    pub(crate) const fn deadline(&self) -> Deadline {
+        self.next
+    }
+
     /// Whether a heartbeat is due at `now`; if so, schedules the next one. A runner that fell behind by more
     /// than a period sends one heartbeat, not a burst.
     pub fn due(&mut self, now: Instant) -> bool {
@@ -336,14 +341,16 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
 
     /// The earliest consumer deadline.
     pub fn poll_timeout(&self) -> Option<Instant> {
-        self.slots
-            .as_ref()
-            .iter()
-            .filter_map(|s| match s.monitor {
-                Monitor::Alive { .. } => s.deadline.get(),
-                _ => None,
-            })
-            .min()
+        self.deadline().get()
+    }
+
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`] (the minimum of the monitored entries'), for
+    /// the node's minimum over its services.
+    pub(crate) fn deadline(&self) -> Deadline {
+        self.slots.as_ref().iter().fold(Deadline::NONE, |t, s| match s.monitor {
+            Monitor::Alive { .. } => t.min(s.deadline),
+            _ => t,
+        })
     }
 
     /// Reports the first entry whose consumer time has elapsed at `now` (HB-11: one missed period is a

@@ -6,7 +6,8 @@
 //!
 //! The modules form layers, each importing only the ones above it in this list (`docs/ARCHITECTURE.md`):
 //! - base: [`frame`] (the CAN frame), [`cob`] (COB-IDs, node-IDs), [`abort`] (SDO abort codes), [`time`]
-//!   (`Instant`, `Duration`), [`sizes`] (the node's capacities as one type, [`Sizes`]);
+//!   (`Instant`, `Duration`), [`sizes`] (the node's capacities as one type, [`Sizes`]), [`queue`] (a bounded
+//!   FIFO in fixed storage);
 //! - wire: [`wire`] (parse/emit of every protocol's frames);
 //! - od: [`od`] (values, entries, tables, the `Merged` router, EDS object sections);
 //! - services, one state machine each: [`nmt`], [`heartbeat`], [`guarding`], [`sdo`], [`pdo`], [`sync`],
@@ -64,6 +65,7 @@ pub mod node;
 pub mod od;
 pub mod pdo;
 pub mod profile;
+pub mod queue;
 pub mod sdo;
 pub mod sizes;
 pub mod storage;

@@ -474,19 +474,19 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         // As time::Deadline values (u64::MAX = none): a u64 minimum per service, not a match on two options.
         // One statement per service, so a service behind a Cargo feature is one `#[cfg]` line.
-        let mut t = Deadline::new(self.producer.poll_timeout());
-        t = t.min(Deadline::new(self.consumer.poll_timeout()));
+        let mut t = self.producer.deadline();
+        t = t.min(self.consumer.deadline());
         #[cfg(feature = "guarding")]
         {
-            t = t.min(Deadline::new(self.guarding.poll_timeout()));
+            t = t.min(self.guarding.deadline());
         }
         #[cfg(feature = "lss")]
         {
             t = t.min(Deadline::new(self.lss.poll_timeout()));
         }
         t = t.min(Deadline::new(self.sdo.poll_timeout()));
-        t = t.min(Deadline::new(self.sync.poll_timeout()));
-        t = t.min(Deadline::new(self.emcy_timeout()));
+        t = t.min(self.sync.deadline());
+        t = t.min(self.emcy_timeout());
         t = t.min(self.pdo_timeout());
         t.get()
     }

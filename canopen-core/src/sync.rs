@@ -75,7 +75,8 @@ pub enum SyncInput {
 pub struct Sync {
     params: SyncParams,
     counter: u8,
-    next: Option<Instant>,
+    /// When the next SYNC is to be produced (8 bytes, as `last_sync`).
+    next: Deadline,
     /// When the last SYNC went out or arrived: the start of the synchronous window (an optional instant in
     /// 8 bytes, `Option<Instant>` takes 16).
     last_sync: Deadline,
@@ -84,7 +85,7 @@ pub struct Sync {
 impl Sync {
     /// A SYNC object with `params`; call [`start`](Self::start) at boot-up.
     pub const fn new(params: SyncParams) -> Self {
-        Sync { params, counter: 1, next: None, last_sync: Deadline::NONE }
+        Sync { params, counter: 1, next: Deadline::NONE, last_sync: Deadline::NONE }
     }
 
     /// The parameters.
@@ -117,7 +118,7 @@ impl Sync {
 
     fn schedule(&mut self, now: Instant) {
         let active = self.is_producer() && self.params.period_us != 0;
-        self.next = active.then(|| now + Duration::from_micros(u64::from(self.params.period_us)));
+        self.next.set(active.then(|| now + Duration::from_micros(u64::from(self.params.period_us))));
     }
 
     /// Writes 1005h (SYNC-02/03, COB-15/16): frame bit refused, ID unchangeable while producing.
@@ -182,16 +183,21 @@ impl Sync {
 
     /// When the next SYNC is to be produced.
     pub const fn poll_timeout(&self) -> Option<Instant> {
+        self.next.get()
+    }
+
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
+    pub(crate) const fn deadline(&self) -> Deadline {
         self.next
     }
 
     /// Produces the SYNC due at `now`, if any; the node also acts on its own SYNC (call
     /// [`consume`](Self::consume)-equivalent logic with the returned counter).
     pub fn produce(&mut self, now: Instant) -> Option<crate::CanFrame> {
-        let next = self.next.filter(|&t| t <= now)?;
+        let next = self.next.get().filter(|&t| t <= now)?;
         let period = Duration::from_micros(u64::from(self.params.period_us));
         let following = next + period;
-        self.next = Some(if following <= now { now + period } else { following });
+        self.next.set(Some(if following <= now { now + period } else { following }));
         let counter = self.advance_counter();
         self.last_sync.set(Some(now));
         let mut data = [0u8; 8];

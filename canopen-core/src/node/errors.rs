@@ -28,7 +28,7 @@ use crate::frame::CanFrame;
 use crate::nmt::{NmtState, Service};
 use crate::od::ObjectDictionary;
 use crate::storage::Storage;
-use crate::time::Instant;
+use crate::time::{Deadline, Instant};
 use crate::wire::emcy::Emergency;
 
 impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
@@ -150,9 +150,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    pub(super) fn emcy_timeout(&self) -> Option<Instant> {
+    pub(super) fn emcy_timeout(&self) -> Deadline {
         let sendable = self.nmt.state().allows(Service::Emcy) && self.comm.errors.has_pending();
-        sendable.then(|| self.emcy.next_allowed()).flatten()
+        if sendable {
+            self.emcy.deadline()
+        } else {
+            Deadline::NONE
+        }
     }
 
     /// Another node's EMCY (EMCY-10/11: every EMCY on 081h–0FFh is reported; 1028h is not implemented).
