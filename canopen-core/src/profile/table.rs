@@ -323,12 +323,20 @@ fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
 }
 
 /// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
+/// Inline: a VAR of 1000h–101Fh is an array read and a compare at the caller, the rest one call.
+#[inline]
 pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     if let 0x1000..=0x101F = index {
         if let Some((ty, slot)) = FIXED_VAR[usize::from(index & 0x1F)] {
             return if sub == 0 { Ok(Found { ty, slot, n: 0 }) } else { Err(AbortCode::SubIndexDoesNotExist) };
         }
     }
+    walk(index, sub, c)
+}
+
+/// [`find`] for the objects of more than one sub-entry and those outside 1000h–101Fh.
+#[inline(never)]
+fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     let (runs, k) = object(index, c).ok_or(AbortCode::ObjectDoesNotExist)?;
     let last = |r: &Run| if r.last == HB { c.hb() } else { r.last };
     for r in runs {
