@@ -753,13 +753,6 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn __od_write_stream_value(&mut self, pos: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
                     match pos { #(#stream_write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
-                /// `write_expedited` of a string or DOMAIN (a stream). Out of line, so that the numeric
-                /// writes do not keep its registers.
-                #[inline(never)]
-                fn __od_write_stream(&mut self, index: u16, sub: u8, data: &[u8; 4], len: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
-                    let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
-                    #core::od::write_whole_stream(self, index, sub, bytes)
-                }
                 /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
                 /// dictionary (not inlined), shared by every access.
                 fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
@@ -857,7 +850,10 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                             let bytes = data.get(..len.unwrap_or(n.min(4))).unwrap_or(data);
                             self.__od_write(pos, bytes)
                         }
-                        ::core::option::Option::None => self.__od_write_stream(index, sub, data, len),
+                        ::core::option::Option::None => {
+                            let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
+                            #core::od::write_whole_stream(self, index, sub, bytes)
+                        }
                     }
                 }
                 fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
