@@ -140,6 +140,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
             self.od.app.read_expedited(index, sub, buf)
         }
     }
+    #[inline]
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
         // Store/restore and mappings through this view's own `info`/`write` (which intercepts them), the
         // rest of the communication profile and the application with their single lookup.
