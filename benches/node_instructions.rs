@@ -1,6 +1,8 @@
 //! Instruction-count workload for the whole node (DESIGN.md "Performance"): one main-loop pass per received
-//! frame, i.e. one `handle_frame` plus the drain of `poll_transmit` and `poll_event` (what
-//! `canopen_core::driver` does for a frame), nothing else.
+//! frame, i.e. one `handle_frame` plus the drain of the node's events and frames the way
+//! `canopen_core::driver`'s service loop takes them: `poll_event` until empty, then `peek_transmit` and,
+//! once sent, `transmitted` (cancel safety). The driver's `handle_timeout`/`poll_timeout` per wake-up are
+//! not counted (time, not frames: see `scripts/bench-node.sh`).
 //!
 //! `node_instructions <scenario> <iterations>` runs a scenario `iterations` times and prints how many frames
 //! the node received and sent; `scripts/bench-node.sh` runs it under callgrind with N and with 0 iterations
@@ -96,12 +98,16 @@ fn run<A: canopen::core::od::ObjectDictionary + canopen::core::od::OdDescribe>(
     for _ in 0..iterations {
         for f in script {
             node.handle_frame(Instant::ZERO, black_box(f));
-            while let Some(out) = node.poll_transmit() {
-                black_box(out);
+            // As `driver::service`: events first, then each frame is peeked, sent and only then taken
+            // (`transmitted`), so a cancelled send loses nothing.
+            loop {
+                if let Some(e) = node.poll_event() {
+                    black_box(e);
+                    continue;
+                }
+                let Some(out) = node.peek_transmit() else { break };
+                node.transmitted(black_box(&out));
                 sent += 1;
-            }
-            while let Some(e) = node.poll_event() {
-                black_box(e);
             }
             frames += 1;
         }

@@ -3,7 +3,7 @@
 # workload of DESIGN.md "Performance", with the targets beside them. Usage: scripts/bench-node.sh [iterations]
 # Runs benches/node_instructions.rs under callgrind with N and with 0 iterations and divides the difference by
 # the number of frames, so set-up (recording the client's frames) and process start-up cancel out. One pass =
-# handle_frame + draining poll_transmit and poll_event (what canopen_core::driver does per frame).
+# handle_frame + the drain of poll_event, then peek_transmit + transmitted per frame (driver::service).
 #   per-rx   instructions per received frame (for sync_4_tpdos: per SYNC)
 #   per-bus  instructions per bus frame (received + sent; for sync_4_tpdos: 1 SYNC + 4 TPDOs)
 # The target applies to per-rx, except for sync_4_tpdos, where it applies to per-bus (marked *).

@@ -579,14 +579,20 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// Queues the server's frame on its tx COB-ID (SDO-02: 8 bytes) and hands its event on. Inline: most
-    /// frames have no event, and then this is the push alone.
+    /// frames have no event, and then this is the push alone; an application write is one more push.
     #[inline]
     fn sdo_response(&mut self, now: Instant, response: Response) {
         if let (Some(data), Some(cob)) = (response.frame, self.sdo.tx_cob_id()) {
             self.transmit(CanFrame::from_parts(cob, data, 8));
         }
-        if let Some(event) = response.event {
-            self.sdo_event(now, event);
+        match response.event {
+            None => {}
+            // An application object written (the expedited and segmented downloads' event): no side
+            // effect here, the event alone, inline.
+            Some(SdoEvent::Written { index, sub }) if index >= 0x2000 => {
+                self.push_event(Event::ObjectWritten { index, sub })
+            }
+            Some(event) => self.sdo_event(now, event),
         }
     }
 

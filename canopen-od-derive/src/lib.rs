@@ -608,7 +608,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
 
     let mut size_arms = Vec::new();
     let mut read_arms = Vec::new();
-    let mut write_arms = Vec::new();
+    let mut write_arms = Vec::new(); // fixed-size values: inline in every write path
+    let mut stream_write_arms = Vec::new(); // strings, byte strings and DOMAINs: out of line
     let mut begin_arms = Vec::new();
     let mut chunk_arms = Vec::new();
     let mut end_arms = Vec::new();
@@ -650,7 +651,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
                 let check_call = check.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub, &v)?;));
                 let on_write_call = on_write.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub);));
-                write_arms.push(quote_spanned! {sp=>
+                let arms = if st.mappable { &mut write_arms } else { &mut stream_write_arms };
+                arms.push(quote_spanned! {sp=>
                     #pos => {
                         let v = <#ty as #core::od::OdValue>::decode(data)?;
                         #limits
@@ -684,7 +686,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 if !r.writable {
                     continue;
                 }
-                write_arms.push(quote! {
+                stream_write_arms.push(quote! {
                     #pos => {
                         #core::od::Domain::begin_write(&mut self.#member, ::core::option::Option::Some(data.len()))?;
                         if let ::core::result::Result::Err(e) = #core::od::Domain::write_chunk(&mut self.#member, 0, data) {
@@ -741,7 +743,14 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
                 #[inline]
                 fn __od_write(&mut self, pos: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
-                    match pos { #(#write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
+                    match pos { #(#write_arms)* _ => self.__od_write_stream_value(pos, data) }
+                }
+                /// The arms of `__od_write` for strings, byte strings and DOMAINs. Out of line, so that the
+                /// fixed-size writes (expedited downloads, RPDOs) do not keep their registers and stack.
+                #[inline(never)]
+                #[allow(unused_variables)]
+                fn __od_write_stream_value(&mut self, pos: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                    match pos { #(#stream_write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
                 /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
                 /// dictionary (not inlined), shared by every access.

@@ -12,7 +12,7 @@
 //! the EDS descriptions of every index and sub-index).
 //!
 //! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): 1000h–101Fh index a 32-entry
-//! array directly, the PDO ranges 1400h–1BFFh are computed from the index (PDO-02: PDO `k` at base + k),
+//! array directly (a VAR there is found without a walk: [`FIXED_VAR`]), the PDO ranges 1400h–1BFFh are computed from the index (PDO-02: PDO `k` at base + k),
 //! 1029h and 1F80h are compared; the object's runs of sub-indices are then scanned (at most 6).
 
 use crate::emcy::HISTORY;
@@ -211,6 +211,22 @@ const FIXED: [(u8, u8); 32] = {
     t
 };
 
+/// 1000h–101Fh: the entry of an object that is one VAR (a single run of sub 00h alone), found without a
+/// walk: the device type, error register and the other VARs the SDO paths read most.
+const FIXED_VAR: [Option<(Ty, Slot)>; 32] = {
+    let mut t = [None; 32];
+    let mut i = 0;
+    while i < 32 {
+        let (first, n) = FIXED[i];
+        let r = RUNS[first as usize];
+        if n == 1 && r.first == 0 && r.last == 0 {
+            t[i] = Some((r.ty, r.slot));
+        }
+        i += 1;
+    }
+    t
+};
+
 const ERROR_BEHAVIOUR: (u8, u8) = span(0x1029);
 const NMT_STARTUP: (u8, u8) = span(0x1F80);
 const PDO_COMM: (u8, u8) = span(0x1400);
@@ -307,7 +323,20 @@ fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
 }
 
 /// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
+/// Inline: a VAR of 1000h–101Fh is an array read and a compare at the caller, the rest one call.
+#[inline]
 pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
+    if let 0x1000..=0x101F = index {
+        if let Some((ty, slot)) = FIXED_VAR[usize::from(index & 0x1F)] {
+            return if sub == 0 { Ok(Found { ty, slot, n: 0 }) } else { Err(AbortCode::SubIndexDoesNotExist) };
+        }
+    }
+    walk(index, sub, c)
+}
+
+/// [`find`] for the objects of more than one sub-entry and those outside 1000h–101Fh.
+#[inline(never)]
+fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     let (runs, k) = object(index, c).ok_or(AbortCode::ObjectDoesNotExist)?;
     let last = |r: &Run| if r.last == HB { c.hb() } else { r.last };
     for r in runs {
