@@ -403,8 +403,9 @@ enum State {
 /// use canopen_core::sdo::{SdoServer, SdoServerParams};
 /// use canopen_core::{Duration, NodeId};
 /// let s = SdoServer::new(SdoServerParams::default_server(NodeId::new(3).unwrap()))
-///     .with_timeout(Duration::from_millis(500))
-///     .with_block_size(16);
+///     .with_timeout(Duration::from_millis(500));
+/// #[cfg(feature = "sdo-block")] // block transfer is a Cargo feature (default on)
+/// let s = s.with_block_size(16);
 /// assert!(s.is_idle());
 /// assert!(core::mem::size_of::<SdoServer>() <= SdoServer::RAM_BYTES);
 /// ```
