@@ -112,7 +112,7 @@ class CitedIds(unittest.TestCase):
         )
 
     def test_unknown_prefix_and_embedded(self):
-        self.assertEqual(c.cited_ids("ENC-01 V-SDO-03 MYSDO-01 SDO-01a", PREFIXES), set())
+        self.assertEqual(c.cited_ids("ENC-01 X-SDO-03 MYSDO-01 SDO-01a", PREFIXES), set())
 
     def test_name_ids(self):
         self.assertEqual(c.name_ids("crc_check_value_sdo_49", PREFIXES), {"SDO-49"})

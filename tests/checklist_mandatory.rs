@@ -242,9 +242,9 @@ fn crc16_xmodem(data: &[u8]) -> u16 {
 }
 
 /// SDO-09 and ABORT-03 (an unknown command specifier is answered with 0504 0001h), SDO-32 (the abort frame:
-/// 80h, the request's multiplexer, the code as a little-endian UNSIGNED32): V-SDO-15 (ccs 7 = E0h), ccs 7
+/// 80h, the request's multiplexer, the code as a little-endian UNSIGNED32): ccs 7 = E0h, ccs 7
 /// with other low bits, and a ccs 7 arriving in the middle of a segmented download, which aborts it (the
-/// write does not happen). V-SDO-10 shows the layout with another code (0602 0000h).
+/// write does not happen). 5000h absent shows the layout with another code (80 00 50 00 00 00 02 06).
 #[test]
 fn unknown_command_specifier_sdo_09_32_abort_03() {
     let mut bus = Bus::booted(vec![node(3, NodeConfig::DEFAULT)]);
@@ -323,7 +323,7 @@ fn download_n(bus: &mut Bus<TestNode>, id: u8, index: u16, sub: u8, value: u32, 
 /// DEV-01 (1000h device type: UNSIGNED32, read-only, not mappable; the profile number in bits 15–0 and the
 /// additional information in bits 31–16) and DEV-03 (1018h identity: sub 00h const 4, then vendor-ID,
 /// product code, revision and serial number, all read-only UNSIGNED32): the values of the configuration come
-/// back byte for byte (V-SDO-08/09 layout), every write is refused with 0601 0002h, 1018h:05 does not exist,
+/// back byte for byte (43 18 10 01 v0 v1 v2 v3), every write is refused with 0601 0002h, 1018h:05 does not exist,
 /// and mapping 1000h into a TPDO is refused with 0604 0041h (ABORT-12).
 #[test]
 fn device_type_and_identity_dev_01_dev_03() {
@@ -652,8 +652,8 @@ fn aborted_downloads_leave_the_old_value() {
 /// OD-13 (the node supports node guarding, so 100Ch and 100Dh exist; 1017h exists too), HB-01 (1017h:
 /// UNSIGNED16 ms, rw, default 0 = off, not mappable), GUARD-02 (100Ch: UNSIGNED16 ms, rw, default 0) and
 /// GUARD-03 (100Dh: UNSIGNED8 factor, rw, default 0): sizes and defaults as read, writes of the right size
-/// accepted and read back, of the wrong size refused (V-SDO-13, V-SDO-14); 1017h = 50 makes a heartbeat every
-/// 50 ms and 0 stops it; mapping 1017h into a TPDO is 0604 0041h.
+/// accepted and read back, of the wrong size refused (1 byte into 1017h: 0607 0013h; 4 bytes into 100Dh:
+/// 0607 0012h); 1017h = 50 makes a heartbeat every 50 ms and 0 stops it; mapping 1017h into a TPDO is 0604 0041h.
 #[test]
 fn error_control_objects_od_13_hb_01_guard_02_guard_03() {
     let mut bus = Bus::booted(vec![node(3, NodeConfig { tpdo: FOUR_TPDOS, ..NodeConfig::DEFAULT })]);

@@ -25,7 +25,7 @@ fn states(bus: &Bus<TestNode>) -> Vec<NmtState> {
     bus.stations.iter().map(|n| n.state()).collect()
 }
 
-/// NMT-03, NMT-23, NMT-24, V-HB-01: every node boots by itself into Pre-operational with one boot-up frame.
+/// NMT-03, NMT-23, NMT-24: every node boots by itself into Pre-operational with one boot-up frame.
 /// NMT-02: the node starts in Initialising and passes its reset sub-states (reset application, reset
 /// communication) before Pre-operational, as its events show.
 #[test]
@@ -49,7 +49,7 @@ fn power_on_boot_up() {
     assert_eq!(bus.log.len(), 3);
 }
 
-/// NMT-07..NMT-15, V-NMT-01..V-NMT-08: unicast and broadcast commands; the slaves never answer on 000h.
+/// NMT-07..NMT-15: unicast and broadcast commands; the slaves never answer on 000h.
 /// NMT-01 and COB-02: each node is an NMT slave obeying commands addressed to its own node-ID (06h moves
 /// only node 6; 07h, absent, moves none) or to 0, which addresses all. NMT-02: the states the nodes walk
 /// through are Pre-operational, Operational and Stopped, and the Initialisation sub-states reset node and
@@ -62,28 +62,28 @@ fn nmt_command_sequence() {
     bus.take_master_rx();
     use NmtState::*;
 
-    bus.inject(frame("000 [2] 01 06")); // V-NMT-03
+    bus.inject(frame("000 [2] 01 06")); // start node 6
     assert_eq!(states(&bus), vec![PreOperational, Operational, PreOperational]);
-    bus.inject(frame("000 [2] 01 07")); // V-NMT-08: addressed to a node that is not here
+    bus.inject(frame("000 [2] 01 07")); // start, addressed to a node that is not here
     assert_eq!(states(&bus), vec![PreOperational, Operational, PreOperational]);
     bus.inject(frame("000 [2] 01 00")); // start all
     assert_eq!(states(&bus), vec![Operational; 3]);
-    bus.inject(frame("000 [2] 02 00")); // V-NMT-01
+    bus.inject(frame("000 [2] 02 00")); // stop all
     assert_eq!(states(&bus), vec![Stopped; 3]);
-    bus.inject(frame("000 [2] 80 05")); // V-NMT-05
+    bus.inject(frame("000 [2] 80 05")); // pre-operational, node 5
     assert_eq!(states(&bus), vec![PreOperational, Stopped, Stopped]);
-    bus.inject(frame("000 [2] 80 00")); // V-NMT-04
+    bus.inject(frame("000 [2] 80 00")); // pre-operational, all
     assert_eq!(states(&bus), vec![PreOperational; 3]);
     bus.inject(frame("000 [2] 01 00"));
     // No slave ever transmitted during the commands (NMT-14).
     assert!(bus.log.iter().all(|s| s.from == Sender::Master));
 
-    // V-NMT-02: reset node 42 → boot-up 72A [1] 00 and Pre-operational; the others stay Operational.
+    // Reset node 42 (81 2A) → boot-up 72A [1] 00 and Pre-operational; the others stay Operational.
     bus.inject(frame("000 [2] 81 2A"));
     assert_eq!(states(&bus), vec![Operational, Operational, PreOperational]);
     let replies: Vec<_> = bus.take_master_rx().into_iter().map(|s| s.frame).collect();
     assert_eq!(replies, vec![frame("72A [1] 00")]);
-    // V-NMT-07: reset communication, broadcast.
+    // Reset communication (82 00), broadcast.
     bus.inject(frame("000 [2] 82 00"));
     let replies: Vec<_> = bus.take_master_rx().into_iter().map(|s| s.frame).collect();
     assert_eq!(replies, vec![frame("705 [1] 00"), frame("706 [1] 00"), frame("72A [1] 00")]);
@@ -142,7 +142,7 @@ fn heartbeat_timeline_vector() {
     );
 }
 
-/// HB-04: a written period takes effect at once; 0 stops the producer. V-HB-04 sets 100 ms.
+/// HB-04: a written period takes effect at once; 0 stops the producer. 2B 17 10 00 64 00 00 00 sets 100 ms.
 #[test]
 fn heartbeat_period_change() {
     let mut bus = Bus::new(vec![node(9, 0)]);
@@ -175,7 +175,7 @@ fn reset_communication_restores_comm_parameters() {
     assert_eq!((p.guard_time_ms, p.life_time_factor), (0, 0));
 }
 
-/// HB-06..HB-11, V-HBC-05..V-HBC-07, NMT-26: node 9 monitors node 2 (100 ms) and node 7 (never present).
+/// HB-06..HB-11, NMT-26: node 9 monitors node 2 (100 ms) and node 7 (never present).
 #[test]
 fn heartbeat_consumer_timeline() {
     let mut bus = Bus::new(vec![node(9, 0), node(2, 50)]);
@@ -183,7 +183,7 @@ fn heartbeat_consumer_timeline() {
     let now = bus.now;
     bus.stations[0].set_consumer_heartbeat(now, 1, 0x0002_0064).unwrap();
     bus.stations[0].set_consumer_heartbeat(now, 2, 0x0007_0FA0).unwrap();
-    // V-HBC-04: node 2 in a second entry is refused with 0604 0043h (HB-09).
+    // Node 2 in a second entry is refused with 0604 0043h (HB-09).
     assert_eq!(
         bus.stations[0].set_consumer_heartbeat(now, 3, 0x0002_00C8),
         Err(canopen::core::od::AbortCode::ParameterIncompatibility)
@@ -213,7 +213,7 @@ fn heartbeat_consumer_timeline() {
             Event::StateChanged { from: NmtState::Operational, to: NmtState::PreOperational }
         ]
     );
-    // Node 7 never sent anything: no time-out for it, even after its 4 s (HB-10, V-HBC-07).
+    // Node 7 never sent anything: no time-out for it, even after its 4 s (HB-10).
     bus.run_until(ms(10_000));
     assert!(events(&mut bus.stations[0]).is_empty());
     // Recovery: node 2 produces again.
@@ -237,14 +237,14 @@ fn heartbeat_consumer_timeline() {
     bus.inject(frame("000 [2] 81 02"));
     let ev = events(&mut bus.stations[0]);
     assert_eq!(ev, vec![Event::Heartbeat(ConsumerEvent::Rebooted { node: 2 })]);
-    // V-HBC-05: disabling the entry stops monitoring: node 2 silent again, no time-out.
+    // Disabling the entry (1016h:01 = 0) stops monitoring: node 2 silent again, no time-out.
     bus.stations[0].set_consumer_heartbeat(bus.now, 1, 0).unwrap();
     bus.stations[1].set_heartbeat_time(bus.now, 0);
     bus.run_for_ms(1000);
     assert!(events(&mut bus.stations[0]).is_empty());
 }
 
-/// GUARD-05..GUARD-08, V-GRD-01..V-GRD-03: the toggle sequence of node 5: each 705 [RTR] is answered with the
+/// GUARD-05..GUARD-08: the toggle sequence of node 5: each 705 [RTR] is answered with the
 /// state (7Fh, 05h, 04h) and a toggle bit 7 that alternates from 0 (7F, 85, 7F, FF, ..), back to 0 after reset
 /// communication.
 /// GUARD-01: node guarding is offered as an error-control protocol.

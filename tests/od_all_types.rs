@@ -44,7 +44,7 @@ fn samples() -> Vec<(u16, u8, Vec<u8>, DataType)> {
         (0x2020, 0, b"visible text".to_vec(), VisibleString),
         (0x2021, 0, vec![0, 0xFF, 0x10], OctetString),
         (0x2022, 0, vec![0x41, 0, 0xE9, 0], UnicodeString),
-        (0x2023, 0, vec![0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26], TimeOfDay), // V-ENC-21
+        (0x2023, 0, vec![0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26], TimeOfDay), // 2011-02-21 12:00:00.000
         (0x2024, 0, vec![0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16], TimeDifference),
         (0x2025, 0, (0..40).collect(), Domain),
         (0x2100, 1, 0.5f32.to_le_bytes().to_vec(), Real32),
@@ -268,7 +268,7 @@ fn merged_with_the_comm_profile() {
     od.write(0x1016, 1, &[0x64, 0, 2, 0]).unwrap();
     assert_eq!(od.write(0x1016, 2, &[0xC8, 0, 2, 0]), Err(AbortCode::ParameterIncompatibility));
     assert_eq!(od.write(0x1001, 0, &[1]), Err(AbortCode::WriteOfReadOnly));
-    assert_eq!(read(&od, 0x1005, 0).unwrap(), [0x80, 0, 0, 0]); // V-ENC-13
+    assert_eq!(read(&od, 0x1005, 0).unwrap(), [0x80, 0, 0, 0]); // 1005h default 0000 0080h
     assert_eq!(read(&od, 0x1002, 0), Err(AbortCode::ObjectDoesNotExist));
     od.write(0x2002, 0, &[5, 0]).unwrap();
     assert_eq!(od.app.int16, 5);

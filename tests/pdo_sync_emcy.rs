@@ -64,12 +64,13 @@ fn on(bus: &Bus<TestNode>, id: u16) -> Vec<(u64, Vec<u8>)> {
 }
 
 /// The remapping procedure as frames (PDO-30..PDO-37, PDO-04, PDO-38/39): the master remaps RPDO1 of node 3 in the spec's order,
-/// then the RPDO carries the values; negative variants V-MAP-01..08. ABORT-13: three 32-bit entries (96 bits)
-/// are refused with 0604 0042h (V-MAP-02).
+/// then the RPDO carries the values; negative variants (a missing object, too many
+/// bits, absent sub-indices, a reserved type, short and long PDOs, a PDO in Pre-operational). ABORT-13: three
+/// 32-bit entries (96 bits) are refused with 0604 0042h.
 #[test]
 fn rpdo_remapping_procedure_vector() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig { rpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT })]);
-    // V-MAP-03/04 (PDO-11, PDO-13) and V-MAP-05 (PDO-09).
+    // RPDO sub 04h and 06h absent (PDO-11, PDO-13) and RPDO type FCh refused (PDO-09).
     assert_eq!(sdo(&mut bus, "603 [8] 40 00 14 04 00 00 00 00"), frame("583 [8] 80 00 14 04 11 00 09 06"));
     assert_eq!(sdo(&mut bus, "603 [8] 40 00 14 06 00 00 00 00"), frame("583 [8] 80 00 14 06 11 00 09 06"));
     assert_eq!(sdo(&mut bus, "603 [8] 2F 00 14 02 FC 00 00 00"), frame("583 [8] 80 00 14 02 30 00 09 06"));
@@ -86,7 +87,7 @@ fn rpdo_remapping_procedure_vector() {
             "603 [8] 2F 00 16 00 02 00 00 00", // 4: two entries
         ],
     );
-    // V-MAP-02 variant: entries cannot change while sub 00h ≠ 0; V-MAP-01: a missing object.
+    // Entries cannot change while sub 00h ≠ 0; mapping a missing object (5000h) is refused.
     assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 03 10 00 40 60"), frame("583 [8] 80 00 16 03 00 00 01 06"));
     sdo_ok(&mut bus, &["603 [8] 2F 00 16 00 00 00 00 00"]);
     assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 01 10 00 00 50"), frame("583 [8] 80 00 16 01 00 00 02 06"));
@@ -95,7 +96,7 @@ fn rpdo_remapping_procedure_vector() {
     assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 01 20 00 40 60"), frame("583 [8] 80 00 16 01 41 00 04 06"));
     // The refused writes changed nothing.
     assert_eq!(sdo(&mut bus, "603 [8] 40 00 16 01 00 00 00 00"), frame("583 [8] 43 00 16 01 10 00 40 60"));
-    // V-MAP-02: three 32-bit entries = 96 bits → 0604 0042h at sub 00h.
+    // Three 32-bit entries = 96 bits → 0604 0042h at sub 00h.
     sdo_ok(&mut bus, &["603 [8] 23 00 16 03 20 00 7A 60", "603 [8] 23 00 16 02 20 00 7A 60"]);
     sdo_ok(&mut bus, &["603 [8] 23 00 16 01 20 00 7A 60"]);
     assert_eq!(sdo(&mut bus, "603 [8] 2F 00 16 00 03 00 00 00"), frame("583 [8] 80 00 16 00 42 00 04 06"));
@@ -107,7 +108,7 @@ fn rpdo_remapping_procedure_vector() {
             "603 [8] 23 00 14 01 03 02 00 00", // 5: PDO on
         ],
     );
-    // V-MAP-08 (PDO-04): ignored in Pre-operational.
+    // PDO-04: ignored in Pre-operational.
     bus.inject(frame("203 [6] 0F 00 E8 03 00 00"));
     assert_eq!(bus.stations[0].app().controlword, 0);
     bus.inject(frame("000 [2] 01 03"));
@@ -115,12 +116,12 @@ fn rpdo_remapping_procedure_vector() {
     bus.inject(frame("203 [6] 0F 00 E8 03 00 00"));
     assert_eq!((bus.stations[0].app().controlword, bus.stations[0].app().target), (0x000F, 1000));
     assert!(events(&mut bus.stations[0]).contains(&Event::RpdoReceived { pdo: 0 }));
-    // V-MAP-06 (PDO-39): too short → not applied, EMCY 8210h.
+    // PDO-39: too short → not applied, EMCY 8210h.
     bus.take_master_rx();
     bus.inject(frame("203 [4] 01 00 02 00"));
     assert_eq!(bus.stations[0].app().controlword, 0x000F);
     assert_eq!(on(&bus, 0x083).last().unwrap().1, [0x10, 0x82, 0x11, 0x01, 0, 0, 0, 0]);
-    // V-MAP-07 (PDO-38): too long → leading bytes applied, EMCY 8220h.
+    // PDO-38: too long → leading bytes applied, EMCY 8220h.
     bus.inject(frame("203 [8] 07 00 D0 07 00 00 AA BB"));
     assert_eq!((bus.stations[0].app().controlword, bus.stations[0].app().target), (7, 2000));
     assert_eq!(on(&bus, 0x083).last().unwrap().1, [0x20, 0x82, 0x11, 0x01, 0, 0, 0, 0]);
@@ -131,7 +132,8 @@ fn rpdo_remapping_procedure_vector() {
 }
 
 /// A TPDO configured by SDO (PDO-15..20): TPDO3 of node 5 moved to 387h, every 3rd SYNC, X = 6000h:03 (16 bit),
-/// Y = 2010h:21h (32 bit); and V-PDO-03/04: type 1 and 3 counted from entering Operational.
+/// Y = 2010h:21h (32 bit); and types 1 and 3 (one TPDO per SYNC, one per 3 SYNCs) counted from entering
+/// Operational.
 #[test]
 fn tpdo_configuration_vector_and_cyclic_sync() {
     const TPDOS: &[PdoDefault] = &[PdoDefault::UNUSED, PdoDefault::UNUSED, PdoDefault::EVENT];
@@ -170,8 +172,8 @@ fn tpdo_configuration_vector_and_cyclic_sync() {
     assert_eq!(tpdo.iter().map(|(t, _)| *t).collect::<Vec<_>>(), [30, 60, 90]); // SYNC #3, #6, #9 (at 10, 20, ... 90 ms)
 }
 
-/// V-PDO-05 (PDO-19): type 00h sends once after the SYNC that follows an application event.
-/// V-PDO-06 (PDO-26, SYNC-10/11): type 02h with SYNC start value 2 and this node producing SYNC with 1019h = 4.
+/// PDO-19: type 00h sends once after the SYNC that follows an application event.
+/// PDO-26, SYNC-10/11: type 02h with SYNC start value 2 and this node producing SYNC with 1019h = 4.
 /// ABORT-29: writing 1019h while 1006h is non-zero is refused for the present device state, 0800 0022h.
 #[test]
 fn acyclic_and_sync_start_value() {
@@ -190,23 +192,23 @@ fn acyclic_and_sync_start_value() {
     bus.run_until(ms(15));
     assert!(!bus.stations[0].trigger_tpdo(0)); // type 0: not now...
     bus.run_until(ms(85));
-    // SYNC V-SYNC-06: counters 1,2,3,4,1,2,3,4 at 10..80 ms.
+    // SYNC counters 1,2,3,4,1,2,3,4 at 10..80 ms.
     let counters: Vec<u8> = on(&bus, 0x080).iter().map(|(_, d)| d[0]).collect();
     assert_eq!(counters, [1, 2, 3, 4, 1, 2, 3, 4]);
     assert_eq!(on(&bus, 0x181).iter().map(|(t, _)| *t).collect::<Vec<_>>(), [20]); // ...at the next SYNC only
                                                                                    // Type 2 with start value 2: after counters 2, 4, 2, 4.
     assert_eq!(on(&bus, 0x281).iter().map(|(t, _)| *t).collect::<Vec<_>>(), [20, 40, 60, 80]);
-    // V-SYNC-07 (SYNC-12): 1019h cannot change while producing.
+    // SYNC-12: 1019h cannot change while producing.
     assert_eq!(sdo(&mut bus, "601 [8] 2F 19 10 00 03 00 00 00"), frame("581 [8] 80 19 10 00 22 00 00 08"));
-    // V-SYNC-05: stop; then 1019h may change.
+    // 1006h = 0 stops the SYNC; then 1019h may change.
     sdo_ok(&mut bus, &["601 [8] 23 06 10 00 00 00 00 00", "601 [8] 2F 19 10 00 00 00 00 00"]);
     let before = on(&bus, 0x080).len();
     bus.run_for_ms(100);
     assert_eq!(on(&bus, 0x080).len(), before);
 }
 
-/// V-PDO-07/08/09 (PDO-23..25, PDO-28): event-driven TPDOs with inhibit time and event timer, and V-PDO-02
-/// (PDO-21/22/29): RTR-only types.
+/// PDO-23..25, PDO-28: event-driven TPDOs with inhibit time and event timer, and PDO-21/22/29: RTR-only
+/// types.
 #[test]
 fn event_driven_inhibit_event_timer_and_rtr() {
     const TPDOS: &[PdoDefault] = &[
@@ -217,11 +219,11 @@ fn event_driven_inhibit_event_timer_and_rtr() {
     ];
     let mut bus = Bus::booted(vec![node_with(4, NodeConfig { tpdo: TPDOS, ..NodeConfig::DEFAULT })]);
     bus.inject(frame("000 [2] 01 04"));
-    // V-PDO-09: both event-driven TPDOs go out at once; the RTR-only ones do not.
+    // Entering Operational: both event-driven TPDOs go out at once; the RTR-only ones do not.
     assert_eq!(on(&bus, 0x184).len(), 1);
     assert_eq!(on(&bus, 0x284).len(), 1);
     assert!(on(&bus, 0x384).is_empty() && on(&bus, 0x484).is_empty());
-    // V-PDO-07: the value changes every 5 ms, change-of-value detection → at most one per 20 ms, and the
+    // Inhibit 20 ms: the value changes every 5 ms, change-of-value detection → at most one per 20 ms, and the
     // last value is never lost.
     for k in 1..=20u16 {
         bus.run_for_ms(5);
@@ -235,11 +237,11 @@ fn event_driven_inhibit_event_timer_and_rtr() {
     assert!(times.windows(2).all(|w| w[1] - w[0] >= 20), "{times:?}");
     assert_eq!(t1.last().unwrap().1, 20u16.to_le_bytes());
     assert!(t1.len() <= 7, "{times:?}");
-    // V-PDO-08: no data change, event timer 1 s → one TPDO per second.
+    // No data change, event timer 1 s → one TPDO per second.
     bus.run_until(ms(5000));
     let t2: Vec<u64> = on(&bus, 0x284).iter().map(|(t, _)| *t).collect();
     assert_eq!(t2, [0, 1000, 2000, 3000, 4000, 5000]);
-    // V-PDO-02: RTR. FCh answers with what the last SYNC sampled; FDh samples now.
+    // RTR on the TPDO's COB-ID. FCh answers with what the last SYNC sampled; FDh samples now.
     bus.stations[0].app_mut().byte = 7;
     bus.inject(frame("384 [RTR]"));
     assert!(on(&bus, 0x384).is_empty()); // nothing sampled yet
@@ -256,7 +258,8 @@ fn event_driven_inhibit_event_timer_and_rtr() {
 }
 
 /// Synchronous RPDOs (PDO-09): applied at the next SYNC, not before; the event timer (PDO-12) raises EMCY
-/// 8250h; the SYNC window (SYNC-09, PDO-40) discards late synchronous data; SYNC-14 (V-SYNC-08).
+/// 8250h; the SYNC window (SYNC-09, PDO-40) discards late synchronous data; SYNC-14 (a SYNC with a counter
+/// while 1019h = 0).
 #[test]
 fn synchronous_rpdo_deadline_window_and_sync_length() {
     const RPDOS: &[PdoDefault] = &[
@@ -287,7 +290,7 @@ fn synchronous_rpdo_deadline_window_and_sync_length() {
     bus.inject(frame("203 [1] 01"));
     bus.inject(frame("080 [0]"));
     assert_eq!(bus.stations[0].app().byte, 42);
-    // V-SYNC-08: a SYNC with a counter while 1019h = 0 → EMCY 8240h.
+    // A SYNC with a counter while 1019h = 0 → EMCY 8240h.
     bus.inject(frame("080 [1] 05"));
     assert_eq!(on(&bus, 0x083).last().unwrap().1, [0x40, 0x82, 0x11, 0x01, 0, 0, 0, 0]);
 }
@@ -330,17 +333,17 @@ fn rpdo_errors_clear_when_no_rpdo_has_the_cause() {
 #[test]
 fn emcy_error_register_and_history_vectors() {
     let mut bus = Bus::booted(vec![node_with(3, NodeConfig::DEFAULT)]);
-    // V-ERR-04, V-ERR-05.
+    // 1003h:01 with an empty history is 0800 0024h; 1001h reads 0 with no error.
     assert_eq!(sdo(&mut bus, "603 [8] 40 03 10 01 00 00 00 00"), frame("583 [8] 80 03 10 01 24 00 00 08"));
     assert_eq!(sdo(&mut bus, "603 [8] 40 01 10 00 00 00 00 00"), frame("583 [8] 4F 01 10 00 00 00 00 00"));
-    // V-EMCY-04.
+    // Errors 1000h then 8130h raised, then cleared one by one.
     let n = &mut bus.stations[0];
     assert!(n.raise_error(0x1000, [0; 5]));
     assert!(n.raise_error(0x8130, [0; 5]));
     assert!(!n.raise_error(0x8130, [0; 5])); // EMCY-05: nothing repeated
     bus.run_for_ms(0);
     assert_eq!(sdo(&mut bus, "603 [8] 40 03 10 00 00 00 00 00"), frame("583 [8] 4F 03 10 00 02 00 00 00"));
-    assert_eq!(sdo(&mut bus, "603 [8] 40 03 10 01 00 00 00 00"), frame("583 [8] 43 03 10 01 30 81 00 00")); // V-ERR-01
+    assert_eq!(sdo(&mut bus, "603 [8] 40 03 10 01 00 00 00 00"), frame("583 [8] 43 03 10 01 30 81 00 00")); // newest first: 8130h
     assert_eq!(sdo(&mut bus, "603 [8] 40 03 10 02 00 00 00 00"), frame("583 [8] 43 03 10 02 00 10 00 00"));
     assert_eq!(sdo(&mut bus, "603 [8] 40 01 10 00 00 00 00 00"), frame("583 [8] 4F 01 10 00 11 00 00 00"));
     bus.stations[0].clear_error(0x1000);
@@ -356,15 +359,15 @@ fn emcy_error_register_and_history_vectors() {
             vec![0x00, 0x00, 0x00, 0, 0, 0, 0, 0],
         ]
     );
-    // V-ERR-03 and V-ERR-02.
+    // 1003h:00 accepts only 0 (0609 0030h otherwise), which clears the history.
     assert_eq!(sdo(&mut bus, "603 [8] 2F 03 10 00 01 00 00 00"), frame("583 [8] 80 03 10 00 30 00 09 06"));
     assert_eq!(sdo(&mut bus, "603 [8] 2F 03 10 00 00 00 00 00"), frame("583 [8] 60 03 10 00 00 00 00 00"));
     assert_eq!(sdo(&mut bus, "603 [8] 40 03 10 00 00 00 00 00"), frame("583 [8] 4F 03 10 00 00 00 00 00"));
-    // V-EMCY-05 (EMCY-06): an RTR on the EMCY ID is not answered.
+    // EMCY-06: an RTR on the EMCY ID is not answered.
     bus.take_master_rx();
     bus.inject(frame("083 [RTR]"));
     assert!(bus.take_master_rx().is_empty());
-    // V-EMCY-06 (NMT-22): raised while Stopped → held; the most recent goes out on leaving Stopped.
+    // NMT-22: raised while Stopped → held; the most recent goes out on leaving Stopped.
     bus.inject(frame("000 [2] 02 03"));
     bus.stations[0].raise_error(0x2310, [0; 5]);
     bus.stations[0].raise_error(0x3120, [0; 5]);
@@ -373,7 +376,7 @@ fn emcy_error_register_and_history_vectors() {
     bus.inject(frame("000 [2] 80 03"));
     assert_eq!(on(&bus, 0x083).last().unwrap().1, [0x20, 0x31, 0x07, 0, 0, 0, 0, 0]);
     assert_eq!(on(&bus, 0x083).len(), 5);
-    // V-EMCY-07 (EMCY-09): 1015h = 10 (1 ms); two errors 200 µs apart → the second ≥ 1 ms after the first.
+    // EMCY-09: 1015h = 10 (1 ms); two errors 200 µs apart → the second ≥ 1 ms after the first.
     sdo_ok(&mut bus, &["603 [8] 2B 15 10 00 0A 00 00 00"]);
     let t0 = bus.now;
     bus.stations[0].raise_error(0x4210, [0; 5]);
@@ -395,12 +398,12 @@ fn emcy_error_register_and_history_vectors() {
     assert!(ev.contains(&Event::Emergency { node: 7, emcy: e }), "{ev:?}");
 }
 
-/// TIME (TIME-01..05): node 1 produces, node 2 consumes; not in Stopped (V-TIME-04).
+/// TIME (TIME-01..05): node 1 produces, node 2 consumes; not in Stopped.
 #[test]
 fn time_round_trip() {
     let producer = NodeConfig { time_cob_id: 0x4000_0100, ..NodeConfig::DEFAULT };
     let mut bus = Bus::booted(vec![node_with(1, producer), node_with(2, NodeConfig::DEFAULT)]);
-    let t = TimeOfDay::new(5844, 45_296_789).unwrap(); // V-TIME-03
+    let t = TimeOfDay::new(5844, 45_296_789).unwrap(); // 2000-01-01 12:34:56.789
     assert!(bus.stations[0].produce_time(t));
     bus.run_for_ms(0);
     assert_eq!(on(&bus, 0x100), [(0, vec![0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16])]);
@@ -412,7 +415,7 @@ fn time_round_trip() {
     bus.inject(frame("100 [6] 00 2E 93 02 B9 26"));
     assert!(!events(&mut bus.stations[1]).iter().any(|e| matches!(e, Event::Time(_))));
     bus.inject(frame("000 [2] 80 02"));
-    bus.inject(frame("100 [6] 00 2E 93 02 B9 26")); // V-TIME-02
+    bus.inject(frame("100 [6] 00 2E 93 02 B9 26")); // 2011-02-21 12:00:00.000
     let want = TimeOfDay::new(9913, 43_200_000).unwrap();
     assert!(events(&mut bus.stations[1]).contains(&Event::Time(want)));
 }

@@ -41,7 +41,7 @@ fn replies(bus: &mut Bus<Node<App, Sizes<4, 4, 32>>>) -> Vec<canopen::core::CanF
     bus.take_master_rx().into_iter().map(|s| s.frame).filter(|f| f.cob_id() & 0x780 == 0x580).collect()
 }
 
-/// V-HB-04 through the node: 1017h written by SDO takes effect at once (HB-04).
+/// Through the node: 1017h written by SDO takes effect at once (HB-04).
 #[test]
 fn heartbeat_time_written_by_sdo() {
     let mut bus = Bus::new(vec![node(9)]);
@@ -56,7 +56,7 @@ fn heartbeat_time_written_by_sdo() {
     assert_eq!(hb, vec![0, 150, 250, 350]);
 }
 
-/// V-HBC-01..V-HBC-05 through the node (HB-07..HB-09, ABORT-14) and the seed's wrong-length writes.
+/// Heartbeat consumer entries through the node (HB-07..HB-09, ABORT-14) and a tutorial's wrong-length writes.
 #[test]
 fn consumer_heartbeat_written_by_sdo() {
     let mut bus = Bus::new(vec![node(9)]);
@@ -88,7 +88,7 @@ fn consumer_heartbeat_written_by_sdo() {
     );
 }
 
-/// V-NMT-09, NMT-18: no SDO in Stopped; served again in Pre-operational and Operational.
+/// NMT-18: no SDO in Stopped (no reply at all); served again in Pre-operational and Operational.
 #[test]
 fn sdo_only_in_pre_operational_and_operational() {
     let mut bus = Bus::new(vec![node(5)]);

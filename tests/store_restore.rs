@@ -134,37 +134,37 @@ fn snapshot(n: &TestNode) -> (u16, u32, u8, u32) {
 
 const DEFAULTS: (u16, u32, u8, u32) = (0, 0x2000_0008, 1, 0);
 
-/// V-STO-01..07. STORE-02 (1010h sub 01h all, 02h communication, 03h application: saving only 03h keeps
+/// STORE-02 (1010h sub 01h all, 02h communication, 03h application: saving only 03h keeps
 /// the communication defaults; restoring 02h only the communication ones), STORE-03 ("save" is 73 61 76 65;
 /// 73 61 76 00 is refused), STORE-05 and STORE-11 (1010h:01 and 1011h:01 read 1: on command), STORE-06 (the
-/// sub-entries are written). ABORT-27: a wrong "save" signature is answered 0800 0020h (V-STO-02).
+/// sub-entries are written). ABORT-27: a wrong "save" signature is answered 0800 0020h.
 #[test]
 fn store_restore_vectors_and_resets() {
     let ram = Ram::default();
     let mut bus = boot(&ram);
-    assert_eq!(sdo(&mut bus, "603 [8] 40 10 10 01 00 00 00 00"), frame("583 [8] 43 10 10 01 01 00 00 00")); // V-STO-04
-    assert_eq!(sdo(&mut bus, "603 [8] 40 11 10 01 00 00 00 00"), frame("583 [8] 43 11 10 01 01 00 00 00")); // V-STO-07
+    assert_eq!(sdo(&mut bus, "603 [8] 40 10 10 01 00 00 00 00"), frame("583 [8] 43 10 10 01 01 00 00 00")); // saves on command
+    assert_eq!(sdo(&mut bus, "603 [8] 40 11 10 01 00 00 00 00"), frame("583 [8] 43 11 10 01 01 00 00 00")); // 1011h:01 reads 1
     assert_eq!(sdo(&mut bus, "603 [8] 40 10 10 00 00 00 00 00"), frame("583 [8] 4F 10 10 00 03 00 00 00"));
-    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 00"), frame("583 [8] 80 10 10 01 20 00 00 08")); // V-STO-02
+    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 00"), frame("583 [8] 80 10 10 01 20 00 00 08")); // bad signature
     assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 04 73 61 76 65"), frame("583 [8] 80 10 10 04 11 00 09 06"));
     change_everything(&mut bus, 0x64, 0xCAFE);
     let changed = (100, 0x2001_0020, 0x64, 0xCAFE);
     assert_eq!(snapshot(&bus.stations[0]), changed);
-    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 65"), frame("583 [8] 60 10 10 01 00 00 00 00")); // V-STO-01
+    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 65"), frame("583 [8] 60 10 10 01 00 00 00 00")); // "save"
                                                                                                             // Reset node: application and communication values come back from storage (NMT-06).
     bus.inject(frame("000 [2] 81 03"));
     assert_eq!(snapshot(&bus.stations[0]), changed);
     // Power cycle: the same.
     let mut bus = boot(&ram);
     assert_eq!(snapshot(&bus.stations[0]), changed);
-    // V-STO-06: restore communication defaults; active only after reset communication (STORE-10).
+    // Restore communication defaults; active only after reset communication (STORE-10).
     assert_eq!(sdo(&mut bus, "603 [8] 23 11 10 02 6C 6F 61 64"), frame("583 [8] 60 11 10 02 00 00 00 00"));
     assert_eq!(snapshot(&bus.stations[0]), changed);
     bus.inject(frame("000 [2] 82 03"));
     assert_eq!(snapshot(&bus.stations[0]), (0, 0x2000_0008, 0x64, 0xCAFE));
     bus.inject(frame("000 [2] 81 03"));
     assert_eq!(snapshot(&bus.stations[0]), (0, 0x2000_0008, 0x64, 0xCAFE)); // application still stored
-                                                                            // V-STO-05: restore everything; active after reset node.
+                                                                            // Restore everything; active after reset node.
     assert_eq!(sdo(&mut bus, "603 [8] 23 11 10 01 6C 6F 61 64"), frame("583 [8] 60 11 10 01 00 00 00 00"));
     assert_eq!(bus.stations[0].app().byte, 0x64);
     bus.inject(frame("000 [2] 81 03"));
@@ -180,7 +180,7 @@ fn store_restore_vectors_and_resets() {
     assert_eq!(snapshot(&bus.stations[0]), (0, 0x2000_0008, 0x20, 7));
 }
 
-/// V-STO-03 (STORE-04): a storage failure is 0606 0000h; a node without storage reads 0 and refuses.
+/// STORE-04: a storage failure is 0606 0000h; a node without storage reads 0 and refuses.
 /// ABORT-16: 0606 0000h is the answer to a store the hardware failed.
 #[test]
 fn storage_failure_and_no_storage() {

@@ -267,7 +267,8 @@ impl CobIdEntry {
 mod tests {
     use super::*;
 
-    /// V-ID-01..V-ID-09: the default identifiers for node 5.
+    /// The pre-defined connection set for node 5: NMT 000h, SYNC 080h, EMCY 085h, TIME 100h, TPDO1..4
+    /// 185h..485h, RPDO1..4 205h..505h, SDO 585h/605h, NMT error control 705h.
     #[test]
     fn default_identifiers_vectors() {
         let n = NodeId::new(5).unwrap();

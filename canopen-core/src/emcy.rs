@@ -199,10 +199,10 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
     /// ```
     /// use canopen_core::{emcy::ErrorState, od::AbortCode};
     /// let mut e: ErrorState<2, 4, 4> = ErrorState::new();
-    /// assert_eq!(e.read_history(1), Err(AbortCode::NoDataAvailable)); // V-ERR-04
+    /// assert_eq!(e.read_history(1), Err(AbortCode::NoDataAvailable)); // empty history: 0800 0024h
     /// e.raise(0x8130, [0; 5]);
     /// assert_eq!(e.read_history(0), Ok(1));
-    /// assert_eq!(e.read_history(1), Ok(0x0000_8130)); // V-ERR-01
+    /// assert_eq!(e.read_history(1), Ok(0x0000_8130)); // newest first
     /// assert_eq!(e.read_history(5), Err(AbortCode::SubIndexDoesNotExist));
     /// ```
     pub fn read_history(&self, sub: u8) -> Result<u32, AbortCode> {
@@ -219,8 +219,8 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
     /// use canopen_core::{emcy::ErrorState, od::AbortCode};
     /// let mut e: ErrorState<2, 4, 4> = ErrorState::new();
     /// e.raise(0x1000, [0; 5]);
-    /// assert_eq!(e.write_history_count(1), Err(AbortCode::InvalidValue)); // V-ERR-03
-    /// assert_eq!(e.write_history_count(0), Ok(())); // V-ERR-02
+    /// assert_eq!(e.write_history_count(1), Err(AbortCode::InvalidValue)); // only 0 may be written: 0609 0030h
+    /// assert_eq!(e.write_history_count(0), Ok(())); // 0 clears the history
     /// assert!(e.history().is_empty());
     /// ```
     pub fn write_history_count(&mut self, value: u8) -> Result<(), AbortCode> {
@@ -349,7 +349,8 @@ impl EmcyProducer {
 mod tests {
     use super::*;
 
-    /// V-EMCY-03, V-EMCY-04, ERR-06/07: the emergency state machine and the history.
+    /// Errors 1000h then 8130h raised and cleared (EMCY 00 10 01, 30 81 11, 00 00 11, 00 00 00), ERR-06/07:
+    /// the emergency state machine and the history.
     #[test]
     fn emergency_state_machine_vector() {
         let mut e: ErrorState<4, 8, 8> = ErrorState::new();

@@ -405,7 +405,7 @@ mod tests {
         let mut c: HeartbeatConsumer<Sizes<2>> = HeartbeatConsumer::new();
         c.configure(&[0x0002_0064, 0x0007_0FA0]);
         assert_eq!(c.poll_timeout(), None);
-        assert_eq!(c.handle_timeout(ms(10_000)), None); // node 7 never seen: no time-out (V-HBC-07)
+        assert_eq!(c.handle_timeout(ms(10_000)), None); // node 7 never seen: no time-out (HB-10)
         let s = |st| c_state(st);
         assert_eq!(
             c.handle_heartbeat(ms(0), 2, StateCode::PreOperational),

@@ -565,8 +565,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    /// SDO-01, NMT-18: requests are served in Pre-operational and Operational only (V-NMT-09: silence in
-    /// Stopped). The server handles DLC and content (CAN-07: frames shorter than 8 bytes are ignored).
+    /// SDO-01, NMT-18: requests are served in Pre-operational and Operational only (an upload of 1000h:00 to
+    /// a Stopped node gets no reply). The server handles DLC and content (CAN-07: frames shorter than 8 bytes
+    /// are ignored).
     fn handle_sdo(&mut self, now: Instant, frame: &CanFrame) {
         if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {
             return;

@@ -33,9 +33,9 @@
 
 use crate::od::{AbortCode, NoApplication, ObjectDictionary, OdDescribe};
 
-/// 1010h signature "save" (V-ENC-10): `73 61 76 65` on the bus.
+/// 1010h signature "save" (UNSIGNED32 6576 6173h): `73 61 76 65` on the bus.
 pub const SAVE_SIGNATURE: u32 = 0x6576_6173;
-/// 1011h signature "load" (V-ENC-11): `6C 6F 61 64` on the bus.
+/// 1011h signature "load" (UNSIGNED32 6461 6F6Ch): `6C 6F 61 64` on the bus.
 pub const LOAD_SIGNATURE: u32 = 0x6461_6F6C;
 
 /// Why a storage operation failed (every failure becomes SDO abort 0606 0000h, STORE-04/STORE-09).

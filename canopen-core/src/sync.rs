@@ -16,7 +16,7 @@ use crate::time::{Deadline, Duration, Instant};
 /// ```
 /// use canopen_core::sync::SyncParams;
 /// let p = SyncParams::DEFAULT;
-/// assert_eq!(p.cob_id.raw(), 0x0000_0080); // V-ENC-13
+/// assert_eq!(p.cob_id.raw(), 0x0000_0080); // 1005h default 0000 0080h
 /// assert_eq!(p.counter_overflow, 0);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -87,7 +87,7 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         let v = u32::decode(data)?;
         let sig = if index == 0x1010 { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
         if v != sig {
-            return Err(AbortCode::CannotStore); // STORE-04/09, V-STO-02
+            return Err(AbortCode::CannotStore); // STORE-04/09: a wrong signature is 0800 0020h
         }
         let groups = Groups::from_sub(sub).ok_or(AbortCode::SubIndexDoesNotExist)?;
         if index == 0x1010 {

@@ -42,9 +42,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// node.handle_timeout(Instant::ZERO);
     /// while node.poll_transmit().is_some() {}
     /// assert!(node.raise_error(0x1000, [0; 5]));
-    /// assert_eq!(node.poll_transmit().map(|f| (f.cob_id(), f.padded())), Some((0x83, [0x00, 0x10, 0x01, 0, 0, 0, 0, 0]))); // V-EMCY-03
+    /// assert_eq!(node.poll_transmit().map(|f| (f.cob_id(), f.padded())), Some((0x83, [0x00, 0x10, 0x01, 0, 0, 0, 0, 0]))); // generic error 1000h, error register 01h
     /// assert!(node.clear_error(0x1000));
-    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0; 8]); // V-EMCY-01
+    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0; 8]); // error reset: code 0000h, register 00h
     /// ```
     pub fn raise_error(&mut self, code: u16, manufacturer: [u8; 5]) -> bool {
         let raised = self.comm.errors.raise(code, manufacturer);

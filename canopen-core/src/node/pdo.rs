@@ -69,7 +69,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    /// Entering Operational: event-driven TPDOs go out at once (PDO-28, V-PDO-09).
+    /// Entering Operational: event-driven TPDOs go out at once (PDO-28, types FEh/FFh).
     pub(super) fn start_pdos(&mut self, now: Instant) {
         for k in 0..Z::TPDO {
             if self.tpdos[k].start() {
@@ -324,7 +324,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// node.handle_timeout(Instant::ZERO);
     /// while node.poll_transmit().is_some() {}
     /// assert!(node.produce_time(TimeOfDay::new(9913, 43_200_000).unwrap()));
-    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]); // V-TIME-02
+    /// assert_eq!(node.poll_transmit().unwrap().data(), &[0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]); // TIME_OF_DAY 2011-02-21 12:00:00.000
     /// ```
     #[cfg(feature = "time")]
     pub fn produce_time(&mut self, time: TimeOfDay) -> bool {

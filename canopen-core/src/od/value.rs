@@ -29,7 +29,7 @@ use super::{AbortCode, DataType, Value};
 /// assert_eq!(<u16 as OdValue>::DATA_TYPE, DataType::Unsigned16);
 /// let mut buf = [0u8; 2];
 /// assert_eq!(266u16.read_bytes(0, &mut buf), 2);
-/// assert_eq!(buf, [0x0A, 0x01]); // V-ENC-01
+/// assert_eq!(buf, [0x0A, 0x01]); // UNSIGNED16 266
 /// assert_eq!(u16::decode(&[0x0A, 0x01]), Ok(266));
 /// ```
 pub trait OdValue: Sized {
@@ -545,7 +545,7 @@ time_type!(
     ///
     /// ```
     /// use canopen_core::od::TimeOfDay;
-    /// // V-ENC-21: 2011-02-21 12:00:00.000
+    /// // 2011-02-21 12:00:00.000
     /// let t = TimeOfDay::new(9913, 43_200_000).unwrap();
     /// assert_eq!(t.to_bytes(), [0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]);
     /// ```
@@ -919,22 +919,22 @@ mod tests {
     /// 00 00 C8 40, UNSIGNED32 0102 0304h = 04 03 02 01, and the DT-xx examples.
     #[test]
     fn encoding_vectors() {
-        assert_eq!(bytes(&266u16)[..], [0x0A, 0x01]); // V-ENC-01, DT-05
-        assert_eq!(bytes(&-266i16)[..], [0xF6, 0xFE]); // V-ENC-02, DT-06
-        assert_eq!(bytes(&6.25f32)[..], [0x00, 0x00, 0xC8, 0x40]); // V-ENC-04, DT-07
-        assert_eq!(bytes(&0x0102_0304u32)[..], [0x04, 0x03, 0x02, 0x01]); // V-ENC-06, DT-01
-        let t = TimeOfDay::new(9913, 43_200_000).unwrap(); // V-ENC-21
+        assert_eq!(bytes(&266u16)[..], [0x0A, 0x01]); // DT-05
+        assert_eq!(bytes(&-266i16)[..], [0xF6, 0xFE]); // DT-06
+        assert_eq!(bytes(&6.25f32)[..], [0x00, 0x00, 0xC8, 0x40]); // DT-07
+        assert_eq!(bytes(&0x0102_0304u32)[..], [0x04, 0x03, 0x02, 0x01]); // DT-01
+        let t = TimeOfDay::new(9913, 43_200_000).unwrap(); // 2011-02-21 12:00:00.000
         assert_eq!(bytes(&t)[..], [0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]);
         assert_eq!(TimeOfDay::decode(&[0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]), Ok(t));
-        assert_eq!(bytes(&TimeOfDay::default())[..], [0; 6]); // V-ENC-22
-        let t = TimeOfDay::new(5844, 45_296_789).unwrap(); // V-ENC-23
+        assert_eq!(bytes(&TimeOfDay::default())[..], [0; 6]); // 1984-01-01 00:00:00.000
+        let t = TimeOfDay::new(5844, 45_296_789).unwrap(); // 2000-01-01 12:34:56.789
         assert_eq!(bytes(&t)[..], [0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16]);
         assert_eq!(TimeOfDay::decode(&[0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16]), Ok(t));
         // Reserved bits 28–31 are ignored on decode (DT-13).
         assert_eq!(TimeDifference::decode(&[0x95, 0x2C, 0xB3, 0xF2, 0xD4, 0x16]).unwrap().ms, 45_296_789);
         assert_eq!(bytes(&6.25f64)[..], 6.25f64.to_le_bytes()); // DT-08
         assert_eq!(bytes(&true)[..], [1]); // DT-03
-                                           // UNSIGNED10 example of DT-02 lives in a U16 here: 21Ch -> 1C 02 (V-ENC-03).
+                                           // UNSIGNED10 example of DT-02 lives in a U16 here: 21Ch -> 1C 02.
         assert_eq!(bytes(&0x21Cu16)[..], [0x1C, 0x02]);
     }
 

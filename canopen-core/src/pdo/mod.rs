@@ -154,7 +154,7 @@ impl PdoDefault {
 ///
 /// ```
 /// assert!(canopen_core::pdo::rpdo_type_ok(0xF0));
-/// assert!(!canopen_core::pdo::rpdo_type_ok(0xFC)); // V-MAP-05
+/// assert!(!canopen_core::pdo::rpdo_type_ok(0xFC)); // RPDO type FCh is reserved
 /// ```
 pub const fn rpdo_type_ok(t: u8) -> bool {
     t <= 240 || t >= 254

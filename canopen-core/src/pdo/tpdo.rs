@@ -8,7 +8,8 @@
 //!   and right after entering Operational; the inhibit time holds a transmission back (the TPDO stays
 //!   pending and is sampled when the inhibit time ends, so the latest value goes out, PDO-24).
 //! - The event timer restarts at every transmission of the TPDO (the CANopenNode choice; the CiA text does
-//!   not say), so "no data change" gives one TPDO per event-timer period (V-PDO-08).
+//!   not say), so "no data change" gives one TPDO per event-timer period (type FEh, event timer 1000 ms:
+//!   one TPDO per second).
 //! - RTR (PDO-29): any valid TPDO with COB-ID bit 30 = 0 answers a remote frame.
 //!
 //! The state machine decides *when*; the `Node` samples the mapped objects and queues the frame.
@@ -291,7 +292,7 @@ mod tests {
         )
     }
 
-    /// V-PDO-06: type 2, start value 2, counter 1..4 → after counters 2, 4, 2, 4.
+    /// Type 2, SYNC start value 2, counter 1..4 → after counters 2, 4, 2, 4.
     #[test]
     fn sync_start_value() {
         let mut t = tpdo(2, 2);
@@ -301,12 +302,12 @@ mod tests {
         // Counter off: the start value is ignored (PDO-26).
         let mut t = tpdo(3, 2);
         let n: std::vec::Vec<usize> = (1..=9).filter(|_| t.on_sync(None) == SyncAction::Send).collect();
-        assert_eq!(n, [3, 6, 9]); // V-PDO-04
+        assert_eq!(n, [3, 6, 9]); // type 3, counter off: SYNCs #3, #6, #9
     }
 
     extern crate std;
 
-    /// V-PDO-05: type 0 sends once after the SYNC that follows an event.
+    /// Type 0 sends once after the SYNC that follows an event.
     #[test]
     fn acyclic_sync() {
         let mut t = tpdo(0, 0);
@@ -316,7 +317,7 @@ mod tests {
         assert_eq!(t.on_sync(None), SyncAction::None);
     }
 
-    /// V-PDO-07: the inhibit time holds an event back, it is not lost.
+    /// The inhibit time holds an event back, it is not lost.
     #[test]
     fn inhibit_holds_back() {
         let mut t = Tpdo::new(

@@ -47,7 +47,7 @@ use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 /// let mut b = [0u8; 4];
 /// assert_eq!(od.read(0x1000, 0, 0, &mut b), Ok(4));
 /// assert_eq!(b, [0x91, 0x01, 0x01, 0x00]);
-/// od.write(0x1017, 0, &[0x64, 0x00]).unwrap(); // V-HB-04
+/// od.write(0x1017, 0, &[0x64, 0x00]).unwrap(); // 1017h = 100 ms: 2B 17 10 00 64 00 00 00
 /// assert_eq!(od.params.heartbeat_time_ms, 100);
 /// assert_eq!(od.write(0x1000, 0, &b), Err(AbortCode::WriteOfReadOnly));
 /// ```
@@ -751,7 +751,8 @@ mod tests {
         assert_eq!(od.info(0x1008, 0).unwrap().access, Access::Const);
     }
 
-    /// V-HBC-01..05 through the dictionary, and the seed's wrong writes of §4.
+    /// Heartbeat consumer entries 1016h:01..04 through the dictionary (0002 0064h, 0003 0190h, 0007 0FA0h;
+    /// node 2 twice refused, an entry disabled by 0), and wrong writes a tutorial prints (sub 00h, short values).
     #[test]
     fn writes_heartbeat_consumers() {
         let mut od: CommProfile<Sizes<4, 16, 16, 0, 0>> = CommProfile::new(CFG);

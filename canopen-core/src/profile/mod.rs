@@ -300,7 +300,8 @@ fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], defaults: &[PdoD
 mod tests {
     use super::*;
 
-    /// V-ENC-20 and V-HBC-01..05.
+    /// 1016h entries 0002 0064h (node 2, 100 ms), 0003 0190h (node 3, 400 ms), 0007 0FA0h (node 7, 4000 ms);
+    /// node 2 in a second entry refused with 0604 0043h; an entry disabled by 0.
     #[test]
     fn consumer_entries_vectors() {
         let mut p: CommParams<Sizes<4>> = CommParams::new(&NodeConfig::DEFAULT);

@@ -5,8 +5,8 @@
 //!   per byte; the `crc` crate's digest, which store/restore still uses for its CRC-32, cost about three
 //!   times as many instructions per 7-byte segment); without it a nibble at a time from a 16-entry table
 //!   (32 B, two lookups per byte). Both tables are built at compile time, and the tests check both against
-//!   the bit-by-bit definition and V-ENC-07..09. It keeps only the 16-bit register, so a state machine can
-//!   hold it by value.
+//!   the bit-by-bit definition and the check values "123456789" → 31C3h, "ABCDEFGHIJKLMNOP" → 6080h,
+//!   empty → 0. It keeps only the 16-bit register, so a state machine can hold it by value.
 //! - [`segment_count`] / [`last_segment_len`]: how a data set of `size` bytes is cut into 7-byte segments
 //!   (at least one segment, SDO-51; an empty data set is one segment with n = 7).
 
@@ -188,10 +188,10 @@ mod tests {
         crc
     }
 
-    /// V-ENC-07..09 (the SDO-49 block CRC: "123456789" → 31C3h, "ABCDEFGHIJKLMNOP" → 6080h, empty → 0) from
+    /// The SDO-49 block CRC check values ( "123456789" → 31C3h, "ABCDEFGHIJKLMNOP" → 6080h, empty → 0) from
     /// both tables, whichever one `crc-table` selects for [`Crc16`], and from the bit-by-bit definition.
     #[test]
-    fn both_tables_give_the_block_crc_v_enc_07_09() {
+    fn both_tables_give_the_block_crc_check_values() {
         let vectors: [(&[u8], u16); 3] = [(b"123456789", 0x31C3), (b"ABCDEFGHIJKLMNOP", 0x6080), (b"", 0)];
         for (data, want) in vectors {
             assert_eq!(update_by_byte(0, data), want, "byte table {data:?}");

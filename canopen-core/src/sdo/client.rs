@@ -28,7 +28,7 @@
 //! let mut value = [0xE8, 0x03, 0x00, 0x00];
 //! let mut data = SliceData::download(&mut value);
 //! client.start_download(Instant::ZERO, Multiplexer::new(0x607A, 0), data.download_len(), Mode::Auto).unwrap();
-//! // V-SDO-01
+//! // Write 607Ah:00 (INTEGER32) = 1000: 23 7A 60 00 E8 03 00 00 -> 60 7A 60 00 ...
 //! assert_eq!(client.poll_transmit(Instant::ZERO, &mut data), Some([0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00]));
 //! let ev = client.handle_response(Instant::ZERO, &[0x60, 0x7A, 0x60, 0x00, 0, 0, 0, 0], &mut data);
 //! assert_eq!(ev, Some(canopen_core::sdo::client::ClientEvent::Done { len: 4 }));
@@ -646,7 +646,7 @@ impl SdoClient {
     /// let mut d = SliceData::upload(&mut b);
     /// c.start_upload(Instant::ZERO, Multiplexer::new(0x5000, 0), Mode::Auto).unwrap();
     /// c.poll_transmit(Instant::ZERO, &mut d);
-    /// // V-SDO-10
+    /// // Object 5000h does not exist: 80 00 50 00 00 00 02 06 (0602 0000h)
     /// let ev = c.handle_response(Instant::ZERO, &[0x80, 0x00, 0x50, 0x00, 0x00, 0x00, 0x02, 0x06], &mut d);
     /// assert_eq!(ev, Some(ClientEvent::Failed(ClientError::Server(0x0602_0000))));
     /// ```

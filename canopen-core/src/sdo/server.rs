@@ -110,7 +110,7 @@
 //!
 //! let mut od = Od(0);
 //! let mut server = SdoServer::new(SdoServerParams::default_server(NodeId::new(3).unwrap()));
-//! // V-SDO-01: write 607Ah:00 = 1000
+//! // Write 607Ah:00 = 1000: 23 7A 60 00 E8 03 00 00 -> 60 7A 60 00 ...
 //! let r = server.handle_request(Instant::ZERO, &[0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00], &mut od);
 //! assert_eq!(r.frame, Some([0x60, 0x7A, 0x60, 0x00, 0, 0, 0, 0]));
 //! assert_eq!(r.event, Some(SdoEvent::Written { index: 0x607A, sub: 0 }));
@@ -654,7 +654,7 @@ impl SdoServer {
     /// #     fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
     /// # }
     /// let mut s = SdoServer::new(SdoServerParams::DISABLED);
-    /// // V-SDO-10: object 5000h does not exist
+    /// // Object 5000h does not exist: abort 0602 0000h
     /// let r = s.handle_request(Instant::ZERO, &[0x40, 0x00, 0x50, 0x00, 0, 0, 0, 0], &mut Empty);
     /// assert_eq!(r.frame, Some([0x80, 0x00, 0x50, 0x00, 0x00, 0x00, 0x02, 0x06]));
     /// // short frames are ignored (CAN-07)

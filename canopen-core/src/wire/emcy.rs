@@ -7,7 +7,7 @@ use super::WireError;
 ///
 /// ```
 /// use canopen_core::wire::emcy::Emergency;
-/// // V-HBC-06: heartbeat error 8130h, error register 11h.
+/// // Heartbeat consumer time-out: error code 8130h, error register 11h.
 /// let e = Emergency { code: 0x8130, register: 0x11, manufacturer: [0; 5] };
 /// assert_eq!(e.emit(), [0x30, 0x81, 0x11, 0, 0, 0, 0, 0]);
 /// assert_eq!(Emergency::parse(&e.emit()), Ok(e));

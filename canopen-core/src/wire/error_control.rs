@@ -42,8 +42,8 @@ impl StateCode {
 ///
 /// ```
 /// use canopen_core::wire::error_control::{Heartbeat, StateCode};
-/// assert_eq!(Heartbeat::parse(&[0x7F]), Ok(Heartbeat(StateCode::PreOperational))); // V-HB-02
-/// assert_eq!(Heartbeat(StateCode::BootUp).emit(), [0x00]); // V-HB-01
+/// assert_eq!(Heartbeat::parse(&[0x7F]), Ok(Heartbeat(StateCode::PreOperational))); // heartbeat 705 [1] 7F
+/// assert_eq!(Heartbeat(StateCode::BootUp).emit(), [0x00]); // boot-up 705 [1] 00
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Heartbeat(pub StateCode);
@@ -71,7 +71,7 @@ impl Heartbeat {
 /// ```
 /// use canopen_core::wire::error_control::{GuardReply, StateCode};
 /// let r = GuardReply { toggle: true, state: StateCode::PreOperational };
-/// assert_eq!(r.emit(), [0xFF]); // V-GRD-03
+/// assert_eq!(r.emit(), [0xFF]); // toggle 1, Pre-operational
 /// assert_eq!(GuardReply::parse(&[0x85]), Ok(GuardReply { toggle: true, state: StateCode::Operational }));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -104,7 +104,8 @@ impl GuardReply {
 mod tests {
     use super::*;
 
-    /// V-HB-03 and V-GRD-01..04.
+    /// State bytes 04h Stopped, 05h Operational, 7Fh Pre-operational; a guarding reply adds the toggle in bit 7
+    /// (85h = toggle 1, Operational) and the pre-v4 states 1, 2, 3 are refused.
     #[test]
     fn state_code_vectors() {
         assert_eq!(Heartbeat::parse(&[0x04]), Ok(Heartbeat(StateCode::Stopped)));

@@ -45,7 +45,7 @@ impl NmtCommand {
 ///
 /// ```
 /// use canopen_core::wire::nmt::{NmtCommand, NodeControl};
-/// let req = NodeControl::parse(&[0x01, 0x06]).unwrap(); // V-NMT-03
+/// let req = NodeControl::parse(&[0x01, 0x06]).unwrap(); // start node 6
 /// assert_eq!(req, NodeControl { command: NmtCommand::Start, node: 6 });
 /// assert!(req.addresses(6) && !req.addresses(5));
 /// assert_eq!(NodeControl { command: NmtCommand::Stop, node: 0 }.emit(), [0x02, 0x00]);
@@ -83,7 +83,8 @@ impl NodeControl {
 mod tests {
     use super::*;
 
-    /// V-NMT-01..V-NMT-08.
+    /// Node control frames: stop all (02 00), reset node 42 (81 2A), pre-operational all / node 5 (80 00,
+    /// 80 05), reset communication (82 05); a start for node 7 (01 07) does not address node 5, a broadcast does.
     #[test]
     fn nmt_vectors() {
         let v = |b: [u8; 2]| NodeControl::parse(&b).unwrap();

@@ -7,7 +7,7 @@ use super::WireError;
 ///
 /// ```
 /// use canopen_core::wire::pdo_mapping::MappingEntry;
-/// // V-ENC-15: 6040h:00, 16 bit.
+/// // 6040 0010h: 6040h:00, 16 bit.
 /// let e = MappingEntry::from_raw(0x6040_0010);
 /// assert_eq!((e.index, e.sub, e.bits), (0x6040, 0, 16));
 /// assert_eq!(e.emit(), [0x10, 0x00, 0x40, 0x60]);
@@ -33,7 +33,7 @@ impl MappingEntry {
     ///
     /// ```
     /// # use canopen_core::wire::pdo_mapping::MappingEntry;
-    /// assert_eq!(MappingEntry { index: 0x2003, sub: 3, bits: 16 }.raw(), 0x2003_0310); // V-ENC-19
+    /// assert_eq!(MappingEntry { index: 0x2003, sub: 3, bits: 16 }.raw(), 0x2003_0310); // on the bus 10 03 03 20
     /// ```
     pub const fn raw(self) -> u32 {
         ((self.index as u32) << 16) | ((self.sub as u32) << 8) | self.bits as u32
@@ -91,7 +91,8 @@ impl MappingEntry {
 mod tests {
     use super::*;
 
-    /// V-ENC-15..V-ENC-19.
+    /// Mapping entries 6040 0010h, 607A 0020h, 6041 0010h, 6064 0020h, 2000 0108h, 2003 0310h, 2003 0108h
+    /// (a drive's and a tutorial's PDO configurations).
     #[test]
     fn mapping_entry_vectors() {
         let cases: [(u32, [u8; 4]); 7] = [

@@ -19,7 +19,7 @@
 //!
 //! ```
 //! use canopen_core::wire::sdo::{ClientRequest, Multiplexer, ServerResponse};
-//! // V-SDO-02: read 6041h:00 → 2 bytes 0240h
+//! // Read 6041h:00 → 2 bytes 0240h
 //! let req = ClientRequest::parse(&[0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]).unwrap();
 //! assert_eq!(req, ClientRequest::InitiateUpload { mux: Multiplexer::new(0x6041, 0) });
 //! let rsp = ServerResponse::expedited_upload(Multiplexer::new(0x6041, 0), &[0x40, 0x02]);
@@ -125,7 +125,7 @@ impl Multiplexer {
 ///
 /// ```
 /// use canopen_core::wire::sdo::{frame, Multiplexer};
-/// // V-SDO-01 response: 60h, 607Ah:00
+/// // The confirmation of a write of 607Ah:00: 60h, 607Ah:00
 /// assert_eq!(frame(0x60, Multiplexer::new(0x607A, 0).bits(), 0), [0x60, 0x7A, 0x60, 0x00, 0, 0, 0, 0]);
 /// ```
 #[inline]
@@ -374,7 +374,7 @@ impl BlockSegment {
 ///
 /// ```
 /// use canopen_core::wire::sdo::{ClientRequest, Expedited, InitiateData, Multiplexer};
-/// // V-SDO-01: write 607Ah:00 = 0000 03E8h
+/// // Write 607Ah:00 = 0000 03E8h
 /// let bytes = [0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00];
 /// let req = ClientRequest::parse(&bytes).unwrap();
 /// assert_eq!(req, ClientRequest::InitiateDownload {
@@ -684,11 +684,11 @@ impl ServerResponse {
     }
 }
 
-/// The abort frame, identical in both directions: 80h, multiplexer, code LE (SDO-32, V-SDO-07).
+/// The abort frame, identical in both directions: 80h, multiplexer, code LE (SDO-32).
 ///
 /// ```
 /// use canopen_core::wire::sdo::{abort_frame, Multiplexer};
-/// // V-SDO-10: 0602 0000h on 5000h:00
+/// // Object 5000h does not exist: 0602 0000h on 5000h:00
 /// assert_eq!(abort_frame(Multiplexer::new(0x5000, 0), 0x0602_0000), [0x80, 0x00, 0x50, 0x00, 0x00, 0x00, 0x02, 0x06]);
 /// ```
 pub const fn abort_frame(mux: Multiplexer, code: u32) -> [u8; 8] {

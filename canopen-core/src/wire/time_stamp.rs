@@ -8,7 +8,7 @@ use super::WireError;
 ///
 /// ```
 /// use canopen_core::wire::time_stamp::TimeStamp;
-/// // V-TIME-02: 2011-02-21 12:00:00.000
+/// // 100 [6] 00 2E 93 02 B9 26: 2011-02-21 12:00:00.000
 /// let t = TimeStamp { days: 9913, ms: 43_200_000 };
 /// assert_eq!(t.emit(), [0x00, 0x2E, 0x93, 0x02, 0xB9, 0x26]);
 /// assert_eq!(TimeStamp::parse(&t.emit()), Ok(t));
@@ -43,7 +43,8 @@ impl TimeStamp {
 mod tests {
     use super::*;
 
-    /// V-TIME-02, V-TIME-03, V-ENC-22.
+    /// 2011-02-21 12:00:00.000 (00 2E 93 02 B9 26), 2000-01-01 12:34:56.789 (95 2C B3 02 D4 16) and the epoch
+    /// 1984-01-01 00:00:00.000 (all zero).
     #[test]
     fn time_vectors() {
         let t = TimeStamp::parse(&[0x95, 0x2C, 0xB3, 0x02, 0xD4, 0x16]).unwrap();

@@ -57,23 +57,23 @@ fn ram_bound() {
 }
 
 #[test]
-fn v_sdo_expedited_positive() {
+fn expedited_requests_answered_positively() {
     let mut t = Bench::new();
-    // V-SDO-01
+    // Write 607Ah:00 (INTEGER32) = 0000 03E8h (1000): 23 7A 60 00 E8 03 00 00 -> 60 7A 60 00 ...
     let r = t.ex([0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00], Some([0x60, 0x7A, 0x60, 0, 0, 0, 0, 0]));
     assert_eq!(r.event, Some(SdoEvent::Written { index: 0x607A, sub: 0 }));
     assert_eq!(t.od.get(0x607A, 0), Some(1000));
-    // V-SDO-02
+    // Read 6041h:00 -> 2 bytes 0240h: 40 41 60 00 ... -> 4B 41 60 00 40 02 00 00
     t.ex([0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0], Some([0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0]));
-    // V-SDO-03 (conformant answer) and a positive 1400h:02 write of FEh
+    // RPDO1 transmission type 1400h:02 = FDh is reserved for RPDOs: 0609 0030h; then a positive write of FEh
     t.ex([0x2F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0], abort_of(0x1400, 2, AbortCode::InvalidValue));
     t.ex([0x2F, 0x00, 0x14, 0x02, 0xFE, 0, 0, 0], Some([0x60, 0x00, 0x14, 0x02, 0, 0, 0, 0]));
-    // V-SDO-04, V-SDO-06
+    // Write 1603h:01 = 6012 0208h (map 6012h:02, 8 bits) and read it back
     t.ex([0x23, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60], Some([0x60, 0x03, 0x16, 0x01, 0, 0, 0, 0]));
     t.ex([0x40, 0x03, 0x16, 0x01, 0, 0, 0, 0], Some([0x43, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60]));
-    // V-SDO-05 (value FEh after the write above)
+    // Read 1400h:02 -> 1 byte (FEh after the write above)
     t.ex([0x40, 0x00, 0x14, 0x02, 0, 0, 0, 0], Some([0x4F, 0x00, 0x14, 0x02, 0xFE, 0, 0, 0]));
-    // V-SDO-08, V-SDO-09 (our 1018h), V-SDO-17
+    // Our 1018h: vendor-ID 2B6h at 1018h:01, 4 entries at 1018h:00; device type 1000h read while served
     t.ex([0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0], Some([0x43, 0x18, 0x10, 0x01, 0xB6, 0x02, 0, 0]));
     t.ex([0x40, 0x18, 0x10, 0x00, 0, 0, 0, 0], Some([0x4F, 0x18, 0x10, 0x00, 0x04, 0, 0, 0]));
     t.ex([0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0], Some([0x43, 0x00, 0x10, 0x00, 0x91, 0x01, 0, 0]));
@@ -85,15 +85,15 @@ fn v_sdo_expedited_positive() {
 }
 
 #[test]
-fn v_sdo_expedited_negative_and_od_abort_codes() {
+fn expedited_negative_cases_and_od_abort_codes() {
     let mut t = Bench::new();
     let cases: &[([u8; 8], u16, u8, AbortCode)] = &[
-        ([0x40, 0x00, 0x50, 0x00, 0, 0, 0, 0], 0x5000, 0, AbortCode::ObjectDoesNotExist), // V-SDO-10
-        ([0x40, 0x18, 0x10, 0x07, 0, 0, 0, 0], 0x1018, 7, AbortCode::SubIndexDoesNotExist), // V-SDO-11
-        ([0x23, 0x00, 0x10, 0x00, 0, 0, 0, 0], 0x1000, 0, AbortCode::WriteOfReadOnly),    // V-SDO-12
-        ([0x2F, 0x17, 0x10, 0x00, 0x64, 0, 0, 0], 0x1017, 0, AbortCode::LengthTooLow),    // V-SDO-13
-        ([0x23, 0x0D, 0x10, 0x00, 0x03, 0, 0, 0], 0x100D, 0, AbortCode::LengthTooHigh),   // V-SDO-14
-        ([0xE0, 0x00, 0x10, 0x00, 0, 0, 0, 0], 0x1000, 0, AbortCode::InvalidCommandSpecifier), // V-SDO-15
+        ([0x40, 0x00, 0x50, 0x00, 0, 0, 0, 0], 0x5000, 0, AbortCode::ObjectDoesNotExist), // 5000h absent
+        ([0x40, 0x18, 0x10, 0x07, 0, 0, 0, 0], 0x1018, 7, AbortCode::SubIndexDoesNotExist), // 1018h:07 absent
+        ([0x23, 0x00, 0x10, 0x00, 0, 0, 0, 0], 0x1000, 0, AbortCode::WriteOfReadOnly),    // write of ro 1000h
+        ([0x2F, 0x17, 0x10, 0x00, 0x64, 0, 0, 0], 0x1017, 0, AbortCode::LengthTooLow),    // 1 byte into U16 1017h
+        ([0x23, 0x0D, 0x10, 0x00, 0x03, 0, 0, 0], 0x100D, 0, AbortCode::LengthTooHigh),   // 4 bytes into U8 100Dh
+        ([0xE0, 0x00, 0x10, 0x00, 0, 0, 0, 0], 0x1000, 0, AbortCode::InvalidCommandSpecifier), // ccs 7
         ([0x40, 0x01, 0x20, 0x00, 0, 0, 0, 0], 0x2001, 0, AbortCode::ReadOfWriteOnly),
         ([0x2B, 0x02, 0x20, 0x00, 0x65, 0x00, 0, 0], 0x2002, 0, AbortCode::ValueTooHigh),
         ([0x2B, 0x02, 0x20, 0x00, 0x9B, 0xFF, 0, 0], 0x2002, 0, AbortCode::ValueTooLow),
@@ -208,7 +208,7 @@ fn block_transfer_compiled_out() {
 /// The segmented upload of 1009h "N10 - WT1209-V1.00-8MB\0" (23 bytes, SDO-25..SDO-28), then the same upload with
 /// the second segment request repeating t = 0 (60h instead of 70h): abort 0503 0000h (SDO-30).
 #[test]
-fn v_sdo_segmented_upload_7_2_and_toggle_error() {
+fn segmented_upload_of_1009h_and_toggle_error() {
     let mut t = Bench::new();
     let steps: [([u8; 8], Option<[u8; 8]>); 8] = [
         ([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0])),
@@ -232,7 +232,7 @@ fn v_sdo_segmented_upload_7_2_and_toggle_error() {
 }
 
 #[test]
-fn v_sdo_segmented_download_7_3_and_variants() {
+fn segmented_download_of_9_bytes_and_variants() {
     let mut t = Bench::new();
     t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
     t.ex([0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
@@ -316,7 +316,7 @@ fn segmented_upload_64_byte_string_and_read_error() {
 
 #[test]
 #[cfg(feature = "sdo-block")]
-fn v_sdo_block_download_8_1_and_variants() {
+fn block_download_of_9_bytes_and_variants() {
     let mut t = Bench::new();
     t.ex([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x7F, 0, 0, 0]));
     t.ex([0x01, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], None);
@@ -357,7 +357,7 @@ fn v_sdo_block_download_8_1_and_variants() {
 /// second acknowledge would read as the next sub-block's and make the client skip segments).
 #[test]
 #[cfg(feature = "sdo-block")]
-fn v_sdo_block_download_8_2_go_back_n() {
+fn block_download_go_back_n_after_a_lost_segment() {
     let mut t = Bench::with_block_size(3);
     t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x03, 0, 0, 0]));
     t.ex([0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], None);
@@ -439,7 +439,7 @@ fn block_download_sequence_and_size_errors() {
 
 #[test]
 #[cfg(feature = "sdo-block")]
-fn v_sdo_block_upload_8_3() {
+fn block_upload_of_9_bytes() {
     let mut t = Bench::new();
     t.od.set_domain(b"123456789");
     t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));
@@ -501,7 +501,7 @@ fn block_upload_retransmission_and_errors() {
 
 #[test]
 #[cfg(feature = "sdo-block")]
-fn v_sdo_block_upload_8_4_protocol_switch() {
+fn block_upload_protocol_switch_to_segmented() {
     let mut t = Bench::new();
     t.od.set_domain(b"123456789");
     t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x15, 0, 0], Some([0x41, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));

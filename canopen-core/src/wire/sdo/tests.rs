@@ -49,38 +49,38 @@ fn check_rsp(b: [u8; 8], want: ServerResponse) {
 }
 
 #[test]
-fn v_sdo_expedited_vectors() {
-    // V-SDO-01
+fn expedited_frames_round_trip() {
+    // Write 607Ah:00 (INTEGER32) = 0000 03E8h and its confirmation
     check_req(
         [0x23, 0x7A, 0x60, 0x00, 0xE8, 0x03, 0x00, 0x00],
         Req::InitiateDownload { mux: mux(0x607A, 0), data: exp(&[0xE8, 0x03, 0, 0]) },
     );
     check_rsp([0x60, 0x7A, 0x60, 0x00, 0, 0, 0, 0], Rsp::InitiateDownload { mux: mux(0x607A, 0) });
-    // V-SDO-02
+    // Read 6041h:00 -> 2 bytes 0240h
     check_req([0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0], Req::InitiateUpload { mux: mux(0x6041, 0) });
     check_rsp([0x4B, 0x41, 0x60, 0x00, 0x40, 0x02, 0, 0], Rsp::expedited_upload(mux(0x6041, 0), &[0x40, 2]));
-    // V-SDO-03 (request) and its conformant abort answer
+    // 1400h:02 = FDh (reserved for RPDOs) and its conformant abort answer 0609 0030h
     check_req(
         [0x2F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0],
         Req::InitiateDownload { mux: mux(0x1400, 2), data: exp(&[0xFD]) },
     );
     check_rsp([0x80, 0x00, 0x14, 0x02, 0x30, 0x00, 0x09, 0x06], Rsp::Abort { mux: mux(0x1400, 2), code: 0x0609_0030 });
-    // V-SDO-04
+    // Write 1603h:01 = 6012 0208h (map 6012h:02, 8 bits)
     check_req(
         [0x23, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60],
         Req::InitiateDownload { mux: mux(0x1603, 1), data: exp(&[0x08, 0x02, 0x12, 0x60]) },
     );
     check_rsp([0x60, 0x03, 0x16, 0x01, 0, 0, 0, 0], Rsp::InitiateDownload { mux: mux(0x1603, 1) });
-    // V-SDO-05, V-SDO-06
+    // Read 1400h:02 -> 1 byte FDh; read 1603h:01 -> 4 bytes 6012 0208h
     check_rsp([0x4F, 0x00, 0x14, 0x02, 0xFD, 0, 0, 0], Rsp::expedited_upload(mux(0x1400, 2), &[0xFD]));
     check_rsp(
         [0x43, 0x03, 0x16, 0x01, 0x08, 0x02, 0x12, 0x60],
         Rsp::expedited_upload(mux(0x1603, 1), &[0x08, 0x02, 0x12, 0x60]),
     );
-    // V-SDO-08, V-SDO-09
+    // Read 1018h:01 -> vendor-ID 2B6h; read 1018h:00 -> 4
     check_rsp([0x43, 0x18, 0x10, 0x01, 0xB6, 0x02, 0, 0], Rsp::expedited_upload(mux(0x1018, 1), &[0xB6, 2, 0, 0]));
     check_rsp([0x4F, 0x18, 0x10, 0x00, 0x04, 0, 0, 0], Rsp::expedited_upload(mux(0x1018, 0), &[4]));
-    // V-SDO-10..V-SDO-16 abort frames
+    // Abort frames: 5000h absent, 1018h:07 absent, ro 1000h, too short, too long, ccs 7, invalid 1014h
     for (b, m, code) in [
         ([0x80, 0x00, 0x50, 0x00, 0x00, 0x00, 0x02, 0x06], mux(0x5000, 0), 0x0602_0000),
         ([0x80, 0x18, 0x10, 0x07, 0x11, 0x00, 0x09, 0x06], mux(0x1018, 7), 0x0609_0011),
@@ -93,7 +93,7 @@ fn v_sdo_expedited_vectors() {
         check_rsp(b, Rsp::Abort { mux: m, code });
         check_req(b, Req::Abort { mux: m, code });
     }
-    // V-SDO-15: ccs 7 is not a command
+    // ccs 7 (E0h) is not a command
     assert_eq!(Req::parse(&[0xE0, 0x00, 0x10, 0, 0, 0, 0, 0]), Err(ParseError::CommandSpecifier));
     assert_eq!(ServerResponse::parse(&[0xE0, 0x00, 0x10, 0, 0, 0, 0, 0]), Err(ParseError::CommandSpecifier));
 }
@@ -129,7 +129,7 @@ fn expedited_command_bytes_sdo_12_24() {
 }
 
 #[test]
-fn v_sdo_segmented_upload_7_2() {
+fn segmented_upload_frames_of_1009h() {
     let m = mux(0x1009, 0);
     check_req([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], Req::InitiateUpload { mux: m });
     check_rsp(
@@ -154,7 +154,7 @@ fn v_sdo_segmented_upload_7_2() {
 }
 
 #[test]
-fn v_sdo_segmented_download_7_3() {
+fn segmented_download_frames_of_9_bytes() {
     let m = mux(0x2000, 0);
     check_req(
         [0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0],
@@ -181,7 +181,7 @@ fn v_sdo_segmented_download_7_3() {
 }
 
 #[test]
-fn v_sdo_block_download_8_1_and_8_2() {
+fn block_download_frames_with_and_without_loss() {
     let m = mux(0x2000, 0);
     check_req([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Req::BlockDownloadInitiate { mux: m, crc: true, size: Some(9) });
     check_req(
@@ -205,7 +205,7 @@ fn v_sdo_block_download_8_1_and_8_2() {
 }
 
 #[test]
-fn v_sdo_block_upload_8_3_and_8_4() {
+fn block_upload_frames_and_protocol_switch() {
     let m = mux(0x2000, 0);
     check_req(
         [0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0],
