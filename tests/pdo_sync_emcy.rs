@@ -138,7 +138,7 @@ fn rpdo_remapping_procedure_vector() {
 fn tpdo_configuration_vector_and_cyclic_sync() {
     const TPDOS: &[PdoDefault] = &[PdoDefault::UNUSED, PdoDefault::UNUSED, PdoDefault::EVENT];
     let mut bus = Bus::booted(vec![node_with(5, NodeConfig { tpdo: TPDOS, ..NodeConfig::DEFAULT })]);
-    // The seed's step 1 (bytes reversed: frame bit set) is refused (COB-15).
+    // A COB-ID written with its bytes reversed (38070000h: the frame bit set) is refused (COB-15).
     assert_eq!(sdo(&mut bus, "605 [8] 23 02 18 01 00 00 07 38"), frame("585 [8] 80 02 18 01 30 00 09 06"));
     sdo_ok(
         &mut bus,
@@ -153,7 +153,7 @@ fn tpdo_configuration_vector_and_cyclic_sync() {
             "605 [8] 23 02 18 01 87 03 00 00",
         ],
     );
-    // The seed's 8-bit X and 1010h Y are refused while the PDO is valid; 1010h is not mappable anyway.
+    // Remapping an 8-bit object and 1010h is refused while the PDO is valid; 1010h is not mappable anyway.
     assert_eq!(sdo(&mut bus, "605 [8] 23 02 1A 01 08 03 00 60"), frame("585 [8] 80 02 1A 01 00 00 01 06"));
     {
         let app = bus.stations[0].app_mut();

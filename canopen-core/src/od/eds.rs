@@ -6,7 +6,7 @@
 //! SubNumber (OD-11).
 //!
 //! What the format choices rely on (python `canopen` 2.4.1, `canopen/objectdictionary/eds.py`, read for
-//! this; and the EDS sample of seed 003 §5.6):
+//! this; and the EDS sample of a CiA 306 device description tutorial):
 //! - `import_eds` parses `[DeviceInfo]` numbers with `int(x, 0)` and raises on an empty one, so every
 //!   numeric field is always written (a missing default becomes `0`); `BaudRate_<kbit>` keys are looked up
 //!   with exactly that spelling; `[DummyUsage]` is read with `getint` for all of `Dummy0001`..`Dummy0007`,

@@ -2,7 +2,7 @@
 //! on 7E4h. Every LSS frame carries exactly 8 data bytes; byte 0 is the command specifier (cs), multi-byte
 //! values are little-endian, reserved bytes are sent as 0 and ignored on receipt.
 //!
-//! The seeds (CiA 301 only) contain no LSS, so the layouts here come from public sources, cross-checked:
+//! CiA 305 is not reproduced in this repository, so the layouts here come from public sources, cross-checked:
 //! python `canopen` 2.4.1 `canopen/lss.py` (the master we interoperate with: command specifiers, byte
 //! layouts via `struct.pack('<BIBBB', ...)`), CANopenNode `305/CO_LSS.h` + `CO_LSSslave.c` (command
 //! specifiers, error codes, fastscan bit-check/sub/next ranges, bit timing table) and lely-core
