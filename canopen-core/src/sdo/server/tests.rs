@@ -217,7 +217,7 @@ fn segmented_upload_of_1009h_and_toggle_error() {
         // 002's client puts the multiplexer in the reserved bytes: accepted (SDO-02)
         ([0x60, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x00, 0x31, 0x2E, 0x30, 0x30, 0x2D, 0x38, 0x4D])),
         ([0x70, 0, 0, 0, 0, 0, 0, 0], Some([0x1B, 0x42, 0x00, 0, 0, 0, 0, 0])),
-        // a second upload whose segment request repeats t = 0 (CiA 301 §7.2.4.3.8: a new transfer starts at t = 0)
+        // a second upload: its first segment request has t = 0 again (every transfer starts with toggle 0)
         ([0x40, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x41, 0x09, 0x10, 0x00, 0x17, 0, 0, 0])),
         ([0x60, 0x09, 0x10, 0x00, 0, 0, 0, 0], Some([0x00, 0x4E, 0x31, 0x30, 0x20, 0x2D, 0x20, 0x57])),
         ([0x60, 0x09, 0x10, 0x00, 0, 0, 0, 0], abort_of(0x1009, 0, AbortCode::ToggleNotAlternated)),
