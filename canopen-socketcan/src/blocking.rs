@@ -310,21 +310,8 @@ pub(crate) fn receive_all(fd: RawFd, pass: &mut Pass, observe: &mut dyn FnMut(Ob
 fn send_all(bus: &BlockingBus, pass: &mut Pass, observe: &mut impl FnMut(Observed<'_>)) -> io::Result<()> {
     let mut stall = crate::pass::TxStall::default();
     while !pass.tx.is_empty() {
-        let raw = pass.tx.iter().map(crate::pass::raw_frame).collect::<io::Result<Vec<_>>>()?;
-        match crate::batch::send_frames(bus.socket.as_raw_fd(), &raw) {
-            Ok(n) => {
-                crate::pass::sent(&mut pass.tx, n, observe);
-                stall.clear();
-            }
-            Err(e) => match classify(&e) {
-                ErrorClass::NoBufs | ErrorClass::Timeout => {
-                    if stall.full(bus.now(), &mut pass.tx, observe) {
-                        std::thread::sleep(crate::ENOBUFS_BACKOFF);
-                    }
-                }
-                ErrorClass::Interrupted => {}
-                ErrorClass::Down | ErrorClass::Fatal => return Err(e),
-            },
+        if crate::pass::send_attempt(bus.socket.as_raw_fd(), &mut pass.tx, &mut stall, || bus.now(), observe)? {
+            std::thread::sleep(crate::ENOBUFS_BACKOFF);
         }
     }
     Ok(())

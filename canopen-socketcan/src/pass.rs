@@ -230,6 +230,32 @@ impl TxStall {
     }
 }
 
+/// One attempt of a runner's `send_all`: sends `tx` in order, as many frames as the socket takes in one
+/// call, and applies the [`TxStall`] rule when its queue is full. Returns `Ok(true)` when the caller should
+/// wait [`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF) before the next attempt; the clock (`now`) is read only
+/// in a stall. The two runners differ only in how they wait.
+pub(crate) fn send_attempt(
+    fd: std::os::fd::RawFd,
+    tx: &mut Vec<CanFrame>,
+    stall: &mut TxStall,
+    now: impl FnOnce() -> Instant,
+    observe: &mut dyn FnMut(Observed<'_>),
+) -> std::io::Result<bool> {
+    let raw = tx.iter().map(raw_frame).collect::<std::io::Result<Vec<_>>>()?;
+    match crate::batch::send_frames(fd, &raw) {
+        Ok(n) => {
+            sent(tx, n, observe);
+            stall.clear();
+            Ok(false)
+        }
+        Err(e) => match crate::classify(&e) {
+            crate::ErrorClass::NoBufs | crate::ErrorClass::Timeout => Ok(stall.full(now(), tx, observe)),
+            crate::ErrorClass::Interrupted => Ok(false),
+            crate::ErrorClass::Down | crate::ErrorClass::Fatal => Err(e),
+        },
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -320,21 +320,8 @@ async fn send_all(
 ) -> io::Result<()> {
     let mut stall = crate::pass::TxStall::default();
     while !pass.tx.is_empty() {
-        let raw = pass.tx.iter().map(crate::pass::raw_frame).collect::<io::Result<Vec<_>>>()?;
-        match crate::batch::send_frames(bus.socket.as_raw_fd(), &raw) {
-            Ok(n) => {
-                crate::pass::sent(&mut pass.tx, n, observe);
-                stall.clear();
-            }
-            Err(e) => match classify(&e) {
-                ErrorClass::NoBufs | ErrorClass::Timeout => {
-                    if stall.full(timer.now(), &mut pass.tx, observe) {
-                        tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
-                    }
-                }
-                ErrorClass::Interrupted => {}
-                ErrorClass::Down | ErrorClass::Fatal => return Err(e),
-            },
+        if crate::pass::send_attempt(bus.socket.as_raw_fd(), &mut pass.tx, &mut stall, || timer.now(), observe)? {
+            tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
         }
     }
     Ok(())
