@@ -68,6 +68,7 @@ impl SdoServer {
         Ok(Response::send(frame(0xA0 | (u8::from(crc) << 2), mux.bits(), u32::from(self.block_size))))
     }
 
+    #[inline]
     pub(super) fn block_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
         let (blksize, mux) = (self.block_size, self.mux);
         let State::BlockDownload(bd) = &mut self.state else { return Response::NONE };
