@@ -237,6 +237,14 @@ fn pdo_handles() {
     let u = od.pdo_resolve(0x2017, 0, PdoDir::Tpdo).unwrap();
     assert_eq!(od.pdo_read(&u, &mut b), Ok(8));
     assert_eq!(b, [0xFF; 8]);
+    // The slot is the derive's own: a handle without one (a dictionary that uses the provided
+    // `pdo_resolve`) is looked up by index and sub-index instead.
+    let by_index = canopen_core::od::PdoHandle { slot: canopen_core::od::PdoHandle::NO_SLOT, ..h };
+    assert_eq!(od.pdo_read(&by_index, &mut b), Ok(1));
+    assert_eq!(b[0], 0x55);
+    let by_index = canopen_core::od::PdoHandle { slot: canopen_core::od::PdoHandle::NO_SLOT, ..r };
+    od.pdo_write(&by_index, &(-7i16).to_le_bytes()).unwrap();
+    assert_eq!(od.int16, -7);
 }
 
 #[test]

@@ -767,17 +767,14 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     }
                     ::core::result::Result::Ok(pos)
                 }
-                /// The entry-table slot of a PDO handle, if the handle belongs to this dictionary.
+                /// The entry-table slot of a PDO handle: the handle came from this dictionary's
+                /// `pdo_resolve` (the trait's contract), so its slot is trusted, not checked against the key
+                /// table again (that compare cost 6 instructions per mapped entry, 24 per 4-entry TPDO on
+                /// x86-64). `None` for a handle without a slot (or one out of range): looked up by index.
                 #[inline]
                 fn __od_slot(handle: &#core::od::PdoHandle) -> ::core::option::Option<usize> {
-                    // The compact key table, not OD_ENTRIES: one u32 compare, and the PDO path does not keep the
-                    // entry descriptions (names, defaults, limits) alive in a firmware.
                     let pos = usize::from(handle.slot);
-                    let key = ((handle.index as u32) << 8) | handle.sub as u32;
-                    match Self::OD_KEYS.get(pos) {
-                        ::core::option::Option::Some(&k) if k == key => ::core::option::Option::Some(pos),
-                        _ => ::core::option::Option::None,
-                    }
+                    if pos < #n_entries { ::core::option::Option::Some(pos) } else { ::core::option::Option::None }
                 }
             }
 

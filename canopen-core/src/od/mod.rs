@@ -257,6 +257,10 @@ pub struct SubInfo {
 /// - PDO mapping resolves each mapped entry once with [`pdo_resolve`](Self::pdo_resolve) and then moves
 ///   process data with [`pdo_read`](Self::pdo_read)/[`pdo_write`](Self::pdo_write), which the
 ///   derive-generated dictionaries serve without any search. The defaults fall back to `read`/`write`.
+///   A handle belongs to the dictionary whose `pdo_resolve` made it ([`Merged`] routes each handle to its
+///   half by index): a derived dictionary trusts the slot of a handle it is given and does not look the
+///   entry up again (a handle of another dictionary moves the bytes of whatever entry has that slot here,
+///   or falls back to `read`/`write` when the slot is out of range; never a panic).
 ///
 /// ```
 /// use canopen_core::od::{AbortCode, Access, DataType, ObjectDictionary, PdoMapping, SubInfo};
@@ -365,12 +369,14 @@ pub trait ObjectDictionary {
         PdoHandle::check(index, sub, &info, dir, PdoHandle::NO_SLOT)
     }
 
-    /// Copies the current value of a resolved entry into `buf` (its [`PdoHandle::size`] bytes).
+    /// Copies the current value of a resolved entry into `buf` (its [`PdoHandle::size`] bytes). `handle`
+    /// comes from this dictionary's [`pdo_resolve`](Self::pdo_resolve) (see the trait docs).
     fn pdo_read(&self, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
         self.read(handle.index, handle.sub, 0, buf)
     }
 
-    /// Writes a resolved entry from received process data (limits and hooks apply as for `write`).
+    /// Writes a resolved entry from received process data (limits and hooks apply as for `write`). `handle`
+    /// comes from this dictionary's [`pdo_resolve`](Self::pdo_resolve) (see the trait docs).
     fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
         self.write(handle.index, handle.sub, data)
     }
@@ -446,8 +452,8 @@ pub struct PdoHandle {
     pub sub: u8,
     /// Encoded size in bytes (1..=8).
     pub size: u8,
-    /// Implementation-defined position (the derive uses the entry-table position; [`Self::NO_SLOT`] if
-    /// unused).
+    /// Implementation-defined position (the derive uses the entry-table position, which its `pdo_read` and
+    /// `pdo_write` trust; [`Self::NO_SLOT`] if unused).
     pub slot: u16,
 }
 
