@@ -6,8 +6,8 @@ mod common {
 }
 
 use canopen_core::od::{
-    AbortCode, Access, DataType, ObjectCode, ObjectDictionary, OdDescribe, PdoDir, PdoMapping, TimeDifference,
-    TimeOfDay, Value,
+    AbortCode, Access, DataType, ObjectCode, ObjectDictionary, OdDescribe, PdoDir, PdoHandle, PdoMapping,
+    TimeDifference, TimeOfDay, Value,
 };
 use canopen_core::profile::eds::{write_eds, EdsInfo};
 use common::all_types::{node_od, AllTypes};
@@ -239,12 +239,29 @@ fn pdo_handles() {
     assert_eq!(b, [0xFF; 8]);
     // The slot is the derive's own: a handle without one (a dictionary that uses the provided
     // `pdo_resolve`) is looked up by index and sub-index instead.
-    let by_index = canopen_core::od::PdoHandle { slot: canopen_core::od::PdoHandle::NO_SLOT, ..h };
+    let by_index = PdoHandle { slot: PdoHandle::NO_SLOT, ..h };
     assert_eq!(od.pdo_read(&by_index, &mut b), Ok(1));
     assert_eq!(b[0], 0x55);
-    let by_index = canopen_core::od::PdoHandle { slot: canopen_core::od::PdoHandle::NO_SLOT, ..r };
+    let by_index = PdoHandle { slot: PdoHandle::NO_SLOT, ..r };
     od.pdo_write(&by_index, &(-7i16).to_le_bytes()).unwrap();
     assert_eq!(od.int16, -7);
+}
+
+/// SDO-26: an upload's segments read the entry at the position looked up once (`slot`), as `read` would.
+#[test]
+fn segments_read_through_a_slot() {
+    let od = AllTypes::with_defaults();
+    let slot = od.slot(0x2020, 0);
+    assert_ne!(slot, PdoHandle::NO_SLOT);
+    let (mut a, mut b) = ([0u8; 7], [0u8; 7]);
+    assert_eq!(od.read_slot(0x2020, 0, slot, 1, &mut a), od.read(0x2020, 0, 1, &mut b));
+    assert_eq!(&a[..4], b"ello");
+    // No such entry: no slot, and the read by index answers as `read` does.
+    assert_eq!(od.slot(0x2020, 1), PdoHandle::NO_SLOT);
+    assert_eq!(od.read_slot(0x2020, 1, PdoHandle::NO_SLOT, 0, &mut a), Err(AbortCode::SubIndexDoesNotExist));
+    // The access is checked at the slot too (0601 0001h for a write-only entry).
+    let wo = od.slot(0x2030, 0);
+    assert_eq!(od.read_slot(0x2030, 0, wo, 0, &mut a), Err(AbortCode::ReadOfWriteOnly));
 }
 
 #[test]

@@ -852,6 +852,17 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                         }
                     }
                 }
+                fn slot(&self, index: u16, sub: u8) -> u16 {
+                    self.__od_pos(index, sub).map_or(#core::od::PdoHandle::NO_SLOT, |(pos, _)| pos as u16)
+                }
+                fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
+                    let pos = usize::from(slot);
+                    match Self::__OD_INFO.get(pos) {
+                        ::core::option::Option::Some(e) if e.access.readable() => self.__od_read(pos, offset, buf),
+                        ::core::option::Option::Some(_) => ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly),
+                        ::core::option::Option::None => self.read(index, sub, offset, buf),
+                    }
+                }
                 fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
                     let info = #core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: 0 };

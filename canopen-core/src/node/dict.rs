@@ -112,6 +112,18 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
             self.od.app.read(index, sub, offset, buf)
         }
     }
+    fn slot(&self, index: u16, sub: u8) -> u16 {
+        self.od.slot(index, sub)
+    }
+    /// Inline, as `read`: each segment of an upload comes here.
+    #[inline]
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        if crate::od::is_comm(index) {
+            self.od.comm.read_slot(index, sub, slot, offset, buf)
+        } else {
+            self.od.app.read_slot(index, sub, slot, offset, buf)
+        }
+    }
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         match index {
             0x1010 | 0x1011 => self.store_command(index, sub, data),

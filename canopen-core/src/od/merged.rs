@@ -86,6 +86,12 @@ impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A>
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
         route!(mut self, index, od => od.write_expedited(index, sub, data, len))
     }
+    fn slot(&self, index: u16, sub: u8) -> u16 {
+        route!(self, index, od => od.slot(index, sub))
+    }
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        route!(self, index, od => od.read_slot(index, sub, slot, offset, buf))
+    }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         route!(self, index, od => od.pdo_resolve(index, sub, dir))
     }

@@ -362,6 +362,23 @@ pub trait ObjectDictionary {
         expedited_download(self, index, sub, data, len)
     }
 
+    /// The dictionary's own position of an entry (the `slot` of [`PdoHandle`]), looked up once when an SDO
+    /// transfer of several frames starts, so that each segment reads it with [`read_slot`](Self::read_slot)
+    /// without a search. [`PdoHandle::NO_SLOT`] (the provided method) when the dictionary keeps no
+    /// positions or has no such entry.
+    fn slot(&self, index: u16, sub: u8) -> u16 {
+        let _ = (index, sub);
+        PdoHandle::NO_SLOT
+    }
+
+    /// [`read`](Self::read) of the entry at `slot`, which [`slot`](Self::slot) gave for `index`/`sub`: the
+    /// derived dictionaries go straight to the entry (its access is checked again, not its key); the
+    /// provided method, and any dictionary for [`PdoHandle::NO_SLOT`], is `read`.
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        let _ = slot;
+        self.read(index, sub, offset, buf)
+    }
+
     /// Resolves a mapping target once: checks it exists (0602 0000h / 0609 0011h), is mappable in `dir`
     /// (0604 0041h: PDO mapping attribute, readable for a TPDO, writable for an RPDO) and has a fixed size.
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
@@ -540,6 +557,12 @@ impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
     }
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
         (**self).write_expedited(index, sub, data, len)
+    }
+    fn slot(&self, index: u16, sub: u8) -> u16 {
+        (**self).slot(index, sub)
+    }
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        (**self).read_slot(index, sub, slot, offset, buf)
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         (**self).pdo_resolve(index, sub, dir)

@@ -47,7 +47,8 @@
 //! Data moves straight between frames and the OD: fixed-size values (≤ 8 bytes) are collected in an 8-byte
 //! scratch and written atomically with [`ObjectDictionary::write`]; everything else is streamed with
 //! `begin_write`/`write_chunk`/`end_write` (and `abort_write` when a transfer is abandoned); uploads read
-//! 1..7 bytes at a time with [`ObjectDictionary::read`] at an offset. Block download writes each in-order
+//! 1..7 bytes at a time at an offset with [`ObjectDictionary::read_slot`], the entry's position looked up once
+//! at the initiate ([`ObjectDictionary::slot`]: no search per segment in a derived dictionary). Block download writes each in-order
 //! segment to the OD as soon as the next one arrives: only the last 7 bytes are held back, because the number
 //! of valid bytes in the last segment is only known from the end frame (SDO-41). The whole server is
 //! [`SdoServer::RAM_BYTES`] = 80 bytes or less (`size_of::<SdoServer>()` is 80 on x86-64, asserted in a unit
@@ -386,11 +387,13 @@ enum State {
         size: Option<u32>,
         sink: Sink,
     },
-    /// Segmented upload (`segmented.rs`).
+    /// Segmented upload (`segmented.rs`). `slot`: the object's [`ObjectDictionary::slot`], for each segment's
+    /// read.
     Upload {
         toggle: bool,
         offset: u32,
         size: u32,
+        slot: u16,
     },
     #[cfg(feature = "sdo-block")]
     BlockDownload(BlockDownload),

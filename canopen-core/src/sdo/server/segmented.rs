@@ -90,7 +90,8 @@ impl SdoServer {
             return Ok(Response::send(frame(0x43 | ((4 - n as u8) << 2), mux.bits(), data)));
         }
         self.mux = mux;
-        self.state = State::Upload { toggle: false, offset: 0, size };
+        let slot = od.slot(mux.index, mux.sub); // one lookup here, none per segment
+        self.state = State::Upload { toggle: false, offset: 0, size, slot };
         Ok(Response::send(frame(0x41, mux.bits(), size))) // e = 0, s = 1: the size (SDO-25)
     }
 
@@ -139,9 +140,10 @@ impl SdoServer {
 
     /// Upload segment request (ccs 3, SDO-26..SDO-28, SDO-30): the next 1..7 bytes, read from the OD straight
     /// into the response frame.
+    #[inline]
     pub(super) fn upload_segment<O: ObjectDictionary + ?Sized>(&mut self, t: bool, od: &mut O) -> Response {
         let mux = self.mux;
-        let State::Upload { toggle, offset, size } = &mut self.state else {
+        let State::Upload { toggle, offset, size, slot } = &mut self.state else {
             return self.invalid(od);
         };
         if t != *toggle {
@@ -149,7 +151,7 @@ impl SdoServer {
         }
         let want = size.saturating_sub(*offset).min(7) as usize;
         let mut response = [0u8; 8];
-        let n = match od.read(mux.index, mux.sub, *offset as usize, &mut response[1..1 + want]) {
+        let n = match od.read_slot(mux.index, mux.sub, *slot, *offset as usize, &mut response[1..1 + want]) {
             Ok(n) if n == want => n as u8,
             Ok(_) => return self.abort(od, mux, AbortCode::LengthMismatch),
             Err(code) => return self.abort(od, mux, code),
