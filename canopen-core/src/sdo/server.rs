@@ -51,7 +51,7 @@
 //! at the initiate ([`ObjectDictionary::slot`]: no search per segment in a derived dictionary). Block download writes each in-order
 //! segment to the OD as soon as the next one arrives: only the last 7 bytes are held back, because the number
 //! of valid bytes in the last segment is only known from the end frame (SDO-41). The whole server is
-//! [`SdoServer::RAM_BYTES`] = 80 bytes or less (`size_of::<SdoServer>()` is 80 on x86-64, asserted in a unit
+//! [`SdoServer::RAM_BYTES`] = 72 bytes or less (`size_of::<SdoServer>()` is 72 on x86-64, asserted in a unit
 //! test; the client is 88). No other RAM: no buffer of the object's size, no sub-block buffer.
 //!
 //! # Choices where the spec leaves room
@@ -121,7 +121,7 @@
 
 use crate::cob::{CobIdEntry, FunctionCode};
 use crate::od::{AbortCode, ObjectDictionary};
-use crate::time::{Duration, Instant};
+use crate::time::{Deadline, Duration, Instant};
 #[cfg(feature = "sdo-block")]
 use crate::wire::sdo::MAX_BLKSIZE;
 use crate::wire::sdo::{abort_frame, Multiplexer};
@@ -419,7 +419,9 @@ pub struct SdoServer {
     timeout: Duration,
     #[cfg(feature = "sdo-block")]
     block_size: u8,
-    deadline: Option<Instant>,
+    /// The protocol time-out's deadline (SDO-31), [`Deadline::NONE`] when no transfer waits: a plain u64 (8 bytes
+    /// less than an `Option<Instant>`, and no tag to write per frame).
+    deadline: Deadline,
     /// The object of the transfer under way (meaningless while `state` is idle).
     mux: Multiplexer,
     state: State,
@@ -432,7 +434,7 @@ impl SdoServer {
     /// # use canopen_core::sdo::SdoServer;
     /// assert!(core::mem::size_of::<SdoServer>() <= SdoServer::RAM_BYTES);
     /// ```
-    pub const RAM_BYTES: usize = 80;
+    pub const RAM_BYTES: usize = 72;
 
     /// A server with the [default time-out](super::DEFAULT_TIMEOUT) and block size 127.
     ///
@@ -446,7 +448,7 @@ impl SdoServer {
             timeout: super::DEFAULT_TIMEOUT,
             #[cfg(feature = "sdo-block")]
             block_size: MAX_BLKSIZE,
-            deadline: None,
+            deadline: Deadline::NONE,
             mux: Multiplexer::new(0, 0),
             state: State::Idle,
         }
@@ -520,7 +522,7 @@ impl SdoServer {
     pub fn set_params(&mut self, params: SdoServerParams) {
         self.params = params;
         self.state = State::Idle;
-        self.deadline = None;
+        self.deadline = Deadline::NONE;
     }
 
     /// Drops the current transfer without a frame: the node left the states that serve SDO (NMT-18, a node
@@ -607,7 +609,7 @@ impl SdoServer {
     /// ```
     #[inline(never)] // 64-bit arithmetic for the block download stall (~130 B on Cortex-M), used in 3 places
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        match self.deadline {
+        match self.deadline.get() {
             #[cfg(feature = "sdo-block")]
             Some(d) => Some(self.block_download_deadline(d)),
             #[cfg(not(feature = "sdo-block"))]
@@ -669,7 +671,7 @@ impl SdoServer {
         let Ok(b) = <&[u8; 8]>::try_from(data) else { return Response::NONE };
         let r = self.dispatch(b, od);
         if self.is_idle() {
-            self.deadline = None;
+            self.deadline = Deadline::NONE;
         } else {
             self.touch(now);
         }
@@ -677,7 +679,7 @@ impl SdoServer {
     }
 
     fn touch(&mut self, now: Instant) {
-        self.deadline = if self.timeout.is_zero() { None } else { Some(now + self.timeout) };
+        self.deadline = if self.timeout.is_zero() { Deadline::NONE } else { Deadline::new(Some(now + self.timeout)) };
     }
 
     fn mux(&self) -> Option<Multiplexer> {
@@ -698,7 +700,7 @@ impl SdoServer {
             _ => {}
         }
         self.state = State::Idle;
-        self.deadline = None;
+        self.deadline = Deadline::NONE;
     }
 
     /// Ends the transfer with an abort frame (SDO-32) and [`SdoEvent::Aborted`]. Out of line: it is reached
