@@ -63,7 +63,7 @@ use crate::sdo::{Response, SdoEvent, SdoServer, SdoServerParams};
 use crate::sizes::{Sizes, Slots};
 use crate::storage::{self, Groups, NoStorage, Storage};
 use crate::sync::Sync;
-use crate::time::{Deadline, Instant};
+use crate::time::Instant;
 use crate::wire::error_control::{Heartbeat, StateCode};
 use crate::wire::nmt::NodeControl;
 use dict::{NodeDict, SaveFn};
@@ -482,9 +482,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         #[cfg(feature = "lss")]
         {
-            t = t.min(Deadline::new(self.lss.poll_timeout()));
+            t = t.min(crate::time::Deadline::new(self.lss.poll_timeout()));
         }
-        t = t.min(Deadline::new(self.sdo.poll_timeout()));
+        t = t.min(self.sdo.deadline());
         t = t.min(self.sync.deadline());
         t = t.min(self.emcy_timeout());
         t = t.min(self.pdo_timeout());
@@ -496,7 +496,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.ensure_booted(now);
         #[cfg(feature = "lss")]
         self.lss_timeout(now);
-        if self.sdo.poll_timeout().is_some_and(|t| t <= now) {
+        if self.sdo.deadline().passed(now) {
             let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let response = self.sdo.handle_timeout(now, &mut od);
             self.sdo_response(now, response);

@@ -607,15 +607,18 @@ impl SdoServer {
     /// # use canopen_core::sdo::{SdoServer, SdoServerParams};
     /// assert_eq!(SdoServer::new(SdoServerParams::DISABLED).poll_timeout(), None);
     /// ```
-    #[inline(never)] // 64-bit arithmetic for the block download stall (~130 B on Cortex-M), used in 3 places
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        match self.deadline.get() {
-            #[cfg(feature = "sdo-block")]
-            Some(d) => Some(self.block_download_deadline(d)),
-            #[cfg(not(feature = "sdo-block"))]
-            Some(d) => Some(d),
-            None => None,
+        self.deadline().get()
+    }
+
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
+    #[inline(never)] // 64-bit arithmetic for the block download stall (~130 B on Cortex-M), used in 3 places
+    pub(crate) const fn deadline(&self) -> Deadline {
+        #[cfg(feature = "sdo-block")]
+        if let Some(d) = self.deadline.get() {
+            return Deadline::new(Some(self.block_download_deadline(d)));
         }
+        self.deadline
     }
 
     /// Aborts a transfer whose deadline has passed with 0504 0000h (SDO-31, ABORT-02).
