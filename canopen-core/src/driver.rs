@@ -285,10 +285,10 @@ async fn service<N: SansIo, S: Shared<N>, T: CanTx>(
             // it per frame sent was the minimum over every service each time (about 70 instructions).
             match n.poll_event() {
                 Some(e) => (Some(e), None, None),
-                None => match n.peek_transmit() {
-                    Some(f) => (None, Some(f), None),
-                    None => (None, None, n.poll_timeout()),
-                },
+                None => {
+                    let next = n.peek_transmit();
+                    (None, next, if next.is_none() { n.poll_timeout() } else { None })
+                }
             }
         });
         if let Some(e) = event {
