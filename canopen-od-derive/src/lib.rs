@@ -593,7 +593,10 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         let dt = Ident::new(r.dt, Span::call_site());
         let (access, pdo) = (&r.access, &r.pdo);
         quote! {
-            #core::od::SubInfo { data_type: #core::od::DataType::#dt, access: #access, pdo: #pdo, size: 0 }
+            #core::od::SubInfo {
+                data_type: #core::od::DataType::#dt, access: #access, pdo: #pdo,
+                size: match #core::od::DataType::#dt.size() { ::core::option::Option::Some(n) => n, ::core::option::Option::None => 0 },
+            }
         }
     });
     let object_descs = objects.iter().map(|o| {
@@ -715,7 +718,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             impl #ident {
                 /// The object-dictionary entries of this struct, sorted by (index, sub-index).
                 pub const OD_ENTRIES: &'static [#core::od::EntryDesc] = &[#(#entries),*];
-                /// Data type, access and PDO mapping of each entry of `OD_ENTRIES` (`size` unused).
+                /// Data type, access and PDO mapping of each entry of `OD_ENTRIES`; `size` is the fixed size of
+                /// the type (0 for strings and DOMAINs), not the current one.
                 const __OD_INFO: &'static [#core::od::SubInfo] = &[#(#infos),*];
                 /// The objects of this struct, sorted by index.
                 pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
@@ -841,14 +845,16 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     if !e.access.writable() {
                         return ::core::result::Result::Err(__AbortCode::WriteOfReadOnly);
                     }
-                    match e.data_type.size() {
-                        ::core::option::Option::Some(n) => {
-                            let bytes = data.get(..len.unwrap_or(n.min(4))).unwrap_or(data);
-                            self.__od_write(pos, bytes)
-                        }
-                        ::core::option::Option::None => {
+                    // The row's size is the type's fixed size (0: a string or DOMAIN), known at compile time:
+                    // no match on the data type per download.
+                    match e.size {
+                        0 => {
                             let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
                             #core::od::write_whole_stream(self, index, sub, bytes)
+                        }
+                        n => {
+                            let bytes = data.get(..len.unwrap_or(n.min(4))).unwrap_or(data);
+                            self.__od_write(pos, bytes)
                         }
                     }
                 }
