@@ -467,9 +467,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.events.pop_front()
     }
 
-    /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work to do. Out of line: the
-    /// driver calls it once per wake-up, and inlined into its future it cost firmware flash (footprint.sh).
-    #[inline(never)]
+    /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work to do.
     pub fn poll_timeout(&self) -> Option<Instant> {
         if self.boot_pending {
             return Some(Instant::ZERO);
