@@ -26,15 +26,14 @@ pub enum LssEvent {
     },
     /// Configure bit timing set the pending bit rate.
     BitRateConfigured(BitRate),
-    /// Activate bit timing was received: the bit rate switches at `switch_at`, transmission resumes at
-    /// `resume_at` (switch delay after switch delay).
+    /// Activate bit timing was received: the bit rate switches one switch delay later
+    /// ([`LssEvent::SwitchBitRate`]), transmission resumes one more switch delay after that
+    /// ([`LssEvent::TransmitResumed`]; [`LssSlave::poll_timeout`] has the instants).
     BitRateActivation {
         /// The pending bit rate that becomes active.
         bit_rate: BitRate,
-        /// End of the first delay period: switch the controller then.
-        switch_at: Instant,
-        /// End of the second delay period: the node transmits again.
-        resume_at: Instant,
+        /// The switch delay, ms: the length of each of the two periods.
+        switch_delay_ms: u16,
     },
     /// The first switch delay has passed: the driver switches the controller to `bit_rate` now. The node
     /// holds its transmit queue until [`LssEvent::TransmitResumed`].
@@ -445,12 +444,13 @@ impl LssSlave {
                 out.response = Some(LssResponse::BitTimingConfigured(status));
             }
             cs::ACTIVATE_BIT_TIMING if configuration => {
-                let delay = Duration::from_millis(u64::from(u16::from_le_bytes([d[1], d[2]])));
+                let switch_delay_ms = u16::from_le_bytes([d[1], d[2]]);
+                let delay = Duration::from_millis(u64::from(switch_delay_ms));
                 let switch_at = now + delay;
                 let resume_at = switch_at + delay;
                 self.switch =
                     Some(BitSwitch { bit_rate: self.pending_bit_rate, switch_at, resume_at, switched: false });
-                out.event = Some(LssEvent::BitRateActivation { bit_rate: self.pending_bit_rate, switch_at, resume_at });
+                out.event = Some(LssEvent::BitRateActivation { bit_rate: self.pending_bit_rate, switch_delay_ms });
             }
             cs::STORE_CONFIGURATION if configuration => {
                 if self.store_supported {
@@ -700,14 +700,7 @@ mod tests {
         let t = Instant::from_millis(1000);
         let out = s.handle_request(t, &LssRequest::ActivateBitTiming { switch_delay_ms: 100 }.emit());
         assert_eq!(out.response, None);
-        assert_eq!(
-            out.event,
-            Some(LssEvent::BitRateActivation {
-                bit_rate: BitRate::K250,
-                switch_at: Instant::from_millis(1100),
-                resume_at: Instant::from_millis(1200)
-            })
-        );
+        assert_eq!(out.event, Some(LssEvent::BitRateActivation { bit_rate: BitRate::K250, switch_delay_ms: 100 }));
         assert!(!s.holds_transmit(Instant::from_millis(1099)));
         assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1100)));
         assert_eq!(s.handle_timeout(Instant::from_millis(1099)), None);

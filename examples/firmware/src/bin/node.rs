@@ -90,7 +90,7 @@ struct Device {
 /// NMT + heartbeat producer + 4 heartbeat consumers + SDO server (with block transfer) + 4 RPDOs + 4 TPDOs,
 /// transmit and event queues of 8: the driver drains both after every frame and every deadline, and the
 /// largest burst one step makes is entering Operational or a SYNC (4 TPDOs, plus an EMCY or an SDO
-/// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 20 B of events).
+/// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 12 B of events).
 type DeviceNode = Node<Device, Sizes<4, 8, 8, 4, 4>, Store>;
 
 /// Parameters and LSS configuration in the on-chip flash (feature `store`, on by default).
