@@ -24,7 +24,7 @@ pub use dict::{CommProfile, Unchecked};
 
 use crate::abort::AbortCode;
 use crate::heartbeat::ConsumerSizes;
-use crate::pdo::{PdoComm, PdoDefault, PdoMapParams};
+use crate::pdo::{mapping::MAX_ENTRIES, PdoComm, PdoDefault, PdoMapParams};
 use crate::sizes::{Sizes, Slots};
 use crate::sync::SyncParams;
 
@@ -292,13 +292,56 @@ impl<Z: ProfileSizes> CommParams<Z> {
 /// directions and every `Z`.
 fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], defaults: &[PdoDefault], base: u16, node_id: u8) {
     for (k, (c, m)) in comm.iter_mut().zip(map).enumerate() {
-        (*c, *m) = defaults.get(k).unwrap_or(&PdoDefault::UNUSED).params(k, base, node_id);
+        let d = defaults.get(k).unwrap_or(&PdoDefault::UNUSED);
+        *c = d.params(k, base, node_id).0;
+        // The mapping written in place (`PdoMapParams::from_slice` in place): through `params`' tuple it went
+        // via three copies on the stack.
+        let raw = d.mapping.get(..MAX_ENTRIES).unwrap_or(d.mapping);
+        m.entries = [0; MAX_ENTRIES];
+        if let Some(dst) = m.entries.get_mut(..raw.len()) {
+            dst.copy_from_slice(raw);
+        }
+        m.count = raw.len() as u8;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The power-on mappings (PDO-30..33) are the defaults' entries, as `PdoMapParams::from_slice` reads them:
+    /// none, one, eight, and a ninth entry beyond [`MAX_ENTRIES`] left out; PDOs past the defaults are empty.
+    #[test]
+    fn for_node_fills_the_default_mappings() {
+        const NINE: [u32; 9] = [
+            0x6000_0108,
+            0x6001_0108,
+            0x6002_0108,
+            0x6003_0108,
+            0x6004_0108,
+            0x6005_0108,
+            0x6006_0108,
+            0x6007_0108,
+            0x6008_0108,
+        ];
+        const EIGHT: [u32; 8] =
+            [0x6000_0108, 0x6001_0108, 0x6002_0108, 0x6003_0108, 0x6004_0108, 0x6005_0108, 0x6006_0108, 0x6007_0108];
+        static RPDO: [PdoDefault; 3] = [
+            PdoDefault { mapping: &[], ..PdoDefault::EVENT },
+            PdoDefault { mapping: &[0x6200_0108], ..PdoDefault::EVENT },
+            PdoDefault { mapping: &EIGHT, ..PdoDefault::EVENT },
+        ];
+        static TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &NINE, ..PdoDefault::EVENT }];
+        let cfg = NodeConfig { rpdo: &RPDO, tpdo: &TPDO, ..NodeConfig::DEFAULT };
+        let p: CommParams<Sizes<0, 8, 8, 4, 2>> = CommParams::for_node(&cfg, 5);
+        for (k, m) in p.rpdo_map.iter().enumerate() {
+            assert_eq!(*m, PdoMapParams::from_slice(cfg.rpdo_default(k).mapping), "RPDO {k}");
+        }
+        assert_eq!((p.rpdo_map[2].count, p.rpdo_map[3].count), (8, 0));
+        assert_eq!(p.tpdo_map[0], PdoMapParams::from_slice(&EIGHT));
+        assert_eq!(p.tpdo_map[1], PdoMapParams::from_slice(&[]));
+        assert_eq!(p.rpdo_comm[1], cfg.rpdo_default(1).params(1, 0x200, 5).0);
+    }
 
     /// 1016h entries 0002 0064h (node 2, 100 ms), 0003 0190h (node 3, 400 ms), 0007 0FA0h (node 7, 4000 ms);
     /// node 2 in a second entry refused with 0604 0043h; an entry disabled by 0.
