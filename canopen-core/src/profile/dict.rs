@@ -160,9 +160,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// assert_eq!(od.params.heartbeat_time_ms, 0);
     /// ```
     pub fn reset_communication(&mut self) {
-        let err = self.params.error_register;
-        self.params = CommParams::for_node(&self.config, self.node_id);
-        self.params.error_register = err;
+        self.params.set_defaults(&self.config, self.node_id);
     }
 
     fn pdo_obj(index: u16) -> Option<PdoObj> {
