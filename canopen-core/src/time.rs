@@ -221,14 +221,31 @@ impl Deadline {
         }
     }
 
+    /// A deadline at `t`.
+    ///
+    /// ```
+    /// use canopen_core::time::{Deadline, Instant};
+    /// assert_eq!(Deadline::at(Instant::from_millis(5)).get(), Some(Instant::from_millis(5)));
+    /// ```
+    pub const fn at(t: Instant) -> Self {
+        Deadline(t.0)
+    }
+
+    /// The instant (`u64::MAX` µs when there is no deadline): for a caller that has just seen it
+    /// [`passed`](Self::passed).
+    pub(crate) const fn instant(self) -> Instant {
+        Instant(self.0)
+    }
+
     /// Sets or clears the deadline.
     pub fn set(&mut self, t: Option<Instant>) {
         *self = Self::new(t);
     }
 
-    /// Whether there is a deadline and `now` has reached it.
+    /// Whether there is a deadline and `now` has reached it. One comparison: no deadline is `u64::MAX` µs,
+    /// which no instant reaches (instants are below 2⁶³ µs, see [`Instant`]).
     pub const fn passed(self, now: Instant) -> bool {
-        self.0 != u64::MAX && self.0 <= now.0
+        self.0 <= now.0
     }
 }
 
@@ -274,5 +291,10 @@ mod tests {
             assert_ne!(Deadline::new(Some(sum)), Deadline::NONE);
         }
         assert_eq!((last + Duration::MAX).as_micros(), u64::MAX - 1);
+        // No deadline is never passed, at any instant of the bound or at the largest sum.
+        for t in [Instant::ZERO, last, last + Duration::MAX] {
+            assert!(!Deadline::NONE.passed(t));
+            assert!(Deadline::at(t).passed(t));
+        }
     }
 }
