@@ -534,6 +534,9 @@ impl LssSlave {
         self.switch.is_some_and(|s| now >= s.switch_at && now < s.resume_at)
     }
 
+    /// Enters `mode` (restarting switch state selective); the event when the mode changed. Out of line: four
+    /// requests enter a mode, none of them hot.
+    #[inline(never)]
     fn enter(&mut self, mode: LssMode) -> Option<LssEvent> {
         self.selective_next = 0x40;
         if self.mode == mode {
