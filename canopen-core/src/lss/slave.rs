@@ -546,18 +546,18 @@ impl LssSlave {
         Some(LssEvent::ModeChanged(mode))
     }
 
-    /// Whether `value` matches the part of identify remote slave that `command` (46h-4Bh) names: vendor-ID and
-    /// product code exactly, revision and serial number as low (48h, 4Ah) and high (49h, 4Bh) bounds.
+    /// Whether `value` matches the part of identify remote slave that `command` (46h-4Bh) names: 46h vendor-ID
+    /// and 47h product code exactly (`<=` and `>=`), 48h/4Ah the low bound of the revision/serial number
+    /// (`value <= own`), 49h/4Bh the high bound (`value >= own`).
     fn identify_matches(&self, command: u8, value: u32) -> bool {
-        let [vendor, product, revision, serial] = self.address;
-        match command {
-            0x46 => value == vendor,
-            0x47 => value == product,
-            0x48 => value <= revision,
-            0x49 => value >= revision,
-            0x4A => value <= serial,
-            _ => value >= serial,
-        }
+        const PART: [u8; 6] = [0, 1, 2, 2, 3, 3]; // the LSS address part of 46h..4Bh
+        const LOW: u8 = 0b01_0111; // the parts that need `value <= own`
+        const HIGH: u8 = 0b10_1011; // the parts that need `value >= own`
+        let i = command.wrapping_sub(cs::IDENTIFY_REMOTE_VENDOR);
+        let Some(&own) = PART.get(usize::from(i)).and_then(|&p| self.address.get(usize::from(p))) else {
+            return false;
+        };
+        (LOW >> i & 1 == 0 || value <= own) && (HIGH >> i & 1 == 0 || value >= own)
     }
 
     /// One fastscan step (CANopenNode/lely rule; see the module docs).
@@ -763,7 +763,10 @@ mod tests {
         assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 78, 100), None);
         assert_eq!(run(&mut s, 0x123, 0x42, 0, 0x0001_0001, 0, 100), None);
         assert_eq!(run(&mut s, 0x124, 0x42, 0, u32::MAX, 0, u32::MAX), None);
-        // Served in configuration too.
+        assert_eq!(run(&mut s, 0x123, 0x43, 0, u32::MAX, 0, u32::MAX), None); // product code
+        assert_eq!(run(&mut s, 0x123, 0x42, 0x0001_0003, u32::MAX, 0, u32::MAX), None); // revision low bound
+        assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 0, 76), None); // serial high bound
+                                                                        // Served in configuration too.
         config(&mut s);
         assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 0, u32::MAX), Some(LssResponse::IdentifySlave));
         // Only the last part on its own: nothing.
