@@ -574,11 +574,10 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         if !f.ty.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
-        let size = f.ty.size(); // every writable entry is numeric, 1..=4 bytes
-        check_len(data, size)?;
-        let mut le = [0u8; 4];
-        le.get_mut(..size).ok_or(AbortCode::UnsupportedAccess)?.copy_from_slice(data);
-        self.set(f, sub, u32::from_le_bytes(le), rules)
+        check_len(data, f.ty.size())?; // every writable entry is numeric, 1..=4 bytes
+        // The little-endian value, a byte at a time: no copy call and no length check that cannot fail.
+        let v = data.iter().rev().fold(0, |v, &b| v << 8 | u32::from(b));
+        self.set(f, sub, v, rules)
     }
 
     fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
