@@ -574,8 +574,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         if !f.ty.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
-        check_len(data, f.ty.size())?; // every writable entry is numeric, 1..=4 bytes
-        // The little-endian value, a byte at a time: no copy call and no length check that cannot fail.
+        // Every writable entry is numeric, 1..=4 bytes; the little-endian value is folded from exactly those
+        // bytes (no copy call, no length check that cannot fail).
+        check_len(data, f.ty.size())?;
         let v = data.iter().rev().fold(0, |v, &b| v << 8 | u32::from(b));
         self.set(f, sub, v, rules)
     }
