@@ -333,7 +333,7 @@ fn bit_timing_configure_and_activate() {
     assert!(bus.take_master_rx().is_empty(), "activate bit timing is not answered");
     assert_eq!(
         lss_events(&mut bus.stations[0]),
-        vec![LssEvent::BitRateActivation { bit_rate: BitRate::K250, switch_at: ms(1100), resume_at: ms(1200) }]
+        vec![LssEvent::BitRateActivation { bit_rate: BitRate::K250, switch_delay_ms: 100 }]
     );
     bus.run_until(ms(1100));
     assert_eq!(lss_events(&mut bus.stations[0]), vec![LssEvent::SwitchBitRate(BitRate::K250)]);

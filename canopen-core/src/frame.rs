@@ -22,9 +22,46 @@ pub const MAX_STANDARD_ID: u16 = 0x7FF;
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct CanFrame {
     id: u16,
-    len: u8,
+    len: Len,
     rtr: bool,
     data: [u8; 8],
+}
+
+/// A data length 0–8 as a type whose values the compiler knows: reading `len` then needs no range check, so
+/// [`CanFrame::data`] has no bounds check (and no panic path) where a frame is read.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u8)]
+enum Len {
+    L0,
+    L1,
+    L2,
+    L3,
+    L4,
+    L5,
+    L6,
+    L7,
+    L8,
+}
+
+impl Len {
+    /// `n` bytes, 8 for anything above.
+    const fn at_most_8(n: usize) -> Len {
+        match n {
+            0 => Len::L0,
+            1 => Len::L1,
+            2 => Len::L2,
+            3 => Len::L3,
+            4 => Len::L4,
+            5 => Len::L5,
+            6 => Len::L6,
+            7 => Len::L7,
+            _ => Len::L8,
+        }
+    }
+
+    const fn get(self) -> u8 {
+        self as u8
+    }
 }
 
 impl CanFrame {
@@ -41,7 +78,7 @@ impl CanFrame {
         }
         let mut buf = [0u8; 8];
         buf[..data.len()].copy_from_slice(data);
-        Some(CanFrame { id: cob_id, len: data.len() as u8, rtr: false, data: buf })
+        Some(CanFrame { id: cob_id, len: Len::at_most_8(data.len()), rtr: false, data: buf })
     }
 
     /// A remote (RTR) frame with the given DLC; `None` if the identifier or DLC is out of range.
@@ -57,7 +94,7 @@ impl CanFrame {
         if cob_id > MAX_STANDARD_ID || dlc > 8 {
             return None;
         }
-        Some(CanFrame { id: cob_id, len: dlc, rtr: true, data: [0; 8] })
+        Some(CanFrame { id: cob_id, len: Len::at_most_8(dlc as usize), rtr: true, data: [0; 8] })
     }
 
     /// A data frame from an identifier the stack computed itself and a full 8-byte payload of which the
@@ -71,8 +108,7 @@ impl CanFrame {
     /// ```
     #[inline]
     pub const fn from_parts(cob_id: u16, data: [u8; 8], len: u8) -> Self {
-        let len = if len > 8 { 8 } else { len };
-        CanFrame { id: cob_id & MAX_STANDARD_ID, len, rtr: false, data }
+        CanFrame { id: cob_id & MAX_STANDARD_ID, len: Len::at_most_8(len as usize), rtr: false, data }
     }
 
     /// The 11-bit identifier (the COB-ID's CAN-ID part).
@@ -105,7 +141,7 @@ impl CanFrame {
     /// ```
     #[inline]
     pub const fn dlc(&self) -> u8 {
-        self.len
+        self.len.get()
     }
 
     /// The data bytes (empty for an RTR frame).
@@ -119,7 +155,7 @@ impl CanFrame {
         if self.rtr {
             &[]
         } else {
-            &self.data[..self.len as usize]
+            &self.data[..self.len.get() as usize]
         }
     }
 
@@ -164,7 +200,7 @@ impl CanFrame {
     pub fn to_frame<F: Frame>(&self) -> Option<F> {
         let id = StandardId::new(self.id)?;
         if self.rtr {
-            F::new_remote(id, self.len as usize)
+            F::new_remote(id, usize::from(self.len.get()))
         } else {
             F::new(id, self.data())
         }
@@ -200,7 +236,7 @@ impl Frame for CanFrame {
     }
 
     fn dlc(&self) -> usize {
-        self.len as usize
+        usize::from(self.len.get())
     }
 
     fn data(&self) -> &[u8] {
@@ -215,7 +251,7 @@ impl defmt::Format for CanFrame {
         if self.rtr {
             defmt::write!(f, "{=u16:03X} [RTR]", self.id)
         } else {
-            defmt::write!(f, "{=u16:03X} [{=u8}] {=[u8]:02X}", self.id, self.len, self.data())
+            defmt::write!(f, "{=u16:03X} [{=u8}] {=[u8]:02X}", self.id, self.len.get(), self.data())
         }
     }
 }
@@ -227,7 +263,7 @@ impl core::fmt::Debug for CanFrame {
         if self.rtr {
             return write!(f, "[RTR]");
         }
-        write!(f, "[{}]", self.len)?;
+        write!(f, "[{}]", self.len.get())?;
         for b in self.data() {
             write!(f, " {b:02X}")?;
         }
@@ -266,6 +302,24 @@ mod tests {
         let mut s = S(heapless::String::new());
         core::fmt::write(&mut s, format_args!("{:?}", CanFrame::new_rtr(0x705, 0).unwrap())).unwrap();
         assert_eq!(s.0.as_str(), "705 [RTR]");
+    }
+
+    /// Every length 0..=8 keeps its bytes; `from_parts` clamps a length above 8 and masks the identifier.
+    #[test]
+    fn lengths_round_trip_and_clamp() {
+        let bytes = [1, 2, 3, 4, 5, 6, 7, 8];
+        for n in 0..=8 {
+            let f = CanFrame::new(0x181, &bytes[..n]).unwrap();
+            assert_eq!((f.dlc(), f.data()), (n as u8, &bytes[..n]));
+            let mut padded = [0; 8];
+            padded[..n].copy_from_slice(&bytes[..n]);
+            assert_eq!(CanFrame::from_parts(0x181, padded, n as u8), f);
+            assert_eq!(CanFrame::new_rtr(0x181, n as u8).map(|r| r.dlc()), Some(n as u8));
+        }
+        for n in [9, 15, 255] {
+            let f = CanFrame::from_parts(0xF181, bytes, n);
+            assert_eq!((f.cob_id(), f.dlc(), f.data()), (0x181, 8, &bytes[..]));
+        }
     }
 
     #[test]

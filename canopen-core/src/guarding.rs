@@ -100,14 +100,12 @@ impl Guarding {
 
     /// Reports [`LifeGuardingEvent::Timeout`] once when the node life time has elapsed at `now` (GUARD-10).
     pub fn handle_timeout(&mut self, now: Instant) -> Option<LifeGuardingEvent> {
-        match self.deadline.get() {
-            Some(d) if d <= now => {
-                self.deadline = Deadline::NONE;
-                self.timed_out = true;
-                Some(LifeGuardingEvent::Timeout)
-            }
-            _ => None,
+        if !self.deadline.passed(now) {
+            return None;
         }
+        self.deadline = Deadline::NONE;
+        self.timed_out = true;
+        Some(LifeGuardingEvent::Timeout)
     }
 }
 

@@ -109,14 +109,12 @@ impl HeartbeatProducer {
     /// Whether a heartbeat is due at `now`; if so, schedules the next one. A runner that fell behind by more
     /// than a period sends one heartbeat, not a burst.
     pub fn due(&mut self, now: Instant) -> bool {
-        match self.next.get() {
-            Some(next) if next <= now => {
-                let following = next + self.period();
-                self.next.set(Some(if following <= now { now + self.period() } else { following }));
-                true
-            }
-            _ => false,
+        if !self.next.passed(now) {
+            return false;
         }
+        let following = self.next.instant() + self.period();
+        self.next = Deadline::at(if following <= now { now + self.period() } else { following });
+        true
     }
 }
 

@@ -19,15 +19,17 @@ use crate::wire::{error_control::StateCode, nmt::NmtCommand};
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+// In the order of how much a state allows (Stopped before Pre-operational), so that `allows` is one comparison
+// of the discriminant for most services.
 pub enum NmtState {
     /// Initialization (before boot-up; no communication).
     Initialising,
+    /// Stopped: only NMT and error control.
+    Stopped,
     /// Pre-operational: SDO, no PDO.
     PreOperational,
     /// Operational: all services.
     Operational,
-    /// Stopped: only NMT and error control.
-    Stopped,
 }
 
 /// The communication services whose availability depends on the NMT state (NMT-18, 000 Table 37).

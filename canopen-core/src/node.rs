@@ -842,7 +842,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// HB-13, GUARD-11, NMT-26, ERR-10..13: a communication error; 1029h sub 01h says what happens: 0 (the
-    /// default) Operational → Pre-operational, 1 no change, 2 Stopped, 80h–FFh (manufacturer) as 1.
+    /// default) Operational → Pre-operational, 1 no change, 2 Stopped, 80h–FFh (manufacturer) as 1. Out of
+    /// line: reached from the bus-off report and every error-control time-out, all rare.
+    #[inline(never)]
     fn communication_error(&mut self, _now: Instant) {
         match self.comm.params.error_behaviour {
             0 if self.nmt.state() == NmtState::Operational => self.enter_state(NmtState::PreOperational),

@@ -8,6 +8,12 @@ use core::ops::{Add, AddAssign, Sub};
 
 /// A point on the caller's monotonic clock, in microseconds.
 ///
+/// The arithmetic relies on one bound: an instant is below 2⁶³ µs (some 292,000 years after the runner's
+/// epoch) and a [`Duration`] is at most [`Duration::MAX`] (2⁶³ − 1 µs, its constructors clamp), so
+/// `Instant + Duration` never overflows a `u64` and is a plain addition (two instructions on a Cortex-M, where
+/// a saturating one costs six: 324 B of the firmware's flash). An instant beyond the bound wraps; it never
+/// panics.
+///
 /// ```
 /// use canopen_core::time::{Duration, Instant};
 /// let t = Instant::from_millis(5) + Duration::from_micros(250);
@@ -61,7 +67,7 @@ impl Instant {
     /// assert_eq!(a.saturating_duration_since(b), Duration::ZERO);
     /// ```
     pub const fn saturating_duration_since(self, earlier: Instant) -> Duration {
-        Duration(self.0.saturating_sub(earlier.0))
+        Duration::from_micros(self.0.saturating_sub(earlier.0))
     }
 }
 
@@ -80,14 +86,28 @@ impl Duration {
     /// No time at all.
     pub const ZERO: Duration = Duration(0);
 
-    /// `us` microseconds.
+    /// The longest duration, 2⁶³ − 1 µs (some 292,000 years): the constructors clamp to it, so that adding
+    /// one to an [`Instant`] never overflows (see [`Instant`]).
+    ///
+    /// ```
+    /// # use canopen_core::time::Duration;
+    /// assert_eq!(Duration::from_millis(u64::MAX), Duration::MAX);
+    /// ```
+    pub const MAX: Duration = Duration(i64::MAX as u64);
+
+    /// `us` microseconds, at most [`Duration::MAX`].
     ///
     /// ```
     /// # use canopen_core::time::Duration;
     /// assert_eq!(Duration::from_micros(9).as_micros(), 9);
+    /// assert_eq!(Duration::from_micros(u64::MAX), Duration::MAX);
     /// ```
     pub const fn from_micros(us: u64) -> Self {
-        Duration(us)
+        if us > Self::MAX.0 {
+            Self::MAX
+        } else {
+            Duration(us)
+        }
     }
 
     /// `ms` milliseconds (the unit of 1017h, 1016h, 100Ch and event timers).
@@ -97,7 +117,7 @@ impl Duration {
     /// assert_eq!(Duration::from_millis(9).as_micros(), 9_000);
     /// ```
     pub const fn from_millis(ms: u64) -> Self {
-        Duration(ms.saturating_mul(1_000))
+        Self::from_micros(ms.saturating_mul(1_000))
     }
 
     /// `n` × 100 µs (the unit of inhibit times, 1015h and 18xxh sub 3).
@@ -107,7 +127,7 @@ impl Duration {
     /// assert_eq!(Duration::from_100us(10), Duration::from_millis(1));
     /// ```
     pub const fn from_100us(n: u64) -> Self {
-        Duration(n.saturating_mul(100))
+        Self::from_micros(n.saturating_mul(100))
     }
 
     /// The length in microseconds.
@@ -131,10 +151,11 @@ impl Duration {
     }
 }
 
+/// A plain addition: no overflow below the bound of [`Instant`], a wrap (not a panic) above it.
 impl Add<Duration> for Instant {
     type Output = Instant;
     fn add(self, rhs: Duration) -> Instant {
-        Instant(self.0.saturating_add(rhs.0))
+        Instant(self.0.wrapping_add(rhs.0))
     }
 }
 
@@ -151,16 +172,17 @@ impl Sub<Instant> for Instant {
     }
 }
 
+/// At most [`Duration::MAX`].
 impl Add for Duration {
     type Output = Duration;
     fn add(self, rhs: Duration) -> Duration {
-        Duration(self.0.saturating_add(rhs.0))
+        Duration::from_micros(self.0.saturating_add(rhs.0))
     }
 }
 
 /// An optional deadline in 8 bytes, where `Option<Instant>` takes 16 (a flag padded to the `u64`'s
 /// alignment): what the services keep their timers in. The instant `u64::MAX` µs (some 585,000 years after
-/// the runner's epoch) stands for "no deadline"; an instant that saturates there is never reached anyway.
+/// the runner's epoch) stands for "no deadline"; an instant plus a duration never reaches it (see [`Instant`]).
 ///
 /// ```
 /// use canopen_core::time::{Deadline, Instant};
@@ -199,14 +221,31 @@ impl Deadline {
         }
     }
 
+    /// A deadline at `t`.
+    ///
+    /// ```
+    /// use canopen_core::time::{Deadline, Instant};
+    /// assert_eq!(Deadline::at(Instant::from_millis(5)).get(), Some(Instant::from_millis(5)));
+    /// ```
+    pub const fn at(t: Instant) -> Self {
+        Deadline(t.0)
+    }
+
+    /// The instant (`u64::MAX` µs when there is no deadline): for a caller that has just seen it
+    /// [`passed`](Self::passed).
+    pub(crate) const fn instant(self) -> Instant {
+        Instant(self.0)
+    }
+
     /// Sets or clears the deadline.
     pub fn set(&mut self, t: Option<Instant>) {
         *self = Self::new(t);
     }
 
-    /// Whether there is a deadline and `now` has reached it.
+    /// Whether there is a deadline and `now` has reached it. One comparison: no deadline is `u64::MAX` µs,
+    /// which no instant reaches (instants are below 2⁶³ µs, see [`Instant`]).
     pub const fn passed(self, now: Instant) -> bool {
-        self.0 != u64::MAX && self.0 <= now.0
+        self.0 <= now.0
     }
 }
 
@@ -230,4 +269,32 @@ pub fn earliest(a: Option<Instant>, b: Option<Instant>) -> Option<Instant> {
 #[cfg(test)]
 pub(crate) const fn ms(v: u64) -> Instant {
     Instant::from_millis(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bound of [`Instant`]: below 2⁶³ µs, adding any duration (clamped to [`Duration::MAX`]) neither
+    /// wraps nor reaches [`Deadline::NONE`]; every constructor and the sums clamp to the maximum.
+    #[test]
+    fn durations_clamp_and_sums_stay_below_no_deadline() {
+        for d in [Duration::from_micros(u64::MAX), Duration::from_millis(u64::MAX), Duration::from_100us(u64::MAX)] {
+            assert_eq!(d, Duration::MAX);
+        }
+        assert_eq!(Duration::MAX + Duration::MAX, Duration::MAX);
+        assert_eq!(Instant::from_micros(u64::MAX) - Instant::ZERO, Duration::MAX);
+        let last = Instant::from_micros((1 << 63) - 1);
+        for t in [Instant::ZERO, Instant::from_millis(1_000), last] {
+            let sum = t + Duration::MAX;
+            assert!(sum >= t, "{t:?} + MAX wrapped");
+            assert_ne!(Deadline::new(Some(sum)), Deadline::NONE);
+        }
+        assert_eq!((last + Duration::MAX).as_micros(), u64::MAX - 1);
+        // No deadline is never passed, at any instant of the bound or at the largest sum.
+        for t in [Instant::ZERO, last, last + Duration::MAX] {
+            assert!(!Deadline::NONE.passed(t));
+            assert!(Deadline::at(t).passed(t));
+        }
+    }
 }

@@ -50,7 +50,9 @@
 //! Configure bit timing checks the index against the CiA 301 table (selector 0 only) and the rates the
 //! application declared ([`LssSlave::set_supported_bit_rates`]), and reports the pending rate as
 //! [`LssEvent::BitRateConfigured`]. Activate bit timing with switch delay *d* received at *t*: the event
-//! [`LssEvent::BitRateActivation`] carries both instants; at *t + d* the node reports
+//! [`LssEvent::BitRateActivation`] carries the rate and *d* (the instants are
+//! [`LssSlave::poll_timeout`]'s, and an event holding two 8-byte instants made every queued event 8 bytes
+//! larger); at *t + d* the node reports
 //! [`LssEvent::SwitchBitRate`] (the driver switches its controller then) and holds its transmit queue; at
 //! *t + 2d* it reports [`LssEvent::TransmitResumed`] and sends again. Changing the controller's bit rate
 //! is the driver's business, not the core's.

@@ -4,8 +4,7 @@ use super::Identity;
 use crate::cob::NodeId;
 use crate::time::{Duration, Instant};
 use crate::wire::lss::{
-    BitRate, IdentifyPart, IdentityField, LssMode, LssRequest, LssResponse, Status, FASTSCAN_CONFIRM,
-    UNCONFIGURED_NODE_ID,
+    cs, BitRate, IdentityField, LssMode, LssResponse, Status, FASTSCAN_CONFIRM, UNCONFIGURED_NODE_ID,
 };
 
 /// Something the LSS slave tells the application (inside `Event::Lss`).
@@ -27,15 +26,14 @@ pub enum LssEvent {
     },
     /// Configure bit timing set the pending bit rate.
     BitRateConfigured(BitRate),
-    /// Activate bit timing was received: the bit rate switches at `switch_at`, transmission resumes at
-    /// `resume_at` (switch delay after switch delay).
+    /// Activate bit timing was received: the bit rate switches one switch delay later
+    /// ([`LssEvent::SwitchBitRate`]), transmission resumes one more switch delay after that
+    /// ([`LssEvent::TransmitResumed`]; [`LssSlave::poll_timeout`] has the instants).
     BitRateActivation {
         /// The pending bit rate that becomes active.
         bit_rate: BitRate,
-        /// End of the first delay period: switch the controller then.
-        switch_at: Instant,
-        /// End of the second delay period: the node transmits again.
-        resume_at: Instant,
+        /// The switch delay, ms: the length of each of the two periods.
+        switch_delay_ms: u16,
     },
     /// The first switch delay has passed: the driver switches the controller to `bit_rate` now. The node
     /// holds its transmit queue until [`LssEvent::TransmitResumed`].
@@ -366,54 +364,63 @@ impl LssSlave {
     /// assert_eq!(out.response, Some(LssResponse::IdentifyNonConfiguredSlave));
     /// ```
     pub fn handle_request(&mut self, now: Instant, data: &[u8]) -> LssOutput {
-        let Ok(request) = LssRequest::parse(data) else {
-            return LssOutput::default();
-        };
-        let configuration = self.mode == LssMode::Configuration;
         let mut out = LssOutput::default();
-        match request {
-            LssRequest::SwitchStateGlobal(LssMode::Waiting) => {
-                // CANopenNode CO_LSSslave.c: an unconfigured node that got a node-ID resets communication.
-                out.reset_communication =
-                    configuration && self.active == UNCONFIGURED_NODE_ID && self.pending != UNCONFIGURED_NODE_ID;
-                out.event = self.enter(LssMode::Waiting);
-            }
-            LssRequest::SwitchStateGlobal(LssMode::Configuration) => out.event = self.enter(LssMode::Configuration),
-            LssRequest::SwitchStateSelective(field, value) if !configuration => {
-                let cs = 0x40 + field.index();
-                let next = if field == IdentityField::VendorId || cs == self.selective_next {
-                    (value == self.address[usize::from(field.index())]).then_some(cs + 1)
+        // Every LSS request is 8 bytes (CAN-07: anything else is ignored).
+        let Ok(d) = <&[u8; 8]>::try_from(data) else { return out };
+        let command = d[0];
+        let value = u32::from_le_bytes([d[1], d[2], d[3], d[4]]);
+        let configuration = self.mode == LssMode::Configuration;
+        // Dispatched on the command specifier: no request enum in between, each arm reads its fields from
+        // the frame (the layouts are `wire::lss`'s table). Unknown specifiers, out-of-range fields and
+        // requests the current state does not serve fall through to silence.
+        match command {
+            cs::SWITCH_STATE_GLOBAL => match LssMode::from_u8(d[1]) {
+                Some(LssMode::Waiting) => {
+                    // CANopenNode CO_LSSslave.c: an unconfigured node that got a node-ID resets communication.
+                    out.reset_communication =
+                        configuration && self.active == UNCONFIGURED_NODE_ID && self.pending != UNCONFIGURED_NODE_ID;
+                    out.event = self.enter(LssMode::Waiting);
+                }
+                Some(LssMode::Configuration) => out.event = self.enter(LssMode::Configuration),
+                None => {}
+            },
+            // 40h-43h: switch state selective, the parts in order (an out-of-order or wrong part restarts).
+            cs::SWITCH_STATE_SELECTIVE_VENDOR..=cs::SWITCH_STATE_SELECTIVE_SERIAL if !configuration => {
+                let part = command - cs::SWITCH_STATE_SELECTIVE_VENDOR;
+                let in_order = command == cs::SWITCH_STATE_SELECTIVE_VENDOR || command == self.selective_next;
+                self.selective_next = if in_order && value == self.address[usize::from(part)] {
+                    command + 1
                 } else {
-                    None
+                    cs::SWITCH_STATE_SELECTIVE_VENDOR
                 };
-                self.selective_next = next.unwrap_or(0x40);
-                if next == Some(0x44) {
-                    self.selective_next = 0x40;
+                if self.selective_next == cs::SWITCH_STATE_SELECTIVE_RESPONSE {
                     out.response = Some(LssResponse::SwitchStateSelective);
-                    out.event = self.enter(LssMode::Configuration);
+                    out.event = self.enter(LssMode::Configuration); // restarts the sequence
                 }
             }
-            LssRequest::IdentifyRemoteSlave(part, value) => {
-                let next = if part == IdentifyPart::VendorId || part.cs() == self.identify_next {
-                    self.identify_matches(part, value).then_some(part.cs() + 1)
+            // 46h-4Bh: identify remote slave, the same in-order rule.
+            cs::IDENTIFY_REMOTE_VENDOR..=cs::IDENTIFY_REMOTE_SERIAL_HIGH => {
+                let in_order = command == cs::IDENTIFY_REMOTE_VENDOR || command == self.identify_next;
+                self.identify_next = if in_order && self.identify_matches(command, value) {
+                    command + 1
                 } else {
-                    None
+                    cs::IDENTIFY_REMOTE_VENDOR
                 };
-                self.identify_next = next.unwrap_or(0x46);
-                if next == Some(0x4C) {
-                    self.identify_next = 0x46;
+                if self.identify_next == cs::IDENTIFY_NON_CONFIGURED_REMOTE {
+                    self.identify_next = cs::IDENTIFY_REMOTE_VENDOR;
                     out.response = Some(LssResponse::IdentifySlave);
                 }
             }
-            LssRequest::IdentifyNonConfiguredRemoteSlave if self.is_unconfigured() => {
+            cs::IDENTIFY_NON_CONFIGURED_REMOTE if self.is_unconfigured() => {
                 out.response = Some(LssResponse::IdentifyNonConfiguredSlave);
             }
-            LssRequest::Fastscan { id_number, bit_check, lss_sub, lss_next }
-                if !configuration && self.is_unconfigured() =>
-            {
-                out = self.fastscan(id_number, bit_check, lss_sub, lss_next);
+            cs::FASTSCAN if !configuration && self.is_unconfigured() => {
+                if let (Some(sub), Some(next)) = (IdentityField::from_index(d[6]), IdentityField::from_index(d[7])) {
+                    out = self.fastscan(value, d[5], sub, next);
+                }
             }
-            LssRequest::ConfigureNodeId(id) if configuration => {
+            cs::CONFIGURE_NODE_ID if configuration => {
+                let id = d[1];
                 let status = if NodeId::new(id).is_some() || id == UNCONFIGURED_NODE_ID {
                     self.pending = id;
                     out.event = Some(LssEvent::NodeIdConfigured { pending: id });
@@ -423,9 +430,9 @@ impl LssSlave {
                 };
                 out.response = Some(LssResponse::NodeIdConfigured(status));
             }
-            LssRequest::ConfigureBitTiming { table_selector, table_index } if configuration => {
-                let rate = BitRate::from_index(table_index)
-                    .filter(|r| table_selector == 0 && self.supported & (1 << r.index()) != 0);
+            cs::CONFIGURE_BIT_TIMING if configuration => {
+                // Byte 1 the table selector (0 only), byte 2 the index.
+                let rate = BitRate::from_index(d[2]).filter(|r| d[1] == 0 && self.supported & (1 << r.index()) != 0);
                 let status = match rate {
                     Some(r) => {
                         self.pending_bit_rate = r;
@@ -436,15 +443,16 @@ impl LssSlave {
                 };
                 out.response = Some(LssResponse::BitTimingConfigured(status));
             }
-            LssRequest::ActivateBitTiming { switch_delay_ms } if configuration => {
+            cs::ACTIVATE_BIT_TIMING if configuration => {
+                let switch_delay_ms = u16::from_le_bytes([d[1], d[2]]);
                 let delay = Duration::from_millis(u64::from(switch_delay_ms));
                 let switch_at = now + delay;
                 let resume_at = switch_at + delay;
                 self.switch =
                     Some(BitSwitch { bit_rate: self.pending_bit_rate, switch_at, resume_at, switched: false });
-                out.event = Some(LssEvent::BitRateActivation { bit_rate: self.pending_bit_rate, switch_at, resume_at });
+                out.event = Some(LssEvent::BitRateActivation { bit_rate: self.pending_bit_rate, switch_delay_ms });
             }
-            LssRequest::StoreConfiguration if configuration => {
+            cs::STORE_CONFIGURATION if configuration => {
                 if self.store_supported {
                     self.store_pending = true;
                     out.event =
@@ -453,10 +461,13 @@ impl LssSlave {
                     out.response = Some(LssResponse::Stored(Status::NOT_SUPPORTED));
                 }
             }
-            LssRequest::Inquire(field) if configuration => {
-                out.response = Some(LssResponse::Identity(field, self.address[usize::from(field.index())]));
+            cs::INQUIRE_VENDOR..=0x5D if configuration => {
+                let field = command - cs::INQUIRE_VENDOR;
+                if let Some(f) = IdentityField::from_index(field) {
+                    out.response = Some(LssResponse::Identity(f, self.address[usize::from(field)]));
+                }
             }
-            LssRequest::InquireNodeId if configuration => out.response = Some(LssResponse::NodeId(self.active)),
+            cs::INQUIRE_NODE_ID if configuration => out.response = Some(LssResponse::NodeId(self.active)),
             _ => {}
         }
         out
@@ -523,6 +534,9 @@ impl LssSlave {
         self.switch.is_some_and(|s| now >= s.switch_at && now < s.resume_at)
     }
 
+    /// Enters `mode` (restarting switch state selective); the event when the mode changed. Out of line: four
+    /// requests enter a mode, none of them hot.
+    #[inline(never)]
     fn enter(&mut self, mode: LssMode) -> Option<LssEvent> {
         self.selective_next = 0x40;
         if self.mode == mode {
@@ -532,16 +546,18 @@ impl LssSlave {
         Some(LssEvent::ModeChanged(mode))
     }
 
-    fn identify_matches(&self, part: IdentifyPart, value: u32) -> bool {
-        let [vendor, product, revision, serial] = self.address;
-        match part {
-            IdentifyPart::VendorId => value == vendor,
-            IdentifyPart::ProductCode => value == product,
-            IdentifyPart::RevisionLow => value <= revision,
-            IdentifyPart::RevisionHigh => value >= revision,
-            IdentifyPart::SerialLow => value <= serial,
-            IdentifyPart::SerialHigh => value >= serial,
-        }
+    /// Whether `value` matches the part of identify remote slave that `command` (46h-4Bh) names: 46h vendor-ID
+    /// and 47h product code exactly (`<=` and `>=`), 48h/4Ah the low bound of the revision/serial number
+    /// (`value <= own`), 49h/4Bh the high bound (`value >= own`).
+    fn identify_matches(&self, command: u8, value: u32) -> bool {
+        const PART: [u8; 6] = [0, 1, 2, 2, 3, 3]; // the LSS address part of 46h..4Bh
+        const LOW: u8 = 0b01_0111; // the parts that need `value <= own`
+        const HIGH: u8 = 0b10_1011; // the parts that need `value >= own`
+        let i = command.wrapping_sub(cs::IDENTIFY_REMOTE_VENDOR);
+        let Some(&own) = PART.get(usize::from(i)).and_then(|&p| self.address.get(usize::from(p))) else {
+            return false;
+        };
+        (LOW >> i & 1 == 0 || value <= own) && (HIGH >> i & 1 == 0 || value >= own)
     }
 
     /// One fastscan step (CANopenNode/lely rule; see the module docs).
@@ -552,11 +568,11 @@ impl LssSlave {
             out.response = Some(LssResponse::IdentifySlave);
             return out;
         }
-        if self.fastscan_pos != sub.index() {
+        // BitCheck is 0..=31 or 80h; a slave ignores any other value.
+        if bit_check > 31 || self.fastscan_pos != sub.index() {
             return out;
         }
-        // bit_check is 0..=31 here (the parser refuses anything else but 80h).
-        let mask = u32::MAX.checked_shl(u32::from(bit_check)).unwrap_or(0);
+        let mask = u32::MAX << bit_check;
         if (id_number ^ self.address[usize::from(sub.index())]) & mask != 0 {
             return out;
         }
@@ -579,7 +595,7 @@ pub(crate) const PLACEHOLDER_NODE_ID: NodeId = match NodeId::new(127) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::wire::lss::cs;
+    use crate::wire::lss::{IdentifyPart, LssRequest};
 
     const ID: Identity = Identity { vendor_id: 0x0000_0123, product_code: 0x42, revision: 0x0001_0002, serial: 77 };
     const T0: Instant = Instant::ZERO;
@@ -687,14 +703,7 @@ mod tests {
         let t = Instant::from_millis(1000);
         let out = s.handle_request(t, &LssRequest::ActivateBitTiming { switch_delay_ms: 100 }.emit());
         assert_eq!(out.response, None);
-        assert_eq!(
-            out.event,
-            Some(LssEvent::BitRateActivation {
-                bit_rate: BitRate::K250,
-                switch_at: Instant::from_millis(1100),
-                resume_at: Instant::from_millis(1200)
-            })
-        );
+        assert_eq!(out.event, Some(LssEvent::BitRateActivation { bit_rate: BitRate::K250, switch_delay_ms: 100 }));
         assert!(!s.holds_transmit(Instant::from_millis(1099)));
         assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1100)));
         assert_eq!(s.handle_timeout(Instant::from_millis(1099)), None);
@@ -754,7 +763,10 @@ mod tests {
         assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 78, 100), None);
         assert_eq!(run(&mut s, 0x123, 0x42, 0, 0x0001_0001, 0, 100), None);
         assert_eq!(run(&mut s, 0x124, 0x42, 0, u32::MAX, 0, u32::MAX), None);
-        // Served in configuration too.
+        assert_eq!(run(&mut s, 0x123, 0x43, 0, u32::MAX, 0, u32::MAX), None); // product code
+        assert_eq!(run(&mut s, 0x123, 0x42, 0x0001_0003, u32::MAX, 0, u32::MAX), None); // revision low bound
+        assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 0, 76), None); // serial high bound
+                                                                        // Served in configuration too.
         config(&mut s);
         assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 0, u32::MAX), Some(LssResponse::IdentifySlave));
         // Only the last part on its own: nothing.
@@ -808,6 +820,37 @@ mod tests {
             .response,
             None
         );
+    }
+
+    /// CAN-07: frames that are not 8 bytes, unknown command specifiers and out-of-range fields (mode,
+    /// fastscan BitCheck, LSSSub, LSSNext) are ignored, in both LSS states; nothing changes.
+    #[test]
+    fn malformed_requests_are_silent() {
+        let mut s = LssSlave::new(&ID, None);
+        let before = s.clone();
+        let silent = |s: &mut LssSlave, f: &[u8]| assert_eq!(s.handle_request(T0, f), LssOutput::default(), "{f:02X?}");
+        silent(&mut s, &[cs::SWITCH_STATE_GLOBAL, 1, 0, 0, 0, 0, 0]); // 7 bytes
+        silent(&mut s, &[cs::IDENTIFY_NON_CONFIGURED_REMOTE, 0, 0, 0, 0, 0, 0, 0, 0]); // 9 bytes
+        silent(&mut s, &[]);
+        silent(&mut s, &[cs::SWITCH_STATE_GLOBAL, 2, 0, 0, 0, 0, 0, 0]); // no such mode
+        for bit_check in [32u8, 0x7F, 0x81, 0xFF] {
+            silent(&mut s, &[cs::FASTSCAN, 0, 0, 0, 0, bit_check, 0, 0]);
+        }
+        silent(&mut s, &[cs::FASTSCAN, 0, 0, 0, 0, FASTSCAN_CONFIRM, 4, 0]); // LSSSub 4
+        silent(&mut s, &[cs::FASTSCAN, 0, 0, 0, 0, FASTSCAN_CONFIRM, 0, 4]); // LSSNext 4
+        for unknown in [0x00, 0x05, 0x12, 0x44, 0x45, 0x4D, 0x4F, 0x50, 0x52, 0x59, 0x5F, 0xFF] {
+            silent(&mut s, &[unknown, 0, 0, 0, 0, 0, 0, 0]);
+        }
+        assert_eq!(s, before);
+        config(&mut s);
+        let before = s.clone();
+        silent(&mut s, &[cs::INQUIRE_NODE_ID, 0, 0, 0, 0, 0, 0]);
+        silent(&mut s, &[cs::CONFIGURE_NODE_ID, 3, 0, 0, 0, 0, 0, 0, 0]);
+        silent(&mut s, &[cs::SWITCH_STATE_GLOBAL, 0xFF, 0, 0, 0, 0, 0, 0]);
+        for unknown in [0x10, 0x12, 0x14, 0x16, 0x18, 0x59, 0x5F] {
+            silent(&mut s, &[unknown, 0, 0, 0, 0, 0, 0, 0]);
+        }
+        assert_eq!(s, before);
     }
 
     #[test]

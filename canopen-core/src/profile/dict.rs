@@ -160,9 +160,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// assert_eq!(od.params.heartbeat_time_ms, 0);
     /// ```
     pub fn reset_communication(&mut self) {
-        let err = self.params.error_register;
-        self.params = CommParams::for_node(&self.config, self.node_id);
-        self.params.error_register = err;
+        self.params.set_defaults(&self.config, self.node_id);
     }
 
     fn pdo_obj(index: u16) -> Option<PdoObj> {
@@ -576,11 +574,11 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         if !f.ty.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
-        let size = f.ty.size(); // every writable entry is numeric, 1..=4 bytes
-        check_len(data, size)?;
-        let mut le = [0u8; 4];
-        le.get_mut(..size).ok_or(AbortCode::UnsupportedAccess)?.copy_from_slice(data);
-        self.set(f, sub, u32::from_le_bytes(le), rules)
+        // Every writable entry is numeric, 1..=4 bytes; the little-endian value is folded from exactly those
+        // bytes (no copy call, no length check that cannot fail).
+        check_len(data, f.ty.size())?;
+        let v = data.iter().rev().fold(0, |v, &b| v << 8 | u32::from(b));
+        self.set(f, sub, v, rules)
     }
 
     fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {

@@ -24,7 +24,7 @@ pub use dict::{CommProfile, Unchecked};
 
 use crate::abort::AbortCode;
 use crate::heartbeat::ConsumerSizes;
-use crate::pdo::{PdoComm, PdoDefault, PdoMapParams};
+use crate::pdo::{mapping::MAX_ENTRIES, PdoComm, PdoDefault, PdoMapParams};
 use crate::sizes::{Sizes, Slots};
 use crate::sync::SyncParams;
 
@@ -227,25 +227,41 @@ impl<Z: ProfileSizes> CommParams<Z> {
     /// ```
     pub fn for_node(config: &NodeConfig, node_id: u8) -> Self {
         let mut p: Self = CommParams {
-            heartbeat_time_ms: config.heartbeat_time_ms,
+            heartbeat_time_ms: 0,
             heartbeat_consumers: Z::ZERO_TIMES,
-            guard_time_ms: config.guard_time_ms,
-            life_time_factor: config.life_time_factor,
+            guard_time_ms: 0,
+            life_time_factor: 0,
             error_register: 0,
-            sync: config.sync,
-            time_cob_id: config.time_cob_id,
-            emcy_cob_id: 0x80 + node_id as u32,
-            emcy_inhibit_100us: config.emcy_inhibit_100us,
-            error_behaviour: config.error_behaviour,
-            nmt_startup: config.nmt_startup,
+            sync: SyncParams::DEFAULT,
+            time_cob_id: 0,
+            emcy_cob_id: 0,
+            emcy_inhibit_100us: 0,
+            error_behaviour: 0,
+            nmt_startup: 0,
             rpdo_comm: Z::RPDO_COMM,
             rpdo_map: Z::RPDO_MAP,
             tpdo_comm: Z::TPDO_COMM,
             tpdo_map: Z::TPDO_MAP,
         };
-        pdo_defaults(p.rpdo_comm.as_mut(), p.rpdo_map.as_mut(), config.rpdo, 0x200, node_id);
-        pdo_defaults(p.tpdo_comm.as_mut(), p.tpdo_map.as_mut(), config.tpdo, 0x180, node_id);
+        p.set_defaults(config, node_id);
         p
+    }
+
+    /// Every value back to its power-on default of `config` for `node_id` except the error register (which
+    /// belongs to the error handling): NMT reset communication (NMT-05). In place: no 440-byte copy.
+    pub(crate) fn set_defaults(&mut self, config: &NodeConfig, node_id: u8) {
+        self.heartbeat_time_ms = config.heartbeat_time_ms;
+        self.heartbeat_consumers = Z::ZERO_TIMES;
+        self.guard_time_ms = config.guard_time_ms;
+        self.life_time_factor = config.life_time_factor;
+        self.sync = config.sync;
+        self.time_cob_id = config.time_cob_id;
+        self.emcy_cob_id = 0x80 + node_id as u32;
+        self.emcy_inhibit_100us = config.emcy_inhibit_100us;
+        self.error_behaviour = config.error_behaviour;
+        self.nmt_startup = config.nmt_startup;
+        pdo_defaults(self.rpdo_comm.as_mut(), self.rpdo_map.as_mut(), config.rpdo, 0x200, node_id);
+        pdo_defaults(self.tpdo_comm.as_mut(), self.tpdo_map.as_mut(), config.tpdo, 0x180, node_id);
     }
 
     /// The decoded consumer entry at 1016h sub-index `sub` (1-based), if it exists.
@@ -292,13 +308,87 @@ impl<Z: ProfileSizes> CommParams<Z> {
 /// directions and every `Z`.
 fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], defaults: &[PdoDefault], base: u16, node_id: u8) {
     for (k, (c, m)) in comm.iter_mut().zip(map).enumerate() {
-        (*c, *m) = defaults.get(k).unwrap_or(&PdoDefault::UNUSED).params(k, base, node_id);
+        let d = defaults.get(k).unwrap_or(&PdoDefault::UNUSED);
+        *c = d.params(k, base, node_id).0;
+        // The mapping written in place (`PdoMapParams::from_slice` in place): through `params`' tuple it went
+        // via three copies on the stack.
+        let raw = d.mapping.get(..MAX_ENTRIES).unwrap_or(d.mapping);
+        m.entries = [0; MAX_ENTRIES];
+        if let Some(dst) = m.entries.get_mut(..raw.len()) {
+            dst.copy_from_slice(raw);
+        }
+        m.count = raw.len() as u8;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The power-on mappings (PDO-30..33) are the defaults' entries, as `PdoMapParams::from_slice` reads them:
+    /// none, one, eight, and a ninth entry beyond [`MAX_ENTRIES`] left out; PDOs past the defaults are empty.
+    #[test]
+    fn for_node_fills_the_default_mappings() {
+        const NINE: [u32; 9] = [
+            0x6000_0108,
+            0x6001_0108,
+            0x6002_0108,
+            0x6003_0108,
+            0x6004_0108,
+            0x6005_0108,
+            0x6006_0108,
+            0x6007_0108,
+            0x6008_0108,
+        ];
+        const EIGHT: [u32; 8] =
+            [0x6000_0108, 0x6001_0108, 0x6002_0108, 0x6003_0108, 0x6004_0108, 0x6005_0108, 0x6006_0108, 0x6007_0108];
+        static RPDO: [PdoDefault; 3] = [
+            PdoDefault { mapping: &[], ..PdoDefault::EVENT },
+            PdoDefault { mapping: &[0x6200_0108], ..PdoDefault::EVENT },
+            PdoDefault { mapping: &EIGHT, ..PdoDefault::EVENT },
+        ];
+        static TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &NINE, ..PdoDefault::EVENT }];
+        let cfg = NodeConfig { rpdo: &RPDO, tpdo: &TPDO, ..NodeConfig::DEFAULT };
+        let p: CommParams<Sizes<0, 8, 8, 4, 2>> = CommParams::for_node(&cfg, 5);
+        for (k, m) in p.rpdo_map.iter().enumerate() {
+            assert_eq!(*m, PdoMapParams::from_slice(cfg.rpdo_default(k).mapping), "RPDO {k}");
+        }
+        assert_eq!((p.rpdo_map[2].count, p.rpdo_map[3].count), (8, 0));
+        assert_eq!(p.tpdo_map[0], PdoMapParams::from_slice(&EIGHT));
+        assert_eq!(p.tpdo_map[1], PdoMapParams::from_slice(&[]));
+        assert_eq!(p.rpdo_comm[1], cfg.rpdo_default(1).params(1, 0x200, 5).0);
+    }
+
+    /// NMT-05: reset communication sets every communication value back to its power-on default, in place,
+    /// and keeps only the error register (the error handling's).
+    #[test]
+    fn set_defaults_is_for_node_but_the_error_register() {
+        static TPDO: [PdoDefault; 1] =
+            [PdoDefault { event_timer_ms: 100, mapping: &[0x1001_0008], ..PdoDefault::EVENT }];
+        let cfg = NodeConfig {
+            heartbeat_time_ms: 100,
+            guard_time_ms: 50,
+            life_time_factor: 3,
+            emcy_inhibit_100us: 10,
+            error_behaviour: 1,
+            tpdo: &TPDO,
+            ..NodeConfig::DEFAULT
+        };
+        let fresh: CommParams<Sizes<2, 8, 8, 2, 2>> = CommParams::for_node(&cfg, 5);
+        let mut p = fresh.clone();
+        p.heartbeat_time_ms = 1;
+        p.heartbeat_consumers[0] = 0x0002_0064;
+        (p.guard_time_ms, p.life_time_factor, p.error_register) = (9, 9, 0x11);
+        (p.sync.period_us, p.sync.window_us, p.sync.counter_overflow) = (7, 7, 7);
+        (p.time_cob_id, p.emcy_cob_id, p.emcy_inhibit_100us) = (1, 1, 1);
+        (p.error_behaviour, p.nmt_startup) = (2, 0);
+        (p.rpdo_comm[0].cob_id, p.rpdo_map[0].count, p.rpdo_map[1].entries[7]) = (1, 1, 1);
+        (p.tpdo_comm[0].transmission_type, p.tpdo_map[0].count, p.tpdo_map[0].entries[0]) = (3, 0, 1);
+        p.set_defaults(&cfg, 5);
+        assert_eq!(p.error_register, 0x11);
+        p.error_register = 0;
+        assert_eq!(p, fresh);
+    }
 
     /// 1016h entries 0002 0064h (node 2, 100 ms), 0003 0190h (node 3, 400 ms), 0007 0FA0h (node 7, 4000 ms);
     /// node 2 in a second entry refused with 0604 0043h; an entry disabled by 0.

