@@ -53,6 +53,7 @@ use tokio::task::JoinHandle;
 
 mod canio;
 mod data;
+pub mod eds;
 mod error;
 pub mod lss;
 pub mod pdo;

@@ -116,6 +116,34 @@ impl std::str::FromStr for Type {
 }
 
 impl Type {
+    /// The type of a CiA 301 data type index (an EDS `DataType`); `None` for types without a text form here
+    /// (INTEGER24, TIME_OF_DAY, ...: read as bytes).
+    ///
+    /// ```
+    /// use canopenctl::Type;
+    /// assert_eq!(Type::from_data_type(0x0003), Some(Type::I16));
+    /// assert_eq!(Type::from_data_type(0x0009), Some(Type::Str));
+    /// assert_eq!(Type::from_data_type(0x0010), None);
+    /// ```
+    pub fn from_data_type(data_type: u16) -> Option<Type> {
+        Some(match data_type {
+            0x0001 => Type::Bool,
+            0x0002 => Type::I8,
+            0x0003 => Type::I16,
+            0x0004 => Type::I32,
+            0x0005 => Type::U8,
+            0x0006 => Type::U16,
+            0x0007 => Type::U32,
+            0x0008 => Type::F32,
+            0x0009 | 0x000B => Type::Str,
+            0x000A | 0x000F => Type::Bytes,
+            0x0011 => Type::F64,
+            0x0015 => Type::I64,
+            0x001B => Type::U64,
+            _ => return None,
+        })
+    }
+
     /// The type a value of `len` bytes is written as when no `--type` is given: an integer of that size
     /// (signed when the text is negative), a float for a text with a `.` or an exponent, a string for a text
     /// that is no number.

@@ -7,6 +7,7 @@ use std::time::Duration;
 
 use canopen_core::wire::lss::{IdentityField, LssMode};
 use canopen_core::NodeId;
+use canopen_master::eds::{data_type_name, Eds};
 use canopen_master::{Error, Master, Mode, NmtCommand, BLOCK};
 use canopenctl::{guess, monitor_line, parse_in, parse_node, Type};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -22,6 +23,9 @@ struct Cli {
     /// SDO time-out per protocol step, in ms.
     #[arg(long, global = true, default_value_t = 1000)]
     timeout: u64,
+    /// The node's EDS or DCF (CiA 306): types reads and writes, and lets objects be named.
+    #[arg(long, global = true, value_name = "FILE")]
+    eds: Option<std::path::PathBuf>,
     #[command(subcommand)]
     command: Command,
 }
@@ -59,6 +63,11 @@ enum Command {
         #[command(subcommand)]
         command: LssCommand,
     },
+    /// Read every readable entry of the EDS (--eds) from NODE and print it with its name and type.
+    Dump {
+        #[arg(value_parser = parse_node)]
+        node: u8,
+    },
     /// Print every frame on the bus, decoded, candump style.
     Monitor {
         /// Stop after this many frames.
@@ -87,18 +96,41 @@ enum Command {
     },
 }
 
-/// NODE INDEX SUB, each in decimal or 0x-hex.
-#[derive(Args, Clone, Copy)]
+/// NODE INDEX SUB, numbers in decimal or 0x-hex; with `--eds`, INDEX and SUB may be names.
+#[derive(Args, Clone)]
 struct Object {
     /// Node-ID, 1..=127.
     #[arg(value_parser = parse_node)]
     node: u8,
-    /// Object index.
-    #[arg(value_parser = parse_in::<u16>)]
-    index: u16,
-    /// Sub-index.
-    #[arg(value_parser = parse_in::<u8>)]
-    sub: u8,
+    /// Object index, or with --eds its name (e.g. "Identity object").
+    index: String,
+    /// Sub-index, or with --eds the entry's name (e.g. "Serial number").
+    sub: String,
+}
+
+impl Object {
+    /// The node, index and sub-index, names looked up in `eds`.
+    fn resolve(&self, eds: Option<&Eds>) -> Result<(u8, u16, u8), String> {
+        let index = match (parse_in::<u16>(&self.index), eds) {
+            (Ok(i), _) => i,
+            (Err(_), Some(eds)) => match eds.find(&self.index) {
+                Some((i, None)) => i,
+                _ => return Err(format!("no object named '{}' in the EDS", self.index)),
+            },
+            (Err(e), None) => return Err(format!("{e} (names need --eds)")),
+        };
+        let sub = match (parse_in::<u8>(&self.sub), eds) {
+            (Ok(s), _) => s,
+            (Err(_), Some(eds)) => eds
+                .objects
+                .get(&index)
+                .and_then(|o| o.entries.values().find(|e| e.name.eq_ignore_ascii_case(self.sub.trim())))
+                .map(|e| e.sub)
+                .ok_or_else(|| format!("no entry named '{}' in {index:04X}h of the EDS", self.sub))?,
+            (Err(e), None) => return Err(format!("{e} (names need --eds)")),
+        };
+        Ok((self.node, index, sub))
+    }
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -148,6 +180,11 @@ enum SwitchArg {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Arguments clap cannot check alone (names and numbers against the EDS) are usage errors too: exit 2.
+    if let Err(e) = check(&cli) {
+        eprintln!("canopenctl: {e}");
+        return ExitCode::from(2);
+    }
     let rt = match tokio::runtime::Builder::new_current_thread().enable_all().build() {
         Ok(rt) => rt,
         Err(e) => return fail(&format!("cannot start the runtime: {e}")),
@@ -155,6 +192,24 @@ fn main() -> ExitCode {
     match rt.block_on(run(cli)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => fail(&e),
+    }
+}
+
+fn load_eds(cli: &Cli) -> Result<Option<Eds>, String> {
+    let Some(path) = &cli.eds else { return Ok(None) };
+    let t = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    Eds::parse(&t).map(Some).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn check(cli: &Cli) -> Result<(), String> {
+    let eds = load_eds(cli)?;
+    match &cli.command {
+        Command::Read { at, .. }
+        | Command::Write { at, .. }
+        | Command::Upload { at, .. }
+        | Command::Download { at, .. } => at.resolve(eds.as_ref()).map(|_| ()),
+        Command::Dump { .. } if eds.is_none() => Err("dump needs the node's EDS: --eds FILE".into()),
+        _ => Ok(()),
     }
 }
 
@@ -168,6 +223,12 @@ fn text(e: Error) -> String {
 }
 
 async fn run(cli: Cli) -> Result<(), String> {
+    let eds = load_eds(&cli)?;
+    let eds = eds.as_ref();
+    // The type of `index:sub`: --type, else the EDS's.
+    let typed = |ty: Option<Type>, index: u16, sub: u8| {
+        ty.or_else(|| eds.and_then(|e| e.entry(index, sub)).and_then(|e| Type::from_data_type(e.data_type)))
+    };
     let master = Master::open(&cli.iface).map_err(text)?.with_sdo_timeout(Duration::from_millis(cli.timeout));
     let mut out = std::io::stdout().lock();
     let mut say = |line: String| {
@@ -191,15 +252,18 @@ async fn run(cli: Cli) -> Result<(), String> {
             }
             say(format!("{} node(s)", found.len()));
         }
-        Command::Read { at: Object { node, index, sub }, ty } => {
+        Command::Read { at, ty } => {
+            let (node, index, sub) = at.resolve(eds)?;
+            let ty = typed(ty, index, sub);
             let bytes = master.upload(node, index, sub, Mode::Auto).await.map_err(text)?;
             say(match ty {
                 Some(t) => t.decode(&bytes)?,
                 None => guess(&bytes),
             });
         }
-        Command::Write { at: Object { node, index, sub }, value, ty } => {
-            let ty = match ty {
+        Command::Write { at, value, ty } => {
+            let (node, index, sub) = at.resolve(eds)?;
+            let ty = match typed(ty, index, sub) {
                 Some(t) => t,
                 None => {
                     let numeric = Type::infer(&value, Some(8)).is_ok_and(|t| t != Type::Str);
@@ -277,6 +341,26 @@ async fn run(cli: Cli) -> Result<(), String> {
                 }
             }
         }
+        Command::Dump { node } => {
+            let eds = eds.ok_or("dump needs the node's EDS: --eds FILE")?;
+            for e in eds.entries() {
+                let kind = data_type_name(e.data_type).unwrap_or("?");
+                let head = format!("{:04X}h:{:02X} {} ({kind}, {})", e.index, e.sub, e.name, e.access.as_str());
+                if !e.access.readable() {
+                    say(format!("{head}: write-only"));
+                    continue;
+                }
+                let value = match master.upload(node, e.index, e.sub, Mode::Auto).await {
+                    Ok(bytes) if e.data_type == 0x000F => format!("{} bytes", bytes.len()),
+                    Ok(bytes) => match Type::from_data_type(e.data_type) {
+                        Some(t) => t.decode(&bytes).unwrap_or_else(|m| format!("{} ({m})", canopenctl::hex(&bytes))),
+                        None => guess(&bytes),
+                    },
+                    Err(err) => format!("! {err}"),
+                };
+                say(format!("{head} = {value}"));
+            }
+        }
         Command::Monitor { count, duration } => {
             let mut frames = master.frames();
             let until = duration.map(|s| tokio::time::Instant::now() + Duration::from_secs_f64(s.max(0.0)));
@@ -301,7 +385,8 @@ async fn run(cli: Cli) -> Result<(), String> {
                 }
             }
         }
-        Command::Upload { at: Object { node, index, sub }, file, mode } => {
+        Command::Upload { at, file, mode } => {
+            let (node, index, sub) = at.resolve(eds)?;
             let mut f = std::fs::File::create(&file).map_err(|e| format!("{}: {e}", file.display()))?;
             let mut bar = Bar::new(None);
             let len = master
@@ -311,7 +396,8 @@ async fn run(cli: Cli) -> Result<(), String> {
             bar.done();
             say(format!("{len} bytes into {}", file.display()));
         }
-        Command::Download { at: Object { node, index, sub }, file, mode } => {
+        Command::Download { at, file, mode } => {
+            let (node, index, sub) = at.resolve(eds)?;
             let mut f = std::fs::File::open(&file).map_err(|e| format!("{}: {e}", file.display()))?;
             let len = f.metadata().map_err(|e| format!("{}: {e}", file.display()))?.len();
             let mut bar = Bar::new(Some(len));
