@@ -9,7 +9,8 @@
 #      heartbeats arrive, 64 KiB block/segmented byte-exact and 1 MiB block+CRC each way, timed;
 #   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS);
 #   5. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
-#      node, on the EDS the node wrote with --eds.
+#      node, on the EDS the node wrote with --eds;
+#   6. tests/vcan_master_python.rs: canopen-master as the master of python canopen's LocalNode (ten at once).
 # Usage: scripts/test-interop.sh   (SKIP_PIP=1 skips the pip install). Fails (non-zero) if neither the
 # interfaces nor the VM are there.
 set -euo pipefail
@@ -30,6 +31,7 @@ cargo test --release --no-run --test vcan_node
 # canopen-master's vcan tests time 1 MiB transfers: optimised too.
 cargo test --release --no-run --test vcan_master
 cargo test --no-run -p canopenctl --test cli
+cargo test --no-run --test vcan_master_python
 
 cat > target/interop-in-vm.sh <<'INNER'
 set -euo pipefail
@@ -45,6 +47,8 @@ NODE_BIN=target/debug/examples/node cargo test -q -p canopenctl --test cli -- --
 echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
     python3 -m pytest -q -rs tests/python/test_interop.py
+echo "== canopen-master against python canopen's LocalNode (ten nodes, typed values, aborts, block fallback)"
+NODE_BIN=target/debug/examples/node cargo test -q --test vcan_master_python -- --include-ignored
 INNER
 
 echo "== run on vcan0/vcan1"
