@@ -43,12 +43,12 @@ cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test
 echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed"
 cargo test --release -q --test vcan_master -- --include-ignored --nocapture --test-threads 1
 echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, LSS)"
-NODE_BIN=target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
+NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
 echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
     python3 -m pytest -q -rs tests/python/test_interop.py
 echo "== canopen-master against python canopen's LocalNode (ten nodes, typed values, aborts, block fallback)"
-NODE_BIN=target/debug/examples/node cargo test -q --test vcan_master_python -- --include-ignored
+NODE_BIN=$PWD/target/debug/examples/node cargo test -q --test vcan_master_python -- --include-ignored
 INNER
 
 echo "== run on vcan0/vcan1"

@@ -52,6 +52,7 @@ use tokio::sync::{broadcast, mpsc};
 use tokio::task::JoinHandle;
 
 mod canio;
+mod codegen;
 mod data;
 pub mod eds;
 mod error;
@@ -267,6 +268,16 @@ pub struct Master {
 
 impl Master {
     /// A master on `io`; spawns its receive task on the current tokio runtime.
+    ///
+    /// # Panics
+    ///
+    /// Outside a tokio runtime (as `tokio::spawn` does).
+    ///
+    /// # When the socket fails
+    ///
+    /// The receive task stops at the first receive error (the interface went down or away); every waiting
+    /// and later transfer then fails with [`Error::Closed`] and the reason. Make a new master once the
+    /// interface is back (`canopen-socketcan`'s runners wait and reopen; a master does not, yet).
     ///
     /// ```
     /// # let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
