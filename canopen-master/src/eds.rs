@@ -19,6 +19,8 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
+pub use crate::codegen::to_rust;
+
 /// Access of an entry (`AccessType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Access {

@@ -68,6 +68,9 @@ enum Command {
         #[arg(value_parser = parse_node)]
         node: u8,
     },
+    /// Print a Rust module for an EDS: the application objects as a derived object dictionary and the
+    /// node configuration (uses only canopen-core and canopen-od-derive). Needs no bus.
+    EdsToRust { file: std::path::PathBuf },
     /// Print every frame on the bus, decoded, candump style.
     Monitor {
         /// Stop after this many frames.
@@ -180,6 +183,20 @@ enum SwitchArg {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Command::EdsToRust { file } = &cli.command {
+        return match std::fs::read_to_string(file)
+            .map_err(|e| e.to_string())
+            .and_then(|t| Eds::parse(&t).map_err(|e| e.to_string()))
+        {
+            Ok(eds) => {
+                let name =
+                    file.file_name().map_or_else(|| file.display().to_string(), |n| n.to_string_lossy().into_owned());
+                print!("{}", canopen_master::eds::to_rust(&eds, &name));
+                ExitCode::SUCCESS
+            }
+            Err(e) => fail(&format!("{}: {e}", file.display())),
+        };
+    }
     // Arguments clap cannot check alone (names and numbers against the EDS) are usage errors too: exit 2.
     if let Err(e) = check(&cli) {
         eprintln!("canopenctl: {e}");
@@ -361,6 +378,7 @@ async fn run(cli: Cli) -> Result<(), String> {
                 say(format!("{head} = {value}"));
             }
         }
+        Command::EdsToRust { .. } => unreachable!("handled in main without a bus"),
         Command::Monitor { count, duration } => {
             let mut frames = master.frames();
             let until = duration.map(|s| tokio::time::Instant::now() + Duration::from_secs_f64(s.max(0.0)));

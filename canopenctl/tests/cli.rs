@@ -182,3 +182,13 @@ fn the_eds_names_and_types_objects() {
     assert!(dump.contains("6000h:08"), "{dump}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `eds-to-rust` needs no bus: it prints the module tests/eds_to_rust.rs compiles and round-trips.
+#[test]
+fn eds_to_rust_prints_the_module() {
+    let eds = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/eds_to_rust/io_module.eds");
+    let rust = ok(&["--iface", "nocan7", "eds-to-rust", eds]);
+    assert!(rust == include_str!("../../tests/data/eds_to_rust/io_module.rs"), "{rust}");
+    let e = fails(&["eds-to-rust", "/nonexistent.eds"]);
+    assert!(e.contains("/nonexistent.eds"), "{e}");
+}
