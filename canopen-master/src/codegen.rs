@@ -6,7 +6,8 @@
 //! Not carried over, yet: PDO default communication and mapping parameters (1400h–1BFFh; the node's
 //! `NodeConfig::DEFAULT` ones apply), per-sub defaults of an array whose subs differ (the field's type
 //! default applies), limits on anything but numbers, DOMAIN access other than rw, data types the derive
-//! does not know (a comment names each object left out).
+//! does not know (a comment names each object left out). Sub-index 0 of an ARRAY or RECORD is const in the
+//! derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
 
 use std::fmt::Write as _;
 
