@@ -6,6 +6,7 @@
 //!   [`Master::upload_to`]); aborts come back as [`Error::Aborted`] with the code and its meaning.
 //! - **NMT** node control ([`Master::nmt`]), **heartbeat** and **EMCY** as broadcast streams
 //!   ([`Master::heartbeats`], [`Master::emergencies`]), every received frame ([`Master::frames`]).
+//! - Blocking calls for code without a runtime: [`blocking::BlockingMaster`].
 //! - A **SYNC** producer ([`Master::start_sync`]), **PDO** remapping through SDO with the CiA 301
 //!   disable/map/enable sequence ([`Master::configure_pdo`]), the core's **LSS** master ([`Master::lss`]).
 //!
@@ -51,6 +52,7 @@ use canopen_core::{CanFrame, NodeId};
 use tokio::sync::{broadcast, mpsc};
 use tokio::task::JoinHandle;
 
+pub mod blocking;
 mod canio;
 mod codegen;
 mod data;
