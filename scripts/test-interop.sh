@@ -5,8 +5,12 @@
 #      missing interface, interface down/up recovery of both runners, tokio wake);
 #   2. tests/vcan_node.rs: OUR SDO client moves 64 KiB through the example node's DOMAIN (segmented, block
 #      with and without CRC, byte-exact) and the bounded load test (block transfers under a COB-ID flood);
-#   3. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
-#      node, on the EDS the node wrote with --eds.
+#   3. tests/vcan_master.rs: canopen-master with ten nodes at once, a stopped node's time-out while its
+#      heartbeats arrive, 64 KiB block/segmented byte-exact and 1 MiB block+CRC each way, timed;
+#   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS);
+#   5. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
+#      node, on the EDS the node wrote with --eds;
+#   6. tests/vcan_master_python.rs: canopen-master as the master of python canopen's LocalNode (ten at once).
 # Usage: scripts/test-interop.sh   (SKIP_PIP=1 skips the pip install). Fails (non-zero) if neither the
 # interfaces nor the VM are there.
 set -euo pipefail
@@ -24,6 +28,10 @@ cargo test --no-run -p canopen-socketcan --test vcan
 # The load test measures the node as it is deployed: optimised (a debug build cannot keep up with a flood plus
 # four 1 ms TPDOs on the VM's one CPU, and then only proves the debug build is slow).
 cargo test --release --no-run --test vcan_node
+# canopen-master's vcan tests time 1 MiB transfers: optimised too.
+cargo test --release --no-run --test vcan_master
+cargo test --no-run -p canopenctl --test cli
+cargo test --no-run --test vcan_master_python
 
 cat > target/interop-in-vm.sh <<'INNER'
 set -euo pipefail
@@ -32,9 +40,15 @@ echo "== canopen-socketcan on vcan0/vcan1"
 cargo test -q -p canopen-socketcan --test vcan -- --include-ignored
 echo "== our SDO client + load test on the example node"
 cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test-threads 1
+echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed"
+cargo test --release -q --test vcan_master -- --include-ignored --nocapture --test-threads 1
+echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, LSS)"
+NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
 echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
     python3 -m pytest -q -rs tests/python/test_interop.py
+echo "== canopen-master against python canopen's LocalNode (ten nodes, typed values, aborts, block fallback)"
+NODE_BIN=$PWD/target/debug/examples/node cargo test -q --test vcan_master_python -- --include-ignored
 INNER
 
 echo "== run on vcan0/vcan1"
