@@ -1,7 +1,8 @@
 //! Batched socket calls for the runners: `recvmmsg` takes every queued frame (up to [`BATCH`]) in one
 //! system call, `sendmmsg` sends a whole pass's frames in one, `ppoll` waits for the socket, the wake-up
-//! socket and the next deadline together. The `socketcan` crate reads and writes one frame per call, so
-//! these three calls go through `libc` (and tokio's `AsyncFd::register` is `unsafe` too); this module is the adapter's only `unsafe` code.
+//! socket and the next deadline together; plus the monotonic clock and the `timerfd` the tokio runner
+//! sleeps on. The `socketcan` crate reads and writes one frame per call, so these calls go through `libc`
+//! (and tokio's `AsyncFd::register` is `unsafe` too); this module is the adapter's only `unsafe` code.
 //!
 //! Safety argument, once for all three: every pointer handed to the kernel points into a buffer that this
 //! function owns or borrows for the whole call (`msghdr`/`iovec`/`pollfd` arrays on the stack, the caller's
@@ -117,6 +118,57 @@ pub(crate) fn wait_readable<const K: usize>(fds: [RawFd; K], timeout_us: Option<
     Ok(pfds.map(|p| p.revents & (libc::POLLIN | libc::POLLERR | libc::POLLHUP) != 0))
 }
 
+/// `CLOCK_MONOTONIC` in microseconds (the clock `std::time::Instant` reads on Linux).
+pub(crate) fn monotonic_us() -> u64 {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: `ts` is a timespec alive for the call; CLOCK_MONOTONIC always exists on Linux.
+    unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
+    ts.tv_sec as u64 * 1_000_000 + ts.tv_nsec as u64 / 1000
+}
+
+/// A non-blocking `timerfd` on `CLOCK_MONOTONIC`, disarmed.
+pub(crate) fn timerfd() -> io::Result<std::os::fd::OwnedFd> {
+    // SAFETY: no pointers; a returned descriptor is a fresh one this process owns.
+    let fd = unsafe { libc::timerfd_create(libc::CLOCK_MONOTONIC, libc::TFD_NONBLOCK | libc::TFD_CLOEXEC) };
+    if fd < 0 {
+        return Err(io::Error::last_os_error());
+    }
+    // SAFETY: `fd` was just returned by timerfd_create and is owned by nobody else.
+    Ok(unsafe { <std::os::fd::OwnedFd as std::os::fd::FromRawFd>::from_raw_fd(fd) })
+}
+
+/// When a [`timerfd`] fires.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Expiry {
+    /// At this `CLOCK_MONOTONIC` time (µs; a past one fires at once).
+    At(u64),
+    /// This many µs from now (at least 1).
+    In(u64),
+    /// Never (disarmed).
+    Never,
+}
+
+/// Arms or disarms a [`timerfd`] (one-shot). Arming also clears an expiry not yet read, so the descriptor
+/// is readable only after the new expiry.
+pub(crate) fn set_timerfd(fd: RawFd, expiry: Expiry) -> io::Result<()> {
+    let ts = |us: u64| libc::timespec {
+        tv_sec: (us / 1_000_000).min(i64::MAX as u64) as libc::time_t,
+        tv_nsec: ((us % 1_000_000) * 1000) as libc::c_long,
+    };
+    // An all-zero it_value disarms: an expiry at or in 0 µs is 1 µs.
+    let (flags, value) = match expiry {
+        Expiry::At(us) => (libc::TFD_TIMER_ABSTIME, ts(us.max(1))),
+        Expiry::In(us) => (0, ts(us.max(1))),
+        Expiry::Never => (0, ts(0)),
+    };
+    let spec = libc::itimerspec { it_interval: ts(0), it_value: value };
+    // SAFETY: `spec` is an itimerspec alive for the call; the old value is not asked for (null).
+    if unsafe { libc::timerfd_settime(fd, flags, &spec, std::ptr::null_mut()) } != 0 {
+        return Err(io::Error::last_os_error());
+    }
+    Ok(())
+}
+
 /// Sets the socket's receive buffer to at least `bytes` (`SO_RCVBUFFORCE` when privileged, else
 /// `SO_RCVBUF`, which the kernel caps at `net.core.rmem_max`). Returns the size the kernel reports.
 pub(crate) fn grow_receive_buffer(fd: RawFd, bytes: usize) -> io::Result<usize> {
@@ -142,17 +194,26 @@ pub(crate) fn grow_receive_buffer(fd: RawFd, bytes: usize) -> io::Result<usize> 
     Ok(got as usize)
 }
 
-/// Registers a non-blocking CAN socket with tokio's reactor (inside a tokio runtime), for readability only:
-/// with write interest too, every send makes the socket's "writable" edge wake the runtime for nothing
-/// (seen with strace: one extra `epoll_wait` and three clock reads of tokio per frame sent). A full send
-/// queue is retried after a back-off instead ([`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF)).
+/// Registers a non-blocking descriptor (the CAN socket, the runner's `timerfd`) with tokio's reactor
+/// (inside a tokio runtime), for readability only: with write interest too, every send makes the socket's
+/// "writable" edge wake the runtime for nothing (seen with strace: one extra `epoll_wait` and three clock
+/// reads of tokio per frame sent). A full send queue is retried after a back-off instead
+/// ([`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF)).
 #[cfg(feature = "tokio")]
-pub(crate) fn register(socket: socketcan::CanSocket) -> io::Result<tokio::io::unix::AsyncFd<socketcan::CanSocket>> {
-    // SAFETY: a `socketcan::CanSocket` owns its descriptor (an `OwnedFd`): it stays open, and `as_raw_fd`
-    // returns the same one, until the socket is dropped, which the `AsyncFd` that owns it does last.
-    unsafe { tokio::io::unix::AsyncFd::register_with_interest(socket, tokio::io::Interest::READABLE) }
+pub(crate) fn register<T: Owns>(owner: T) -> io::Result<tokio::io::unix::AsyncFd<T>> {
+    // SAFETY: `T: Owns` owns its descriptor: it stays open, and `as_raw_fd` returns the same one, until
+    // `owner` is dropped, which the `AsyncFd` that owns it does last.
+    unsafe { tokio::io::unix::AsyncFd::register_with_interest(owner, tokio::io::Interest::READABLE) }
         .map_err(|e| e.into_parts().1)
 }
+
+/// A type that owns the descriptor it returns from `as_raw_fd` (closes it on drop, never swaps it).
+#[cfg(feature = "tokio")]
+pub(crate) trait Owns: std::os::fd::AsRawFd {}
+#[cfg(feature = "tokio")]
+impl Owns for socketcan::CanSocket {}
+#[cfg(feature = "tokio")]
+impl Owns for std::os::fd::OwnedFd {}
 
 #[cfg(test)]
 mod tests {
@@ -200,5 +261,25 @@ mod tests {
         send_frames(b.as_raw_fd(), &[frame(1, 1)]).unwrap();
         assert_eq!(wait_readable([b.as_raw_fd(), a.as_raw_fd()], None).unwrap(), [false, true]);
         assert!(grow_receive_buffer(a.as_raw_fd(), 1 << 16).unwrap() > 0);
+    }
+
+    /// The timerfd fires at an absolute time, after a relative delay, never when disarmed, and re-arming
+    /// clears an expiry that was not read.
+    #[test]
+    fn timerfd_fires_when_armed_and_rearming_clears_it() {
+        let t = timerfd().unwrap();
+        let fd = t.as_raw_fd();
+        let readable = |ms: u64| wait_readable([fd], Some(ms * 1000)).unwrap()[0];
+        assert!(!readable(5), "a fresh timerfd is disarmed");
+        set_timerfd(fd, Expiry::At(monotonic_us() + 2_000)).unwrap();
+        assert!(readable(1000));
+        set_timerfd(fd, Expiry::Never).unwrap();
+        assert!(!readable(10), "disarming cleared the unread expiry");
+        let start = monotonic_us();
+        set_timerfd(fd, Expiry::In(20_000)).unwrap();
+        assert!(readable(1000));
+        assert!(monotonic_us() - start >= 20_000);
+        set_timerfd(fd, Expiry::At(0)).unwrap(); // in the past: at once
+        assert!(readable(1000));
     }
 }

@@ -240,6 +240,7 @@ pub fn run_blocking<N: SansIo + ReceiveFilters, S: Shared<N>>(
                 observe(Observed::Adapter(&AdapterEvent::InterfaceDown { iface: iface.clone(), error: e.to_string() }));
                 bus.reopen(None)?;
                 let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
+                pass.reinstall(); // the new socket gets the node's current filters
                 observe(Observed::Adapter(&AdapterEvent::Reopened { iface }));
             }
             Err(e) => return Err(e),
@@ -259,7 +260,7 @@ fn step<N: SansIo + ReceiveFilters, S: Shared<N>>(
     if let Some(f) = filters {
         bus.set_filters(&kernel_filters(&f))?;
         count(Counter::FilterUpdates, 1);
-        pass.installed = Some(f);
+        pass.installed(f);
     }
     send_all(bus, pass, observe)?;
     let mut wait = deadline.map(|d| d.as_micros().saturating_sub(now.as_micros()));
