@@ -165,7 +165,9 @@ impl CanTx for TokioTx<'_> {
     }
 }
 
-/// The node's clock on `tokio::time` (so a paused tokio clock in tests pauses the node too).
+/// The node's clock on `tokio::time` (so a paused tokio clock in tests pauses the node too), for the core's
+/// [`driver`](canopen_core::driver). It needs the runtime's time driver (`enable_time`), which reads the
+/// clock at every wake-up of the runtime; [`run_tokio`] uses a [`TimerFd`] instead.
 ///
 /// ```
 /// let t = canopen_socketcan::TokioTimer::new(canopen_socketcan::Clock::new());
@@ -302,7 +304,7 @@ impl Wake for NotifyWake {
 
 /// Runs the node in `shared` on `iface` with tokio until a socket error that is not an interface going
 /// down (that is returned). Every frame, node event and [`AdapterEvent`] goes to `observe`. Stop it by
-/// dropping the future (`tokio::select!`, `tokio::time::timeout`).
+/// dropping the future (`tokio::select!` with a [`TimerFd`] sleep or a signal, `tokio::time::timeout`).
 ///
 /// Each pass reads the clock once, hands the node every frame received since the last pass and the time,
 /// sends what it produced (one `sendmmsg` per [`BATCH`](crate::BATCH) frames), installs the node's receive
