@@ -14,77 +14,130 @@
 #![allow(unsafe_code)]
 
 use std::io;
+use std::mem::MaybeUninit;
 use std::os::fd::RawFd;
 
 /// Frames taken or sent per system call at most.
 pub const BATCH: usize = 64;
 
-/// A zeroed `can_frame`.
-pub(crate) fn empty_frame() -> libc::can_frame {
-    // SAFETY: can_frame is plain old data; all-zero bytes are a valid value.
-    unsafe { std::mem::zeroed() }
-}
-
-/// Takes up to `out.len()` queued frames without waiting, oldest first. `Ok(0)` when none is queued.
-pub(crate) fn recv_frames(fd: RawFd, out: &mut [libc::can_frame]) -> io::Result<usize> {
-    let n = out.len().min(BATCH);
-    if n == 0 {
-        return Ok(0);
-    }
-    let size = std::mem::size_of::<libc::can_frame>();
-    let mut iov: [libc::iovec; BATCH] = [libc::iovec { iov_base: std::ptr::null_mut(), iov_len: 0 }; BATCH];
-    // SAFETY: mmsghdr is plain old data; zeroed = no name, no control data.
-    let mut msgs: [libc::mmsghdr; BATCH] = unsafe { std::mem::zeroed() };
-    for i in 0..n {
-        iov[i] = libc::iovec { iov_base: (&mut out[i] as *mut libc::can_frame).cast(), iov_len: size };
-        msgs[i].msg_hdr.msg_iov = &mut iov[i];
-        msgs[i].msg_hdr.msg_iovlen = 1;
-    }
-    loop {
-        // SAFETY: see the module docs; `msgs[..n]` point at `iov[..n]`, which point at `out[..n]`.
-        let r = unsafe {
-            libc::recvmmsg(fd, msgs.as_mut_ptr(), n as libc::c_uint, libc::MSG_DONTWAIT, std::ptr::null_mut())
-        };
-        if r >= 0 {
-            let got = r as usize;
-            // A short message (not a whole can_frame) cannot come from a CAN_RAW socket; drop it rather
-            // than hand on a partly written frame.
-            if let Some(bad) = msgs[..got].iter().position(|m| m.msg_len as usize != size) {
-                return Ok(bad);
-            }
-            return Ok(got);
-        }
-        let e = io::Error::last_os_error();
-        match e.kind() {
-            io::ErrorKind::WouldBlock => return Ok(0),
-            io::ErrorKind::Interrupted => continue,
-            _ => return Err(e),
-        }
+/// The `iovec`s and `mmsghdr`s of one send for the first `n` of `frames`, each message one frame. Only
+/// those `n` entries are written (an expedited reply writes one, not 5 KiB).
+fn messages(
+    frames: *mut libc::can_frame,
+    n: usize,
+    iov: &mut [MaybeUninit<libc::iovec>; BATCH],
+    msgs: &mut [MaybeUninit<libc::mmsghdr>; BATCH],
+) {
+    for i in 0..n.min(BATCH) {
+        // `frames.wrapping_add(i)` stays within the caller's buffer of at least `n` frames.
+        let base = frames.wrapping_add(i).cast();
+        let v = iov[i].write(libc::iovec { iov_base: base, iov_len: std::mem::size_of::<libc::can_frame>() });
+        // SAFETY: mmsghdr is plain old data; zeroed = no name, no control data.
+        let mut m: libc::mmsghdr = unsafe { std::mem::zeroed() };
+        m.msg_hdr.msg_iov = v;
+        m.msg_hdr.msg_iovlen = 1;
+        msgs[i].write(m);
     }
 }
 
-/// Sends `frames` in order without waiting, in as few calls as the kernel allows. Returns how many went
-/// out: a prefix of `frames` (the rest must be sent again, in order). An error is returned only when not
-/// even the first frame went out.
-pub(crate) fn send_frames(fd: RawFd, frames: &[libc::can_frame]) -> io::Result<usize> {
-    let size = std::mem::size_of::<libc::can_frame>();
-    let mut sent = 0;
-    while sent < frames.len() {
-        let n = (frames.len() - sent).min(BATCH);
-        let mut iov: [libc::iovec; BATCH] = [libc::iovec { iov_base: std::ptr::null_mut(), iov_len: 0 }; BATCH];
-        // SAFETY: mmsghdr is plain old data; zeroed = no address (the bound interface), no control data.
-        let mut msgs: [libc::mmsghdr; BATCH] = unsafe { std::mem::zeroed() };
-        for i in 0..n {
-            // The kernel only reads through iov_base for a send; the cast to *mut is what iovec spells.
-            iov[i] = libc::iovec {
-                iov_base: (&frames[sent + i] as *const libc::can_frame).cast_mut().cast(),
-                iov_len: size,
+/// The buffers of [`Receiver::recv_frames`]: [`BATCH`] frames and the `iovec`s and `mmsghdr`s pointing at
+/// them, written once (5 KiB: zeroing them on every call cost more instructions than the rest of a pass).
+struct RecvBufs {
+    frames: [libc::can_frame; BATCH],
+    iov: [libc::iovec; BATCH],
+    msgs: [libc::mmsghdr; BATCH],
+}
+
+/// A runner's receive buffers for `recvmmsg`, on the heap so that the pointers between them stay valid
+/// wherever the `Receiver` moves.
+pub(crate) struct Receiver(Box<RecvBufs>);
+
+// SAFETY: the raw pointers in `RecvBufs` point only into the same heap allocation, which moves (between
+// threads too) with the `Receiver` that owns it and is used only through `&mut self`.
+unsafe impl Send for Receiver {}
+
+impl Default for Receiver {
+    fn default() -> Self {
+        Receiver::new()
+    }
+}
+
+impl Receiver {
+    pub(crate) fn new() -> Self {
+        // SAFETY: can_frame, iovec and mmsghdr are plain old data; all-zero bytes are valid values (null
+        // pointers, no name, no control data).
+        let mut b: Box<RecvBufs> = Box::new(unsafe { std::mem::zeroed() });
+        let bufs = &mut *b;
+        for i in 0..BATCH {
+            bufs.iov[i] = libc::iovec {
+                iov_base: (&mut bufs.frames[i] as *mut libc::can_frame).cast(),
+                iov_len: std::mem::size_of::<libc::can_frame>(),
             };
-            msgs[i].msg_hdr.msg_iov = &mut iov[i];
-            msgs[i].msg_hdr.msg_iovlen = 1;
+            bufs.msgs[i].msg_hdr.msg_iov = &mut bufs.iov[i];
+            bufs.msgs[i].msg_hdr.msg_iovlen = 1;
         }
-        // SAFETY: see the module docs; `msgs[..n]` point at `iov[..n]`, which point into `frames`.
-        let r = unsafe { libc::sendmmsg(fd, msgs.as_mut_ptr(), n as libc::c_uint, libc::MSG_DONTWAIT) };
+        Receiver(b)
+    }
+
+    /// Takes up to [`BATCH`] queued frames without waiting, oldest first, and hands them to `take` (not
+    /// called when none is queued). Returns how many were taken: `Ok(0)` when none is queued.
+    pub(crate) fn recv_frames(&mut self, fd: RawFd, take: impl FnOnce(&[libc::can_frame])) -> io::Result<usize> {
+        let size = std::mem::size_of::<libc::can_frame>();
+        let bufs = &mut *self.0;
+        loop {
+            // SAFETY: see the module docs; `msgs` point at `iov`, which point at `frames`, all in `bufs`,
+            // borrowed mutably for the call.
+            let r = unsafe {
+                libc::recvmmsg(
+                    fd,
+                    bufs.msgs.as_mut_ptr(),
+                    BATCH as libc::c_uint,
+                    libc::MSG_DONTWAIT,
+                    std::ptr::null_mut(),
+                )
+            };
+            if r >= 0 {
+                let got = r as usize;
+                // A short message (not a whole can_frame) cannot come from a CAN_RAW socket; drop it
+                // rather than hand on a partly written frame.
+                let whole = bufs.msgs[..got].iter().position(|m| m.msg_len as usize != size).unwrap_or(got);
+                if whole > 0 {
+                    take(&bufs.frames[..whole]);
+                }
+                return Ok(whole);
+            }
+            let e = io::Error::last_os_error();
+            match e.kind() {
+                io::ErrorKind::WouldBlock => return Ok(0),
+                io::ErrorKind::Interrupted => continue,
+                _ => return Err(e),
+            }
+        }
+    }
+}
+
+/// Sends `count` frames, the `i`th made by `frame(i)`, in order without waiting, in as few calls as the
+/// kernel allows. Returns how many went out: a prefix (the rest must be sent again, in order). An error is
+/// returned only when not even the first frame went out (or `frame` failed).
+pub(crate) fn send_frames(
+    fd: RawFd,
+    count: usize,
+    frame: impl Fn(usize) -> io::Result<libc::can_frame>,
+) -> io::Result<usize> {
+    let mut sent = 0;
+    while sent < count {
+        let n = (count - sent).min(BATCH);
+        let mut buf = [MaybeUninit::<libc::can_frame>::uninit(); BATCH];
+        for (i, b) in buf[..n].iter_mut().enumerate() {
+            b.write(frame(sent + i)?);
+        }
+        let mut iov = [MaybeUninit::<libc::iovec>::uninit(); BATCH];
+        let mut msgs = [MaybeUninit::<libc::mmsghdr>::uninit(); BATCH];
+        // The kernel only reads through iov_base for a send.
+        messages(buf.as_mut_ptr().cast(), n, &mut iov, &mut msgs);
+        // SAFETY: see the module docs; `msgs[..n]`, `iov[..n]` and `buf[..n]` are written and point at each
+        // other in that order.
+        let r = unsafe { libc::sendmmsg(fd, msgs.as_mut_ptr().cast(), n as libc::c_uint, libc::MSG_DONTWAIT) };
         if r < 0 {
             let e = io::Error::last_os_error();
             if e.kind() == io::ErrorKind::Interrupted {
@@ -222,7 +275,8 @@ mod tests {
     use std::os::unix::net::UnixDatagram;
 
     fn frame(id: u32, b: u8) -> libc::can_frame {
-        let mut f = empty_frame();
+        // SAFETY: can_frame is plain old data; all-zero bytes are a valid value.
+        let mut f: libc::can_frame = unsafe { std::mem::zeroed() };
         f.can_id = id;
         f.can_dlc = 1;
         f.data[0] = b;
@@ -238,27 +292,20 @@ mod tests {
         let frames: Vec<libc::can_frame> = (0..100).map(|i| frame(0x100 + i, i as u8)).collect();
         let mut sent = 0;
         let mut got = Vec::new();
-        let mut buf = [empty_frame(); BATCH];
+        let mut rx = Receiver::new();
         while sent < frames.len() {
             // A small socket queue makes sends partial; the prefix rule lets the caller resume in order.
-            match send_frames(a.as_raw_fd(), &frames[sent..]) {
+            match send_frames(a.as_raw_fd(), frames.len() - sent, |i| Ok(frames[sent + i])) {
                 Ok(n) => sent += n,
                 Err(e) => assert_eq!(e.kind(), io::ErrorKind::WouldBlock),
             }
-            let n = recv_frames(b.as_raw_fd(), &mut buf).unwrap();
-            got.extend(buf[..n].iter().map(|f| (f.can_id, f.data[0])));
+            rx.recv_frames(b.as_raw_fd(), |raw| got.extend(raw.iter().map(|f| (f.can_id, f.data[0])))).unwrap();
         }
-        loop {
-            let n = recv_frames(b.as_raw_fd(), &mut buf).unwrap();
-            if n == 0 {
-                break;
-            }
-            got.extend(buf[..n].iter().map(|f| (f.can_id, f.data[0])));
-        }
+        while rx.recv_frames(b.as_raw_fd(), |raw| got.extend(raw.iter().map(|f| (f.can_id, f.data[0])))).unwrap() > 0 {}
         let want: Vec<(u32, u8)> = frames.iter().map(|f| (f.can_id, f.data[0])).collect();
         assert_eq!(got, want);
         assert_eq!(wait_readable([a.as_raw_fd(), b.as_raw_fd()], Some(1000)).unwrap(), [false, false]);
-        send_frames(b.as_raw_fd(), &[frame(1, 1)]).unwrap();
+        send_frames(b.as_raw_fd(), 1, |_| Ok(frame(1, 1))).unwrap();
         assert_eq!(wait_readable([b.as_raw_fd(), a.as_raw_fd()], None).unwrap(), [false, true]);
         assert!(grow_receive_buffer(a.as_raw_fd(), 1 << 16).unwrap() > 0);
     }

@@ -292,15 +292,11 @@ fn step<N: SansIo + ReceiveFilters, S: Shared<N>>(
 /// Takes every queued frame, [`BATCH`](crate::BATCH) per call, so the socket's receive buffer is empty
 /// after each pass.
 pub(crate) fn receive_all(fd: RawFd, pass: &mut Pass, observe: &mut dyn FnMut(Observed<'_>)) -> io::Result<usize> {
-    let mut raw = [crate::batch::empty_frame(); crate::BATCH];
     let mut total = 0;
     loop {
-        let n = crate::batch::recv_frames(fd, &mut raw)?;
-        if n > 0 {
-            pass.take_raw(&raw[..n], observe);
-        }
+        let n = pass.receive(fd, observe)?;
         total += n;
-        if n < raw.len() {
+        if n < crate::BATCH {
             return Ok(total);
         }
     }

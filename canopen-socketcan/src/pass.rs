@@ -116,6 +116,8 @@ pub(crate) struct Pass {
     installed: Option<RxFilters>,
     /// The node's [`ReceiveFilters::rx_filters_generation`] when its filters were last computed.
     generation: Option<u32>,
+    /// The `recvmmsg` buffers, set up once.
+    receiver: crate::batch::Receiver,
 }
 
 impl Pass {
@@ -130,20 +132,17 @@ impl Pass {
         self.generation = None;
     }
 
+    /// Takes up to [`BATCH`](crate::BATCH) queued frames from the socket `fd` without waiting (one
+    /// `recvmmsg`) into `rx`. Returns how many.
+    pub fn receive(&mut self, fd: std::os::fd::RawFd, observe: &mut dyn FnMut(Observed<'_>)) -> std::io::Result<usize> {
+        let rx = &mut self.rx;
+        self.receiver.recv_frames(fd, |raw| take_raw(rx, raw, observe))
+    }
+
     /// Maps raw frames from the socket into `rx` (reporting error frames, skipping 29-bit ones).
+    #[cfg(test)]
     pub fn take_raw(&mut self, raw: &[libc::can_frame], observe: &mut dyn FnMut(Observed<'_>)) {
-        count(Counter::ReceiveCalls, 1);
-        count(Counter::FramesReceived, raw.len() as u64);
-        for r in raw {
-            match map_received(&socketcan::CanFrame::from(*r)) {
-                Some(Ok(frame)) => self.rx.push(Input::Frame(frame)),
-                Some(Err(event)) => {
-                    observe(Observed::Adapter(&event));
-                    self.rx.extend(event.bus_state().map(Input::Bus));
-                }
-                None => {}
-            }
-        }
+        take_raw(&mut self.rx, raw, observe)
     }
 
     /// Runs the node at `now`: the received frames, then the time, then drains its frames into `tx` and
@@ -195,6 +194,22 @@ impl Pass {
             for e in self.events.drain(..) {
                 observe(Observed::Event(&e));
             }
+        }
+    }
+}
+
+/// Maps raw frames from the socket into `rx` (reporting error frames, skipping 29-bit ones).
+fn take_raw(rx: &mut Vec<Input>, raw: &[libc::can_frame], observe: &mut dyn FnMut(Observed<'_>)) {
+    count(Counter::ReceiveCalls, 1);
+    count(Counter::FramesReceived, raw.len() as u64);
+    for r in raw {
+        match map_received(&socketcan::CanFrame::from(*r)) {
+            Some(Ok(frame)) => rx.push(Input::Frame(frame)),
+            Some(Err(event)) => {
+                observe(Observed::Adapter(&event));
+                rx.extend(event.bus_state().map(Input::Bus));
+            }
+            None => {}
         }
     }
 }
@@ -270,13 +285,9 @@ pub(crate) fn send_attempt(
     now: impl FnOnce() -> Instant,
     observe: &mut dyn FnMut(Observed<'_>),
 ) -> std::io::Result<bool> {
-    // The first BATCH frames as the kernel's structs, on the stack: no allocation per pass.
-    let mut raw = [crate::batch::empty_frame(); crate::BATCH];
-    let n = tx.len().min(crate::BATCH);
-    for (r, f) in raw.iter_mut().zip(&tx[..n]) {
-        *r = raw_frame(f)?;
-    }
-    match crate::batch::send_frames(fd, &raw[..n]) {
+    // The frames go to the kernel's structs on the stack, one batch at a time: no allocation per pass.
+    let frames = &tx[..];
+    match crate::batch::send_frames(fd, frames.len(), |i| raw_frame(&frames[i])) {
         Ok(n) => {
             sent(tx, n, observe);
             stall.clear();

@@ -365,7 +365,6 @@ async fn run_passes<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
 ) -> io::Result<Infallible> {
     let fd = bus.socket.as_raw_fd();
     let mut obs = |o: Observed<'_>| observe(o);
-    let mut raw = [crate::batch::empty_frame(); crate::BATCH];
     loop {
         let now = clock.now(); // the pass's one clock reading
         let (deadline, filters) = pass.run(shared, now, &mut obs);
@@ -392,11 +391,8 @@ async fn run_passes<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
         count(Counter::Wakeups, 1);
         if let Some(mut guard) = ready {
             loop {
-                let n = crate::batch::recv_frames(fd, &mut raw)?;
-                if n > 0 {
-                    pass.take_raw(&raw[..n], &mut obs);
-                }
-                if n < raw.len() {
+                let n = pass.receive(fd, &mut obs)?;
+                if n < crate::BATCH {
                     // The queue was empty at the end of this call: wait for the next edge.
                     guard.clear_ready();
                     break;
