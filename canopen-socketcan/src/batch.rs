@@ -180,6 +180,7 @@ pub(crate) fn monotonic_us() -> u64 {
 }
 
 /// A non-blocking `timerfd` on `CLOCK_MONOTONIC`, disarmed.
+#[cfg(any(feature = "tokio", test))]
 pub(crate) fn timerfd() -> io::Result<std::os::fd::OwnedFd> {
     // SAFETY: no pointers; a returned descriptor is a fresh one this process owns.
     let fd = unsafe { libc::timerfd_create(libc::CLOCK_MONOTONIC, libc::TFD_NONBLOCK | libc::TFD_CLOEXEC) };
@@ -191,6 +192,7 @@ pub(crate) fn timerfd() -> io::Result<std::os::fd::OwnedFd> {
 }
 
 /// When a [`timerfd`] fires.
+#[cfg(any(feature = "tokio", test))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Expiry {
     /// At this `CLOCK_MONOTONIC` time (µs; a past one fires at once).
@@ -203,6 +205,7 @@ pub(crate) enum Expiry {
 
 /// Arms or disarms a [`timerfd`] (one-shot). Arming also clears an expiry not yet read, so the descriptor
 /// is readable only after the new expiry.
+#[cfg(any(feature = "tokio", test))]
 pub(crate) fn set_timerfd(fd: RawFd, expiry: Expiry) -> io::Result<()> {
     let ts = |us: u64| libc::timespec {
         tv_sec: (us / 1_000_000).min(i64::MAX as u64) as libc::time_t,

@@ -221,6 +221,7 @@ impl Clock {
     }
 
     /// `t` on `CLOCK_MONOTONIC`, in µs (what a `timerfd` is armed with).
+    #[cfg(feature = "tokio")]
     pub(crate) fn to_monotonic_us(self, t: Instant) -> u64 {
         self.epoch_us.saturating_add(t.as_micros())
     }
