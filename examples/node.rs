@@ -59,7 +59,9 @@ use std::time::{Duration, Instant as StdInstant};
 use canopen_core::lss::LssEvent;
 use canopen_core::od::ObjectDictionary;
 use canopen_core::{Event, NmtState, NodeId};
-use canopen_socketcan::{run_blocking, run_tokio, BlockingBus, FileStorage, MutexShared, NotifyWake, Observed};
+use canopen_socketcan::{
+    run_blocking, run_tokio, BlockingBus, Clock, FileStorage, MutexShared, NotifyWake, Observed, TimerFd,
+};
 use clap::Parser;
 use io_module::{IoNode, Store, CONFIG};
 
@@ -232,19 +234,27 @@ fn run_on_tokio(
     printer: &Printer,
     limit: Option<Duration>,
 ) -> std::io::Result<()> {
-    let rt = tokio::runtime::Builder::new_current_thread().enable_all().build()?;
+    // One thread, I/O only: every sleep is a timerfd (`TimerFd`), so the runtime has no time driver, which
+    // would read the clock at every wake-up.
+    let rt = tokio::runtime::Builder::new_current_thread().enable_io().build()?;
     rt.block_on(async {
         let wake = printer.wake.clone();
         // The application task: wakes when its inputs change (the walking bit, once a second) while the
         // node is Operational (the TPDOs go out only then), and when the NMT state changes; never on a tick.
         let (s, w, t0, app) = (shared.clone(), wake.clone(), printer.started, printer.app.clone());
+        let mut timer = TimerFd::new(Clock::new())?;
         tokio::spawn(async move {
             loop {
                 match next_input_change(&s, t0) {
                     Some(wait) => {
                         w.signal();
                         tokio::select! {
-                            _ = tokio::time::sleep(wait) => {}
+                            r = timer.sleep(wait) => {
+                                if let Err(e) = r {
+                                    eprintln!("node: application timer: {e}");
+                                    return;
+                                }
+                            }
                             _ = app.notify.notified() => {}
                         }
                     }
@@ -255,11 +265,13 @@ fn run_on_tokio(
         let observe = |o: Observed<'_>| printer.print(o);
         let run = run_tokio(&**shared, &args.iface, &*wake, &observe);
         match limit {
-            Some(l) => match tokio::time::timeout(l, run).await {
-                Ok(Err(e)) => Err(e),
-                Ok(Ok(never)) => match never {},
-                Err(_elapsed) => Ok(()),
-            },
+            Some(l) => {
+                let mut timer = TimerFd::new(Clock::new())?;
+                tokio::select! {
+                    r = run => r.map(|never| match never {}),
+                    r = timer.sleep(l) => r,
+                }
+            }
             None => run.await.map(|never| match never {}),
         }
     })

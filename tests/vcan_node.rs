@@ -7,8 +7,9 @@
 //!   byte-exact;
 //! - load: 15 block downloads (each followed by a block upload) while another socket floods COB-IDs the
 //!   node does not use (11-bit and 29-bit) and the node, Operational, sends 4 TPDOs on 1 ms event timers:
-//!   at least 14 of 15 downloads complete byte-exact, any other ends with the same abort code on both
-//!   sides, the node keeps its heartbeat and its TPDOs keep flowing (issue 21, item 2);
+//!   all 15 downloads and the 15 uploads after them complete byte-exact (a failure would have to end with
+//!   the same abort code on both sides), the node keeps its heartbeat and its TPDOs keep flowing (issue 21,
+//!   item 2);
 //! - bystander: frames for other nodes neither wake the node's runner nor reach its socket (kernel
 //!   filters, issue 19), and the filters follow a COB-ID written by SDO and an NMT reset communication.
 
@@ -44,6 +45,10 @@ struct RunningNode {
     stop: Arc<AtomicBool>,
     /// The blocking runner's wake-up (it sleeps without a deadline otherwise).
     waker: Option<canopen_socketcan::BusWaker>,
+    /// Stops the tokio runner without a polling timer (which would wake the node's thread for nothing).
+    stop_tokio: Arc<tokio::sync::Notify>,
+    /// `/proc/self/task/<tid>` of the node's thread, for its CPU time.
+    task: Arc<std::sync::OnceLock<std::path::PathBuf>>,
     thread: Option<std::thread::JoinHandle<()>>,
 }
 
@@ -56,10 +61,14 @@ impl RunningNode {
         let shared = Arc::new(MutexShared::new(io_module::new_node(NodeId::new(id).unwrap(), config)));
         let stop = Arc::new(AtomicBool::new(false));
         let aborts = Arc::new(std::sync::Mutex::new(Vec::new()));
+        let (stop_tokio, task) = (Arc::new(tokio::sync::Notify::new()), Arc::new(std::sync::OnceLock::new()));
         let thread = {
-            let (shared, stop, aborts) = (shared.clone(), stop.clone(), aborts.clone());
+            let (shared, stop, aborts) = (shared.clone(), stop_tokio.clone(), aborts.clone());
+            let task = task.clone();
             std::thread::spawn(move || {
-                let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
+                let _ = task.set(this_task());
+                // I/O only: the runner needs no time driver (its deadlines are a timerfd).
+                let rt = tokio::runtime::Builder::new_current_thread().enable_io().build().unwrap();
                 rt.block_on(async {
                     let wake = NotifyWake::new();
                     let observe = |o: Observed<'_>| {
@@ -72,13 +81,13 @@ impl RunningNode {
                     };
                     tokio::select! {
                         r = run_tokio(&*shared, IFACE, &wake, &observe) => panic!("node runner stopped: {r:?}"),
-                        _ = async { while !stop.load(Ordering::Relaxed) { tokio::time::sleep(Duration::from_millis(20)).await } } => {}
+                        _ = stop.notified() => {}
                     }
                 })
             })
         };
         std::thread::sleep(Duration::from_millis(200));
-        RunningNode { shared, aborts, stop, waker: None, thread: Some(thread) }
+        RunningNode { shared, aborts, stop, waker: None, stop_tokio, task, thread: Some(thread) }
     }
 
     /// The same node on the blocking runner (`run_blocking`), on its own thread.
@@ -87,9 +96,11 @@ impl RunningNode {
         let stop = Arc::new(AtomicBool::new(false));
         let mut bus = BlockingBus::open(IFACE).unwrap();
         let waker = bus.waker().unwrap();
+        let task = Arc::new(std::sync::OnceLock::new());
         let thread = {
-            let (shared, stop) = (shared.clone(), stop.clone());
+            let (shared, stop, task) = (shared.clone(), stop.clone(), task.clone());
             std::thread::spawn(move || {
+                let _ = task.set(this_task());
                 let observe = |o: Observed<'_>| {
                     if let Observed::Adapter(a) = o {
                         eprintln!("node adapter: {a}");
@@ -100,13 +111,36 @@ impl RunningNode {
             })
         };
         std::thread::sleep(Duration::from_millis(200));
-        RunningNode { shared, aborts: Arc::default(), stop, waker: Some(waker), thread: Some(thread) }
+        RunningNode {
+            shared,
+            aborts: Arc::default(),
+            stop,
+            waker: Some(waker),
+            stop_tokio: Arc::default(),
+            task,
+            thread: Some(thread),
+        }
     }
+
+    /// The node thread's CPU time so far (user + system), in clock ticks (`/proc/self/task/<tid>/stat`).
+    fn cpu_ticks(&self) -> u64 {
+        let task = self.task.get().expect("the node thread started");
+        let stat = std::fs::read_to_string(task.join("stat")).unwrap();
+        let fields: Vec<&str> = stat.rsplit_once(')').unwrap().1.split_whitespace().collect();
+        fields[11].parse::<u64>().unwrap() + fields[12].parse::<u64>().unwrap()
+    }
+}
+
+/// `/proc/self/task/<tid>` of the calling thread.
+fn this_task() -> std::path::PathBuf {
+    let link = std::fs::read_link("/proc/thread-self").unwrap(); // "<pid>/task/<tid>"
+    std::path::Path::new("/proc/self/task").join(link.file_name().unwrap())
 }
 
 impl Drop for RunningNode {
     fn drop(&mut self) {
         self.stop.store(true, Ordering::Relaxed);
+        self.stop_tokio.notify_one();
         if let Some(w) = &self.waker {
             w.signal();
         }
@@ -307,12 +341,12 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
         "load: {downloads_ok}/{DOWNLOADS} block downloads byte-exact, {completed} transfers ({bytes} bytes) in {:.1?} while {frames} flood frames were sent; failures: {failures:?}; runner {stats:?}",
         start.elapsed()
     );
-    // Issue 21 item 2: the node's kernel filters keep the flood out of its socket, so sub-blocks are not
-    // lost to an overflowing receive buffer.
-    assert!(
-        downloads_ok >= DOWNLOADS - 1,
-        "only {downloads_ok} of {DOWNLOADS} block downloads completed: {failures:?}"
-    );
+    // Issue 21 item 2: the node's kernel filters keep the flood out of its socket (and the master's), so no
+    // sub-block is lost to an overflowing receive buffer: every transfer completes. (One failed download
+    // was tolerated while the flood reached the node's socket; with the filters, 7 VM runs of this test in
+    // a row completed all 30 transfers.)
+    assert_eq!(downloads_ok, DOWNLOADS, "block downloads completed: {failures:?}");
+    assert!(failures.is_empty(), "every transfer completes under the flood: {failures:?}");
     assert!(frames > 1000, "the flood did not run: {frames} frames");
     // Frames the node had to drop because its transmit queue was full (four 1 ms TPDOs faster than the VM's
     // socket takes them); reported, not asserted.
@@ -322,7 +356,8 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
 
 /// Issue 19, CAN-02: frames for other nodes cost the node nothing. Idle (Pre-operational, heartbeat off, no
 /// deadline) the runner does not wake at all; 4,000 frames for other nodes (their SDO servers, RPDOs,
-/// heartbeats, 29-bit frames) are dropped by the kernel filters: no wake-up, no frame received. Then a
+/// heartbeats, 29-bit frames) are dropped by the kernel filters: no wake-up, no frame received, and the
+/// node thread's CPU time stays at its idle level. Then a
 /// COB-ID written by SDO (a heartbeat consumer for node 34, 1016h) opens the filter for that node's
 /// heartbeat, and an NMT reset communication closes it again.
 #[test]
@@ -357,18 +392,30 @@ fn bystander(node: RunningNode) {
         }
     };
     std::thread::sleep(Duration::from_millis(300));
-    let idle0 = canopen_socketcan::runner_stats();
+    let (idle0, ticks0) = (canopen_socketcan::runner_stats(), node.cpu_ticks());
     std::thread::sleep(Duration::from_millis(500));
-    let idle1 = canopen_socketcan::runner_stats();
+    let (idle1, ticks1) = (canopen_socketcan::runner_stats(), node.cpu_ticks());
     assert_eq!(idle1.wakeups - idle0.wakeups, 0, "idle with heartbeat off: no wake-up ({idle0:?} -> {idle1:?})");
     for id in [0x600 + 34, 0x200 + 34, 0x700 + 34, 0x580 + 33] {
         send(id, 1000);
     }
     std::thread::sleep(Duration::from_millis(300));
-    let flood = canopen_socketcan::runner_stats();
-    eprintln!("bystander: 4000 frames for other nodes: {idle1:?} -> {flood:?}");
+    let (flood, ticks2) = (canopen_socketcan::runner_stats(), node.cpu_ticks());
+    eprintln!(
+        "bystander: 4000 frames for other nodes: {idle1:?} -> {flood:?}; node thread CPU ticks idle {}, flood {}",
+        ticks1 - ticks0,
+        ticks2 - ticks1
+    );
     assert_eq!(flood.wakeups - idle1.wakeups, 0, "woken by frames for other nodes");
     assert_eq!(flood.frames_received - idle1.frames_received, 0, "received frames for other nodes");
+    // The node's thread stays at idle level: not one 10 ms tick more than while idle (handling the 4,000
+    // frames cost 50-80 ticks before the kernel filters, issue 19).
+    assert!(
+        ticks2 - ticks1 <= ticks1 - ticks0 + 1,
+        "node CPU ticks: idle {}, flood {}",
+        ticks1 - ticks0,
+        ticks2 - ticks1
+    );
     // 1016h:01 = node 34, 500 ms: its heartbeats now reach the node (HB-09), and reset communication
     // restores the power-on filters (NMT-05).
     let mut m = Master::new(BlockingBus::open(IFACE).unwrap(), NodeId::new(33).unwrap()).unwrap();

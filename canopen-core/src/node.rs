@@ -130,6 +130,8 @@ pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     events: DequeInner<Event, Z::EventQueue>,
     tx_dropped: u32,
     events_dropped: u32,
+    /// Bumped whenever the COB-IDs the node receives may have changed (see [`Node::rx_filters_generation`]).
+    rx_generation: u32,
 }
 
 /// The sans-IO surface every runner drives (the async [`crate::driver`], the SocketCAN adapters, the test
@@ -316,6 +318,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             events: Z::EVENT_QUEUE,
             tx_dropped: 0,
             events_dropped: 0,
+            rx_generation: 0,
         }
     }
 
@@ -342,6 +345,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// The whole object dictionary as SDO, PDO and the EDS see it: the communication profile (1000h–1FFFh)
     /// merged with the application's entries.
     pub fn dictionary(&mut self) -> Merged<&mut CommProfile<Z>, &mut A> {
+        self.cob_ids_may_change(); // a direct write may change a COB-ID
         Merged { comm: &mut self.comm, app: &mut self.app }
     }
 
@@ -690,6 +694,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// Applies the side effects of a communication object written at `now` (by SDO or the local API).
     fn comm_written(&mut self, now: Instant, index: u16, sub: u8) {
+        self.cob_ids_may_change();
         let p = &self.comm.params;
         match index {
             0x1005 | 0x1006 | 0x1007 | 0x1019 => self.sync.reconfigure(now, p.sync),
@@ -723,6 +728,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05),
     /// each loading the stored values of its group after the defaults (NMT-06).
     fn reset(&mut self, now: Instant, application: bool) {
+        self.cob_ids_may_change(); // reset communication, an LSS node-ID
         if application {
             self.app.restore_defaults();
             let _ = storage::load(&mut self.storage, Groups::APP, &mut self.app);

@@ -1,7 +1,8 @@
 //! Batched socket calls for the runners: `recvmmsg` takes every queued frame (up to [`BATCH`]) in one
 //! system call, `sendmmsg` sends a whole pass's frames in one, `ppoll` waits for the socket, the wake-up
-//! socket and the next deadline together. The `socketcan` crate reads and writes one frame per call, so
-//! these three calls go through `libc` (and tokio's `AsyncFd::register` is `unsafe` too); this module is the adapter's only `unsafe` code.
+//! socket and the next deadline together; plus the monotonic clock and the `timerfd` the tokio runner
+//! sleeps on. The `socketcan` crate reads and writes one frame per call, so these calls go through `libc`
+//! (and tokio's `AsyncFd::register` is `unsafe` too); this module is the adapter's only `unsafe` code.
 //!
 //! Safety argument, once for all three: every pointer handed to the kernel points into a buffer that this
 //! function owns or borrows for the whole call (`msghdr`/`iovec`/`pollfd` arrays on the stack, the caller's
@@ -13,77 +14,130 @@
 #![allow(unsafe_code)]
 
 use std::io;
+use std::mem::MaybeUninit;
 use std::os::fd::RawFd;
 
 /// Frames taken or sent per system call at most.
 pub const BATCH: usize = 64;
 
-/// A zeroed `can_frame`.
-pub(crate) fn empty_frame() -> libc::can_frame {
-    // SAFETY: can_frame is plain old data; all-zero bytes are a valid value.
-    unsafe { std::mem::zeroed() }
-}
-
-/// Takes up to `out.len()` queued frames without waiting, oldest first. `Ok(0)` when none is queued.
-pub(crate) fn recv_frames(fd: RawFd, out: &mut [libc::can_frame]) -> io::Result<usize> {
-    let n = out.len().min(BATCH);
-    if n == 0 {
-        return Ok(0);
-    }
-    let size = std::mem::size_of::<libc::can_frame>();
-    let mut iov: [libc::iovec; BATCH] = [libc::iovec { iov_base: std::ptr::null_mut(), iov_len: 0 }; BATCH];
-    // SAFETY: mmsghdr is plain old data; zeroed = no name, no control data.
-    let mut msgs: [libc::mmsghdr; BATCH] = unsafe { std::mem::zeroed() };
-    for i in 0..n {
-        iov[i] = libc::iovec { iov_base: (&mut out[i] as *mut libc::can_frame).cast(), iov_len: size };
-        msgs[i].msg_hdr.msg_iov = &mut iov[i];
-        msgs[i].msg_hdr.msg_iovlen = 1;
-    }
-    loop {
-        // SAFETY: see the module docs; `msgs[..n]` point at `iov[..n]`, which point at `out[..n]`.
-        let r = unsafe {
-            libc::recvmmsg(fd, msgs.as_mut_ptr(), n as libc::c_uint, libc::MSG_DONTWAIT, std::ptr::null_mut())
-        };
-        if r >= 0 {
-            let got = r as usize;
-            // A short message (not a whole can_frame) cannot come from a CAN_RAW socket; drop it rather
-            // than hand on a partly written frame.
-            if let Some(bad) = msgs[..got].iter().position(|m| m.msg_len as usize != size) {
-                return Ok(bad);
-            }
-            return Ok(got);
-        }
-        let e = io::Error::last_os_error();
-        match e.kind() {
-            io::ErrorKind::WouldBlock => return Ok(0),
-            io::ErrorKind::Interrupted => continue,
-            _ => return Err(e),
-        }
+/// The `iovec`s and `mmsghdr`s of one send for the first `n` of `frames`, each message one frame. Only
+/// those `n` entries are written (an expedited reply writes one, not 5 KiB).
+fn messages(
+    frames: *mut libc::can_frame,
+    n: usize,
+    iov: &mut [MaybeUninit<libc::iovec>; BATCH],
+    msgs: &mut [MaybeUninit<libc::mmsghdr>; BATCH],
+) {
+    for i in 0..n.min(BATCH) {
+        // `frames.wrapping_add(i)` stays within the caller's buffer of at least `n` frames.
+        let base = frames.wrapping_add(i).cast();
+        let v = iov[i].write(libc::iovec { iov_base: base, iov_len: std::mem::size_of::<libc::can_frame>() });
+        // SAFETY: mmsghdr is plain old data; zeroed = no name, no control data.
+        let mut m: libc::mmsghdr = unsafe { std::mem::zeroed() };
+        m.msg_hdr.msg_iov = v;
+        m.msg_hdr.msg_iovlen = 1;
+        msgs[i].write(m);
     }
 }
 
-/// Sends `frames` in order without waiting, in as few calls as the kernel allows. Returns how many went
-/// out: a prefix of `frames` (the rest must be sent again, in order). An error is returned only when not
-/// even the first frame went out.
-pub(crate) fn send_frames(fd: RawFd, frames: &[libc::can_frame]) -> io::Result<usize> {
-    let size = std::mem::size_of::<libc::can_frame>();
-    let mut sent = 0;
-    while sent < frames.len() {
-        let n = (frames.len() - sent).min(BATCH);
-        let mut iov: [libc::iovec; BATCH] = [libc::iovec { iov_base: std::ptr::null_mut(), iov_len: 0 }; BATCH];
-        // SAFETY: mmsghdr is plain old data; zeroed = no address (the bound interface), no control data.
-        let mut msgs: [libc::mmsghdr; BATCH] = unsafe { std::mem::zeroed() };
-        for i in 0..n {
-            // The kernel only reads through iov_base for a send; the cast to *mut is what iovec spells.
-            iov[i] = libc::iovec {
-                iov_base: (&frames[sent + i] as *const libc::can_frame).cast_mut().cast(),
-                iov_len: size,
+/// The buffers of [`Receiver::recv_frames`]: [`BATCH`] frames and the `iovec`s and `mmsghdr`s pointing at
+/// them, written once (5 KiB: zeroing them on every call cost more instructions than the rest of a pass).
+struct RecvBufs {
+    frames: [libc::can_frame; BATCH],
+    iov: [libc::iovec; BATCH],
+    msgs: [libc::mmsghdr; BATCH],
+}
+
+/// A runner's receive buffers for `recvmmsg`, on the heap so that the pointers between them stay valid
+/// wherever the `Receiver` moves.
+pub(crate) struct Receiver(Box<RecvBufs>);
+
+// SAFETY: the raw pointers in `RecvBufs` point only into the same heap allocation, which moves (between
+// threads too) with the `Receiver` that owns it and is used only through `&mut self`.
+unsafe impl Send for Receiver {}
+
+impl Default for Receiver {
+    fn default() -> Self {
+        Receiver::new()
+    }
+}
+
+impl Receiver {
+    pub(crate) fn new() -> Self {
+        // SAFETY: can_frame, iovec and mmsghdr are plain old data; all-zero bytes are valid values (null
+        // pointers, no name, no control data).
+        let mut b: Box<RecvBufs> = Box::new(unsafe { std::mem::zeroed() });
+        let bufs = &mut *b;
+        for i in 0..BATCH {
+            bufs.iov[i] = libc::iovec {
+                iov_base: (&mut bufs.frames[i] as *mut libc::can_frame).cast(),
+                iov_len: std::mem::size_of::<libc::can_frame>(),
             };
-            msgs[i].msg_hdr.msg_iov = &mut iov[i];
-            msgs[i].msg_hdr.msg_iovlen = 1;
+            bufs.msgs[i].msg_hdr.msg_iov = &mut bufs.iov[i];
+            bufs.msgs[i].msg_hdr.msg_iovlen = 1;
         }
-        // SAFETY: see the module docs; `msgs[..n]` point at `iov[..n]`, which point into `frames`.
-        let r = unsafe { libc::sendmmsg(fd, msgs.as_mut_ptr(), n as libc::c_uint, libc::MSG_DONTWAIT) };
+        Receiver(b)
+    }
+
+    /// Takes up to [`BATCH`] queued frames without waiting, oldest first, and hands them to `take` (not
+    /// called when none is queued). Returns how many were taken: `Ok(0)` when none is queued.
+    pub(crate) fn recv_frames(&mut self, fd: RawFd, take: impl FnOnce(&[libc::can_frame])) -> io::Result<usize> {
+        let size = std::mem::size_of::<libc::can_frame>();
+        let bufs = &mut *self.0;
+        loop {
+            // SAFETY: see the module docs; `msgs` point at `iov`, which point at `frames`, all in `bufs`,
+            // borrowed mutably for the call.
+            let r = unsafe {
+                libc::recvmmsg(
+                    fd,
+                    bufs.msgs.as_mut_ptr(),
+                    BATCH as libc::c_uint,
+                    libc::MSG_DONTWAIT,
+                    std::ptr::null_mut(),
+                )
+            };
+            if r >= 0 {
+                let got = r as usize;
+                // A short message (not a whole can_frame) cannot come from a CAN_RAW socket; drop it
+                // rather than hand on a partly written frame.
+                let whole = bufs.msgs[..got].iter().position(|m| m.msg_len as usize != size).unwrap_or(got);
+                if whole > 0 {
+                    take(&bufs.frames[..whole]);
+                }
+                return Ok(whole);
+            }
+            let e = io::Error::last_os_error();
+            match e.kind() {
+                io::ErrorKind::WouldBlock => return Ok(0),
+                io::ErrorKind::Interrupted => continue,
+                _ => return Err(e),
+            }
+        }
+    }
+}
+
+/// Sends `count` frames, the `i`th made by `frame(i)`, in order without waiting, in as few calls as the
+/// kernel allows. Returns how many went out: a prefix (the rest must be sent again, in order). An error is
+/// returned only when not even the first frame went out (or `frame` failed).
+pub(crate) fn send_frames(
+    fd: RawFd,
+    count: usize,
+    frame: impl Fn(usize) -> io::Result<libc::can_frame>,
+) -> io::Result<usize> {
+    let mut sent = 0;
+    while sent < count {
+        let n = (count - sent).min(BATCH);
+        let mut buf = [MaybeUninit::<libc::can_frame>::uninit(); BATCH];
+        for (i, b) in buf[..n].iter_mut().enumerate() {
+            b.write(frame(sent + i)?);
+        }
+        let mut iov = [MaybeUninit::<libc::iovec>::uninit(); BATCH];
+        let mut msgs = [MaybeUninit::<libc::mmsghdr>::uninit(); BATCH];
+        // The kernel only reads through iov_base for a send.
+        messages(buf.as_mut_ptr().cast(), n, &mut iov, &mut msgs);
+        // SAFETY: see the module docs; `msgs[..n]`, `iov[..n]` and `buf[..n]` are written and point at each
+        // other in that order.
+        let r = unsafe { libc::sendmmsg(fd, msgs.as_mut_ptr().cast(), n as libc::c_uint, libc::MSG_DONTWAIT) };
         if r < 0 {
             let e = io::Error::last_os_error();
             if e.kind() == io::ErrorKind::Interrupted {
@@ -117,6 +171,60 @@ pub(crate) fn wait_readable<const K: usize>(fds: [RawFd; K], timeout_us: Option<
     Ok(pfds.map(|p| p.revents & (libc::POLLIN | libc::POLLERR | libc::POLLHUP) != 0))
 }
 
+/// `CLOCK_MONOTONIC` in microseconds (the clock `std::time::Instant` reads on Linux).
+pub(crate) fn monotonic_us() -> u64 {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: `ts` is a timespec alive for the call; CLOCK_MONOTONIC always exists on Linux.
+    unsafe { libc::clock_gettime(libc::CLOCK_MONOTONIC, &mut ts) };
+    ts.tv_sec as u64 * 1_000_000 + ts.tv_nsec as u64 / 1000
+}
+
+/// A non-blocking `timerfd` on `CLOCK_MONOTONIC`, disarmed.
+#[cfg(any(feature = "tokio", test))]
+pub(crate) fn timerfd() -> io::Result<std::os::fd::OwnedFd> {
+    // SAFETY: no pointers; a returned descriptor is a fresh one this process owns.
+    let fd = unsafe { libc::timerfd_create(libc::CLOCK_MONOTONIC, libc::TFD_NONBLOCK | libc::TFD_CLOEXEC) };
+    if fd < 0 {
+        return Err(io::Error::last_os_error());
+    }
+    // SAFETY: `fd` was just returned by timerfd_create and is owned by nobody else.
+    Ok(unsafe { <std::os::fd::OwnedFd as std::os::fd::FromRawFd>::from_raw_fd(fd) })
+}
+
+/// When a [`timerfd`] fires.
+#[cfg(any(feature = "tokio", test))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Expiry {
+    /// At this `CLOCK_MONOTONIC` time (µs; a past one fires at once).
+    At(u64),
+    /// This many µs from now (at least 1).
+    In(u64),
+    /// Never (disarmed).
+    Never,
+}
+
+/// Arms or disarms a [`timerfd`] (one-shot). Arming also clears an expiry not yet read, so the descriptor
+/// is readable only after the new expiry.
+#[cfg(any(feature = "tokio", test))]
+pub(crate) fn set_timerfd(fd: RawFd, expiry: Expiry) -> io::Result<()> {
+    let ts = |us: u64| libc::timespec {
+        tv_sec: (us / 1_000_000).min(i64::MAX as u64) as libc::time_t,
+        tv_nsec: ((us % 1_000_000) * 1000) as libc::c_long,
+    };
+    // An all-zero it_value disarms: an expiry at or in 0 µs is 1 µs.
+    let (flags, value) = match expiry {
+        Expiry::At(us) => (libc::TFD_TIMER_ABSTIME, ts(us.max(1))),
+        Expiry::In(us) => (0, ts(us.max(1))),
+        Expiry::Never => (0, ts(0)),
+    };
+    let spec = libc::itimerspec { it_interval: ts(0), it_value: value };
+    // SAFETY: `spec` is an itimerspec alive for the call; the old value is not asked for (null).
+    if unsafe { libc::timerfd_settime(fd, flags, &spec, std::ptr::null_mut()) } != 0 {
+        return Err(io::Error::last_os_error());
+    }
+    Ok(())
+}
+
 /// Sets the socket's receive buffer to at least `bytes` (`SO_RCVBUFFORCE` when privileged, else
 /// `SO_RCVBUF`, which the kernel caps at `net.core.rmem_max`). Returns the size the kernel reports.
 pub(crate) fn grow_receive_buffer(fd: RawFd, bytes: usize) -> io::Result<usize> {
@@ -142,17 +250,26 @@ pub(crate) fn grow_receive_buffer(fd: RawFd, bytes: usize) -> io::Result<usize> 
     Ok(got as usize)
 }
 
-/// Registers a non-blocking CAN socket with tokio's reactor (inside a tokio runtime), for readability only:
-/// with write interest too, every send makes the socket's "writable" edge wake the runtime for nothing
-/// (seen with strace: one extra `epoll_wait` and three clock reads of tokio per frame sent). A full send
-/// queue is retried after a back-off instead ([`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF)).
+/// Registers a non-blocking descriptor (the CAN socket, the runner's `timerfd`) with tokio's reactor
+/// (inside a tokio runtime), for readability only: with write interest too, every send makes the socket's
+/// "writable" edge wake the runtime for nothing (seen with strace: one extra `epoll_wait` and three clock
+/// reads of tokio per frame sent). A full send queue is retried after a back-off instead
+/// ([`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF)).
 #[cfg(feature = "tokio")]
-pub(crate) fn register(socket: socketcan::CanSocket) -> io::Result<tokio::io::unix::AsyncFd<socketcan::CanSocket>> {
-    // SAFETY: a `socketcan::CanSocket` owns its descriptor (an `OwnedFd`): it stays open, and `as_raw_fd`
-    // returns the same one, until the socket is dropped, which the `AsyncFd` that owns it does last.
-    unsafe { tokio::io::unix::AsyncFd::register_with_interest(socket, tokio::io::Interest::READABLE) }
+pub(crate) fn register<T: Owns>(owner: T) -> io::Result<tokio::io::unix::AsyncFd<T>> {
+    // SAFETY: `T: Owns` owns its descriptor: it stays open, and `as_raw_fd` returns the same one, until
+    // `owner` is dropped, which the `AsyncFd` that owns it does last.
+    unsafe { tokio::io::unix::AsyncFd::register_with_interest(owner, tokio::io::Interest::READABLE) }
         .map_err(|e| e.into_parts().1)
 }
+
+/// A type that owns the descriptor it returns from `as_raw_fd` (closes it on drop, never swaps it).
+#[cfg(feature = "tokio")]
+pub(crate) trait Owns: std::os::fd::AsRawFd {}
+#[cfg(feature = "tokio")]
+impl Owns for socketcan::CanSocket {}
+#[cfg(feature = "tokio")]
+impl Owns for std::os::fd::OwnedFd {}
 
 #[cfg(test)]
 mod tests {
@@ -161,7 +278,8 @@ mod tests {
     use std::os::unix::net::UnixDatagram;
 
     fn frame(id: u32, b: u8) -> libc::can_frame {
-        let mut f = empty_frame();
+        // SAFETY: can_frame is plain old data; all-zero bytes are a valid value.
+        let mut f: libc::can_frame = unsafe { std::mem::zeroed() };
         f.can_id = id;
         f.can_dlc = 1;
         f.data[0] = b;
@@ -177,28 +295,41 @@ mod tests {
         let frames: Vec<libc::can_frame> = (0..100).map(|i| frame(0x100 + i, i as u8)).collect();
         let mut sent = 0;
         let mut got = Vec::new();
-        let mut buf = [empty_frame(); BATCH];
+        let mut rx = Receiver::new();
         while sent < frames.len() {
             // A small socket queue makes sends partial; the prefix rule lets the caller resume in order.
-            match send_frames(a.as_raw_fd(), &frames[sent..]) {
+            match send_frames(a.as_raw_fd(), frames.len() - sent, |i| Ok(frames[sent + i])) {
                 Ok(n) => sent += n,
                 Err(e) => assert_eq!(e.kind(), io::ErrorKind::WouldBlock),
             }
-            let n = recv_frames(b.as_raw_fd(), &mut buf).unwrap();
-            got.extend(buf[..n].iter().map(|f| (f.can_id, f.data[0])));
+            rx.recv_frames(b.as_raw_fd(), |raw| got.extend(raw.iter().map(|f| (f.can_id, f.data[0])))).unwrap();
         }
-        loop {
-            let n = recv_frames(b.as_raw_fd(), &mut buf).unwrap();
-            if n == 0 {
-                break;
-            }
-            got.extend(buf[..n].iter().map(|f| (f.can_id, f.data[0])));
-        }
+        while rx.recv_frames(b.as_raw_fd(), |raw| got.extend(raw.iter().map(|f| (f.can_id, f.data[0])))).unwrap() > 0 {}
         let want: Vec<(u32, u8)> = frames.iter().map(|f| (f.can_id, f.data[0])).collect();
         assert_eq!(got, want);
         assert_eq!(wait_readable([a.as_raw_fd(), b.as_raw_fd()], Some(1000)).unwrap(), [false, false]);
-        send_frames(b.as_raw_fd(), &[frame(1, 1)]).unwrap();
+        send_frames(b.as_raw_fd(), 1, |_| Ok(frame(1, 1))).unwrap();
         assert_eq!(wait_readable([b.as_raw_fd(), a.as_raw_fd()], None).unwrap(), [false, true]);
         assert!(grow_receive_buffer(a.as_raw_fd(), 1 << 16).unwrap() > 0);
+    }
+
+    /// The timerfd fires at an absolute time, after a relative delay, never when disarmed, and re-arming
+    /// clears an expiry that was not read.
+    #[test]
+    fn timerfd_fires_when_armed_and_rearming_clears_it() {
+        let t = timerfd().unwrap();
+        let fd = t.as_raw_fd();
+        let readable = |ms: u64| wait_readable([fd], Some(ms * 1000)).unwrap()[0];
+        assert!(!readable(5), "a fresh timerfd is disarmed");
+        set_timerfd(fd, Expiry::At(monotonic_us() + 2_000)).unwrap();
+        assert!(readable(1000));
+        set_timerfd(fd, Expiry::Never).unwrap();
+        assert!(!readable(10), "disarming cleared the unread expiry");
+        let start = monotonic_us();
+        set_timerfd(fd, Expiry::In(20_000)).unwrap();
+        assert!(readable(1000));
+        assert!(monotonic_us() - start >= 20_000);
+        set_timerfd(fd, Expiry::At(0)).unwrap(); // in the past: at once
+        assert!(readable(1000));
     }
 }

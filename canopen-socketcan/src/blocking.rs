@@ -240,6 +240,7 @@ pub fn run_blocking<N: SansIo + ReceiveFilters, S: Shared<N>>(
                 observe(Observed::Adapter(&AdapterEvent::InterfaceDown { iface: iface.clone(), error: e.to_string() }));
                 bus.reopen(None)?;
                 let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
+                pass.reinstall(); // the new socket gets the node's current filters
                 observe(Observed::Adapter(&AdapterEvent::Reopened { iface }));
             }
             Err(e) => return Err(e),
@@ -259,7 +260,7 @@ fn step<N: SansIo + ReceiveFilters, S: Shared<N>>(
     if let Some(f) = filters {
         bus.set_filters(&kernel_filters(&f))?;
         count(Counter::FilterUpdates, 1);
-        pass.installed = Some(f);
+        pass.installed(f);
     }
     send_all(bus, pass, observe)?;
     let mut wait = deadline.map(|d| d.as_micros().saturating_sub(now.as_micros()));
@@ -291,15 +292,11 @@ fn step<N: SansIo + ReceiveFilters, S: Shared<N>>(
 /// Takes every queued frame, [`BATCH`](crate::BATCH) per call, so the socket's receive buffer is empty
 /// after each pass.
 pub(crate) fn receive_all(fd: RawFd, pass: &mut Pass, observe: &mut dyn FnMut(Observed<'_>)) -> io::Result<usize> {
-    let mut raw = [crate::batch::empty_frame(); crate::BATCH];
     let mut total = 0;
     loop {
-        let n = crate::batch::recv_frames(fd, &mut raw)?;
-        if n > 0 {
-            pass.take_raw(&raw[..n], observe);
-        }
+        let n = pass.receive(fd, observe)?;
         total += n;
-        if n < raw.len() {
+        if n < crate::BATCH {
             return Ok(total);
         }
     }

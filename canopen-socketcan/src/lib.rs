@@ -73,7 +73,7 @@ pub use master::{Master, MasterError, MasterStats};
 pub use pass::{runner_stats, ReceiveFilters, RunnerStats};
 pub use shared::MutexShared;
 #[cfg(feature = "tokio")]
-pub use tokio_runner::{run_tokio, NotifyWake, TokioBus, TokioTimer};
+pub use tokio_runner::{run_tokio, NotifyWake, TimerFd, TokioBus, TokioTimer};
 
 /// How long a send waits before retrying when the socket buffer is full (`ENOBUFS`).
 pub const ENOBUFS_BACKOFF: StdDuration = StdDuration::from_micros(200);
@@ -197,24 +197,33 @@ pub enum Observed<'a> {
 /// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Clock {
+    /// The zero as a standard-library instant and as a `CLOCK_MONOTONIC` reading (µs), taken together.
     epoch: std::time::Instant,
+    epoch_us: u64,
 }
 
 impl Clock {
     /// The process's node clock (its zero is when the first one was made).
     pub fn new() -> Self {
-        static EPOCH: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
-        Clock { epoch: *EPOCH.get_or_init(std::time::Instant::now) }
+        static EPOCH: std::sync::OnceLock<(std::time::Instant, u64)> = std::sync::OnceLock::new();
+        let &(epoch, epoch_us) = EPOCH.get_or_init(|| (std::time::Instant::now(), batch::monotonic_us()));
+        Clock { epoch, epoch_us }
     }
 
-    /// The current instant.
+    /// The current instant (one `clock_gettime(CLOCK_MONOTONIC)`).
     pub fn now(&self) -> Instant {
-        Instant::from_micros(self.epoch.elapsed().as_micros() as u64)
+        Instant::from_micros(batch::monotonic_us().saturating_sub(self.epoch_us))
     }
 
     /// The standard-library instant of `t`.
     pub fn to_std(&self, t: Instant) -> std::time::Instant {
         self.epoch + StdDuration::from_micros(t.as_micros())
+    }
+
+    /// `t` on `CLOCK_MONOTONIC`, in µs (what a `timerfd` is armed with).
+    #[cfg(feature = "tokio")]
+    pub(crate) fn to_monotonic_us(self, t: Instant) -> u64 {
+        self.epoch_us.saturating_add(t.as_micros())
     }
 }
 

@@ -24,6 +24,9 @@ use crate::{map_received, AdapterEvent, Observed};
 pub trait ReceiveFilters {
     /// The acceptance filters of the frames the node handles now.
     fn rx_filters(&self) -> RxFilters;
+    /// A number that changes whenever [`rx_filters`](Self::rx_filters) may have changed; the runners
+    /// recompute the filters only when it moved.
+    fn rx_filters_generation(&self) -> u32;
 }
 
 impl<A: canopen_core::od::ObjectDictionary, Z: canopen_core::node::NodeSizes, S: canopen_core::storage::Storage>
@@ -31,6 +34,9 @@ impl<A: canopen_core::od::ObjectDictionary, Z: canopen_core::node::NodeSizes, S:
 {
     fn rx_filters(&self) -> RxFilters {
         canopen_core::Node::rx_filters(self)
+    }
+    fn rx_filters_generation(&self) -> u32 {
+        canopen_core::Node::rx_filters_generation(self)
     }
 }
 
@@ -107,29 +113,42 @@ pub(crate) struct Pass {
     pub tx: Vec<CanFrame>,
     events: Vec<Event>,
     /// The filters installed on the socket (`None`: accept all).
-    pub installed: Option<RxFilters>,
+    installed: Option<RxFilters>,
+    /// The node's [`ReceiveFilters::rx_filters_generation`] when its filters were last computed.
+    generation: Option<u32>,
+    /// The `recvmmsg` buffers, set up once.
+    receiver: crate::batch::Receiver,
 }
 
 impl Pass {
+    /// The socket carries `filters` now (the runner installed what [`run`](Self::run) returned).
+    pub fn installed(&mut self, filters: RxFilters) {
+        self.installed = Some(filters);
+    }
+
+    /// A fresh socket accepts every frame: the next pass computes and returns the node's filters.
+    pub fn reinstall(&mut self) {
+        self.installed = None;
+        self.generation = None;
+    }
+
+    /// Takes up to [`BATCH`](crate::BATCH) queued frames from the socket `fd` without waiting (one
+    /// `recvmmsg`) into `rx`. Returns how many.
+    pub fn receive(&mut self, fd: std::os::fd::RawFd, observe: &mut dyn FnMut(Observed<'_>)) -> std::io::Result<usize> {
+        let rx = &mut self.rx;
+        self.receiver.recv_frames(fd, |raw| take_raw(rx, raw, observe))
+    }
+
     /// Maps raw frames from the socket into `rx` (reporting error frames, skipping 29-bit ones).
+    #[cfg(test)]
     pub fn take_raw(&mut self, raw: &[libc::can_frame], observe: &mut dyn FnMut(Observed<'_>)) {
-        count(Counter::ReceiveCalls, 1);
-        count(Counter::FramesReceived, raw.len() as u64);
-        for r in raw {
-            match map_received(&socketcan::CanFrame::from(*r)) {
-                Some(Ok(frame)) => self.rx.push(Input::Frame(frame)),
-                Some(Err(event)) => {
-                    observe(Observed::Adapter(&event));
-                    self.rx.extend(event.bus_state().map(Input::Bus));
-                }
-                None => {}
-            }
-        }
+        take_raw(&mut self.rx, raw, observe)
     }
 
     /// Runs the node at `now`: the received frames, then the time, then drains its frames into `tx` and
     /// its events into `observe` (outside the lock: an observer may change the node, whose frames are
-    /// drained too). Returns the next deadline and the node's filters when they differ from `installed`.
+    /// drained too). Returns the next deadline and the node's filters when they differ from the installed
+    /// ones; they are computed only when the node's generation moved since the last computation.
     pub fn run<N: SansIo + ReceiveFilters, S: Shared<N>>(
         &mut self,
         shared: &S,
@@ -143,8 +162,9 @@ impl Pass {
             }
         }
         let mut first = true;
+        let mut changed = None;
         loop {
-            let (rx, tx, events) = (&mut self.rx, &mut self.tx, &mut self.events);
+            let (rx, tx, events, generation) = (&mut self.rx, &mut self.tx, &mut self.events, &mut self.generation);
             let (deadline, filters) = shared.lock(|n| {
                 if std::mem::take(&mut first) {
                     for i in rx.drain(..) {
@@ -157,15 +177,39 @@ impl Pass {
                 }
                 tx.extend(std::iter::from_fn(|| n.poll_transmit()));
                 events.extend(std::iter::from_fn(|| n.poll_event()));
-                (n.poll_timeout(), n.rx_filters())
+                let g = n.rx_filters_generation();
+                let filters = (*generation != Some(g)).then(|| {
+                    *generation = Some(g);
+                    n.rx_filters()
+                });
+                (n.poll_timeout(), filters)
             });
+            if let Some(f) = filters {
+                // The latest computation wins (an observer below may change the node again).
+                changed = (self.installed.as_ref() != Some(&f)).then_some(f);
+            }
             if self.events.is_empty() {
-                let changed = (self.installed.as_ref() != Some(&filters)).then_some(filters);
                 return (deadline, changed);
             }
             for e in self.events.drain(..) {
                 observe(Observed::Event(&e));
             }
+        }
+    }
+}
+
+/// Maps raw frames from the socket into `rx` (reporting error frames, skipping 29-bit ones).
+fn take_raw(rx: &mut Vec<Input>, raw: &[libc::can_frame], observe: &mut dyn FnMut(Observed<'_>)) {
+    count(Counter::ReceiveCalls, 1);
+    count(Counter::FramesReceived, raw.len() as u64);
+    for r in raw {
+        match map_received(&socketcan::CanFrame::from(*r)) {
+            Some(Ok(frame)) => rx.push(Input::Frame(frame)),
+            Some(Err(event)) => {
+                observe(Observed::Adapter(&event));
+                rx.extend(event.bus_state().map(Input::Bus));
+            }
+            None => {}
         }
     }
 }
@@ -241,8 +285,9 @@ pub(crate) fn send_attempt(
     now: impl FnOnce() -> Instant,
     observe: &mut dyn FnMut(Observed<'_>),
 ) -> std::io::Result<bool> {
-    let raw = tx.iter().map(raw_frame).collect::<std::io::Result<Vec<_>>>()?;
-    match crate::batch::send_frames(fd, &raw) {
+    // The frames go to the kernel's structs on the stack, one batch at a time: no allocation per pass.
+    let frames = &tx[..];
+    match crate::batch::send_frames(fd, frames.len(), |i| raw_frame(&frames[i])) {
         Ok(n) => {
             sent(tx, n, observe);
             stall.clear();
@@ -276,7 +321,7 @@ mod tests {
         let (deadline, filters) = pass.run(&shared, Instant::ZERO, &mut |o| seen.push(format!("{o:?}")));
         assert_eq!(pass.tx, [CanFrame::new(0x705, &[0]).unwrap()]); // boot-up
         assert_eq!(deadline, None);
-        pass.installed = Some(filters.expect("first pass: filters to install"));
+        pass.installed(filters.expect("first pass: filters to install"));
         pass.tx.clear();
         // Two reads of 1000h, then a write of 1016h:01 (a heartbeat consumer of node 3): three replies in
         // order, and the receive set changed (703h).
@@ -296,7 +341,7 @@ mod tests {
         assert_eq!(cmds, [0x43, 0x43, 0x60]);
         let filters = filters.expect("1016h changed the receive set");
         assert!(filters.iter().any(|f| f.id == 0x703));
-        pass.installed = Some(filters);
+        pass.installed(filters);
         pass.tx.clear();
         // Nothing changed: no filters to install.
         let (_, filters) = pass.run(&shared, Instant::from_millis(2), &mut |_| {});
@@ -311,6 +356,76 @@ mod tests {
         });
         assert_eq!(pass.tx.iter().map(|f| f.cob_id()).collect::<Vec<_>>(), [0x085]);
         assert!(seen.iter().any(|s| s.contains("Event")), "{seen:?}");
+    }
+
+    /// A node that counts how often its filters are computed.
+    struct Counting(Node<NoApplication>, std::cell::Cell<u32>);
+
+    impl SansIo for Counting {
+        fn handle_frame(&mut self, now: Instant, frame: &CanFrame) {
+            self.0.handle_frame(now, frame)
+        }
+        fn handle_timeout(&mut self, now: Instant) {
+            self.0.handle_timeout(now)
+        }
+        fn poll_timeout(&self) -> Option<Instant> {
+            self.0.poll_timeout()
+        }
+        fn poll_transmit(&mut self) -> Option<CanFrame> {
+            self.0.poll_transmit()
+        }
+        fn peek_transmit(&self) -> Option<CanFrame> {
+            self.0.peek_transmit()
+        }
+        fn transmitted(&mut self, frame: &CanFrame) {
+            self.0.transmitted(frame)
+        }
+        fn poll_event(&mut self) -> Option<Event> {
+            self.0.poll_event()
+        }
+        fn handle_bus_state(&mut self, now: Instant, state: BusState) {
+            self.0.handle_bus_state(now, state)
+        }
+    }
+
+    impl ReceiveFilters for Counting {
+        fn rx_filters(&self) -> RxFilters {
+            self.1.set(self.1.get() + 1);
+            self.0.rx_filters()
+        }
+        fn rx_filters_generation(&self) -> u32 {
+            self.0.rx_filters_generation()
+        }
+    }
+
+    /// Issue 19: the filters are computed only when the node's generation moved (boot, a COB-ID written,
+    /// a reset communication), not on every pass: 200 SDO reads compute them never.
+    #[test]
+    fn filters_are_computed_only_when_the_generation_moves() {
+        let node = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+        let shared = RefCell::new(Counting(node, std::cell::Cell::new(0)));
+        let mut pass = Pass::default();
+        let computed = || shared.borrow().1.get();
+        let (_, f) = pass.run(&shared, Instant::ZERO, &mut |_| {});
+        pass.installed(f.expect("boot: filters to install"));
+        assert_eq!(computed(), 1);
+        for i in 0..200 {
+            pass.rx.push(Input::Frame(CanFrame::new(0x605, &[0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0]).unwrap()));
+            let (_, f) = pass.run(&shared, Instant::from_millis(1 + i), &mut |_| {});
+            assert!(f.is_none());
+        }
+        assert_eq!(computed(), 1, "SDO reads change no COB-ID");
+        assert_eq!(pass.tx.len(), 201);
+        // 1016h:01 written: computed again (after the ObjectWritten event's observer ran), and returned.
+        pass.rx.push(Input::Frame(CanFrame::new(0x605, &[0x23, 0x16, 0x10, 0x01, 0xF4, 0x01, 0x03, 0x00]).unwrap()));
+        let (_, f) = pass.run(&shared, Instant::from_millis(300), &mut |_| {});
+        assert!(f.is_some_and(|f| f.iter().any(|x| x.id == 0x703)));
+        assert_eq!(computed(), 2);
+        // A reopened socket: computed and returned again although nothing changed.
+        pass.reinstall();
+        let (_, f) = pass.run(&shared, Instant::from_millis(301), &mut |_| {});
+        assert!(f.is_some());
+        assert_eq!(computed(), 3);
     }
 
     /// Error frames from the socket reach the node in order with the data frames (issue 22): a tx error

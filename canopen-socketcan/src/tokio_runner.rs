@@ -4,7 +4,8 @@
 //! - [`TokioBus`] owns the socket; [`TokioBus::split`] gives a receive half ([`CanRx`], cancel-safe: a frame
 //!   is only taken from the socket when the read completes) and a transmit half ([`CanTx`], waits and
 //!   retries on `ENOBUFS`).
-//! - [`TokioTimer`] is the node's clock on `tokio::time`.
+//! - [`TimerFd`] is the timer [`run_tokio`] sleeps on: a `timerfd` in tokio's reactor, so the runtime needs
+//!   no time driver; [`TokioTimer`] is the node's clock on `tokio::time` for the core's driver.
 //! - [`MutexShared`](crate::MutexShared) holds the node (a `std::sync::Mutex`: the driver never holds it across an `.await`)
 //!   and [`NotifyWake`] (a `tokio::sync::Notify`) lets another task wake the driver after it changed the
 //!   node.
@@ -87,6 +88,7 @@ impl TokioBus {
     pub async fn send(&self, frame: &CanFrame, observe: Observer<'_>) -> io::Result<()> {
         let out = to_socket_frame(frame)?;
         let mut stalled: Option<std::time::Instant> = None;
+        let mut backoff: Option<TimerFd> = None;
         loop {
             // The socket is registered for readability only (see `batch::register`): a full queue
             // (`ENOBUFS`, or `EAGAIN` from the socket's own buffer) is retried after a back-off.
@@ -102,7 +104,11 @@ impl TokioBus {
                             observe(Observed::Adapter(&AdapterEvent::TxDropped(*frame)));
                             return Ok(());
                         }
-                        tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
+                        let timer = match &mut backoff {
+                            Some(t) => t,
+                            None => backoff.insert(TimerFd::new(Clock::new())?),
+                        };
+                        timer.sleep(crate::ENOBUFS_BACKOFF).await?;
                     }
                     ErrorClass::Interrupted => {}
                     ErrorClass::Down | ErrorClass::Fatal => return Err(e),
@@ -159,7 +165,9 @@ impl CanTx for TokioTx<'_> {
     }
 }
 
-/// The node's clock on `tokio::time` (so a paused tokio clock in tests pauses the node too).
+/// The node's clock on `tokio::time` (so a paused tokio clock in tests pauses the node too), for the core's
+/// [`driver`](canopen_core::driver). It needs the runtime's time driver (`enable_time`), which reads the
+/// clock at every wake-up of the runtime; [`run_tokio`] uses a [`TimerFd`] instead.
 ///
 /// ```
 /// let t = canopen_socketcan::TokioTimer::new(canopen_socketcan::Clock::new());
@@ -184,6 +192,85 @@ impl Timer for TokioTimer {
     }
     fn sleep_until(&mut self, deadline: Instant) -> impl Future<Output = ()> {
         tokio::time::sleep_until(tokio::time::Instant::from_std(self.clock.to_std(deadline)))
+    }
+}
+
+/// A one-shot timer on a Linux `timerfd` (`CLOCK_MONOTONIC`) registered with tokio's reactor, on the node's
+/// [`Clock`]: [`run_tokio`] sleeps on it, so a runtime built with `enable_io()` alone (no time driver)
+/// runs the node. tokio's time driver reads the clock on every wake-up of the runtime (to fire its
+/// timers); a `timerfd` is armed only when a deadline changes and costs nothing otherwise. Needs a tokio
+/// runtime with I/O enabled.
+///
+/// ```no_run
+/// use canopen_socketcan::{Clock, TimerFd};
+/// # async fn demo() -> std::io::Result<()> {
+/// let clock = Clock::new();
+/// let mut timer = TimerFd::new(clock)?;
+/// timer.sleep(std::time::Duration::from_millis(10)).await?;
+/// timer.sleep_until(clock.now() + canopen_core::Duration::from_millis(10)).await?;
+/// # Ok(()) }
+/// ```
+#[derive(Debug)]
+pub struct TimerFd {
+    fd: AsyncFd<std::os::fd::OwnedFd>,
+    clock: Clock,
+    /// The deadline the timer is armed for (`None`: disarmed, fired, or a relative sleep).
+    armed: Option<Instant>,
+}
+
+impl TimerFd {
+    /// A disarmed timer on `clock`. Must be called inside a tokio runtime with I/O enabled.
+    pub fn new(clock: Clock) -> io::Result<Self> {
+        let fd = crate::batch::register(crate::batch::timerfd()?)?;
+        Ok(TimerFd { fd, clock, armed: None })
+    }
+
+    /// Waits until `deadline` on the node's clock (at once if it passed).
+    pub async fn sleep_until(&mut self, deadline: Instant) -> io::Result<()> {
+        self.arm(Some(deadline))?;
+        self.fired().await
+    }
+
+    /// Waits `d` (no clock reading: the timer is armed relative to now).
+    pub async fn sleep(&mut self, d: std::time::Duration) -> io::Result<()> {
+        crate::batch::set_timerfd(self.fd.as_raw_fd(), crate::batch::Expiry::In(d.as_micros() as u64))?;
+        self.armed = None;
+        self.fired().await
+    }
+
+    /// Arms the timer for `deadline` (`None`: disarms it), unless it is armed for exactly that.
+    fn arm(&mut self, deadline: Option<Instant>) -> io::Result<()> {
+        if self.armed != deadline {
+            let expiry = match deadline {
+                Some(d) => crate::batch::Expiry::At(self.clock.to_monotonic_us(d)),
+                None => crate::batch::Expiry::Never,
+            };
+            crate::batch::set_timerfd(self.fd.as_raw_fd(), expiry)?;
+            self.armed = deadline;
+        }
+        Ok(())
+    }
+
+    /// Arms the timer for the node's next `deadline` at `now`, keeping an earlier expiry that is still
+    /// ahead (also when there is no deadline any more): that one wakes the runner once early, and the pass
+    /// then re-arms the timer for the new deadline. A deadline that moves later on every pass (an SDO
+    /// time-out restarted by each frame of a block transfer) so costs one `timerfd_settime` per expiry,
+    /// not one per pass.
+    fn arm_lazily(&mut self, deadline: Option<Instant>, now: Instant) -> io::Result<()> {
+        match (self.armed, deadline) {
+            (Some(a), Some(d)) if a > now && a <= d => Ok(()),
+            (Some(a), None) if a > now => Ok(()),
+            _ => self.arm(deadline),
+        }
+    }
+
+    /// Waits until the timer fires (a disarmed timer never does). Cancel-safe.
+    async fn fired(&mut self) -> io::Result<()> {
+        let mut guard = self.fd.readable().await?;
+        // Not read: the next arming clears the expiry count (timerfd_settime), which saves a system call.
+        guard.clear_ready();
+        self.armed = None;
+        Ok(())
     }
 }
 
@@ -217,26 +304,37 @@ impl Wake for NotifyWake {
 
 /// Runs the node in `shared` on `iface` with tokio until a socket error that is not an interface going
 /// down (that is returned). Every frame, node event and [`AdapterEvent`] goes to `observe`. Stop it by
-/// dropping the future (`tokio::select!`, `tokio::time::timeout`).
+/// dropping the future (`tokio::select!` with a [`TimerFd`] sleep or a signal, `tokio::time::timeout`).
 ///
 /// Each pass reads the clock once, hands the node every frame received since the last pass and the time,
 /// sends what it produced (one `sendmmsg` per [`BATCH`](crate::BATCH) frames), installs the node's receive
 /// set as kernel filters when it changed (`CAN_RAW_FILTER`: frames for other nodes never wake the task),
 /// then waits for the first of: the socket readable (every queued frame is taken, one `recvmmsg` per
-/// batch), the node's next deadline (no timer at all when it has none), a [`Wake`] signal.
+/// batch), the node's next deadline (a [`TimerFd`], armed only when the deadline moves earlier; none when
+/// there is no deadline), a [`Wake`] signal.
+///
+/// **Runtime**: any tokio runtime with I/O enabled; the runner uses no `tokio::time`, so
+/// `Builder::new_current_thread().enable_io()` is enough (the example node's runtime). What the runtime
+/// itself costs per wake-up is the runtime's: measured with strace on tokio 1.54 in a VM without vDSO
+/// (where every clock read is a system call), a current-thread runtime reads the clock twice per wake-up
+/// for its busy-time metrics (`MetricsBatch::{start,end}_processing_scheduled_tasks`, not configurable),
+/// and a runtime with the time driver (`enable_all`, `enable_time`) once more, to fire its timers. On a
+/// kernel with vDSO (most) those reads are not system calls. A served SDO expedited read then costs
+/// `epoll_wait`, `recvmmsg`, `sendmmsg` and the runner's one clock read.
 pub async fn run_tokio<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
     shared: &S,
     iface: &str,
     wake: &W,
     observe: Observer<'_>,
 ) -> io::Result<Infallible> {
-    let timer = TokioTimer::new(Clock::new());
+    let clock = Clock::new();
+    let mut timer = TimerFd::new(clock)?;
     let mut pass = Pass::default();
     let mut bus = TokioBus::open(iface)?;
     loop {
         let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
-        pass.installed = None;
-        let e = match run_passes(shared, &bus, &mut pass, &timer, wake, observe).await {
+        pass.reinstall();
+        let e = match run_passes(shared, &bus, &mut pass, &clock, &mut timer, wake, observe).await {
             Ok(never) => match never {},
             Err(e) => e,
         };
@@ -250,7 +348,7 @@ pub async fn run_tokio<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
                     break b;
                 }
             }
-            tokio::time::sleep(crate::REOPEN_POLL).await;
+            timer.sleep(crate::REOPEN_POLL).await?;
         };
         observe(Observed::Adapter(&AdapterEvent::Reopened { iface: iface.to_owned() }));
     }
@@ -260,46 +358,41 @@ async fn run_passes<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
     shared: &S,
     bus: &TokioBus,
     pass: &mut Pass,
-    timer: &TokioTimer,
+    clock: &Clock,
+    timer: &mut TimerFd,
     wake: &W,
     observe: Observer<'_>,
 ) -> io::Result<Infallible> {
     let fd = bus.socket.as_raw_fd();
     let mut obs = |o: Observed<'_>| observe(o);
-    let mut raw = [crate::batch::empty_frame(); crate::BATCH];
     loop {
-        let now = timer.now(); // the pass's one clock reading
+        let now = clock.now(); // the pass's one clock reading
         let (deadline, filters) = pass.run(shared, now, &mut obs);
         if let Some(f) = filters {
             bus.set_filters(&kernel_filters(&f))?;
             count(Counter::FilterUpdates, 1);
-            pass.installed = Some(f);
+            pass.installed(f);
         }
-        send_all(bus, pass, timer, &mut obs).await?;
+        send_all(bus, pass, clock, timer, &mut obs).await?;
         if deadline.is_some_and(|d| d <= now) {
             crate::blocking::receive_all(fd, pass, &mut obs)?; // due now: no wait
             continue;
         }
-        let sleep = async {
-            match deadline {
-                Some(d) => tokio::time::sleep_until(tokio::time::Instant::from_std(timer.clock.to_std(d))).await,
-                None => std::future::pending().await,
-            }
-        };
+        timer.arm_lazily(deadline, now)?;
         let ready = tokio::select! {
             biased;
             r = bus.socket.readable() => Some(r?),
-            _ = sleep => None,
+            r = timer.fired() => {
+                r?;
+                None
+            }
             _ = wake.wait() => None,
         };
         count(Counter::Wakeups, 1);
         if let Some(mut guard) = ready {
             loop {
-                let n = crate::batch::recv_frames(fd, &mut raw)?;
-                if n > 0 {
-                    pass.take_raw(&raw[..n], &mut obs);
-                }
-                if n < raw.len() {
+                let n = pass.receive(fd, &mut obs)?;
+                if n < crate::BATCH {
                     // The queue was empty at the end of this call: wait for the next edge.
                     guard.clear_ready();
                     break;
@@ -315,13 +408,14 @@ async fn run_passes<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
 async fn send_all(
     bus: &TokioBus,
     pass: &mut Pass,
-    timer: &TokioTimer,
+    clock: &Clock,
+    timer: &mut TimerFd,
     observe: &mut (dyn FnMut(Observed<'_>) + Send),
 ) -> io::Result<()> {
     let mut stall = crate::pass::TxStall::default();
     while !pass.tx.is_empty() {
-        if crate::pass::send_attempt(bus.socket.as_raw_fd(), &mut pass.tx, &mut stall, || timer.now(), observe)? {
-            tokio::time::sleep(crate::ENOBUFS_BACKOFF).await;
+        if crate::pass::send_attempt(bus.socket.as_raw_fd(), &mut pass.tx, &mut stall, || clock.now(), observe)? {
+            timer.sleep(crate::ENOBUFS_BACKOFF).await?;
         }
     }
     Ok(())

@@ -4,9 +4,11 @@
 //!
 //! The list is a pure function of the node's current parameters (NMT, SYNC 1005h, TIME 1012h, the valid
 //! RPDOs 1400h+, the TPDOs that answer a remote request, the SDO server 1200h, the heartbeat consumers 1016h,
-//! the EMCY consumer, LSS, the node guarding request), so no change can be forgotten: a runner asks for it
-//! after each pass and re-installs it when it differs from the one installed (a COB-ID written by SDO, an
-//! NMT reset communication, an LSS node-ID).
+//! the EMCY consumer, LSS, the node guarding request). Computing it is not free, so the node counts the
+//! changes that may move it ([`Node::rx_filters_generation`]: a communication object written by SDO or the
+//! local API, the dictionary handed out for writing, an NMT reset communication or reset node, which is
+//! also where an LSS node-ID takes effect): a runner recomputes the list only when that number moved, and
+//! re-installs it when it differs from the one installed.
 
 use heapless::Vec;
 
@@ -32,11 +34,37 @@ pub const RX_FILTER_CAPACITY: usize = 32;
 pub type RxFilters = Vec<RxFilter, RX_FILTER_CAPACITY>;
 
 impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
+    /// A number that changes whenever [`rx_filters`](Self::rx_filters) may have changed: bumped on every
+    /// communication object written (1000h–1FFFh, by SDO or by the local setters), whenever
+    /// [`dictionary`](Self::dictionary) hands out the dictionary for writing, and on every reset
+    /// communication or reset node (which is also where a node-ID configured by LSS takes effect). A runner
+    /// keeps the generation its filters were computed at and skips the computation while it is unchanged.
+    ///
+    /// ```
+    /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node}, Instant, NodeId};
+    /// let mut node: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// let g = node.rx_filters_generation();
+    /// node.handle_timeout(Instant::ZERO); // boots: reset communication
+    /// assert_ne!(node.rx_filters_generation(), g);
+    /// let g = node.rx_filters_generation();
+    /// node.handle_timeout(Instant::from_millis(1)); // nothing changed
+    /// assert_eq!(node.rx_filters_generation(), g);
+    /// ```
+    pub const fn rx_filters_generation(&self) -> u32 {
+        self.rx_generation
+    }
+
+    /// Something that may change a receive COB-ID happened (see [`Node::rx_filters_generation`]).
+    pub(crate) fn cob_ids_may_change(&mut self) {
+        self.rx_generation = self.rx_generation.wrapping_add(1);
+    }
+
     /// The acceptance filters covering every frame the node handles now: NMT, SYNC (1005h), TIME (1012h,
     /// when consumed), the valid RPDOs, the TPDOs that answer a remote request, the SDO server (1200h), the
     /// heartbeat consumers (1016h), the EMCY consumer (081h–0FFh), LSS (7E5h) and the node guarding request.
-    /// A pure function of the node's parameters: a runner compares it with the filters it installed after
-    /// each pass and re-installs it when it differs (a COB-ID written by SDO, a reset communication).
+    /// A pure function of the node's parameters: a runner recomputes it when
+    /// [`rx_filters_generation`](Self::rx_filters_generation) moved and re-installs it when it differs from
+    /// the filters it installed (a COB-ID written by SDO, a reset communication).
     ///
     /// ```
     /// use canopen_core::{profile::NodeConfig, node::{NoApplication, Node, RxFilter}, NodeId};
@@ -119,6 +147,14 @@ mod tests {
         node.handle_timeout(Instant::ZERO);
         while node.poll_transmit().is_some() {}
         let before = node.rx_filters();
+        let mut generation = node.rx_filters_generation();
+        // Every change below moves the generation, so a runner that skips unchanged generations misses none.
+        let mut moved = |node: &N| {
+            let g = node.rx_filters_generation();
+            let moved = g != generation;
+            generation = g;
+            moved
+        };
         // TIME (100h) and LSS (7E5h) only in a build that has them.
         let built = |id: u16| (id != 0x100 || cfg!(feature = "time")) && (id != 0x7E5 || cfg!(feature = "lss"));
         for id in [0x000, 0x080, 0x081, 0x0FF, 0x100, 0x605, 0x705, 0x7E5] {
@@ -127,18 +163,25 @@ mod tests {
         for id in [0x185, 0x205, 0x585, 0x606, 0x706, 0x7E4] {
             assert!(!accepts(&node, id), "{id:03X}h");
         }
+        node.handle_frame(Instant::ZERO, &CanFrame::new(0x605, &[0x40, 0x00, 0x10, 0, 0, 0, 0, 0]).unwrap());
+        while node.poll_transmit().is_some() {}
+        assert!(!moved(&node), "an SDO read changes no COB-ID");
         sdo_write(&mut node, 0x1016, 1, 0x0003_0100); // consume node 3's heartbeat, 256 ms
         assert!(accepts(&node, 0x703));
+        assert!(moved(&node));
         #[cfg(feature = "time")]
         {
             sdo_write(&mut node, 0x1012, 0, 0x0000_0100); // stop consuming TIME
             assert!(!accepts(&node, 0x100));
+            assert!(moved(&node));
         }
         sdo_write(&mut node, 0x1400, 1, 0x0000_0205); // RPDO1 valid on 205h
         assert!(accepts(&node, 0x205));
+        assert!(moved(&node));
         assert_ne!(node.rx_filters(), before);
         node.handle_frame(Instant::ZERO, &CanFrame::new(0x000, &[0x82, 0x05]).unwrap()); // reset communication
         node.handle_timeout(Instant::ZERO);
+        assert!(moved(&node));
         assert_eq!(node.rx_filters(), before);
     }
 

@@ -66,6 +66,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// ```
     pub fn without_node_id(mut self) -> Self {
         self.lss = LssSlave::new(&self.comm.config.identity, None);
+        self.cob_ids_may_change();
         self
     }
 
