@@ -231,6 +231,16 @@ impl SdoServerParams {
     }
 }
 
+/// The time-out as [`SdoServer`] keeps it: zero (disabled) becomes the longest duration, which no deadline
+/// reaches (`now + timeout` saturates to [`Deadline::NONE`]).
+const fn stored_timeout(timeout: Duration) -> Duration {
+    if timeout.is_zero() {
+        Duration::from_micros(u64::MAX)
+    } else {
+        timeout
+    }
+}
+
 /// What happened while handling a frame, for the node to turn into an application event.
 ///
 /// ```
@@ -418,6 +428,8 @@ enum State {
 #[derive(Debug, Clone)]
 pub struct SdoServer {
     params: SdoServerParams,
+    /// The protocol time-out (SDO-31); a disabled (zero) one is kept as the longest duration, so that the
+    /// deadline after a frame is `now + timeout` saturating to [`Deadline::NONE`], without a test per frame.
     timeout: Duration,
     #[cfg(feature = "sdo-block")]
     block_size: u8,
@@ -447,7 +459,7 @@ impl SdoServer {
     pub const fn new(params: SdoServerParams) -> Self {
         SdoServer {
             params,
-            timeout: super::DEFAULT_TIMEOUT,
+            timeout: stored_timeout(super::DEFAULT_TIMEOUT),
             #[cfg(feature = "sdo-block")]
             block_size: MAX_BLKSIZE,
             deadline: Deadline::NONE,
@@ -465,7 +477,7 @@ impl SdoServer {
     /// assert!(s.poll_timeout().is_none());
     /// ```
     pub const fn with_timeout(mut self, timeout: Duration) -> Self {
-        self.timeout = timeout;
+        self.timeout = stored_timeout(timeout);
         self
     }
 
@@ -480,7 +492,7 @@ impl SdoServer {
     /// assert!(s.is_idle());
     /// ```
     pub fn set_timeout(&mut self, timeout: Duration) {
-        self.timeout = timeout;
+        self.timeout = stored_timeout(timeout);
     }
 
     /// Sets the block size the server asks for in block download (clamped to 1..=127, SDO-36).
@@ -684,7 +696,7 @@ impl SdoServer {
     }
 
     fn touch(&mut self, now: Instant) {
-        self.deadline = if self.timeout.is_zero() { Deadline::NONE } else { Deadline::new(Some(now + self.timeout)) };
+        self.deadline = Deadline::new(Some(now + self.timeout)); // saturates to NONE when disabled
     }
 
     fn mux(&self) -> Option<Multiplexer> {
