@@ -503,7 +503,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.sdo.deadline().passed(now) {
             let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
             let response = self.sdo.handle_timeout(now, &mut od);
-            self.sdo_response(now, response);
+            self.sdo_response(now, response, self.sdo.tx_cob_id());
         }
         if self.producer.due(now) {
             self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
@@ -578,16 +578,19 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
         let response = self.sdo.handle_request(now, frame.data(), &mut od);
-        self.sdo_response(now, response);
+        // The frame came in on the rx COB-ID, so the channel is valid (SdoServerParams::is_valid covers both
+        // COB-IDs, and a request never changes the server's own parameters): no second validity test.
+        self.sdo_response(now, response, Some(self.sdo.params().cob_tx.can_id()));
         #[cfg(feature = "sdo-block")]
         self.pump_sdo();
     }
 
-    /// Queues the server's frame on its tx COB-ID (SDO-02: 8 bytes) and hands its event on. Inline: most
-    /// frames have no event, and then this is the push alone; an application write is one more push.
+    /// Queues the server's frame on `cob`, its tx CAN-ID when the channel is valid (SDO-02: 8 bytes), and
+    /// hands its event on. Inline: most frames have no event, and then this is the push alone; an
+    /// application write is one more push.
     #[inline]
-    fn sdo_response(&mut self, now: Instant, response: Response) {
-        if let (Some(data), Some(cob)) = (response.frame, self.sdo.tx_cob_id()) {
+    fn sdo_response(&mut self, now: Instant, response: Response, cob: Option<u16>) {
+        if let (Some(data), Some(cob)) = (response.frame, cob) {
             self.transmit(CanFrame::from_parts(cob, data, 8));
         }
         match response.event {
@@ -639,7 +642,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
                 break;
             };
-            self.sdo_response(self.now, response);
+            self.sdo_response(self.now, response, self.sdo.tx_cob_id());
         }
     }
 

@@ -38,11 +38,12 @@
 //! `dispatch` switches on the command byte (SDO-08) and each handler reads its few fields from the frame; every
 //! response is one [`frame`](crate::wire::sdo::frame) call (command byte, bytes 1–3, bytes 4–7), and upload
 //! segments are read from the OD straight into the response. The error paths (`abort`, `invalid`)
-//! are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~307 instructions per
-//! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~334 (~53 in the
-//! dictionary); segmented upload ~299 per frame (~46: the segments read at the slot found once, no search);
-//! block download ~277 per segment (~55, the streamed write). About 80 of each are the driver loop's queue
-//! work (events, peek and transmitted).
+//! are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~305 instructions per
+//! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~328 (~53 in the
+//! dictionary); segmented upload ~294 per frame (~46: the segments read at the slot found once, no search);
+//! block download ~271 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop
+//! (events, peek and transmitted); a disabled time-out is stored as the longest duration, so the deadline
+//! after a frame is one saturating add.
 //!
 //! # Data path, RAM
 //!
@@ -228,6 +229,16 @@ impl SdoServerParams {
         } else {
             None
         }
+    }
+}
+
+/// The time-out as [`SdoServer`] keeps it: zero (disabled) becomes the longest duration, which no deadline
+/// reaches (`now + timeout` saturates to [`Deadline::NONE`]).
+const fn stored_timeout(timeout: Duration) -> Duration {
+    if timeout.is_zero() {
+        Duration::from_micros(u64::MAX)
+    } else {
+        timeout
     }
 }
 
@@ -418,6 +429,8 @@ enum State {
 #[derive(Debug, Clone)]
 pub struct SdoServer {
     params: SdoServerParams,
+    /// The protocol time-out (SDO-31); a disabled (zero) one is kept as the longest duration, so that the
+    /// deadline after a frame is `now + timeout` saturating to [`Deadline::NONE`], without a test per frame.
     timeout: Duration,
     #[cfg(feature = "sdo-block")]
     block_size: u8,
@@ -447,7 +460,7 @@ impl SdoServer {
     pub const fn new(params: SdoServerParams) -> Self {
         SdoServer {
             params,
-            timeout: super::DEFAULT_TIMEOUT,
+            timeout: stored_timeout(super::DEFAULT_TIMEOUT),
             #[cfg(feature = "sdo-block")]
             block_size: MAX_BLKSIZE,
             deadline: Deadline::NONE,
@@ -465,7 +478,7 @@ impl SdoServer {
     /// assert!(s.poll_timeout().is_none());
     /// ```
     pub const fn with_timeout(mut self, timeout: Duration) -> Self {
-        self.timeout = timeout;
+        self.timeout = stored_timeout(timeout);
         self
     }
 
@@ -480,7 +493,7 @@ impl SdoServer {
     /// assert!(s.is_idle());
     /// ```
     pub fn set_timeout(&mut self, timeout: Duration) {
-        self.timeout = timeout;
+        self.timeout = stored_timeout(timeout);
     }
 
     /// Sets the block size the server asks for in block download (clamped to 1..=127, SDO-36).
@@ -684,7 +697,7 @@ impl SdoServer {
     }
 
     fn touch(&mut self, now: Instant) {
-        self.deadline = if self.timeout.is_zero() { Deadline::NONE } else { Deadline::new(Some(now + self.timeout)) };
+        self.deadline = Deadline::new(Some(now + self.timeout)); // saturates to NONE when disabled
     }
 
     fn mux(&self) -> Option<Multiplexer> {

@@ -268,6 +268,30 @@ fn segmented_download_of_9_bytes_and_variants() {
     assert_eq!(t.od.domain(), b"123456789"); // the abandoned write left the old value visible
 }
 
+/// SDO-31: a zero time-out disables it: a transfer under way has no deadline and is never aborted for time,
+/// and setting a time-out again gives the next frame its deadline.
+#[test]
+fn zero_timeout_disables_the_protocol_timeout() {
+    let mut t = Bench { s: server().with_timeout(Duration::ZERO), od: TestOd::new() };
+    t.ex([0x21, 0x00, 0x20, 0x00, 21, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    assert!(!t.s.is_idle());
+    assert_eq!(t.s.poll_timeout(), None);
+    assert_eq!(t.s.handle_timeout(Instant::from_micros(u64::MAX - 1), &mut t.od), Response::NONE);
+    assert!(!t.s.is_idle());
+    t.s.set_timeout(Duration::from_millis(20));
+    let t1 = Instant::from_millis(5);
+    let r = t.s.handle_request(t1, &[0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], &mut t.od);
+    assert_eq!(r.frame, Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(t.s.poll_timeout(), Some(Instant::from_millis(25)));
+    t.s.set_timeout(Duration::ZERO);
+    let r = t.s.handle_request(t1, &[0x10, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], &mut t.od);
+    assert_eq!(r.frame, Some([0x30, 0, 0, 0, 0, 0, 0, 0]));
+    assert!(!t.s.is_idle());
+    assert_eq!(t.s.poll_timeout(), None);
+    t.ex([0x01, 0x38, 0x39, 0x30, 0x31, 0x32, 0x33, 0x34], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(t.od.domain(), b"123456712345678901234");
+}
+
 #[test]
 fn segmented_length_checks() {
     let mut t = Bench::new();
