@@ -89,8 +89,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.nmt.state() != NmtState::Operational {
             return Deadline::NONE;
         }
-        let t = self.tpdos.as_ref().iter().fold(Deadline::NONE, |t, p| t.min(Deadline::new(p.poll_timeout())));
-        self.rpdos.as_ref().iter().fold(t, |t, p| t.min(Deadline::new(p.poll_timeout())))
+        let t = self.tpdos.as_ref().iter().fold(Deadline::NONE, |t, p| t.min(p.deadline()));
+        self.rpdos.as_ref().iter().fold(t, |t, p| t.min(p.deadline()))
     }
 
     pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
