@@ -213,7 +213,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// The SYNC producer (SYNC-06/07): produced in Pre-operational and Operational, and acted on by this node
     /// as by every consumer.
     pub(super) fn sync_timeout(&mut self, now: Instant) {
-        if self.sync.poll_timeout().is_none_or(|t| t > now) {
+        if !self.sync.deadline().passed(now) {
             return;
         }
         let Some(frame) = self.sync.produce(now) else { return };
