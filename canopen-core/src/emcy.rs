@@ -326,12 +326,12 @@ impl EmcyProducer {
 
     /// Whether an EMCY may go out at `now`.
     pub fn may_send(&self, now: Instant) -> bool {
-        self.next_allowed.get().is_none_or(|t| now >= t)
+        self.next_allowed == Deadline::NONE || self.next_allowed.passed(now)
     }
 
     /// An EMCY went out at `now`.
     pub fn sent(&mut self, now: Instant) {
-        self.next_allowed.set((!self.inhibit.is_zero()).then(|| now + self.inhibit));
+        self.next_allowed = if self.inhibit.is_zero() { Deadline::NONE } else { Deadline::at(now + self.inhibit) };
     }
 
     /// When the inhibit time of the last EMCY ends.

@@ -702,8 +702,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         match index {
             0x1005 | 0x1006 | 0x1007 | 0x1019 => self.sync.reconfigure(now, p.sync),
             0x1014 | 0x1015 => self.emcy.set_inhibit_100us(p.emcy_inhibit_100us),
-            0x1400..=0x17FF => self.configure_rpdo(usize::from(index & 0x1FF)),
-            0x1800..=0x1BFF => self.configure_tpdo(usize::from(index & 0x1FF)),
+            0x1400..=0x1BFF => self.configure_pdo(index >= 0x1800, usize::from(index & 0x1FF)),
             0x1017 => self.producer.set_period(now, p.heartbeat_time_ms),
             0x1016 => {
                 if let Some(raw) = usize::from(sub).checked_sub(1).and_then(|i| p.heartbeat_consumers.as_ref().get(i)) {
@@ -771,10 +770,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
         self.sync_length_error = false;
         for k in 0..Z::RPDO {
-            self.configure_rpdo(k);
+            self.configure_pdo(false, k);
         }
         for k in 0..Z::TPDO {
-            self.configure_tpdo(k);
+            self.configure_pdo(true, k);
         }
     }
 

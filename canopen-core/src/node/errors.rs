@@ -37,18 +37,23 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// already active (nothing is repeated) or is 0000h.
     ///
     /// ```
-    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, Instant, NodeId};
+    /// use canopen_core::{profile::NodeConfig, node::{Node, NoApplication}, od::ObjectDictionary, Instant, NodeId};
     /// let mut node: Node<NoApplication> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, NoApplication);
     /// node.handle_timeout(Instant::ZERO);
     /// while node.poll_transmit().is_some() {}
     /// assert!(node.raise_error(0x1000, [0; 5]));
     /// assert_eq!(node.poll_transmit().map(|f| (f.cob_id(), f.padded())), Some((0x83, [0x00, 0x10, 0x01, 0, 0, 0, 0, 0]))); // generic error 1000h, error register 01h
+    /// let mut reg = [0u8; 1];
+    /// assert_eq!(node.dictionary().read(0x1001, 0, 0, &mut reg), Ok(1)); // 1001h (ERR-01/02)
+    /// assert_eq!(reg, [0x01]);
     /// assert!(node.clear_error(0x1000));
     /// assert_eq!(node.poll_transmit().unwrap().data(), &[0; 8]); // error reset: code 0000h, register 00h
+    /// assert_eq!(node.dictionary().read(0x1001, 0, 0, &mut reg), Ok(1));
+    /// assert_eq!(reg, [0x00]);
     /// ```
     pub fn raise_error(&mut self, code: u16, manufacturer: [u8; 5]) -> bool {
+        // 1001h reads the active errors' register (`NodeErrors`) itself: no copy into the parameters.
         let raised = self.comm.errors.raise(code, manufacturer);
-        self.comm.params.error_register = self.comm.errors.register();
         self.flush_emcy(self.now);
         raised
     }
@@ -57,7 +62,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// the code was not active.
     pub fn clear_error(&mut self, code: u16) -> bool {
         let cleared = self.comm.errors.clear(code);
-        self.comm.params.error_register = self.comm.errors.register();
         self.flush_emcy(self.now);
         cleared
     }

@@ -22,49 +22,44 @@ use crate::wire::time_stamp::TimeStamp;
 use heapless::vec::VecStorage;
 
 impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
-    /// Rebuilds RPDO `k` from 1400h+k / 1600h+k: the mapping is resolved once here; a mapping that no
-    /// longer resolves (e.g. loaded from storage for another firmware) leaves the RPDO not valid.
-    pub(super) fn configure_rpdo(&mut self, k: usize) {
-        let (Some(mut comm), Some(map)) =
-            (self.comm.params.rpdo_comm.as_ref().get(k).copied(), self.comm.params.rpdo_map.as_ref().get(k).copied())
-        else {
+    /// Rebuilds TPDO `k` (`tx`, from 1800h+k / 1A00h+k) or RPDO `k` (1400h+k / 1600h+k) and the CAN-ID
+    /// table of its direction: the mapping is resolved once here; a mapping that no longer resolves (e.g.
+    /// loaded from storage for another firmware) leaves the PDO not valid. One function for both directions:
+    /// the parameters' copy and the resolution are shared.
+    pub(super) fn configure_pdo(&mut self, tx: bool, k: usize) {
+        let p = &self.comm.params;
+        let (comm, map, dir) = if tx {
+            (p.tpdo_comm.as_ref().get(k), p.tpdo_map.as_ref().get(k), PdoDir::Tpdo)
+        } else {
+            (p.rpdo_comm.as_ref().get(k), p.rpdo_map.as_ref().get(k), PdoDir::Rpdo)
+        };
+        let (Some(&(mut comm)), Some(&map)) = (comm, map) else {
             return;
         };
         let od = Merged { comm: &mut self.comm, app: &mut self.app };
-        let resolved = ResolvedMap::resolve(&od, map.active(), PdoDir::Rpdo).unwrap_or_else(|_| {
+        let resolved = ResolvedMap::resolve(&od, map.active(), dir).unwrap_or_else(|_| {
             comm.cob_id |= CobIdEntry::BIT31;
             ResolvedMap::EMPTY
         });
-        if let Some(r) = self.rpdos.as_mut().get_mut(k) {
-            *r = Rpdo::new(&comm, resolved);
-        }
-        self.rx_table.clear();
-        for (i, r) in self.rpdos.as_ref().iter().enumerate() {
-            if r.is_valid() {
-                insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
+        if tx {
+            if let Some(t) = self.tpdos.as_mut().get_mut(k) {
+                *t = Tpdo::new(&comm, resolved);
             }
-        }
-    }
-
-    /// Rebuilds TPDO `k` from 1800h+k / 1A00h+k (see [`configure_rpdo`](Self::configure_rpdo)).
-    pub(super) fn configure_tpdo(&mut self, k: usize) {
-        let (Some(mut comm), Some(map)) =
-            (self.comm.params.tpdo_comm.as_ref().get(k).copied(), self.comm.params.tpdo_map.as_ref().get(k).copied())
-        else {
-            return;
-        };
-        let od = Merged { comm: &mut self.comm, app: &mut self.app };
-        let resolved = ResolvedMap::resolve(&od, map.active(), PdoDir::Tpdo).unwrap_or_else(|_| {
-            comm.cob_id |= CobIdEntry::BIT31;
-            ResolvedMap::EMPTY
-        });
-        if let Some(t) = self.tpdos.as_mut().get_mut(k) {
-            *t = Tpdo::new(&comm, resolved);
-        }
-        self.rtr_table.clear();
-        for (i, t) in self.tpdos.as_ref().iter().enumerate() {
-            if t.rtr_allowed() {
-                insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
+            self.rtr_table.clear();
+            for (i, t) in self.tpdos.as_ref().iter().enumerate() {
+                if t.rtr_allowed() {
+                    insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
+                }
+            }
+        } else {
+            if let Some(r) = self.rpdos.as_mut().get_mut(k) {
+                *r = Rpdo::new(&comm, resolved);
+            }
+            self.rx_table.clear();
+            for (i, r) in self.rpdos.as_ref().iter().enumerate() {
+                if r.is_valid() {
+                    insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
+                }
             }
         }
     }
@@ -89,8 +84,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.nmt.state() != NmtState::Operational {
             return Deadline::NONE;
         }
-        let t = self.tpdos.as_ref().iter().fold(Deadline::NONE, |t, p| t.min(Deadline::new(p.poll_timeout())));
-        self.rpdos.as_ref().iter().fold(t, |t, p| t.min(Deadline::new(p.poll_timeout())))
+        let t = self.tpdos.as_ref().iter().fold(Deadline::NONE, |t, p| t.min(p.deadline()));
+        self.rpdos.as_ref().iter().fold(t, |t, p| t.min(p.deadline()))
     }
 
     pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
@@ -213,7 +208,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// The SYNC producer (SYNC-06/07): produced in Pre-operational and Operational, and acted on by this node
     /// as by every consumer.
     pub(super) fn sync_timeout(&mut self, now: Instant) {
-        if self.sync.poll_timeout().is_none_or(|t| t > now) {
+        if !self.sync.deadline().passed(now) {
             return;
         }
         let Some(frame) = self.sync.produce(now) else { return };

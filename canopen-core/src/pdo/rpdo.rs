@@ -10,7 +10,7 @@
 use super::mapping::ResolvedMap;
 use super::PdoComm;
 use crate::cob::CobIdEntry;
-use crate::time::{Duration, Instant};
+use crate::time::{Deadline, Duration, Instant};
 
 /// What to do with a received RPDO frame.
 ///
@@ -50,10 +50,8 @@ pub struct Rpdo {
     /// The resolved mapping.
     pub map: ResolvedMap,
     pending: Option<[u8; 8]>,
-    // The event-timer deadline as an instant and a flag (not `Option<Instant>`, 16 B with its padding); an
-    // unset instant is kept at 0, so equality is unchanged.
-    deadline_at: Instant,
-    deadline_set: bool,
+    /// The event-timer deadline (8 bytes where `Option<Instant>` takes 16).
+    deadline: Deadline,
     /// A length error is active (cleared by the next correct frame).
     pub length_error: bool,
     /// The event timer expired (cleared by the next frame).
@@ -69,8 +67,7 @@ impl Rpdo {
             event_timer_ms: comm.event_timer_ms,
             map,
             pending: None,
-            deadline_at: Instant::ZERO,
-            deadline_set: false,
+            deadline: Deadline::NONE,
             length_error: false,
             timed_out: false,
         }
@@ -99,7 +96,7 @@ impl Rpdo {
         }
         let exceeded = data.len() > need;
         if self.event_timer_ms != 0 {
-            self.set_deadline(Some(now + Duration::from_millis(self.event_timer_ms.into())));
+            self.deadline = Deadline::at(now + Duration::from_millis(self.event_timer_ms.into()));
         }
         if self.is_synchronous() {
             let mut buf = [0u8; 8];
@@ -130,27 +127,23 @@ impl Rpdo {
     /// Leaving Operational: no deadline monitoring, nothing buffered.
     pub fn stop(&mut self) {
         self.pending = None;
-        self.set_deadline(None);
+        self.deadline = Deadline::NONE;
     }
 
     /// The event-timer deadline.
     pub const fn poll_timeout(&self) -> Option<Instant> {
-        if self.deadline_set {
-            Some(self.deadline_at)
-        } else {
-            None
-        }
+        self.deadline.get()
     }
 
-    fn set_deadline(&mut self, t: Option<Instant>) {
-        self.deadline_set = t.is_some();
-        self.deadline_at = t.unwrap_or(Instant::ZERO);
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
+    pub(crate) const fn deadline(&self) -> Deadline {
+        self.deadline
     }
 
     /// Returns true once when the deadline passed (EMCY 8250h).
     pub fn handle_timeout(&mut self, now: Instant) -> bool {
-        if self.poll_timeout().is_some_and(|t| t <= now) {
-            self.set_deadline(None);
+        if self.deadline.passed(now) {
+            self.deadline = Deadline::NONE;
             self.timed_out = true;
             return true;
         }

@@ -17,7 +17,7 @@
 use super::mapping::ResolvedMap;
 use super::PdoComm;
 use crate::cob::CobIdEntry;
-use crate::time::{earliest, Duration, Instant};
+use crate::time::{Deadline, Duration, Instant};
 
 /// What a SYNC means for a TPDO.
 ///
@@ -57,12 +57,10 @@ pub struct Tpdo {
     sync_count: u8,
     started: bool,
     pending: bool,
-    // The two deadlines as an instant and a flag each, not `Option<Instant>` (16 B with its padding): the
-    // flags pack with the other small fields. Unset instants are kept at 0, so equality is unchanged.
-    inhibit_at: Instant,
-    timer_at: Instant,
-    inhibit_set: bool,
-    timer_set: bool,
+    /// The end of the inhibit time (sub 03h) after the last transmission.
+    inhibit: Deadline,
+    /// The event timer's expiry (sub 05h).
+    timer: Deadline,
     /// The payload sampled at the last SYNC for type FCh (sent on RTR, PDO-21), or the payload last sent for
     /// FEh/FFh (change-of-value detection, PDO-23): one buffer, since a TPDO has one type.
     last: Option<([u8; 8], u8)>,
@@ -81,10 +79,8 @@ impl Tpdo {
             sync_count: 0,
             started: false,
             pending: false,
-            inhibit_at: Instant::ZERO,
-            timer_at: Instant::ZERO,
-            inhibit_set: false,
-            timer_set: false,
+            inhibit: Deadline::NONE,
+            timer: Deadline::NONE,
             last: None,
         }
     }
@@ -119,17 +115,17 @@ impl Tpdo {
         self.sync_count = 0;
         self.started = false;
         self.pending = false;
-        self.set_inhibit_until(None);
+        self.inhibit = Deadline::NONE;
         self.last = None;
-        self.set_timer_due(None);
+        self.timer = Deadline::NONE;
         self.is_valid() && self.event_driven()
     }
 
     /// Leaving Operational: no timers.
     pub fn stop(&mut self) {
         self.pending = false;
-        self.set_timer_due(None);
-        self.set_inhibit_until(None);
+        self.timer = Deadline::NONE;
+        self.inhibit = Deadline::NONE;
     }
 
     /// A SYNC with `counter` (`None` when the SYNC counter is off).
@@ -181,7 +177,7 @@ impl Tpdo {
                 false
             }
             254 | 255 => {
-                if self.inhibit_until().is_some_and(|t| now < t) {
+                if self.inhibited(now) {
                     self.pending = true;
                     false
                 } else {
@@ -192,30 +188,9 @@ impl Tpdo {
         }
     }
 
-    const fn inhibit_until(&self) -> Option<Instant> {
-        if self.inhibit_set {
-            Some(self.inhibit_at)
-        } else {
-            None
-        }
-    }
-
-    const fn timer_due(&self) -> Option<Instant> {
-        if self.timer_set {
-            Some(self.timer_at)
-        } else {
-            None
-        }
-    }
-
-    fn set_inhibit_until(&mut self, t: Option<Instant>) {
-        self.inhibit_set = t.is_some();
-        self.inhibit_at = t.unwrap_or(Instant::ZERO);
-    }
-
-    fn set_timer_due(&mut self, t: Option<Instant>) {
-        self.timer_set = t.is_some();
-        self.timer_at = t.unwrap_or(Instant::ZERO);
+    /// Whether the inhibit time of the last transmission still runs at `now` (PDO-24).
+    fn inhibited(&self, now: Instant) -> bool {
+        self.inhibit != Deadline::NONE && !self.inhibit.passed(now)
     }
 
     /// The TPDO was sent at `now` with `payload`: the inhibit time and the event timer start; an
@@ -224,7 +199,7 @@ impl Tpdo {
         // Without an inhibit time (an event timer) its deadline is never set, so there is nothing to clear.
         let inhibit = self.inhibit_100us;
         if inhibit != 0 {
-            self.set_inhibit_until(Some(now + Duration::from_100us(inhibit.into())));
+            self.inhibit = Deadline::at(now + Duration::from_100us(inhibit.into()));
         }
         if self.event_driven() {
             // Only FEh/FFh hold an event back (type 00h keeps its event for the next SYNC, the other types
@@ -233,7 +208,7 @@ impl Tpdo {
             self.last = Some(payload);
             let timer = self.event_timer_ms;
             if timer != 0 {
-                self.set_timer_due(Some(now + Duration::from_millis(timer.into())));
+                self.timer = Deadline::at(now + Duration::from_millis(timer.into()));
             }
         }
     }
@@ -259,8 +234,16 @@ impl Tpdo {
 
     /// The next instant at which [`handle_timeout`](Self::handle_timeout) has work.
     pub fn poll_timeout(&self) -> Option<Instant> {
-        let inhibit_end = if self.pending && self.event_driven() { self.inhibit_until() } else { None };
-        earliest(inhibit_end, self.timer_due())
+        self.deadline().get()
+    }
+
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
+    pub(crate) fn deadline(&self) -> Deadline {
+        if self.pending && self.event_driven() {
+            self.timer.min(self.inhibit)
+        } else {
+            self.timer
+        }
     }
 
     /// Time passed: returns whether to send now (a held-back event at the end of the inhibit time, or the
@@ -269,12 +252,12 @@ impl Tpdo {
         if !self.is_valid() || !self.event_driven() {
             return false;
         }
-        if self.timer_due().is_some_and(|t| t <= now) {
-            self.set_timer_due(None);
+        if self.timer.passed(now) {
+            self.timer = Deadline::NONE;
             self.pending = true;
         }
-        if self.pending && self.inhibit_until().is_none_or(|t| t <= now) {
-            self.set_inhibit_until(None);
+        if self.pending && !self.inhibited(now) {
+            self.inhibit = Deadline::NONE;
             return true;
         }
         false

@@ -512,7 +512,6 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     }
 }
 
-/// Sub 01h–06h of a PDO communication record.
 /// `read_expedited` of a string: its length, and its bytes when it fits. Out of line, so that the numeric
 /// reads (the usual ones) do not keep its registers (bench-node.sh expedited_upload: see the commit).
 #[inline(never)]
@@ -524,6 +523,7 @@ fn text_expedited(text: &str, buf: &mut [u8; 4]) -> (usize, usize) {
     }
 }
 
+/// Sub 01h–06h of a PDO communication record.
 fn pdo_comm_value(c: &PdoComm, slot: Slot) -> u32 {
     match slot {
         Slot::PdoCob => c.cob_id,

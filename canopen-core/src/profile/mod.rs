@@ -185,7 +185,10 @@ pub struct CommParams<Z: ProfileSizes = Sizes> {
     pub guard_time_ms: u16,
     /// 100Dh life time factor (GUARD-03).
     pub life_time_factor: u8,
-    /// 1001h error register (ERR-01/ERR-02; ro on SDO, set by the EMCY/error handling).
+    /// 1001h error register bits beyond those of the active errors (ERR-01/ERR-02; ro on SDO): 1001h reads
+    /// this OR-ed with the register of the active errors ([`crate::emcy::NodeErrors`]), which the EMCY/error handling
+    /// keeps. A node leaves it 0 (reset communication clears it); a `CommProfile` used without a node may
+    /// set it.
     pub error_register: u8,
     /// 1005h, 1006h, 1007h, 1019h.
     pub sync: SyncParams,
