@@ -38,10 +38,10 @@
 //! `dispatch` switches on the command byte (SDO-08) and each handler reads its few fields from the frame; every
 //! response is one [`frame`](crate::wire::sdo::frame) call (command byte, bytes 1–3, bytes 4–7), and upload
 //! segments are read from the OD straight into the response. The error paths (`abort`, `invalid`)
-//! are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~305 instructions per
-//! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~328 (~53 in the
-//! dictionary); segmented upload ~294 per frame (~46: the segments read at the slot found once, no search);
-//! block download ~271 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop
+//! are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~300 instructions per
+//! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~323 (~53 in the
+//! dictionary); segmented upload ~287 per frame (~46: the segments read at the slot found once, no search);
+//! block download ~264 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop
 //! (events, peek and transmitted); a disabled time-out is stored as the longest duration, so the deadline
 //! after a frame is one saturating add.
 //!
