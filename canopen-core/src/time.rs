@@ -231,6 +231,23 @@ impl Deadline {
         Deadline(t.0)
     }
 
+    /// `d` after `now`, or none when `d` is [`Duration::MAX`] (a disabled timer kept as the longest
+    /// duration, so that its owner needs no flag).
+    ///
+    /// ```
+    /// use canopen_core::time::{Deadline, Duration, Instant};
+    /// let now = Instant::from_millis(5);
+    /// assert_eq!(Deadline::after(now, Duration::from_millis(2)).get(), Some(Instant::from_millis(7)));
+    /// assert_eq!(Deadline::after(now, Duration::MAX), Deadline::NONE);
+    /// ```
+    pub const fn after(now: Instant, d: Duration) -> Self {
+        if d.0 == Duration::MAX.0 {
+            Self::NONE
+        } else {
+            Deadline(now.0 + d.0)
+        }
+    }
+
     /// The instant (`u64::MAX` µs when there is no deadline): for a caller that has just seen it
     /// [`passed`](Self::passed).
     pub(crate) const fn instant(self) -> Instant {

@@ -40,10 +40,10 @@
 //! segments are read from the OD straight into the response. The error paths (`abort`, `invalid`)
 //! are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~300 instructions per
 //! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~323 (~53 in the
-//! dictionary); segmented upload ~287 per frame (~46: the segments read at the slot found once, no search);
-//! block download ~264 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop
+//! dictionary); segmented upload ~291 per frame (~46: the segments read at the slot found once, no search);
+//! block download ~268 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop
 //! (events, peek and transmitted); a disabled time-out is stored as the longest duration, so the deadline
-//! after a frame is one saturating add.
+//! after a frame is one compare and add ([`Deadline::after`]).
 //!
 //! # Data path, RAM
 //!
@@ -232,11 +232,11 @@ impl SdoServerParams {
     }
 }
 
-/// The time-out as [`SdoServer`] keeps it: zero (disabled) becomes the longest duration, which no deadline
-/// reaches (`now + timeout` saturates to [`Deadline::NONE`]).
+/// The time-out as [`SdoServer`] keeps it: zero (disabled) becomes [`Duration::MAX`], for which
+/// [`Deadline::after`] gives [`Deadline::NONE`].
 const fn stored_timeout(timeout: Duration) -> Duration {
     if timeout.is_zero() {
-        Duration::from_micros(u64::MAX)
+        Duration::MAX
     } else {
         timeout
     }
@@ -429,8 +429,8 @@ enum State {
 #[derive(Debug, Clone)]
 pub struct SdoServer {
     params: SdoServerParams,
-    /// The protocol time-out (SDO-31); a disabled (zero) one is kept as the longest duration, so that the
-    /// deadline after a frame is `now + timeout` saturating to [`Deadline::NONE`], without a test per frame.
+    /// The protocol time-out (SDO-31); a disabled (zero) one is kept as [`Duration::MAX`], so that the
+    /// deadline after a frame is [`Deadline::after`] (no deadline for the longest duration), no flag.
     timeout: Duration,
     #[cfg(feature = "sdo-block")]
     block_size: u8,
@@ -697,7 +697,7 @@ impl SdoServer {
     }
 
     fn touch(&mut self, now: Instant) {
-        self.deadline = Deadline::new(Some(now + self.timeout)); // saturates to NONE when disabled
+        self.deadline = Deadline::after(now, self.timeout); // NONE when disabled
     }
 
     fn mux(&self) -> Option<Multiplexer> {
