@@ -33,7 +33,14 @@ pub struct Merged<C, A> {
 }
 
 /// Whether `index` belongs to the communication profile area (OD-02).
+///
+/// With the `program-download` feature the program download objects (1F50h–1F57h, CiA 302-3) belong to
+/// the application half, where [`ProgramDownload`](crate::program::ProgramDownload) serves them.
 pub(crate) const fn is_comm(index: u16) -> bool {
+    #[cfg(feature = "program-download")]
+    if crate::program::is_program(index) {
+        return false;
+    }
     index >= 0x1000 && index <= 0x1FFF
 }
 
