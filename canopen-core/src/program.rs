@@ -4,8 +4,9 @@
 //! [`ProgramDownload`] is a ready-made dictionary part: it serves those four objects and passes every
 //! other index to the application dictionary it wraps, so an application composes it with its own
 //! (`Node::new(id, config, ProgramDownload::new(sink, app))`). The node routes 1F50h–1F57h to the
-//! application half when this feature (`program-download`) is on (`od::Merged`); without the feature the
-//! routing is unchanged and none of this is compiled.
+//! application half when the application says it serves them (`ObjectDictionary::SERVES_PROGRAM`, a
+//! constant, so a node whose application is not wrapped compiles no extra test); without the feature
+//! (`program-download`) none of this is compiled.
 //!
 //! The image is never buffered: each SDO segment or block of 1F50h:01 goes straight to the application's
 //! [`ProgramSink`] (`write_chunk`, in increasing contiguous offsets), as for any streamed DOMAIN
@@ -31,6 +32,7 @@
 //!   refused the image at its end), 5 flash write error (the sink refused a chunk), 63 unspecified
 //!   (the sink refused the start of a download).
 
+use crate::od::is_program;
 use crate::od::{
     check_len, count_entry, AbortCode, Access, DataType, EntryDesc, ObjectCode, ObjectDesc, ObjectDictionary,
     OdDescribe, PdoMapping, SubInfo,
@@ -171,12 +173,6 @@ const OBJECTS: [(u16, &str, DataType, Access, &str); 4] = [
     (0x1F57, "Flash status identification", DataType::Unsigned32, Access::Ro, "Flash status identification 1"),
 ];
 
-/// Whether `index` is one of the program download objects' area (1F50h–1F57h), which the node routes to
-/// the application half when the feature is on.
-pub(crate) const fn is_program(index: u16) -> bool {
-    index & 0xFFF8 == 0x1F50
-}
-
 impl<P: ProgramSink, A> ProgramDownload<P, A> {
     /// A program area with no valid program yet (1F57h = "no valid program", 1F51h = stopped).
     pub const fn new(sink: P, app: A) -> Self {
@@ -282,6 +278,9 @@ fn sub_missing(index: u16) -> AbortCode {
 }
 
 impl<P: ProgramSink, A: ObjectDictionary> ObjectDictionary for ProgramDownload<P, A> {
+    /// `Merged` (and the node) route 1F50h–1F57h here rather than to the communication profile.
+    const SERVES_PROGRAM: bool = true;
+
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         if !is_program(index) {
             return self.app.info(index, sub);

@@ -223,3 +223,23 @@ fn object_shape() {
     assert_eq!(read_u32(&od, 0x1F57), FLASH_NO_VALID_PROGRAM);
     assert_eq!(FLASH_IN_PROGRESS, 1);
 }
+
+/// The merged dictionary routes 1F50h–1F57h to an application that serves them
+/// (`ObjectDictionary::SERVES_PROGRAM`), and to the communication profile, which has none of them,
+/// otherwise. PRG-06.
+#[test]
+fn merged_routes_the_program_objects() {
+    use canopen_core::od::Merged;
+    use canopen_core::profile::{CommProfile, NodeConfig};
+    type Z = canopen_core::Sizes<1, 16, 16, 0, 0>;
+    let app = ProgramDownload::new(Recorder::default(), NoApplication);
+    let mut m = Merged { comm: CommProfile::<Z>::new(NodeConfig::DEFAULT), app };
+    let mut b = [0u8; 4];
+    assert_eq!(m.read(0x1F57, 1, 0, &mut b), Ok(4));
+    assert_eq!(u32::from_le_bytes(b), FLASH_NO_VALID_PROGRAM);
+    assert_eq!(m.write(0x1F51, 1, &[9]), Err(AbortCode::InvalidValue));
+    assert_eq!(m.read(0x1000, 0, 0, &mut b), Ok(4), "the rest of 1000h-1FFFh still reaches the profile");
+    let mut plain = Merged { comm: CommProfile::<Z>::new(NodeConfig::DEFAULT), app: NoApplication };
+    assert_eq!(plain.read(0x1F57, 1, 0, &mut b), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(plain.write(0x1F51, 1, &[1]), Err(AbortCode::ObjectDoesNotExist));
+}
