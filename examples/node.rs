@@ -7,6 +7,7 @@
 //! cargo run --example node -- --eds io_module.eds            # write the node's EDS and exit
 //! cargo run --example node -- --store /var/tmp/node5         # 1010h/1011h in /var/tmp/node5.a and .b
 //! cargo run --example node -- --node-id 255 --store /tmp/n   # wait for an LSS master, keep what it stores
+//! cargo run --example node -- --program /tmp/image.bin       # 1F50h downloads go to /tmp/image.bin
 //! cargo run --example node -- --help
 //! ```
 //!
@@ -43,6 +44,12 @@
 //! **The store is checked at start** (`examples/common/store_file.rs`): a path that cannot be created or
 //! written ends the program before the node starts (the path and the OS error, exit code 2); a file that
 //! fails its format or CRC check is reported, moved aside to `<file>.bad`, and the node starts on defaults.
+//!
+//! **Program download (CiA 302-3)**: with `--program FILE` a download of 1F50h:01 (segmented or block) is
+//! written to `FILE.part` as it arrives and renamed to `FILE` when it completes; the node then prints the
+//! image's length and CRC-32 (the `zlib.crc32` of the file), which 1F56h:01 also reads. 1F51h:01 is the
+//! program control (00h stop, 01h start, 02h reset, 03h clear; the node only records the state), 1F57h:01
+//! the flash status. Without `--program` a download is refused with 0800 0020h.
 //!
 //! **Error injection**: writing a non-zero code to 2100h raises it (1001h, 1003h and an EMCY frame); writing
 //! another code clears the old one first, 0 clears it.
@@ -102,6 +109,10 @@ struct Args {
     /// program, a damaged file is reported and kept as FILE.x.bad, the node then starts on defaults.
     #[arg(long, value_name = "FILE")]
     store: Option<String>,
+    /// Program download (CiA 302-3): an image written to 1F50h:01 goes to FILE (through FILE.part while it
+    /// arrives); the node prints its length and CRC-32 when the download ends.
+    #[arg(long, value_name = "FILE")]
+    program: Option<std::path::PathBuf>,
     /// Use the blocking runner instead of tokio.
     #[arg(long)]
     blocking: bool,
@@ -188,7 +199,10 @@ fn main() -> ExitCode {
         }
         None => (Store::None, None),
     };
-    let mut node = io_module::new_node_with_store(node_id, config, store);
+    if let Some(path) = &args.program {
+        println!("node: program downloads (1F50h:01) go to {}", path.display());
+    }
+    let mut node = io_module::new_node_with_program(node_id, config, store, args.program.clone());
     if unconfigured {
         node = node.without_node_id();
     }
@@ -418,6 +432,13 @@ impl Printer {
                 if raised != 0 {
                     println!("({t:10.6}) error injection: code {raised:04X}h raised again (2100h)");
                     self.wake.signal();
+                }
+            }
+            Event::ObjectWritten { index: 0x1F50, sub: 1 } => {
+                let (last, path) =
+                    self.shared.with(|n| (n.app().sink.last, n.app().sink.path().map(|p| p.display().to_string())));
+                if let (Some((len, crc)), Some(path)) = (last, path) {
+                    println!("({t:10.6}) program download complete: {len} bytes, CRC-32 {crc:08X}, in {path}");
                 }
             }
             Event::ObjectWritten { index, sub } => {

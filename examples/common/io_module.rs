@@ -25,12 +25,18 @@
 //! TPDOs): TPDO1 ← 6000h:01..08, TPDO2 ← 6401h:01..04, RPDO1 → 6200h:01..08, RPDO2 → 6411h:01..04.
 //!
 //! Parameters are stored (1010h/1011h) in a [`Store`]: a [`FileStorage`] with `--store FILE`, else none.
+//!
+//! Program download (CiA 302-3, `canopen_core::program`): the node's application is the [`IoModule`]
+//! behind a [`ProgramDownload`] whose sink is an [`ImageFile`]: 1F50h:01 streams the image into a file
+//! (`--program FILE` of the node example; without it a download is refused with 0800 0020h), 1F51h program
+//! control, 1F56h = the CRC-32 of the last complete image, 1F57h flash status.
 #![allow(dead_code)]
 
 use canopen_core::od::{AbortCode, Domain, VisibleString};
 use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::eds::EdsInfo;
 use canopen_core::profile::{Identity, NodeConfig};
+use canopen_core::program::{ProgramDownload, ProgramSink};
 use canopen_core::storage::{Storage, StorageError};
 use canopen_core::Sizes;
 use canopen_od_derive::ObjectDictionary;
@@ -183,7 +189,90 @@ pub const EDS_INFO: EdsInfo = EdsInfo {
 
 /// The example node type: 4 heartbeat consumers, transmit queue 32, event queue 32, 4 RPDOs, 4 TPDOs,
 /// parameters in a [`Store`].
-pub type IoNode = canopen_core::Node<IoModule, Sizes<4, 32, 32, 4, 4>, Store>;
+pub type IoNode = canopen_core::Node<IoApp, Sizes<4, 32, 32, 4, 4>, Store>;
+
+/// The node's application dictionary: the [`IoModule`] with the program download objects in front
+/// (`node.app().setpoint` reaches the module through `Deref`).
+pub type IoApp = ProgramDownload<ImageFile, IoModule>;
+
+/// CRC-32 (ISO-HDLC, the one of zlib and `zlib.crc32` in python) of `data` continued from `crc` (0 to
+/// start): `crc32(crc32(0, a), b) == crc32(0, a ++ b)`.
+pub fn crc32(crc: u32, data: &[u8]) -> u32 {
+    let mut c = !crc;
+    for &b in data {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 != 0 { (c >> 1) ^ 0xEDB8_8320 } else { c >> 1 };
+        }
+    }
+    !c
+}
+
+/// The program area of the example node: the image goes to `FILE.part` chunk by chunk (never held in
+/// memory) and becomes `FILE` when the download completes; an aborted download removes `FILE.part`.
+#[derive(Debug, Default)]
+pub struct ImageFile {
+    path: Option<std::path::PathBuf>,
+    file: Option<std::fs::File>,
+    crc: u32,
+    /// Length and CRC-32 of the last complete image.
+    pub last: Option<(usize, u32)>,
+}
+
+impl ImageFile {
+    /// A program area writing to `path` (`None`: downloads are refused with 0800 0020h).
+    pub fn new(path: Option<std::path::PathBuf>) -> Self {
+        ImageFile { path, ..ImageFile::default() }
+    }
+
+    /// Where images go.
+    pub fn path(&self) -> Option<&std::path::Path> {
+        self.path.as_deref()
+    }
+
+    fn part(&self) -> Option<std::path::PathBuf> {
+        self.path.as_ref().map(|p| p.with_extension("part"))
+    }
+}
+
+impl ProgramSink for ImageFile {
+    fn begin(&mut self, _size: Option<usize>) -> Result<(), AbortCode> {
+        let part = self.part().ok_or(AbortCode::CannotStore)?;
+        self.file = Some(std::fs::File::create(part).map_err(|_| AbortCode::CannotStore)?);
+        self.crc = 0;
+        Ok(())
+    }
+
+    fn write_chunk(&mut self, _offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        use std::io::Write;
+        let file = self.file.as_mut().ok_or(AbortCode::GeneralError)?;
+        file.write_all(data).map_err(|_| AbortCode::CannotStore)?;
+        self.crc = crc32(self.crc, data);
+        Ok(())
+    }
+
+    fn end(&mut self, total: usize) -> Result<(), AbortCode> {
+        let file = self.file.take().ok_or(AbortCode::GeneralError)?;
+        file.sync_all().map_err(|_| AbortCode::CannotStore)?;
+        drop(file);
+        if let (Some(part), Some(path)) = (self.part(), self.path.as_ref()) {
+            std::fs::rename(part, path).map_err(|_| AbortCode::CannotStore)?;
+        }
+        self.last = Some((total, self.crc));
+        Ok(())
+    }
+
+    fn abort(&mut self) {
+        self.file = None;
+        if let Some(part) = self.part() {
+            let _ = std::fs::remove_file(part);
+        }
+    }
+
+    fn software_id(&self) -> u32 {
+        self.last.map_or(0, |(_, crc)| crc)
+    }
+}
 
 /// Where the node stores its parameters (1010h/1011h).
 #[derive(Debug)]
@@ -228,7 +317,18 @@ pub fn new_node(node_id: canopen_core::NodeId, config: NodeConfig) -> IoNode {
 
 /// A fresh node storing its parameters in `store`; stored values are loaded when it boots.
 pub fn new_node_with_store(node_id: canopen_core::NodeId, config: NodeConfig, store: Store) -> IoNode {
-    canopen_core::Node::with_storage(node_id, config, IoModule::with_defaults(), store)
+    new_node_with_program(node_id, config, store, None)
+}
+
+/// A fresh node storing its parameters in `store` and downloaded programs (1F50h) in `program`.
+pub fn new_node_with_program(
+    node_id: canopen_core::NodeId,
+    config: NodeConfig,
+    store: Store,
+    program: Option<std::path::PathBuf>,
+) -> IoNode {
+    let app = ProgramDownload::new(ImageFile::new(program), IoModule::with_defaults());
+    canopen_core::Node::with_storage(node_id, config, app, store)
 }
 
 /// 2100h error injection, called after 2100h was written (`Event::ObjectWritten`) and after a reset: the

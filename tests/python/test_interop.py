@@ -57,6 +57,8 @@ class NodeProcess:
 
     def __init__(self, store):
         self.store = store
+        # --program: where 1F50h downloads go (CiA 302-3).
+        self.program = os.path.join(tempfile.mkdtemp(), "image.bin")
         self.log_path = os.environ.get("NODE_LOG") or os.path.join(tempfile.mkdtemp(), "node.log")
         self.log = open(self.log_path, "w")
         self.proc = None
@@ -66,6 +68,7 @@ class NodeProcess:
         self.log.flush()
         self.proc = subprocess.Popen(
             [NODE_BIN, "--iface", IFACE, "--node-id", str(NODE_ID), "--quiet", "--store", self.store,
+             "--program", self.program,
              # Inside the VM python can stall for over a second between two frames; the node must not
              # abort a transfer for that (a real master on real hardware is far faster).
              "--sdo-timeout", "5000"],
@@ -260,6 +263,54 @@ def test_domain_64k_block_both_ways(node, crc):
     with node.sdo.open(0x2005, 0, "rb", block_transfer=True, request_crc_support=crc) as f:
         back = f.read()
     assert same(back, data)
+
+
+# ---- program download (CiA 302-3) ----------------------------------------------------------------------
+
+def program_control(node, value):
+    node.sdo.download(0x1F51, 1, bytes([value]))
+
+
+def u32(node, index):
+    return int.from_bytes(node.sdo.upload(index, 1), "little")
+
+
+@pytest.mark.parametrize("block", [True, False])
+def test_program_download_writes_the_image_file(node, node_process, block):
+    """PRG-01, PRG-02, PRG-05, PRG-06: python canopen stops the program, clears it, downloads an image into
+    1F50h:01 (block with CRC, or segmented), the node writes it to its --program file and reports the CRC-32
+    the file has (1F56h and its log); 1F57h says "valid", and the program starts."""
+    import zlib
+    data = pattern(40_000, 7 if block else 8)
+    program_control(node, 0)  # stop
+    program_control(node, 3)  # clear
+    assert u32(node, 0x1F57) == 2  # error code 1: no valid program
+    with node.sdo.open(0x1F50, 1, "wb", size=len(data), block_transfer=block, force_segment=not block) as f:
+        f.write(data)
+    assert u32(node, 0x1F57) == 0
+    with open(node_process.program, "rb") as f:
+        assert same(f.read(), data)
+    crc = zlib.crc32(data)
+    assert u32(node, 0x1F56) == crc
+    line = f"program download complete: {len(data)} bytes, CRC-32 {crc:08X}"
+    assert wait_until(lambda: line in pathlib.Path(node_process.log_path).read_text())
+    program_control(node, 1)  # start
+    assert node.sdo.upload(0x1F51, 1) == b"\x01"
+    program_control(node, 0)
+
+
+def test_program_control_refusals(node):
+    """PRG-03: an unsupported value is 0609 0030h; clear while the program runs and start without a valid
+    program are 0800 0022h."""
+    for value, code in [(4, 0x06090030), (0xFF, 0x06090030)]:
+        with pytest.raises(SdoAbortedError) as e:
+            program_control(node, value)
+        assert abort_code(e) == code
+    program_control(node, 0)
+    program_control(node, 3)
+    with pytest.raises(SdoAbortedError) as e:
+        program_control(node, 1)
+    assert abort_code(e) == 0x08000022
 
 
 # ---- NMT and heartbeat -----------------------------------------------------------------------------------

@@ -106,7 +106,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     /// routing as a function of its own cost 17 instructions per segment (bench-node.sh segmented_upload).
     #[inline]
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        if crate::od::is_comm(index) {
+        if crate::od::is_comm_for::<A>(index) {
             self.od.comm.read(index, sub, offset, buf)
         } else {
             self.od.app.read(index, sub, offset, buf)
@@ -118,7 +118,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     /// Inline, as `read`: each segment of an upload comes here.
     #[inline]
     fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        if crate::od::is_comm(index) {
+        if crate::od::is_comm_for::<A>(index) {
             self.od.comm.read_slot(index, sub, slot, offset, buf)
         } else {
             self.od.app.read_slot(index, sub, slot, offset, buf)
@@ -148,7 +148,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
         // Straight to the half that owns the index, as write_expedited below: through `Merged` and the
         // `&mut` forwarding it cost 3 instructions per upload (bench-node.sh segmented_upload).
-        if crate::od::is_comm(index) {
+        if crate::od::is_comm_for::<A>(index) {
             self.od.comm.read_expedited(index, sub, buf)
         } else {
             self.od.app.read_expedited(index, sub, buf)
@@ -158,7 +158,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
         // Store/restore and mappings through this view's own `info`/`write` (which intercepts them), the
         // rest of the communication profile and the application with their single lookup.
-        if crate::od::is_comm(index) {
+        if crate::od::is_comm_for::<A>(index) {
             self.comm_write_expedited(index, sub, data, len)
         } else {
             self.od.app.write_expedited(index, sub, data, len)

@@ -37,9 +37,22 @@ pub(crate) const fn is_comm(index: u16) -> bool {
     index >= 0x1000 && index <= 0x1FFF
 }
 
+/// Whether `index` is in the program download area 1F50h–1F57h (CiA 302-3).
+pub(crate) const fn is_program(index: u16) -> bool {
+    index & 0xFFF8 == 0x1F50
+}
+
+/// Whether `index` goes to the communication profile when `A` is the application dictionary: as
+/// [`is_comm`], except 1F50h–1F57h when `A` serves them ([`ObjectDictionary::SERVES_PROGRAM`], a constant,
+/// so the extra test is compiled only for such an `A`).
+#[inline(always)]
+pub(crate) const fn is_comm_for<A: ObjectDictionary + ?Sized>(index: u16) -> bool {
+    is_comm(index) && !(A::SERVES_PROGRAM && is_program(index))
+}
+
 macro_rules! route {
     ($self:ident, $index:expr, $od:ident => $e:expr) => {
-        if is_comm($index) {
+        if is_comm_for::<A>($index) {
             let $od = &$self.comm;
             $e
         } else {
@@ -48,7 +61,7 @@ macro_rules! route {
         }
     };
     (mut $self:ident, $index:expr, $od:ident => $e:expr) => {
-        if is_comm($index) {
+        if is_comm_for::<A>($index) {
             let $od = &mut $self.comm;
             $e
         } else {
@@ -120,7 +133,16 @@ impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
             self.app.object(n - c)
         }
     }
+    /// 1F50h–1F57h: the communication profile's entry, else the application's (which serves them when it
+    /// is a `program::ProgramDownload`).
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
-        route!(self, index, od => od.entry(index, sub))
+        if is_program(index) {
+            return self.comm.entry(index, sub).or_else(|| self.app.entry(index, sub));
+        }
+        if is_comm(index) {
+            self.comm.entry(index, sub)
+        } else {
+            self.app.entry(index, sub)
+        }
     }
 }

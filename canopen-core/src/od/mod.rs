@@ -22,7 +22,9 @@ mod value;
 
 pub use crate::abort::AbortCode;
 pub use domain::{Domain, DomainBuf};
-pub(crate) use merged::is_comm;
+pub(crate) use merged::is_comm_for;
+#[cfg(feature = "program-download")]
+pub(crate) use merged::is_program;
 pub use merged::Merged;
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
@@ -300,6 +302,12 @@ pub struct SubInfo {
 /// assert_eq!(od.info(0x2001, 0).err(), Some(AbortCode::ObjectDoesNotExist));
 /// ```
 pub trait ObjectDictionary {
+    /// Whether this dictionary serves the program download objects 1F50h–1F57h (CiA 302-3) although they lie
+    /// in the communication profile's range: [`Merged`] then routes them to it. Only
+    /// `program::ProgramDownload` says so; for every other dictionary the routing test compiles away (the
+    /// firmware of a device without program download does not grow).
+    const SERVES_PROGRAM: bool = false;
+
     /// Describes a sub-entry.
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode>;
 
@@ -528,6 +536,7 @@ impl OdDescribe for NoApplication {
 
 /// A mutable reference is a dictionary too, so views such as `Merged<&mut CommProfile, &mut App>` work.
 impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
+    const SERVES_PROGRAM: bool = T::SERVES_PROGRAM;
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         (**self).info(index, sub)
     }
