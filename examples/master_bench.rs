@@ -22,7 +22,10 @@ use tokio::sync::broadcast::{error::TryRecvError, Receiver};
 
 /// The async master's throughput bench: block transfers to one node, ten nodes read at once.
 #[derive(Parser, Debug)]
-#[command(version, after_help = "Example: cargo run --release --example master_bench -- block --node 5")]
+#[command(
+    version,
+    after_help = "Example: cargo run --example master_bench -- block --node 5 (with --release for figures)"
+)]
 struct Args {
     /// SocketCAN interface.
     #[arg(long, default_value = "vcan0", global = true)]
