@@ -15,8 +15,13 @@ mod generated;
 #[path = "data/eds_to_rust/shapes.rs"]
 mod shapes;
 
+#[path = "common/eds_compare.rs"]
+mod eds_compare;
+#[path = "common/eds_of.rs"]
+mod eds_of;
+
 use canopen_core::od::ObjectDictionary;
-use canopen_master::eds::{eval_default, to_rust, Access, Eds, Entry};
+use canopen_master::eds::{generate, to_rust, Eds};
 
 const EDS: &str = include_str!("data/eds_to_rust/io_module.eds");
 /// A hand-written EDS with the shapes the example node lacks: BOOLEAN, a negative hex default, a const
@@ -39,73 +44,16 @@ fn the_modules_are_what_eds_to_rust_prints() {
     assert!(rust.contains("// 2040h Complex: data type 0040h is not supported; left out."));
 }
 
-/// Two values are the same: equal text, or equal numbers however written (`0x0` and `0`).
-fn same(a: &Option<String>, b: &Option<String>) -> bool {
-    match (a.as_deref(), b.as_deref()) {
-        (Some(x), Some(y)) => {
-            x == y
-                || eval_default(x, 0).is_some_and(|v| eval_default(y, 0) == Some(v))
-                || x.parse::<f64>().is_ok_and(|v| y.parse::<f64>() == Ok(v))
-        }
-        (x, y) => x == y,
-    }
-}
-
-fn differences(a: &Entry, b: &Entry) -> Vec<&'static str> {
-    let mut d = Vec::new();
-    if a.data_type != b.data_type {
-        d.push("data type");
-    }
-    // Sub-index 0 of an ARRAY or RECORD (the entry count) is always const in a derived dictionary;
-    // CiA 306 has the one CompactSubObj implies be ro. Both are read-only: the same to a master.
-    let read_only = |e: &Entry| matches!(e.access, Access::ReadOnly | Access::Const);
-    if a.access != b.access && !(a.sub == 0 && read_only(a) && read_only(b)) {
-        d.push("access");
-    }
-    if a.pdo_mapping != b.pdo_mapping {
-        d.push("PDO mapping");
-    }
-    if !same(&a.default, &b.default) {
-        d.push("default");
-    }
-    if !same(&a.low, &b.low) || !same(&a.high, &b.high) {
-        d.push("limits");
-    }
-    d
-}
-
-/// Writes the EDS of a generated module's dictionary (its defaults restored) and compares it with the
-/// original on every entry it carries; returns how many were compared.
+/// The EDS of the generated module's dictionary equals the original where the module carries it.
 fn round_trip<A: canopen_core::od::OdDescribe + ObjectDictionary>(
     original: &str,
-    mut app: A,
+    app: A,
     config: canopen_core::profile::NodeConfig,
 ) -> usize {
     let original = Eds::parse(original).unwrap();
-    app.restore_defaults();
-    let comm = canopen_core::profile::CommProfile::<canopen_core::Sizes>::new(config);
-    let od = canopen_core::od::Merged { comm, app };
-    let mut text = String::new();
-    canopen_core::profile::eds::write_eds(&mut text, &canopen_core::profile::eds::EdsInfo::DEFAULT, &od).unwrap();
-    let back = Eds::parse(&text).unwrap();
-
-    // The application entries the derive can hold (data types up to 001Bh), and the configuration's.
-    let carried = |e: &Entry| {
-        (e.index >= 0x2000 && e.data_type <= 0x001B)
-            || matches!(e.index, 0x1000 | 0x1008 | 0x1009 | 0x100A | 0x1017 | 0x1018)
-    };
-    let mut compared = 0;
-    for e in original.entries().filter(|e| carried(e)) {
-        let b =
-            back.entry(e.index, e.sub).unwrap_or_else(|| panic!("{:04X}h:{:02X} {} is gone", e.index, e.sub, e.name));
-        let d = differences(e, b);
-        assert!(d.is_empty(), "{:04X}h:{:02X} {}: {d:?} differ: {e:?} / {b:?}", e.index, e.sub, e.name);
-        compared += 1;
-    }
-    for b in back.entries().filter(|e| e.index >= 0x2000) {
-        assert!(original.entry(b.index, b.sub).is_some(), "{:04X}h:{:02X} is new", b.index, b.sub);
-    }
-    compared
+    let left_out = generate(&original, "fixture").left_out;
+    let back = Eds::parse(&eds_of::eds_of(app, config)).unwrap();
+    eds_compare::compare("fixture", &original, &back, &left_out)
 }
 
 #[test]
@@ -114,4 +62,30 @@ fn eds_to_rust_to_eds_is_the_same_dictionary() {
     assert!(n > 40, "only {n} entries compared");
     let n = round_trip(SHAPES, shapes::Device::default(), shapes::CONFIG);
     assert_eq!(n, 2 + 3 + 4 + 4);
+}
+
+/// The comparison is not vacuous: a default, an access or a PDO mapping changed in the EDS written back,
+/// or an entry gone, fails it; listing the change as left out is what makes it pass.
+#[test]
+fn the_comparison_catches_a_changed_entry() {
+    let original = Eds::parse(SHAPES).unwrap();
+    let left_out = generate(&original, "shapes.eds").left_out;
+    let back = eds_of::eds_of(shapes::Device::default(), shapes::CONFIG);
+    assert_eq!(eds_compare::compare("shapes.eds", &original, &Eds::parse(&back).unwrap(), &left_out), 13);
+    let section = |s: &str| back.find(s).unwrap_or_else(|| panic!("{s} not in the EDS written back"));
+    for (at, from, to) in [
+        ("[2020sub1]", "DefaultValue=0.5", "DefaultValue=0.25"),
+        ("[2010]", "AccessType=rw", "AccessType=ro"),
+        ("[2010]", "PDOMapping=1", "PDOMapping=0"),
+        ("[2011]", "LowLimit=-100000", "LowLimit=-99999"),
+        ("[2020sub3]", "[2020sub3]", "[2020sub7]"),
+    ] {
+        let start = section(at);
+        let end = start + back[start..].find("\n\n").unwrap_or(back.len() - start);
+        assert!(back[start..end].contains(from), "{at} has no {from}");
+        let changed = format!("{}{}{}", &back[..start], back[start..end].replacen(from, to, 1), &back[end..]);
+        let changed = Eds::parse(&changed).unwrap();
+        let r = std::panic::catch_unwind(|| eds_compare::compare("shapes.eds", &original, &changed, &left_out));
+        assert!(r.is_err(), "{at}: {from} -> {to} went unnoticed");
+    }
 }

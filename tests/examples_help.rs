@@ -26,7 +26,12 @@ fn help(name: &str) -> String {
 
 #[test]
 fn every_example_says_what_it_is_for_and_how_to_run_it() {
-    for (name, purpose) in [("node", "CANopen node"), ("master", "CANopen master"), ("write_eds", "writes the EDS")] {
+    for (name, purpose) in [
+        ("node", "CANopen node"),
+        ("master", "CANopen master"),
+        ("master_bench", "throughput bench"),
+        ("write_eds", "writes the EDS"),
+    ] {
         let text = help(name);
         assert!(text.contains(purpose), "{name} --help does not say what it is for:\n{text}");
         let line = format!("cargo run --example {name}");
@@ -44,5 +49,5 @@ fn the_list_covers_every_example() {
         .filter_map(|e| e.file_name().to_str().and_then(|n| n.strip_suffix(".rs")).map(str::to_owned))
         .collect();
     found.sort();
-    assert_eq!(found, ["master", "node", "write_eds"]);
+    assert_eq!(found, ["master", "master_bench", "node", "write_eds"]);
 }

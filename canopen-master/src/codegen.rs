@@ -3,15 +3,101 @@
 //! with what the EDS says of 1000h–1FFFh that the configuration carries (device type, identity, names,
 //! producer heartbeat time).
 //!
-//! Not carried over, yet: PDO default communication and mapping parameters (1400h–1BFFh; the node's
-//! `NodeConfig::DEFAULT` ones apply), per-sub defaults of an array whose subs differ (the field's type
-//! default applies), limits on anything but numbers, DOMAIN access other than rw, data types the derive
-//! does not know (a comment names each object left out). Sub-index 0 of an ARRAY or RECORD is const in the
-//! derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
+//! Real EDS files (python canopen's sample.eds, datatypes.eds and e35.eds, in tests/eds_real.rs) showed
+//! what is handled here: signed limits and defaults in two's complement hex (`LowLimit=0x80000000` of an
+//! INTEGER32 is -2147483648, as python canopen reads it), ARRAYs whose entries differ in access, default or
+//! limits (written as a record, one field per entry: every entry is kept, the derived EDS says RECORD),
+//! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults.
+//!
+//! Not carried over, each listed by [`generate`] (`Generated::left_out`) and named by a comment in the
+//! module where the field would be: data types the derive does not know (0040h and up, the object or entry
+//! is left out), an ARRAY without entries, a RECORD with nothing beyond sub-index 0, PDO mapping of strings
+//! and DOMAINs (only fixed-size types of at most 8 bytes map in a derived dictionary), DOMAIN defaults and
+//! DOMAIN access other than rw, OCTET_STRING defaults whose bytes are not UTF-8 (a derive default is a
+//! string literal), defaults relative to `$NODEID` and limits that are no number of the type, limits on
+//! anything but numbers. Of 1000h–1FFFh only what `NodeConfig` holds (device type, identity, names, producer
+//! heartbeat time): PDO communication and mapping parameters (1400h–1BFFh), SDO parameters, error behaviour
+//! and the rest take the node's `NodeConfig::DEFAULT` values. Sub-index 0 of an ARRAY or RECORD is const in
+//! the derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
 
 use std::fmt::Write as _;
 
-use crate::eds::{eval_default, Access, Eds, Entry, Object, ObjectKind};
+use crate::eds::{eval_default, eval_typed, Access, Eds, Entry, Object, ObjectKind};
+
+/// What the generated module does not carry of an EDS, so that a round trip knows what to skip and a
+/// reader of the module sees it: each one is also a comment in the module, where the field would be.
+///
+/// ```
+/// use canopen_master::eds::{generate, Dropped, Eds};
+/// let eds = Eds::parse("[2001]\nParameterName=Blob\nDataType=0xF\nAccessType=ro\n").unwrap();
+/// let g = generate(&eds, "dev.eds");
+/// assert_eq!((g.left_out[0].index, g.left_out[0].sub, g.left_out[0].dropped), (0x2001, None, Dropped::Access));
+/// assert!(g.rust.contains("// 2001h Blob: access ro not carried (a derived DOMAIN is rw)."));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LeftOut {
+    /// Object index.
+    pub index: u16,
+    /// The sub-index, `None` for the whole object (or a VAR).
+    pub sub: Option<u8>,
+    /// What of it is not carried.
+    pub dropped: Dropped,
+    /// Why, in words (the module's comment).
+    pub why: String,
+}
+
+/// What a [`LeftOut`] leaves out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dropped {
+    /// The object or entry itself: no field holds it.
+    Entry,
+    /// Its `DefaultValue` (the field's type default applies).
+    Default,
+    /// Its `LowLimit`/`HighLimit`.
+    Limits,
+    /// Its `AccessType` (a DOMAIN is always rw).
+    Access,
+    /// Its `PDOMapping=1`: only fixed-size types of at most 8 bytes map in a derived dictionary.
+    PdoMapping,
+}
+
+/// The generated module and what it leaves out.
+#[derive(Debug, Clone, Default)]
+pub struct Generated {
+    /// The Rust module's text.
+    pub rust: String,
+    /// Everything of the EDS's application objects (2000h–FFFFh) the module does not carry.
+    pub left_out: Vec<LeftOut>,
+}
+
+impl Generated {
+    fn leave_out_object(&mut self, o: &Object, why: &str) {
+        let _ = writeln!(self.rust, "    // {:04X}h {}: {why}; left out.", o.index, o.name);
+        self.left_out.push(LeftOut { index: o.index, sub: None, dropped: Dropped::Entry, why: why.into() });
+    }
+
+    fn leave_out(&mut self, e: &Entry, object: Option<&Object>, dropped: Dropped, why: String) {
+        let (sub, name, at) = match object {
+            Some(o) => (None, &o.name, format!("{:04X}h", o.index)),
+            None => (Some(e.sub), &e.name, format!("{:04X}h:{:02X}", e.index, e.sub)),
+        };
+        let line = match dropped {
+            Dropped::Entry => format!("    // {at} {name}: {why}; left out."),
+            Dropped::Default => format!("    // {at} {name}: default {} not carried ({why}).", show(&e.default)),
+            Dropped::Limits => {
+                format!("    // {at} {name}: limits {}..{} not carried ({why}).", show(&e.low), show(&e.high))
+            }
+            Dropped::Access => format!("    // {at} {name}: access {} not carried ({why}).", e.access.as_str()),
+            Dropped::PdoMapping => format!("    // {at} {name}: PDO mapping not carried ({why})."),
+        };
+        let _ = writeln!(self.rust, "{line}");
+        self.left_out.push(LeftOut { index: e.index, sub, dropped, why });
+    }
+}
+
+fn show(v: &Option<String>) -> &str {
+    v.as_deref().unwrap_or("")
+}
 
 /// The Rust type of a data type index, and whether it is a number (limits and numeric defaults apply).
 fn rust_type(entry: &Entry) -> Option<(String, bool)> {
@@ -68,9 +154,10 @@ fn ident(name: &str, index: u16, sub: Option<u8>) -> String {
     }
 }
 
-/// A Rust literal for a numeric EDS value of a type, `None` when it is not one (a `$NODEID` expression).
-fn number_literal(text: &str, float: bool) -> Option<String> {
-    if float {
+/// A Rust literal for a numeric EDS value of `entry`'s type, `None` when it is not one (a `$NODEID`
+/// expression, text). Signed integers written in hex are two's complement ([`eval_typed`]).
+fn number_literal(text: &str, entry: &Entry) -> Option<String> {
+    if is_float(entry) {
         let v: f64 = text.trim().parse().ok()?;
         let s = format!("{v:?}");
         return Some(if s.contains(['.', 'e', 'E']) || s.contains("inf") || s.contains("NaN") {
@@ -82,7 +169,7 @@ fn number_literal(text: &str, float: bool) -> Option<String> {
     if text.contains('$') {
         return None;
     }
-    eval_default(text, 0).map(|v| v.to_string())
+    eval_typed(text, entry.data_type, 0).map(|v| v.to_string())
 }
 
 fn quote(s: &str) -> String {
@@ -101,34 +188,62 @@ fn pdo(entry: &Entry) -> Option<&'static str> {
     })
 }
 
-/// The attributes besides index/sub/name of a value (access, pdo, limits, default).
-fn value_attrs(entry: &Entry, numeric: bool, float: bool, default: Option<&str>) -> String {
-    let mut a = format!(", access = {}", quote(entry.access.as_str()));
-    if let Some(p) = pdo(entry) {
-        let _ = write!(a, ", pdo = {}", quote(p));
+/// An OCTET_STRING default (hex pairs, CiA 306) as the text whose bytes the derive stores, when they are
+/// UTF-8 (the derive's `default` is a string literal).
+fn octets(hex: &str) -> Result<String, &'static str> {
+    let hex: String = hex.split_whitespace().collect();
+    if hex.len() % 2 != 0 {
+        return Err("not hex pairs");
+    }
+    let bytes = (0..hex.len())
+        .step_by(2)
+        .map(|i| hex.get(i..i + 2).and_then(|b| u8::from_str_radix(b, 16).ok()))
+        .collect::<Option<Vec<u8>>>()
+        .ok_or("not hex pairs")?;
+    String::from_utf8(bytes).map_err(|_| "bytes that are not UTF-8, which a derive default cannot hold")
+}
+
+/// The attributes besides index/sub/name of a value (access, pdo, limits, default); what cannot be
+/// written as an attribute is left out through `g` (`object` names the whole object for a VAR/array).
+fn value_attrs(g: &mut Generated, e: &Entry, object: Option<&Object>, numeric: bool, default: Option<&str>) -> String {
+    let mut a = format!(", access = {}", quote(e.access.as_str()));
+    if let Some(p) = pdo(e) {
+        if matches!(e.data_type, 0x0009..=0x000B) {
+            g.leave_out(e, object, Dropped::PdoMapping, "a string maps to no PDO of a derived dictionary".into());
+        } else {
+            let _ = write!(a, ", pdo = {}", quote(p));
+        }
     }
     if numeric {
-        for (key, v) in [("min", &entry.low), ("max", &entry.high)] {
-            if let Some(lit) = v.as_deref().and_then(|t| number_literal(t, float)) {
-                let _ = write!(a, ", {key} = {lit}");
+        let mut missed = false;
+        for (key, v) in [("min", &e.low), ("max", &e.high)] {
+            match v.as_deref().map(|t| number_literal(t, e)) {
+                Some(Some(lit)) => {
+                    let _ = write!(a, ", {key} = {lit}");
+                }
+                Some(None) => missed = true,
+                None => {}
             }
         }
+        if missed {
+            g.leave_out(e, object, Dropped::Limits, "not a number of the type".into());
+        }
+    } else if e.low.is_some() || e.high.is_some() {
+        g.leave_out(e, object, Dropped::Limits, "limits apply to numbers only".into());
     }
-    match (default, entry.data_type) {
-        (Some(d), 0x0001) => {
-            if let Some(v) = eval_default(d, 0) {
-                let _ = write!(a, ", default = {}", v != 0);
-            }
+    let Some(d) = default else { return a };
+    let literal = match e.data_type {
+        0x0001 => eval_default(d, 0).map(|v| (v != 0).to_string()).ok_or("not 0 or 1"),
+        0x0009 | 0x000B => Ok(quote(d)),
+        0x000A => octets(d).map(|s| quote(&s)),
+        _ if numeric => number_literal(d, e).ok_or("not a number of the type, or relative to $NODEID"),
+        _ => Err("a default of this type is not supported"),
+    };
+    match literal {
+        Ok(lit) => {
+            let _ = write!(a, ", default = {lit}");
         }
-        (Some(d), 0x0009) => {
-            let _ = write!(a, ", default = {}", quote(d));
-        }
-        (Some(d), _) if numeric => {
-            if let Some(lit) = number_literal(d, float) {
-                let _ = write!(a, ", default = {lit}");
-            }
-        }
-        _ => {}
+        Err(why) => g.leave_out(e, object, Dropped::Default, why.into()),
     }
     a
 }
@@ -137,82 +252,85 @@ fn is_float(entry: &Entry) -> bool {
     matches!(entry.data_type, 0x0008 | 0x0011)
 }
 
-fn var(out: &mut String, o: &Object, e: &Entry) {
+fn var(g: &mut Generated, o: &Object, e: &Entry) {
     if e.data_type == 0x000F {
-        let _ = writeln!(out, "    #[od(index = 0x{:04X}, name = {}, domain)]", o.index, quote(&o.name));
-        let _ = writeln!(out, "    pub {}: DomainBuf<4096>,", ident(&o.name, o.index, None));
+        if e.access != Access::ReadWrite {
+            g.leave_out(e, Some(o), Dropped::Access, "a derived DOMAIN is rw".into());
+        }
+        if e.default.is_some() {
+            g.leave_out(e, Some(o), Dropped::Default, "a DOMAIN has no default".into());
+        }
+        if e.pdo_mapping {
+            g.leave_out(e, Some(o), Dropped::PdoMapping, "a DOMAIN maps to no PDO".into());
+        }
+        let _ = writeln!(g.rust, "    #[od(index = 0x{:04X}, name = {}, domain)]", o.index, quote(&o.name));
+        let _ = writeln!(g.rust, "    pub {}: DomainBuf<4096>,", ident(&o.name, o.index, None));
         return;
     }
     let Some((ty, numeric)) = rust_type(e) else {
-        let _ = writeln!(
-            out,
-            "    // {:04X}h {}: data type {:04X}h is not supported; left out.",
-            o.index, o.name, e.data_type
-        );
-        return;
+        return g.leave_out_object(o, &format!("data type {:04X}h is not supported", e.data_type));
     };
-    let attrs = value_attrs(e, numeric, is_float(e), e.default.as_deref());
-    let _ = writeln!(out, "    #[od(index = 0x{:04X}, name = {}{attrs})]", o.index, quote(&o.name));
-    let _ = writeln!(out, "    pub {}: {ty},", ident(&o.name, o.index, None));
+    let attrs = value_attrs(g, e, Some(o), numeric, e.default.as_deref());
+    let _ = writeln!(g.rust, "    #[od(index = 0x{:04X}, name = {}{attrs})]", o.index, quote(&o.name));
+    let _ = writeln!(g.rust, "    pub {}: {ty},", ident(&o.name, o.index, None));
 }
 
-fn array(out: &mut String, o: &Object) {
+/// An ARRAY whose entries are alike (sub-indices 1..=n, one data type, access, PDO mapping, limits and
+/// default) is an array field; any other is written as a record, one field per entry, which keeps every
+/// entry as it is (the derived EDS then says RECORD for it).
+fn array(g: &mut Generated, o: &Object) {
     let subs: Vec<&Entry> = o.entries.values().filter(|e| e.sub > 0).collect();
     let Some(first) = subs.first() else {
-        let _ = writeln!(out, "    // {:04X}h {}: an array without entries; left out.", o.index, o.name);
-        return;
+        return g.leave_out_object(o, "an array without entries");
     };
     let contiguous = subs.iter().enumerate().all(|(i, e)| usize::from(e.sub) == i + 1);
-    let same = subs.iter().all(|e| e.data_type == first.data_type && e.access == first.access);
-    let Some((ty, numeric)) = rust_type(first).filter(|_| contiguous && same) else {
-        let _ =
-            writeln!(out, "    // {:04X}h {}: an array of mixed or unsupported entries; left out.", o.index, o.name);
-        return;
+    let alike = subs.iter().all(|e| {
+        (e.data_type, e.access, e.pdo_mapping, &e.low, &e.high, &e.default)
+            == (first.data_type, first.access, first.pdo_mapping, &first.low, &first.high, &first.default)
+    });
+    let Some((ty, numeric)) = rust_type(first).filter(|_| contiguous && alike) else {
+        return record(g, o);
     };
-    let default = first.default.as_deref().filter(|d| subs.iter().all(|e| e.default.as_deref() == Some(*d)));
-    let attrs = value_attrs(first, numeric, is_float(first), default);
+    let attrs = value_attrs(g, first, Some(o), numeric, first.default.as_deref());
     let _ = writeln!(
-        out,
+        g.rust,
         "    #[od(index = 0x{:04X}, sub = 1..={}, name = {}{attrs})]",
         o.index,
         subs.len(),
         quote(&o.name)
     );
-    let _ = writeln!(out, "    pub {}: [{ty}; {}],", ident(&o.name, o.index, None), subs.len());
+    let _ = writeln!(g.rust, "    pub {}: [{ty}; {}],", ident(&o.name, o.index, None), subs.len());
 }
 
-fn record(out: &mut String, o: &Object) {
+fn record(g: &mut Generated, o: &Object) {
     let mut first = true;
     for e in o.entries.values().filter(|e| e.sub > 0) {
         let Some((ty, numeric)) = rust_type(e) else {
-            let _ = writeln!(
-                out,
-                "    // {:04X}h:{:02X} {}: data type {:04X}h is not supported; left out.",
-                o.index, e.sub, e.name, e.data_type
-            );
+            g.leave_out(e, None, Dropped::Entry, format!("data type {:04X}h is not supported", e.data_type));
             continue;
         };
         let record = if first { format!(", record = {}", quote(&o.name)) } else { String::new() };
         first = false;
-        let attrs = value_attrs(e, numeric, is_float(e), e.default.as_deref());
+        let attrs = value_attrs(g, e, None, numeric, e.default.as_deref());
         let _ = writeln!(
-            out,
+            g.rust,
             "    #[od(index = 0x{:04X}, sub = {}{record}, name = {}{attrs})]",
             o.index,
             e.sub,
             quote(&e.name)
         );
-        let _ = writeln!(out, "    pub {}: {ty},", ident(&e.name, o.index, Some(e.sub)));
+        let _ = writeln!(g.rust, "    pub {}: {ty},", ident(&e.name, o.index, Some(e.sub)));
+    }
+    if first {
+        g.leave_out_object(o, "a record without entries beyond sub-index 0");
     }
 }
 
 /// The Rust module for `eds`; `source` names the file in its header.
 ///
 /// The application objects (2000h–FFFFh) become a struct with `#[derive(ObjectDictionary)]`, and
-/// 1000h–1FFFh a `NodeConfig` (device type, identity, names, producer heartbeat time). Not carried over,
-/// yet: PDO default parameters (1400h–1BFFh), per-sub defaults of an array whose subs differ, limits on
-/// anything but numbers, DOMAIN access other than rw, data types the derive does not know (a comment names
-/// each object left out).
+/// 1000h–1FFFh a `NodeConfig` (device type, identity, names, producer heartbeat time). What is not carried
+/// over is listed in the module docs, and by [`generate`] for a given file.
 ///
 /// ```
 /// use canopen_master::eds::{to_rust, Eds};
@@ -224,7 +342,22 @@ fn record(out: &mut String, o: &Object) {
 /// assert!(rust.contains("device_type: 401,"));
 /// ```
 pub fn to_rust(eds: &Eds, source: &str) -> String {
-    let mut out = String::new();
+    generate(eds, source).rust
+}
+
+/// [`to_rust`], with the list of what the module leaves out of the application objects (each also a
+/// comment in the module): what a round trip EDS → Rust → EDS may not find again.
+///
+/// ```
+/// use canopen_master::eds::{generate, Dropped, Eds};
+/// let eds = Eds::parse("[2001]\nParameterName=Complex\nDataType=0x40\n[2002]\nParameterName=Id\nDataType=7\nDefaultValue=$NODEID+1\n").unwrap();
+/// let g = generate(&eds, "dev.eds");
+/// let what: Vec<_> = g.left_out.iter().map(|l| (l.index, l.dropped)).collect();
+/// assert_eq!(what, [(0x2001, Dropped::Entry), (0x2002, Dropped::Default)]);
+/// ```
+pub fn generate(eds: &Eds, source: &str) -> Generated {
+    let mut g = Generated::default();
+    let out = &mut g.rust;
     let _ = writeln!(out, "//! Generated from {source} (CiA 306) by `canopenctl eds-to-rust`: the application objects");
     let _ =
         writeln!(out, "//! (2000h-FFFFh) as a derived object dictionary, and the node configuration from 1000h-1FFFh.");
@@ -246,13 +379,14 @@ pub fn to_rust(eds: &Eds, source: &str) -> String {
         match o.kind {
             ObjectKind::Var => {
                 if let Some(e) = o.entries.get(&0) {
-                    var(&mut out, o, e);
+                    var(&mut g, o, e);
                 }
             }
-            ObjectKind::Array => array(&mut out, o),
-            ObjectKind::Record => record(&mut out, o),
+            ObjectKind::Array => array(&mut g, o),
+            ObjectKind::Record => record(&mut g, o),
         }
     }
+    let out = &mut g.rust;
     let _ = writeln!(out, "}}");
     let _ = writeln!(out);
     let u32_of = |index: u16, sub: u8| {
@@ -289,5 +423,105 @@ pub fn to_rust(eds: &Eds, source: &str) -> String {
     }
     let _ = writeln!(out, "    ..NodeConfig::DEFAULT");
     let _ = writeln!(out, "}};");
-    out
+    g
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What python canopen's real files (tests/eds_real.rs) showed: signed limits in two's complement hex,
+    /// an ARRAY whose entries differ in access and default, strings marked PDO-mappable, an OCTET_STRING
+    /// default in hex pairs, a UNICODE_STRING default, and a RECORD with nothing beyond sub-index 0.
+    const REAL: &str = "\
+[3030]
+ParameterName=Negative
+DataType=0x04
+AccessType=rw
+HighLimit=0xFFFFFFFF
+LowLimit=0x80000000
+
+[3040]
+ParameterName=Range
+DataType=0x15
+AccessType=rw
+HighLimit=0x000000000000000A
+LowLimit=0xFFFFFFFFFFFFFFF6
+
+[20C2]
+ParameterName=Driver temperature
+ObjectType=0x8
+
+[20C2sub0]
+DataType=0x0005
+AccessType=const
+DefaultValue=0x2
+
+[20C2sub1]
+ParameterName=Actual
+DataType=0x0004
+AccessType=ro
+PDOMapping=0x1
+
+[20C2sub2]
+ParameterName=Max
+DataType=0x0004
+AccessType=rw
+DefaultValue=85000
+
+[2009]
+ParameterName=Text
+DataType=0x0009
+AccessType=rw
+DefaultValue=ABCD
+PDOMapping=1
+
+[200A]
+ParameterName=Octets
+DataType=0x000A
+AccessType=rw
+DefaultValue=41424344
+
+[200C]
+ParameterName=Raw octets
+DataType=0x000A
+AccessType=rw
+DefaultValue=ABCD
+
+[200B]
+ParameterName=Unicode
+DataType=0x000B
+AccessType=rw
+DefaultValue=abc\u{2713}
+
+[3010]
+ParameterName=ReadRawValue
+ObjectType=0x9
+
+[3010Sub0]
+ParameterName=Temperature
+DataType=0x0008
+AccessType=ro
+";
+
+    #[test]
+    fn real_world_shapes_generate() {
+        let g = generate(&Eds::parse(REAL).unwrap(), "real.eds");
+        let has = |s: &str| assert!(g.rust.contains(s), "no `{s}` in:\n{}", g.rust);
+        has("name = \"Negative\", access = \"rw\", min = -2147483648, max = -1)]");
+        has("name = \"Range\", access = \"rw\", min = -10, max = 10)]");
+        has("#[od(index = 0x20C2, sub = 1, record = \"Driver temperature\", name = \"Actual\", access = \"ro\", pdo = \"tpdo\")]");
+        has("#[od(index = 0x20C2, sub = 2, name = \"Max\", access = \"rw\", default = 85000)]");
+        has("name = \"Text\", access = \"rw\", default = \"ABCD\")]");
+        has("name = \"Octets\", access = \"rw\", default = \"ABCD\")]");
+        has("name = \"Raw octets\", access = \"rw\")]");
+        has("name = \"Unicode\", access = \"rw\", default = \"abc\u{2713}\")]");
+        let left: Vec<_> = g.left_out.iter().map(|l| (l.index, l.sub, l.dropped)).collect();
+        assert_eq!(
+            left,
+            [(0x2009, None, Dropped::PdoMapping), (0x200C, None, Dropped::Default), (0x3010, None, Dropped::Entry)]
+        );
+        has("// 200Ch Raw octets: default ABCD not carried (bytes that are not UTF-8");
+        has("// 3010h ReadRawValue: a record without entries beyond sub-index 0; left out.");
+    }
 }

@@ -19,7 +19,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-pub use crate::codegen::to_rust;
+pub use crate::codegen::{generate, to_rust, Dropped, Generated, LeftOut};
 
 /// Access of an entry (`AccessType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -180,6 +180,43 @@ pub fn eval_default(text: &str, node_id: u8) -> Option<i128> {
         };
     }
     Some(total)
+}
+
+/// The bits of a signed integer data type (INTEGER8..INTEGER64), `None` for any other.
+fn signed_bits(data_type: u16) -> Option<u32> {
+    Some(match data_type {
+        0x0002 => 8,
+        0x0003 => 16,
+        0x0004 => 32,
+        0x0010 => 24,
+        0x0012 => 40,
+        0x0013 => 48,
+        0x0014 => 56,
+        0x0015 => 64,
+        _ => return None,
+    })
+}
+
+/// [`eval_default`] for a value of a data type: a signed integer written in hex is its two's complement
+/// bits, as tools write limits (`LowLimit=0x80000000` of an INTEGER32 is -2147483648, `0xFFFFFFFFFFFFFFF6`
+/// of an INTEGER64 is -10; python canopen reads them so), while a decimal or a `-0x..` value is as written.
+///
+/// ```
+/// use canopen_master::eds::eval_typed;
+/// assert_eq!(eval_typed("0x80000000", 0x0004, 0), Some(-2147483648));
+/// assert_eq!(eval_typed("0xFFFFFFFFFFFFFFF6", 0x0015, 0), Some(-10));
+/// assert_eq!(eval_typed("0x7F", 0x0002, 0), Some(127));
+/// assert_eq!(eval_typed("0x80000000", 0x0007, 0), Some(0x8000_0000));
+/// assert_eq!(eval_typed("-0x10", 0x0004, 0), Some(-16));
+/// ```
+pub fn eval_typed(text: &str, data_type: u16, node_id: u8) -> Option<i128> {
+    let v = eval_default(text, node_id)?;
+    let t = text.trim();
+    let hex = t.starts_with("0x") || t.starts_with("0X");
+    match signed_bits(data_type) {
+        Some(bits) if hex && v >= 1 << (bits - 1) && v < 1 << bits => Some(v - (1 << bits)),
+        _ => Some(v),
+    }
 }
 
 /// What a section's name says it is.

@@ -749,8 +749,12 @@ impl Master {
         }
     }
 
+    /// Sends what the client has to send. The clock is read once per call, not per frame: a block
+    /// download's sub-block (up to 127 segments) goes out on one reading, so its time-out runs from the
+    /// start of the sub-block (scripts/bench-master.sh counts the clock reads per frame).
     async fn flush(&self, client: &mut SdoClient, data: &mut dyn Data, tx_cob: u16) -> Result<(), Error> {
-        while let Some(bytes) = client.poll_transmit(self.inner.clock.now(), data) {
+        let now = self.inner.clock.now();
+        while let Some(bytes) = client.poll_transmit(now, data) {
             self.inner.io.send(&CanFrame::from_parts(tx_cob, bytes, 8)).await?;
         }
         Ok(())
