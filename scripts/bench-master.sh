@@ -11,11 +11,8 @@
 # call this script. Usage: scripts/bench-master.sh [ROUNDS_OF_64KIB] (default 16; SKIP_PIP=1 skips pip).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SHARED=${SHARED:-$PWD/../shared}
 ROUNDS=${1:-16}
-command -v strace >/dev/null || { apt-get install -y -qq strace >/dev/null || sudo apt-get install -y -qq strace >/dev/null; }
-source scripts/python-env.sh
-source scripts/vcan-run.sh
+source scripts/bench-setup.sh
 cargo build --release --example node --example master_bench
 cat > target/bench-master-in-vm.sh <<INNER
 set -euo pipefail

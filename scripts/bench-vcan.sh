@@ -15,12 +15,8 @@
 # Usage: scripts/bench-vcan.sh [SIZE_BYTES]   (SKIP_PIP=1 skips the pip install). Fails if the VM cannot start.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SHARED=${SHARED:-$PWD/../shared}
 SIZE=${1:-1048576}
-command -v strace >/dev/null || { apt-get install -y -qq strace >/dev/null || sudo apt-get install -y -qq strace >/dev/null; }
-# python canopen, python-can, pytest in the project's own virtual environment (target/venv).
-source scripts/python-env.sh
-source scripts/vcan-run.sh
+source scripts/bench-setup.sh
 cargo build --release --examples
 cat > target/bench-in-vm.sh <<INNER
 set -euo pipefail
