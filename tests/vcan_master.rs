@@ -8,6 +8,8 @@
 
 #[path = "../examples/common/io_module.rs"]
 mod io_module;
+#[path = "common/vcan.rs"]
+mod vcan;
 
 use std::time::{Duration, Instant};
 
@@ -18,14 +20,7 @@ use canopen_master::{Master, Mode, NmtCommand, StateCode, BLOCK};
 use canopen_socketcan::{run_tokio, MutexShared, NotifyWake};
 use io_module::CONFIG;
 
-const IFACE: &str = "vcan0";
-
-fn require_vcan() {
-    assert!(
-        std::path::Path::new(&format!("/sys/class/net/{IFACE}")).exists(),
-        "no SocketCAN interface {IFACE}: run where it is up (scripts/vcan-run.sh)"
-    );
-}
+use vcan::{require_vcan, IFACE};
 
 /// Runs `node` on vcan0 (the tokio runner) until the task is aborted.
 fn spawn_node<N>(node: N) -> tokio::task::JoinHandle<()>

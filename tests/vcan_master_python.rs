@@ -13,11 +13,14 @@ use std::time::Duration;
 
 use canopen_master::{Master, Mode, BLOCK};
 
+#[path = "common/vcan.rs"]
+mod vcan;
+
 struct Python(Child);
 
 impl Python {
     fn start(eds: &str, ids: &[u8]) -> Self {
-        assert!(std::path::Path::new("/sys/class/net/vcan0").exists(), "no vcan0 (scripts/vcan-run.sh)");
+        vcan::require_vcan();
         let mut child = Command::new("python3")
             .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/local_nodes.py"))
             .arg(eds)
@@ -58,7 +61,7 @@ async fn the_master_drives_python_canopens_local_nodes() {
     let eds = example_eds();
     let ids: Vec<u8> = (51..=60).collect();
     let _python = Python::start(&eds, &ids);
-    let master = Master::open("vcan0").unwrap().with_sdo_timeout(Duration::from_millis(1000));
+    let master = Master::open(vcan::IFACE).unwrap().with_sdo_timeout(Duration::from_millis(1000));
 
     // Ten nodes at once, each answering with its own serial number.
     let mut set = tokio::task::JoinSet::new();

@@ -15,6 +15,8 @@
 
 #[path = "../examples/common/io_module.rs"]
 mod io_module;
+#[path = "common/vcan.rs"]
+mod vcan;
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
@@ -27,15 +29,7 @@ use canopen_socketcan::socketcan;
 use canopen_socketcan::{run_tokio, BlockingBus, Master, MutexShared, NotifyWake, Observed};
 use io_module::{IoNode, CONFIG};
 
-const IFACE: &str = "vcan0";
-
-/// These tests are `#[ignore]`d and run only where vcan is up: a missing interface is a failure.
-fn require_vcan() {
-    assert!(
-        std::path::Path::new(&format!("/sys/class/net/{IFACE}")).exists(),
-        "no SocketCAN interface {IFACE}: run where it is up (scripts/vcan-run.sh)"
-    );
-}
+use vcan::{require_vcan, IFACE};
 
 /// A node on its own thread (tokio runner), stopped when dropped.
 struct RunningNode {

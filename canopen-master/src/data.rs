@@ -4,7 +4,7 @@
 
 use std::io;
 
-use canopen_core::od::AbortCode;
+use canopen_core::od::{copy_at, AbortCode};
 use canopen_core::sdo::client::ClientData;
 
 /// Progress of a transfer: called with the bytes moved so far.
@@ -54,9 +54,7 @@ impl ClientData for SliceSource<'_> {
         self.src.len()
     }
     fn read(&mut self, offset: usize, buf: &mut [u8]) -> usize {
-        let src = self.src.get(offset..).unwrap_or(&[]);
-        let n = src.len().min(buf.len());
-        buf[..n].copy_from_slice(&src[..n]);
+        let n = copy_at(self.src, offset, buf);
         if let Some(p) = self.progress.as_mut() {
             p((offset + n) as u64);
         }

@@ -9,7 +9,7 @@ use std::fmt;
 use std::io;
 use std::time::Duration as StdDuration;
 
-use canopen_core::od::AbortCode;
+use canopen_core::od::{copy_at, AbortCode};
 use canopen_core::sdo::client::{ClientData, ClientError, ClientEvent, Mode, SdoClient};
 use canopen_core::sdo::SdoClientParams;
 use canopen_core::wire::nmt::NmtCommand;
@@ -72,10 +72,7 @@ impl ClientData for VecData<'_> {
         self.src.len()
     }
     fn read(&mut self, offset: usize, buf: &mut [u8]) -> usize {
-        let src = self.src.get(offset..).unwrap_or(&[]);
-        let n = src.len().min(buf.len());
-        buf[..n].copy_from_slice(&src[..n]);
-        n
+        copy_at(self.src, offset, buf)
     }
     fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
         let end = offset.checked_add(data.len()).filter(|&e| e <= self.cap).ok_or(AbortCode::OutOfMemory)?;
