@@ -707,6 +707,23 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         }
     }
 
+    // The expedited download of a string or DOMAIN (a streamed write of up to 4 bytes), out of line so that the
+    // fixed-size path keeps no registers or stack for it; none at all without a writable streamed entry (a
+    // read-only one is refused before, by its access).
+    let (stream_expedited_arm, stream_expedited_fn) = if begin_arms.is_empty() {
+        (quote!(), quote!())
+    } else {
+        (
+            quote!(0 => self.__od_write_expedited_stream(index, sub, data, len),),
+            quote! {
+                #[inline(never)]
+                fn __od_write_expedited_stream(&mut self, index: u16, sub: u8, data: &[u8; 4], len: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                    let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
+                    #core::od::write_whole_stream(self, index, sub, bytes)
+                }
+            },
+        )
+    };
     let n_entries = rows.len();
     let keys = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub));
     Ok(quote! {
@@ -756,6 +773,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn __od_write_stream_value(&mut self, pos: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
                     match pos { #(#stream_write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
+                #stream_expedited_fn
                 /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
                 /// dictionary (not inlined), shared by every access.
                 fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
@@ -848,10 +866,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     // The row's size is the type's fixed size (0: a string or DOMAIN), known at compile time:
                     // no match on the data type per download.
                     match e.size {
-                        0 => {
-                            let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
-                            #core::od::write_whole_stream(self, index, sub, bytes)
-                        }
+                        #stream_expedited_arm
                         n => {
                             let bytes = data.get(..len.unwrap_or(n.min(4))).unwrap_or(data);
                             self.__od_write(pos, bytes)

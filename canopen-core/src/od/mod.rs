@@ -445,7 +445,6 @@ pub fn expedited_download<O: ObjectDictionary + ?Sized>(
 
 /// Writes a variable-size entry (string, DOMAIN) in one streamed step: `begin_write`, `write_chunk`,
 /// `end_write`, and `abort_write` if a step after the first fails.
-#[inline(never)]
 pub fn write_whole_stream<O: ObjectDictionary + ?Sized>(
     od: &mut O,
     index: u16,
