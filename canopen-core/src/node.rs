@@ -500,11 +500,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.ensure_booted(now);
         #[cfg(feature = "lss")]
         self.lss_timeout(now);
-        if self.sdo.deadline().passed(now) {
-            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
-            let response = self.sdo.handle_timeout(now, &mut od);
-            self.sdo_response(now, response, self.sdo.tx_cob_id());
-        }
+        let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
+        let response = self.sdo.handle_timeout(now, &mut od); // nothing unless its deadline passed
+        self.sdo_response(now, response, self.sdo.tx_cob_id());
         if self.producer.due(now) {
             self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
         }

@@ -42,8 +42,8 @@
 //! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~323 (~53 in the
 //! dictionary); segmented upload ~291 per frame (~46: the segments read at the slot found once, no search);
 //! block download ~268 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop
-//! (events, peek and transmitted); a disabled time-out is stored as the longest duration, so the deadline
-//! after a frame is one compare and add ([`Deadline::after`]).
+//! (events, peek and transmitted). The time-out costs a frame one store (the instant it came): the deadline
+//! is computed when the node asks for it, not per frame.
 //!
 //! # Data path, RAM
 //!
@@ -232,13 +232,13 @@ impl SdoServerParams {
     }
 }
 
-/// The time-out as [`SdoServer`] keeps it: zero (disabled) becomes [`Duration::MAX`], for which
-/// [`Deadline::after`] gives [`Deadline::NONE`].
-const fn stored_timeout(timeout: Duration) -> Duration {
+/// The time-out as [`SdoServer`] keeps it, µs: zero (disabled) becomes `u64::MAX`, so that a deadline
+/// `since + timeout` saturates to `u64::MAX`, which is [`Deadline::NONE`].
+const fn stored_timeout(timeout: Duration) -> u64 {
     if timeout.is_zero() {
-        Duration::MAX
+        u64::MAX
     } else {
-        timeout
+        timeout.as_micros()
     }
 }
 
@@ -429,14 +429,16 @@ enum State {
 #[derive(Debug, Clone)]
 pub struct SdoServer {
     params: SdoServerParams,
-    /// The protocol time-out (SDO-31); a disabled (zero) one is kept as [`Duration::MAX`], so that the
-    /// deadline after a frame is [`Deadline::after`] (no deadline for the longest duration), no flag.
-    timeout: Duration,
+    /// The protocol time-out (SDO-31), µs; a disabled (zero) one is kept as `u64::MAX`, so that the deadline
+    /// `since + timeout` saturates to none, no flag.
+    timeout: u64,
     #[cfg(feature = "sdo-block")]
     block_size: u8,
-    /// The protocol time-out's deadline (SDO-31), [`Deadline::NONE`] when no transfer waits: a plain u64 (8 bytes
-    /// less than an `Option<Instant>`, and no tag to write per frame).
-    deadline: Deadline,
+    /// When the transfer under way last received (block upload: sent) a frame, µs: its time-out deadline
+    /// (SDO-31) is `since + timeout`, computed when asked ([`deadline`](Self::deadline)), so that a frame
+    /// costs one store, not the deadline's arithmetic and a test for idle. `u64::MAX`: no deadline until the
+    /// next frame (the time-out was disabled when the last one came). Meaningless while `state` is idle.
+    since: u64,
     /// The object of the transfer under way (meaningless while `state` is idle).
     mux: Multiplexer,
     state: State,
@@ -463,7 +465,7 @@ impl SdoServer {
             timeout: stored_timeout(super::DEFAULT_TIMEOUT),
             #[cfg(feature = "sdo-block")]
             block_size: MAX_BLKSIZE,
-            deadline: Deadline::NONE,
+            since: 0,
             mux: Multiplexer::new(0, 0),
             state: State::Idle,
         }
@@ -483,7 +485,9 @@ impl SdoServer {
     }
 
     /// Changes the protocol time-out (SDO-31) of a server in use; zero disables it. A transfer under way keeps
-    /// the deadline it has and uses the new time-out from its next frame on.
+    /// the deadline it has (none while the time-out was disabled; disabling it removes the deadline at once;
+    /// a deadline earlier than the new time-out after the origin becomes that) and uses the new time-out from
+    /// its next frame on.
     ///
     /// ```
     /// # use canopen_core::sdo::{SdoServer, SdoServerParams};
@@ -493,7 +497,11 @@ impl SdoServer {
     /// assert!(s.is_idle());
     /// ```
     pub fn set_timeout(&mut self, timeout: Duration) {
-        self.timeout = stored_timeout(timeout);
+        let new = stored_timeout(timeout);
+        // `since` moves so that `since + new` is the deadline the transfer has; none stays none.
+        let at = self.since.saturating_add(self.timeout);
+        self.since = if at == u64::MAX { u64::MAX } else { at.saturating_sub(new) };
+        self.timeout = new;
     }
 
     /// Sets the block size the server asks for in block download (clamped to 1..=127, SDO-36).
@@ -537,7 +545,6 @@ impl SdoServer {
     pub fn set_params(&mut self, params: SdoServerParams) {
         self.params = params;
         self.state = State::Idle;
-        self.deadline = Deadline::NONE;
     }
 
     /// Drops the current transfer without a frame: the node left the states that serve SDO (NMT-18, a node
@@ -629,11 +636,16 @@ impl SdoServer {
     /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
     #[inline(never)] // 64-bit arithmetic for the block download stall (~130 B on Cortex-M), used in 3 places
     pub(crate) const fn deadline(&self) -> Deadline {
-        #[cfg(feature = "sdo-block")]
-        if let Some(d) = self.deadline.get() {
-            return Deadline::new(Some(self.block_download_deadline(d)));
+        if self.is_idle() {
+            return Deadline::NONE;
         }
-        self.deadline
+        // u64::MAX (none) when the time-out is disabled, or was when this transfer's last frame came
+        let at = self.since.saturating_add(self.timeout);
+        #[cfg(feature = "sdo-block")]
+        if at != u64::MAX {
+            return Deadline::new(Some(self.block_download_deadline(Instant::from_micros(at))));
+        }
+        Deadline::new(Some(Instant::from_micros(at)))
     }
 
     /// Aborts a transfer whose deadline has passed with 0504 0000h (SDO-31, ABORT-02).
@@ -651,17 +663,15 @@ impl SdoServer {
     /// assert_eq!(s.handle_timeout(canopen_core::Instant::from_millis(5), &mut Empty), Response::NONE);
     /// ```
     pub fn handle_timeout<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Response {
-        match self.poll_timeout() {
-            Some(d) if now >= d && !self.is_idle() => {
-                #[cfg(feature = "sdo-block")]
-                if let Some(ack) = self.block_download_stalled() {
-                    return ack;
-                }
-                let mux = self.mux().unwrap_or_default();
-                self.abort(od, mux, AbortCode::SdoTimeout)
-            }
-            _ => Response::NONE,
+        if !self.deadline().passed(now) {
+            return Response::NONE; // none while idle
         }
+        #[cfg(feature = "sdo-block")]
+        if let Some(ack) = self.block_download_stalled() {
+            return ack;
+        }
+        let mux = self.mux().unwrap_or_default();
+        self.abort(od, mux, AbortCode::SdoTimeout)
     }
 
     /// Handles one frame received on the server's rx COB-ID. `data` is the frame's data field (its length is
@@ -688,16 +698,8 @@ impl SdoServer {
     pub fn handle_request<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, data: &[u8], od: &mut O) -> Response {
         let Ok(b) = <&[u8; 8]>::try_from(data) else { return Response::NONE };
         let r = self.dispatch(b, od);
-        if self.is_idle() {
-            self.deadline = Deadline::NONE;
-        } else {
-            self.touch(now);
-        }
+        self.since = now.as_micros(); // the time-out runs from here (SDO-31), unless the server is idle now
         r
-    }
-
-    fn touch(&mut self, now: Instant) {
-        self.deadline = Deadline::after(now, self.timeout); // NONE when disabled
     }
 
     fn mux(&self) -> Option<Multiplexer> {
@@ -718,7 +720,6 @@ impl SdoServer {
             _ => {}
         }
         self.state = State::Idle;
-        self.deadline = Deadline::NONE;
     }
 
     /// Ends the transfer with an abort frame (SDO-32) and [`SdoEvent::Aborted`]. Out of line: it is reached

@@ -89,7 +89,7 @@ impl SdoServer {
             b.phase = UploadPhase::WaitAck;
         }
         segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
-        self.touch(now);
+        self.since = now.as_micros(); // SDO-31: the time-out runs from the last frame sent
         Some(Response::send(segment))
     }
 

@@ -292,6 +292,32 @@ fn zero_timeout_disables_the_protocol_timeout() {
     assert_eq!(t.od.domain(), b"123456712345678901234");
 }
 
+/// SDO-31: a time-out changed during a transfer leaves the deadline it has; the next frame gets the new one.
+/// Disabling it removes the deadline at once (the server keeps the instant of the last frame, not the deadline).
+#[test]
+fn changed_timeout_applies_from_the_next_frame() {
+    let mut t = Bench::new();
+    let t1 = Instant::from_millis(100);
+    let r = t.s.handle_request(t1, &[0x21, 0x00, 0x20, 0x00, 21, 0, 0, 0], &mut t.od);
+    assert_eq!(r.frame, Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    assert_eq!(t.s.poll_timeout(), Some(t1 + super::super::DEFAULT_TIMEOUT));
+    t.s.set_timeout(Duration::from_millis(30));
+    assert_eq!(t.s.poll_timeout(), Some(t1 + super::super::DEFAULT_TIMEOUT));
+    let t2 = Instant::from_millis(200);
+    let r = t.s.handle_request(t2, &[0x00, 0x31, 0x32, 0x33, 0x34, 0x35, 0x36, 0x37], &mut t.od);
+    assert_eq!(r.frame, Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(t.s.poll_timeout(), Some(Instant::from_millis(230)));
+    t.s.set_timeout(Duration::from_millis(100));
+    assert_eq!(t.s.poll_timeout(), Some(Instant::from_millis(230)));
+    // a time-out longer than the deadline is after the origin: the deadline is the new time-out after it
+    t.s.set_timeout(Duration::from_millis(2_000));
+    assert_eq!(t.s.poll_timeout(), Some(Instant::from_millis(2_000)));
+    t.s.set_timeout(Duration::ZERO);
+    assert_eq!(t.s.poll_timeout(), None);
+    assert_eq!(t.s.handle_timeout(Instant::from_micros(u64::MAX - 1), &mut t.od), Response::NONE);
+    assert!(!t.s.is_idle());
+}
+
 #[test]
 fn segmented_length_checks() {
     let mut t = Bench::new();
