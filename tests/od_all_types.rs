@@ -253,9 +253,13 @@ fn segments_read_through_a_slot() {
     let od = AllTypes::with_defaults();
     let slot = od.slot(0x2020, 0);
     assert_ne!(slot, PdoHandle::NO_SLOT);
-    let (mut a, mut b) = ([0u8; 7], [0u8; 7]);
-    assert_eq!(od.read_slot(0x2020, 0, slot, 1, &mut a), od.read(0x2020, 0, 1, &mut b));
-    assert_eq!(&a[..4], b"ello");
+    let (mut a, mut b) = ([0u8; 4], [0u8; 4]);
+    assert_eq!(od.read_slot(0x2020, 0, slot, 1, &mut a), Ok(()));
+    assert_eq!(od.read(0x2020, 0, 1, &mut b), Ok(4));
+    assert_eq!((&a, &b), (b"ello", b"ello"));
+    // It fills the buffer or fails: fewer bytes than asked for are 0607 0010h (the size announced was wrong).
+    let mut a = [0u8; 7];
+    assert_eq!(od.read_slot(0x2020, 0, slot, 1, &mut a), Err(AbortCode::LengthMismatch));
     // No such entry: no slot, and the read by index answers as `read` does.
     assert_eq!(od.slot(0x2020, 1), PdoHandle::NO_SLOT);
     assert_eq!(od.read_slot(0x2020, 1, PdoHandle::NO_SLOT, 0, &mut a), Err(AbortCode::SubIndexDoesNotExist));

@@ -371,9 +371,9 @@ impl<P: ProgramSink, A: ObjectDictionary> ObjectDictionary for ProgramDownload<P
         self.app.slot(index, sub)
     }
 
-    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
         if is_program(index) {
-            return self.read(index, sub, offset, buf);
+            return crate::od::filled(self.read(index, sub, offset, buf)?, buf.len());
         }
         self.app.read_slot(index, sub, slot, offset, buf)
     }

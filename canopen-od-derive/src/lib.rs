@@ -876,12 +876,12 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn slot(&self, index: u16, sub: u8) -> u16 {
                     self.__od_pos(index, sub).map_or(#core::od::PdoHandle::NO_SLOT, |(pos, _)| pos as u16)
                 }
-                fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
+                fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> ::core::result::Result<(), __AbortCode> {
                     let pos = usize::from(slot);
                     match Self::__OD_INFO.get(pos) {
-                        ::core::option::Option::Some(e) if e.access.readable() => self.__od_read(pos, offset, buf),
+                        ::core::option::Option::Some(e) if e.access.readable() => #core::od::filled(self.__od_read(pos, offset, buf)?, buf.len()),
                         ::core::option::Option::Some(_) => ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly),
-                        ::core::option::Option::None => self.read(index, sub, offset, buf),
+                        ::core::option::Option::None => #core::od::filled(self.read(index, sub, offset, buf)?, buf.len()),
                     }
                 }
                 fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {

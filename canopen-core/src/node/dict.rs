@@ -117,7 +117,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     }
     /// Inline, as `read`: each segment of an upload comes here.
     #[inline]
-    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
         if crate::od::is_comm_for::<A>(index) {
             self.od.comm.read_slot(index, sub, slot, offset, buf)
         } else {

@@ -102,7 +102,7 @@ impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A>
     fn slot(&self, index: u16, sub: u8) -> u16 {
         route!(self, index, od => od.slot(index, sub))
     }
-    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
         route!(self, index, od => od.read_slot(index, sub, slot, offset, buf))
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {

@@ -379,12 +379,14 @@ pub trait ObjectDictionary {
         PdoHandle::NO_SLOT
     }
 
-    /// [`read`](Self::read) of the entry at `slot`, which [`slot`](Self::slot) gave for `index`/`sub`: the
-    /// derived dictionaries go straight to the entry (its access is checked again, not its key); the
-    /// provided method, and any dictionary for [`PdoHandle::NO_SLOT`], is `read`.
-    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    /// [`read`](Self::read) of the entry at `slot`, which [`slot`](Self::slot) gave for `index`/`sub`, that
+    /// fills `buf` exactly (an SDO upload segment): fewer bytes from `offset` are 0607 0010h. The derived
+    /// dictionaries go straight to the entry (its access is checked again, not its key); the provided
+    /// method, and any dictionary for [`PdoHandle::NO_SLOT`], is `read`. No count to return: the result fits
+    /// a register, where a `Result<usize, _>` is returned through memory.
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
         let _ = slot;
-        self.read(index, sub, offset, buf)
+        filled(self.read(index, sub, offset, buf)?, buf.len())
     }
 
     /// Resolves a mapping target once: checks it exists (0602 0000h / 0609 0011h), is mappable in `dir`
@@ -419,6 +421,23 @@ pub enum PdoDir {
     Tpdo,
     /// Received by this node (the entry is written).
     Rpdo,
+}
+
+/// `Ok` when a read of `n` bytes filled a buffer of `len` (see [`ObjectDictionary::read_slot`]), else
+/// 0607 0010h.
+///
+/// ```
+/// use canopen_core::od::{filled, AbortCode};
+/// assert_eq!(filled(7, 7), Ok(()));
+/// assert_eq!(filled(3, 7), Err(AbortCode::LengthMismatch));
+/// ```
+#[inline]
+pub fn filled(n: usize, len: usize) -> Result<(), AbortCode> {
+    if n == len {
+        Ok(())
+    } else {
+        Err(AbortCode::LengthMismatch)
+    }
 }
 
 /// The provided [`ObjectDictionary::write_expedited`]: `info`, the access check, then `write` for a
@@ -570,7 +589,7 @@ impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
     fn slot(&self, index: u16, sub: u8) -> u16 {
         (**self).slot(index, sub)
     }
-    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
         (**self).read_slot(index, sub, slot, offset, buf)
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {

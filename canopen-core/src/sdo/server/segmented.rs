@@ -151,11 +151,10 @@ impl SdoServer {
         }
         let want = size.saturating_sub(*offset).min(7) as usize;
         let mut response = [0u8; 8];
-        let n = match od.read_slot(mux.index, mux.sub, *slot, *offset as usize, &mut response[1..1 + want]) {
-            Ok(n) if n == want => n as u8,
-            Ok(_) => return self.abort(od, mux, AbortCode::LengthMismatch),
-            Err(code) => return self.abort(od, mux, code),
-        };
+        if let Err(code) = od.read_slot(mux.index, mux.sub, *slot, *offset as usize, &mut response[1..1 + want]) {
+            return self.abort(od, mux, code); // 0607 0010h: fewer bytes than the size announced
+        }
+        let n = want as u8;
         *offset += u32::from(n);
         let last = *offset >= *size;
         *toggle = !*toggle;
