@@ -13,6 +13,9 @@
 //!
 //! - `expedited_upload` (1000h), `expedited_download` (a U32), `segmented_upload` (a 64-byte
 //!   VISIBLE_STRING), `block_download` (889·8 bytes with CRC into a DOMAIN), node Pre-operational;
+//! - `expedited_download_quiet`: `expedited_download` to an application that takes no write events
+//!   (`#[od(write_events = false)]`, as a CANopenNode application without OD extension callbacks), so no
+//!   `Event::ObjectWritten` is queued and polled;
 //! - `rpdo_4_objects`: one 8-byte RPDO (FFh) mapped to 4 UNSIGNED16 objects, node Operational;
 //! - `sync_4_tpdos`: one SYNC that makes 4 synchronous (01h) TPDOs of 8 bytes, each mapped to 4 UNSIGNED16,
 //!   node Operational (5 bus frames per received frame).
@@ -45,10 +48,24 @@ struct App {
     blob: DomainBuf<BLOCK_LEN>,
 }
 
-type BenchNode = Node<App, Sizes>;
+/// `App` for an application that takes no write events.
+#[derive(ObjectDictionary, Default)]
+#[od(crate = "canopen::core", write_events = false)]
+struct Quiet {
+    #[od(index = 0x2002, access = "rw")]
+    value: u32,
+    #[od(index = 0x2004, access = "rw", default = "CANopen test string of exactly sixty-four bytes for SDO uploads.")]
+    text: VisibleString<64>,
+    #[od(index = 0x2005, domain)]
+    blob: DomainBuf<BLOCK_LEN>,
+}
 
-fn new_node() -> BenchNode {
-    let app = App::default(); // power-on (Reset Application) gives every entry its `default =` value
+fn new_node() -> Node<App, Sizes> {
+    booted(App::default()) // power-on (Reset Application) gives every entry its `default =` value
+}
+
+/// A node of `app`, booted, queues drained.
+fn booted<A: canopen::core::od::ObjectDictionary>(app: A) -> Node<A, Sizes> {
     let cfg = NodeConfig { device_type: 0x000F_0191, ..NodeConfig::DEFAULT };
     let mut node = Node::new(NodeId::new(5).unwrap(), cfg, app);
     node.handle_timeout(Instant::ZERO);
@@ -161,6 +178,13 @@ fn main() {
             if scenario == "sync_4_tpdos" {
                 assert_eq!(r.1, 4 * iterations);
             }
+            r
+        }
+        "expedited_download_quiet" => {
+            let script = record(Multiplexer::new(0x2002, 0), Mode::Auto, Some(vec![1, 2, 3, 4]));
+            let mut node = booted(Quiet::default());
+            let r = run(&mut node, &script, iterations);
+            assert!(iterations == 0 || node.app().value == 0x0403_0201);
             r
         }
         _ => {

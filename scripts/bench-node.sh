@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Instructions per received frame for the whole node (x86-64, callgrind): the six scenarios of the reference
-# workload of DESIGN.md "Performance", with the targets beside them. Usage: scripts/bench-node.sh [iterations]
+# workload of DESIGN.md "Performance", with the targets beside them, and expedited_download_quiet (the same
+# download to an application that takes no write events, `#[od(write_events = false)]`). Usage: scripts/bench-node.sh [iterations]
 # Runs benches/node_instructions.rs under callgrind with N and with 0 iterations and divides the difference by
 # the number of frames, so set-up (recording the client's frames) and process start-up cancel out. One pass =
 # handle_frame + the drain of poll_event, then peek_transmit + transmitted per frame (driver::service).
@@ -31,9 +32,9 @@ ir() { # scenario iterations -> total instructions
   valgrind --tool=callgrind --callgrind-out-file="$TMP/out" "$BIN" "$1" "$2" >"$TMP/stdout" 2>/dev/null
   grep -E '^(summary|totals):' "$TMP/out" | head -1 | awk '{print $2}'
 }
-printf '%-20s %7s %7s %12s %9s %9s %8s %s\n' scenario rx sent instructions per-rx per-bus target verdict
-for entry in expedited_upload:320 expedited_download:300 segmented_upload:260 block_download:450 \
-  rpdo_4_objects:500 sync_4_tpdos:250; do
+printf '%-24s %7s %7s %12s %9s %9s %8s %s\n' scenario rx sent instructions per-rx per-bus target verdict
+for entry in expedited_upload:320 expedited_download:300 expedited_download_quiet:300 segmented_upload:260 \
+  block_download:450 rpdo_4_objects:500 sync_4_tpdos:250; do
   s=${entry%%:*}; target=${entry##*:}
   n=$N
   [ "$s" = block_download ] && n=$(( (N + 9) / 10 ))
@@ -44,7 +45,7 @@ for entry in expedited_upload:320 expedited_download:300 segmented_upload:260 bl
   awk -v s="$s" -v rx="$rx" -v tx="$tx" -v a="$full" -v b="$base" -v t="$target" -v out="$TMP/figures" 'BEGIN {
     d = a - b; prx = d / rx; pbus = d / (rx + tx)
     bus = (s == "sync_4_tpdos"); v = bus ? pbus : prx
-    printf "%-20s %7d %7d %12d %9.1f %9.1f %7d%s %s\n", s, rx, tx, d, prx, pbus, t, bus ? "*" : " ", \
+    printf "%-24s %7d %7d %12d %9.1f %9.1f %7d%s %s\n", s, rx, tx, d, prx, pbus, t, bus ? "*" : " ", \
       v <= t ? "ok" : sprintf("over by %.0f%%", (v / t - 1) * 100)
     printf "%s %.1f\n", s, v >> out }'
 done

@@ -228,3 +228,43 @@ fn block_upload_leaves_room_for_the_heartbeat() {
     assert!(heartbeat_seen);
     assert_eq!(segments, 127, "the whole first sub-block still goes out, paced by the queue");
 }
+
+/// An application that reads its values (or reacts in `on_write`) and says so with
+/// `#[od(write_events = false)]`: SDO downloads of its entries queue no `Event::ObjectWritten`, expedited
+/// (SDO-12) and segmented (SDO-19) alike, and the value is written all the same; a communication object
+/// written is still reported (its side effects are the node's, HB-04).
+#[test]
+fn write_events_off_for_the_application() {
+    #[derive(ObjectDictionary, Default)]
+    #[od(crate = "canopen::core", write_events = false)]
+    struct Quiet {
+        #[od(index = 0x2000, access = "rw")]
+        value: u32,
+        #[od(index = 0x2004, access = "rw")]
+        text: VisibleString<16>,
+    }
+    assert!(!canopen::core::od::ObjectDictionary::write_events(&Quiet::default()));
+    assert!(canopen::core::od::ObjectDictionary::write_events(&App::default()));
+    let node: Node<Quiet, Sizes<4, 4, 32>> = Node::new(NodeId::new(9).unwrap(), CFG, Quiet::default());
+    let mut bus = Bus::new(vec![node]);
+    bus.run_until(ms(0));
+    bus.take_master_rx();
+    events(&mut bus.stations[0]);
+    bus.inject(frame("609 [8] 23 00 20 00 78 56 34 12"));
+    bus.inject(frame("609 [8] 21 04 20 00 03 00 00 00")); // segmented download of 3 bytes
+    bus.inject(frame("609 [8] 09 61 62 63 00 00 00 00"));
+    let replies: Vec<_> = bus.take_master_rx().into_iter().map(|s| s.frame).filter(|f| f.cob_id() == 0x589).collect();
+    assert_eq!(
+        replies,
+        vec![
+            frame("589 [8] 60 00 20 00 00 00 00 00"),
+            frame("589 [8] 60 04 20 00 00 00 00 00"),
+            frame("589 [8] 20 00 00 00 00 00 00 00"),
+        ]
+    );
+    assert_eq!(bus.stations[0].app().value, 0x1234_5678);
+    assert_eq!(bus.stations[0].app().text.as_bytes(), b"abc");
+    assert!(!events(&mut bus.stations[0]).iter().any(|e| matches!(e, Event::ObjectWritten { .. })));
+    bus.inject(frame("609 [8] 2B 17 10 00 64 00 00 00"));
+    assert!(events(&mut bus.stations[0]).contains(&Event::ObjectWritten { index: 0x1017, sub: 0 }));
+}

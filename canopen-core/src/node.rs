@@ -594,9 +594,12 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         match response.event {
             None => {}
             // An application object written (the expedited and segmented downloads' event): no side
-            // effect here, the event alone, inline.
+            // effect here, the event alone, inline, unless the application wants none (a constant for a
+            // derived dictionary).
             Some(SdoEvent::Written { index, sub }) if index >= 0x2000 => {
-                self.push_event(Event::ObjectWritten { index, sub })
+                if self.app.write_events() {
+                    self.push_event(Event::ObjectWritten { index, sub })
+                }
             }
             Some(event) => self.sdo_event(now, event),
         }

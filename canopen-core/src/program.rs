@@ -367,6 +367,10 @@ impl<P: ProgramSink, A: ObjectDictionary> ObjectDictionary for ProgramDownload<P
         self.app.restore_defaults()
     }
 
+    fn write_events(&self) -> bool {
+        self.app.write_events()
+    }
+
     fn slot(&self, index: u16, sub: u8) -> u16 {
         self.app.slot(index, sub)
     }

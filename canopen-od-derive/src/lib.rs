@@ -55,8 +55,10 @@
 //!   limit checks and before anything changes: return an abort code to refuse the value;
 //! - `on_write = "method"`: `fn(&mut self, sub: u8)` runs after an accepted write (side effects).
 //!
-//! Struct attribute: `#[od(crate = "canopen::core")]` when `canopen_core` is reached through another
-//! path (default `::canopen_core`).
+//! Struct attributes: `#[od(crate = "canopen::core")]` when `canopen_core` is reached through another
+//! path (default `::canopen_core`); `#[od(write_events = false)]` when the application needs no
+//! `Event::ObjectWritten` for SDO downloads of its entries (`ObjectDictionary::write_events`: it reads its
+//! values, or reacts in `on_write`), which spares each download an event queued and polled.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
 //! `f32`, `f64`, `I24`, `I40`, `I48`, `I56`, `U24`, `U40`, `U48`, `U56`, `TimeOfDay`, `TimeDifference`,
@@ -450,24 +452,31 @@ fn pdo_tokens(core: &Ts, p: &Option<(String, Span)>) -> syn::Result<(Ts, bool)> 
     Ok((quote!(#core::od::PdoMapping::#v), true))
 }
 
-fn struct_crate(input: &DeriveInput) -> syn::Result<Ts> {
+/// The struct-level `#[od(...)]` keys: `crate = "path"` (the core crate's path) and `write_events = false`
+/// (no `Event::ObjectWritten` for this dictionary's entries).
+fn struct_attrs(input: &DeriveInput) -> syn::Result<(Ts, bool)> {
     let mut path: Ts = quote!(::canopen_core);
+    let mut write_events = true;
     for attr in input.attrs.iter().filter(|a| a.path().is_ident("od")) {
         attr.parse_nested_meta(|meta| {
             if meta.path.is_ident("crate") {
                 let s: LitStr = meta.value()?.parse()?;
                 path = s.parse::<syn::Path>()?.into_token_stream();
                 Ok(())
+            } else if meta.path.is_ident("write_events") {
+                let b: syn::LitBool = meta.value()?.parse()?;
+                write_events = b.value;
+                Ok(())
             } else {
-                Err(meta.error("unknown struct-level `od` key: expected `crate`"))
+                Err(meta.error("unknown struct-level `od` key: expected `crate` or `write_events`"))
             }
         })?;
     }
-    Ok(path)
+    Ok((path, write_events))
 }
 
 fn expand(input: &DeriveInput) -> syn::Result<Ts> {
-    let core = struct_crate(input)?;
+    let (core, write_events) = struct_attrs(input)?;
     let ident = &input.ident;
     if !input.generics.params.is_empty() {
         return Err(syn::Error::new_spanned(
@@ -840,6 +849,11 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 /// is given); DOMAIN fields and fields without `#[od]` are left alone.
                 fn restore_defaults(&mut self) {
                     #(#restores)*
+                }
+
+                #[inline]
+                fn write_events(&self) -> bool {
+                    #write_events
                 }
 
                 fn abort_write(&mut self, index: u16, sub: u8) {

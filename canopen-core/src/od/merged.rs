@@ -119,6 +119,9 @@ impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A>
     fn restore_defaults(&mut self) {
         self.app.restore_defaults()
     }
+    fn write_events(&self) -> bool {
+        self.app.write_events()
+    }
 }
 
 impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
