@@ -524,18 +524,19 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.bus_recovered {
             self.bus_works_again();
         }
+        let id = frame.cob_id();
+        let has_node_id = self.has_node_id();
+        if has_node_id && Some(id) == self.sdo.rx_cob_id() {
+            // First: the SDO CAN-ID is restricted (COB-13), no other service may use it (nor LSS's 7E5h, in
+            // the restricted 780h–7FFh), and SDO is the per-frame-heaviest service.
+            return self.handle_sdo(now, frame);
+        }
         #[cfg(feature = "lss")]
-        if frame.cob_id() == crate::cob::LSS_MASTER_ID {
+        if id == crate::cob::LSS_MASTER_ID {
             return self.handle_lss(now, frame); // CiA 305: LSS in every NMT state
         }
-        if !self.has_node_id() {
+        if !has_node_id {
             return; // CiA 305: no node-ID, LSS only
-        }
-        let id = frame.cob_id();
-        if Some(id) == self.sdo.rx_cob_id() {
-            // First: the SDO CAN-ID is restricted (COB-13), no other service may use it, and SDO is the
-            // per-frame-heaviest service.
-            return self.handle_sdo(now, frame);
         }
         if id == self.sync.can_id() && id != 0 {
             return self.handle_sync(now, frame);
