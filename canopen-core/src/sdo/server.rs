@@ -760,7 +760,7 @@ impl SdoServer {
             0 => return self.download_segment(b, od),
             1 => {
                 self.reset(od); // SDO-29: an initiate abandons the transfer under way
-                self.initiate_download(mux(), command, data(), od)
+                return self.initiate_download(mux(), command, data(), od);
             }
             2 => {
                 self.reset(od);

@@ -10,7 +10,9 @@ use crate::od::{AbortCode, ObjectDictionary};
 use crate::wire::sdo::{frame, Multiplexer};
 
 impl SdoServer {
-    /// Initiate download (ccs 1, SDO-11..SDO-18): `command` is byte 0 (e, s, n), `data` bytes 4–7.
+    /// Initiate download (ccs 1, SDO-11..SDO-18): `command` is byte 0 (e, s, n), `data` bytes 4–7. The
+    /// response itself, abort included: the expedited one is built where it is returned, not moved out of a
+    /// `Result` (12 instructions per download on x86-64).
     #[inline]
     pub(super) fn initiate_download<O: ObjectDictionary + ?Sized>(
         &mut self,
@@ -18,9 +20,8 @@ impl SdoServer {
         command: u8,
         data: u32,
         od: &mut O,
-    ) -> Result<Response, AbortCode> {
+    ) -> Response {
         let size_indicated = command & 0x01 != 0;
-        let response = frame(0x60, mux.bits(), 0); // SDO-17
         if command & 0x02 != 0 {
             // Expedited: info, access, length and the write in one dictionary call (one lookup where it is
             // derived). With s = 1 the bytes past 4 − n are not data and go to the OD as 0 (SDO-12, SDO-13).
@@ -30,13 +31,25 @@ impl SdoServer {
             } else {
                 (data, None)
             };
-            od.write_expedited(mux.index, mux.sub, &data.to_le_bytes(), len)?;
-            return Ok(Response {
-                frame: Some(response),
+            if let Err(code) = od.write_expedited(mux.index, mux.sub, &data.to_le_bytes(), len) {
+                return self.abort(od, mux, code);
+            }
+            return Response {
+                frame: Some(frame(0x60, mux.bits(), 0)), // SDO-17
                 event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
-            });
+            };
         }
-        let size = size_indicated.then_some(data);
+        self.initiate_segmented_download(mux, size_indicated.then_some(data), od)
+            .unwrap_or_else(|code| self.abort(od, mux, code))
+    }
+
+    /// Initiate download, segmented (SDO-18: the announced size is checked before any data moves).
+    fn initiate_segmented_download<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        mux: Multiplexer,
+        size: Option<u32>,
+        od: &mut O,
+    ) -> Result<Response, AbortCode> {
         let info = od.info(mux.index, mux.sub)?;
         if !info.access.writable() {
             return Err(AbortCode::WriteOfReadOnly);
@@ -44,7 +57,7 @@ impl SdoServer {
         let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
         self.mux = mux;
         self.state = State::Download { toggle: false, offset: 0, size, sink };
-        Ok(Response::send(response))
+        Ok(Response::send(frame(0x60, mux.bits(), 0))) // SDO-17
     }
 
     pub(super) fn open_sink<O: ObjectDictionary + ?Sized>(
