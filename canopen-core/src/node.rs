@@ -526,7 +526,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         let id = frame.cob_id();
         let has_node_id = self.has_node_id();
-        if has_node_id && Some(id) == self.sdo.rx_cob_id() {
+        if has_node_id && self.sdo.receives(id) {
             // First: the SDO CAN-ID is restricted (COB-13), no other service may use it (nor LSS's 7E5h, in
             // the restricted 780h–7FFh), and SDO is the per-frame-heaviest service.
             return self.handle_sdo(now, frame);

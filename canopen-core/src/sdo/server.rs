@@ -578,6 +578,14 @@ impl SdoServer {
         self.params.rx_cob_id()
     }
 
+    /// `Some(id) ==` [`rx_cob_id`](Self::rx_cob_id), as the node tests every frame: the receive COB-ID's
+    /// validity bits and CAN-ID in one masked compare, then the transmit COB-ID's validity.
+    #[inline]
+    pub(crate) const fn receives(&self, id: u16) -> bool {
+        const INVALID: u32 = CobIdEntry::BIT31 | CobIdEntry::FRAME;
+        self.params.cob_rx.raw() & (INVALID | 0x7FF) == id as u32 && self.params.cob_tx.raw() & INVALID == 0
+    }
+
     /// The CAN-ID to send responses on, if the channel is valid.
     ///
     /// ```

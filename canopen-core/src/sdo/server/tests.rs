@@ -43,6 +43,26 @@ fn abort_of(index: u16, sub: u8, code: AbortCode) -> Option<[u8; 8]> {
     Some(abort_frame(Multiplexer::new(index, sub), code.code()))
 }
 
+/// SDO-54, SDO-55: the node's per-frame test `receives` is `Some(id) == rx_cob_id()` for valid, invalid
+/// (bit 31) and 29-bit (bit 29) COB-IDs in either direction, bit 30 (dyn) set or not, and every 11-bit ID.
+#[test]
+fn receives_is_the_rx_cob_id() {
+    use crate::cob::CobIdEntry;
+    for rx in [0x605, 0x605 | CobIdEntry::BIT30, 0x605 | CobIdEntry::BIT31, 0x605 | CobIdEntry::FRAME, 0x7FF] {
+        for tx in [0x585, 0x585 | CobIdEntry::BIT30, 0x585 | CobIdEntry::BIT31, 0x585 | CobIdEntry::FRAME] {
+            let params = SdoServerParams {
+                cob_rx: CobIdEntry::from_raw(rx),
+                cob_tx: CobIdEntry::from_raw(tx),
+                client_node: None,
+            };
+            let s = SdoServer::new(params);
+            for id in 0..=0x7FFu16 {
+                assert_eq!(s.receives(id), Some(id) == s.rx_cob_id(), "{rx:X} {tx:X} {id:X}");
+            }
+        }
+    }
+}
+
 #[test]
 fn ram_bound() {
     let server = core::mem::size_of::<SdoServer>();
