@@ -177,10 +177,23 @@ fn read_fixed<const N: usize>(b: [u8; N], offset: usize, buf: &mut [u8]) -> usiz
 /// ```
 #[inline]
 pub fn check_len(data: &[u8], size: usize) -> Result<(), AbortCode> {
-    match data.len().cmp(&size) {
-        Ordering::Greater => Err(AbortCode::LengthTooHigh),
-        Ordering::Less => Err(AbortCode::LengthTooLow),
-        Ordering::Equal => Ok(()),
+    // Equality first, as one compare and branch: a `match` on `cmp` built the Ordering (5 instructions on
+    // x86-64) before every fixed-size write (expedited download, each RPDO-mapped object).
+    if data.len() == size {
+        Ok(())
+    } else {
+        Err(length_error(data.len(), size))
+    }
+}
+
+/// The abort code of a length that is not the one expected.
+#[cold]
+#[inline(never)]
+fn length_error(len: usize, size: usize) -> AbortCode {
+    if len > size {
+        AbortCode::LengthTooHigh
+    } else {
+        AbortCode::LengthTooLow
     }
 }
 
