@@ -890,6 +890,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn slot(&self, index: u16, sub: u8) -> u16 {
                     self.__od_pos(index, sub).map_or(#core::od::PdoHandle::NO_SLOT, |(pos, _)| pos as u16)
                 }
+                #[inline]
                 fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> ::core::result::Result<(), __AbortCode> {
                     let pos = usize::from(slot);
                     match Self::__OD_INFO.get(pos) {
