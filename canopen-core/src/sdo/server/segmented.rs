@@ -162,7 +162,9 @@ impl SdoServer {
         if t != *toggle {
             return self.abort(od, mux, AbortCode::ToggleNotAlternated); // SDO-28, SDO-30
         }
-        let want = size.saturating_sub(*offset).min(7) as usize;
+        // offset <= size (it only grows to size, then the transfer ends): no saturation needed; were it
+        // broken, 7 bytes past the end would not be there and read_slot would fail (0607 0010h)
+        let want = size.wrapping_sub(*offset).min(7) as usize;
         let mut response = [0u8; 8];
         if let Err(code) = od.read_slot(mux.index, mux.sub, *slot, *offset as usize, &mut response[1..1 + want]) {
             return self.abort(od, mux, code); // 0607 0010h: fewer bytes than the size announced
