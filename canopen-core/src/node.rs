@@ -597,10 +597,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             // An application object written (the expedited and segmented downloads' event): no side
             // effect here, the event alone, inline, unless the application wants none (a constant for a
             // derived dictionary).
+            Some(SdoEvent::Written { index, .. }) if index >= 0x2000 && !self.app.write_events() => {}
             Some(SdoEvent::Written { index, sub }) if index >= 0x2000 => {
-                if self.app.write_events() {
-                    self.push_event(Event::ObjectWritten { index, sub })
-                }
+                self.push_event(Event::ObjectWritten { index, sub })
             }
             Some(event) => self.sdo_event(now, event),
         }
