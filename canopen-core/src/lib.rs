@@ -25,8 +25,8 @@
 //! block-transfer CRC from a 512-byte table rather than a 32-byte one), `program-download` (`program`:
 //! CiA 302-3 1F50h/1F51h/1F56h/1F57h, a dictionary part the application composes with its own),
 //! `pdo-bit-mapping` (PDO mapping entries of any bit length; without it whole objects of whole bytes, see
-//! [`pdo::mapping`]), and `sync-producer` (the SYNC producer; without it a SYNC consumer only, see
-//! [`sync`]).
+//! [`pdo::mapping`]), `sync-producer` (the SYNC producer; without it a SYNC consumer only, see [`sync`]),
+//! and `pdo-rtr` (TPDOs answering remote requests, types FCh/FDh; see [`pdo`]).
 //!
 //! Optional features: `defmt` (derives `defmt::Format` on the public types; NMT state changes, SDO aborts,
 //! driver errors and frames are logged through defmt) and `log` (the same trace points through the `log`

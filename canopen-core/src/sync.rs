@@ -10,7 +10,7 @@
 //! The producer is the Cargo feature `sync-producer` (on by default). Without it the node is a SYNC
 //! consumer only, as CiA 301 allows: 1005h with the gen bit (bit 30) set is refused with 0609 0030h (SYNC-03),
 //! a configuration or stored value that sets it is taken without it ([`SyncParams::supported`]), and no SYNC
-//! is ever produced (the producer's code is not in the build: about 280 B of Cortex-M flash). 1006h, 1007h
+//! is ever produced (the producer's code is not in the build: about 240 B of Cortex-M flash). 1006h, 1007h
 //! and 1019h stay: the window and the counter are the consumer's too.
 
 use crate::abort::AbortCode;

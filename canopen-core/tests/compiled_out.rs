@@ -137,3 +137,27 @@ fn without_pdo_bit_mapping() {
     let whole = sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x08, 0x00, 0x01, 0x10]);
     assert_eq!(whole, [CanFrame::new(0x585, &[0x60, 0x00, 0x1A, 0x01, 0, 0, 0, 0]).unwrap()]);
 }
+
+/// PDO-29 without `pdo-rtr` (the PDO read service is optional): TPDO 1's default COB-ID has bit 30 set (no
+/// RTR allowed), a remote frame on its CAN-ID gets no reply in Operational, clearing bit 30 and the RTR-only
+/// types FCh/FDh are refused with 0609 0030h (PDO-15, PDO-18).
+#[test]
+#[cfg(not(feature = "pdo-rtr"))]
+fn without_pdo_rtr() {
+    use canopen_core::{pdo::PdoDefault, NmtState};
+    const TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1001_0008], ..PdoDefault::EVENT }];
+    let mut node: N =
+        Node::new(NodeId::new(5).unwrap(), NodeConfig { tpdo: &TPDO, ..NodeConfig::DEFAULT }, NoApplication);
+    node.handle_timeout(Instant::ZERO);
+    node.enter_state(NmtState::Operational);
+    drain(&mut node);
+    node.handle_frame(Instant::from_millis(1), &CanFrame::new_rtr(0x185, 1).unwrap());
+    assert_eq!(drain(&mut node), (vec![], vec![]));
+    let cob = sdo(&mut node, [0x40, 0x00, 0x18, 0x01, 0, 0, 0, 0]);
+    assert_eq!(cob, [CanFrame::new(0x585, &[0x43, 0x00, 0x18, 0x01, 0x85, 0x01, 0x00, 0x40]).unwrap()]);
+    let refused = |sub: u8| CanFrame::new(0x585, &[0x80, 0x00, 0x18, sub, 0x30, 0x00, 0x09, 0x06]).unwrap();
+    assert_eq!(sdo(&mut node, [0x23, 0x00, 0x18, 0x01, 0x85, 0x01, 0x00, 0x80]), [refused(1)]);
+    for ttype in [0xFC, 0xFD] {
+        assert_eq!(sdo(&mut node, [0x2F, 0x00, 0x18, 0x02, ttype, 0, 0, 0]), [refused(2)]);
+    }
+}

@@ -481,6 +481,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         match f.slot {
             Slot::MapCount | Slot::MapEntry => return set_map(comm, map, sub, v, rules),
             Slot::PdoCob => {
+                if f.tx() {
+                    crate::pdo::check_tpdo_rtr(v)?; // a build without TPDO remote requests: bit 30 stays set
+                }
                 if rules {
                     let new = comm.cob().check_change(v, |e| !e.bit31())?;
                     if !new.bit31() && is_restricted(new.can_id()) {
