@@ -22,8 +22,11 @@
 //! no RAM, and its objects answer SDO with 0602 0000h and are not in the EDS): `lss` (the node's CiA 305
 //! slave), `lss-master` ([`lss::master`]), `sdo-block` (SDO block transfer in the server), `sdo-client`
 //! (`sdo::client`), `time` (1012h TIME), `guarding` (100Ch/100Dh node and life guarding), `crc-table` (the
-//! block-transfer CRC from a 512-byte table rather than a 32-byte one), and `program-download` (`program`:
-//! CiA 302-3 1F50h/1F51h/1F56h/1F57h, a dictionary part the application composes with its own).
+//! block-transfer CRC from a 512-byte table rather than a 32-byte one), `program-download` (`program`:
+//! CiA 302-3 1F50h/1F51h/1F56h/1F57h, a dictionary part the application composes with its own),
+//! `pdo-bit-mapping` (PDO mapping entries of any bit length; without it whole objects of whole bytes, see
+//! [`pdo::mapping`]), `sync-producer` (the SYNC producer; without it a SYNC consumer only, see [`sync`]),
+//! and `pdo-rtr` (TPDOs answering remote requests, types FCh/FDh; see [`pdo`]).
 //!
 //! Optional features: `defmt` (derives `defmt::Format` on the public types; NMT state changes, SDO aborts,
 //! driver errors and frames are logged through defmt) and `log` (the same trace points through the `log`

@@ -6,10 +6,19 @@
 //! 1..=1019h, restart at 1 after boot-up and on Stopped → Pre-operational, [`Sync::restart_counter`]),
 //! SYNC-12 (1019h refused while 1006h ≠ 0 with 0800 0022h), SYNC-14 (unexpected DLC → EMCY 8240h, reported
 //! as [`SyncInput::WrongLength`]). SYNC-05 (only in Pre-operational/Operational) is enforced by `Node`.
+//!
+//! The producer is the Cargo feature `sync-producer` (on by default). Without it the node is a SYNC
+//! consumer only, as CiA 301 allows: 1005h with the gen bit (bit 30) set is refused with 0609 0030h (SYNC-03),
+//! a configuration or stored value that sets it is taken without it ([`SyncParams::supported`]), and no SYNC
+//! is ever produced (the producer's code is not in the build: about 240 B of Cortex-M flash). 1006h, 1007h
+//! and 1019h stay: the window and the counter are the consumer's too.
 
 use crate::abort::AbortCode;
 use crate::cob::CobIdEntry;
 use crate::time::{Deadline, Duration, Instant};
+
+/// Whether this build can produce SYNC (the feature `sync-producer`, see the module docs).
+pub const PRODUCER: bool = cfg!(feature = "sync-producer");
 
 /// The SYNC parameters (1005h, 1006h, 1007h, 1019h).
 ///
@@ -36,6 +45,33 @@ impl SyncParams {
     /// Consumer on 080h, no producer, no window, no counter.
     pub const DEFAULT: SyncParams =
         SyncParams { cob_id: CobIdEntry::from_raw(0x80), period_us: 0, window_us: 0, counter_overflow: 0 };
+
+    /// These parameters as this build can have them: without the feature `sync-producer` the gen bit of
+    /// 1005h (bit 30) is cleared, the node being a consumer only (SYNC-03).
+    ///
+    /// ```
+    /// use canopen_core::{cob::CobIdEntry, sync::{self, SyncParams}};
+    /// let p = SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), ..SyncParams::DEFAULT };
+    /// assert_eq!(p.supported().cob_id.raw(), if sync::PRODUCER { 0x4000_0080 } else { 0x80 });
+    /// ```
+    pub const fn supported(self) -> SyncParams {
+        let cob_id = if PRODUCER { self.cob_id } else { CobIdEntry::from_raw(self.cob_id.raw() & !CobIdEntry::BIT30) };
+        SyncParams { cob_id, ..self }
+    }
+}
+
+/// SYNC-03: the gen bit of a 1005h value written to a build without the producer is 0609 0030h.
+///
+/// ```
+/// use canopen_core::sync;
+/// assert_eq!(sync::check_producible(0x80), Ok(()));
+/// assert_eq!(sync::check_producible(0x4000_0080).is_err(), !sync::PRODUCER);
+/// ```
+pub const fn check_producible(raw: u32) -> Result<(), AbortCode> {
+    if !PRODUCER && raw & CobIdEntry::BIT30 != 0 {
+        return Err(AbortCode::InvalidValue);
+    }
+    Ok(())
 }
 
 impl Default for SyncParams {
@@ -64,7 +100,8 @@ pub enum SyncInput {
 /// The SYNC object of a node: consumer always, producer when 1005h bit 30 is set and 1006h ≠ 0.
 ///
 /// ```
-/// use canopen_core::{sync::{Sync, SyncParams}, cob::CobIdEntry, Instant};
+/// use canopen_core::{sync::{self, Sync, SyncParams}, cob::CobIdEntry, Instant};
+/// # if !sync::PRODUCER { return; } // a build without the feature sync-producer produces nothing
 /// let mut s = Sync::new(SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 10_000, counter_overflow: 3, ..SyncParams::DEFAULT });
 /// s.start(Instant::ZERO);
 /// assert_eq!(s.poll_timeout(), Some(Instant::from_millis(10)));
@@ -83,9 +120,9 @@ pub struct Sync {
 }
 
 impl Sync {
-    /// A SYNC object with `params`; call [`start`](Self::start) at boot-up.
+    /// A SYNC object with `params` ([`SyncParams::supported`]); call [`start`](Self::start) at boot-up.
     pub const fn new(params: SyncParams) -> Self {
-        Sync { params, counter: 1, next: Deadline::NONE, last_sync: Deadline::NONE }
+        Sync { params: params.supported(), counter: 1, next: Deadline::NONE, last_sync: Deadline::NONE }
     }
 
     /// The parameters.
@@ -93,9 +130,9 @@ impl Sync {
         &self.params
     }
 
-    /// Whether this node produces SYNC (1005h bit 30).
+    /// Whether this node produces SYNC (1005h bit 30; never without the feature `sync-producer`).
     pub const fn is_producer(&self) -> bool {
-        self.params.cob_id.bit30()
+        PRODUCER && self.params.cob_id.bit30()
     }
 
     /// The CAN-ID SYNC is received (and produced) on.
@@ -121,8 +158,10 @@ impl Sync {
         self.next.set(active.then(|| now + Duration::from_micros(u64::from(self.params.period_us))));
     }
 
-    /// Writes 1005h (SYNC-02/03, COB-15/16): frame bit refused, ID unchangeable while producing.
+    /// Writes 1005h (SYNC-02/03, COB-15/16): frame bit refused, ID unchangeable while producing, the gen bit
+    /// refused by a build without the producer ([`check_producible`]).
     pub fn set_cob_id(&mut self, now: Instant, raw: u32) -> Result<(), AbortCode> {
+        check_producible(raw)?;
         self.params.cob_id = self.params.cob_id.check_change(raw, |e| e.bit30())?;
         self.schedule(now);
         Ok(())
@@ -132,12 +171,14 @@ impl Sync {
     /// 1019h changed, production is rescheduled when the COB-ID or the period changed (SYNC-07).
     ///
     /// ```
-    /// use canopen_core::{sync::{Sync, SyncParams}, cob::CobIdEntry, Instant};
+    /// use canopen_core::{sync::{self, Sync, SyncParams}, cob::CobIdEntry, Instant};
+    /// # if !sync::PRODUCER { return; } // a build without the feature sync-producer produces nothing
     /// let mut s = Sync::new(SyncParams::DEFAULT);
     /// s.reconfigure(Instant::ZERO, SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 1000, ..SyncParams::DEFAULT });
     /// assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1)));
     /// ```
     pub fn reconfigure(&mut self, now: Instant, params: SyncParams) {
+        let params = params.supported();
         let old = self.params;
         self.params = params;
         if old.counter_overflow != params.counter_overflow {
@@ -186,14 +227,22 @@ impl Sync {
         self.next.get()
     }
 
-    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
+    /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services (a
+    /// constant none without the producer, so the node's producer path is not in the build).
     pub(crate) const fn deadline(&self) -> Deadline {
-        self.next
+        if PRODUCER {
+            self.next
+        } else {
+            Deadline::NONE
+        }
     }
 
     /// Produces the SYNC due at `now`, if any; the node also acts on its own SYNC (call
     /// [`consume`](Self::consume)-equivalent logic with the returned counter).
     pub fn produce(&mut self, now: Instant) -> Option<crate::CanFrame> {
+        if !PRODUCER {
+            return None;
+        }
         let next = self.next.get().filter(|&t| t <= now)?;
         let period = Duration::from_micros(u64::from(self.params.period_us));
         let following = next + period;
@@ -262,6 +311,7 @@ mod tests {
 
     /// SYNC-07, SYNC-10, SYNC-11: counter 1..=overflow, then 1 again; restart on reset.
     #[test]
+    #[cfg(feature = "sync-producer")]
     fn producer_counter_wraps() {
         let mut s = Sync::new(SyncParams {
             cob_id: CobIdEntry::from_raw(0x4000_0080),
@@ -278,14 +328,20 @@ mod tests {
 
     extern crate std;
 
-    /// SYNC-04: without counter the SYNC has DLC 0 (V-SYNC); a consumer-only node produces nothing.
+    /// SYNC-04: without counter the SYNC has DLC 0 (V-SYNC).
     #[test]
-    fn dlc_and_roles() {
+    #[cfg(feature = "sync-producer")]
+    fn producer_dlc() {
         let mut s =
             Sync::new(SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 500, ..SyncParams::DEFAULT });
         s.start(ms(0));
         let f = s.produce(Instant::from_micros(500)).unwrap();
         assert_eq!((f.cob_id(), f.dlc()), (0x080, 0));
+    }
+
+    /// SYNC-04, SYNC-14: a consumer-only node produces nothing and checks the DLC against 1019h.
+    #[test]
+    fn consumer_dlc() {
         let mut c = Sync::new(SyncParams { period_us: 500, ..SyncParams::DEFAULT });
         c.start(ms(0));
         assert_eq!(c.poll_timeout(), None);
@@ -297,8 +353,27 @@ mod tests {
         assert_eq!(c.consume(ms(1), &[2]), SyncInput::Sync { counter: Some(2) });
     }
 
+    /// SYNC-03 without the feature `sync-producer`: the gen bit is refused with 0609 0030h, parameters asking
+    /// for production are taken as a consumer's, and nothing is produced.
+    #[test]
+    #[cfg(not(feature = "sync-producer"))]
+    fn consumer_only_build_sync_03() {
+        let mut s =
+            Sync::new(SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 500, ..SyncParams::DEFAULT });
+        assert!(!s.is_producer());
+        assert_eq!(s.params().cob_id.raw(), 0x80);
+        s.start(ms(0));
+        assert_eq!((s.poll_timeout(), s.deadline()), (None, Deadline::NONE));
+        assert_eq!(s.produce(ms(1)), None);
+        assert_eq!(s.set_cob_id(ms(0), 0x4000_0080), Err(AbortCode::InvalidValue));
+        assert_eq!(s.set_cob_id(ms(0), 0x0000_0081), Ok(()));
+        s.reconfigure(ms(0), SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), ..SyncParams::DEFAULT });
+        assert_eq!((s.params().cob_id.raw(), s.poll_timeout()), (0x80, None));
+    }
+
     /// SYNC-03, COB-15/16: 1005h rules.
     #[test]
+    #[cfg(feature = "sync-producer")]
     fn cob_id_rules() {
         let mut s = Sync::new(SyncParams::DEFAULT);
         assert_eq!(s.set_cob_id(ms(0), 0x4000_0080), Ok(())); // become producer

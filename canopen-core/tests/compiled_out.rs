@@ -102,3 +102,62 @@ fn without_block_transfer() {
     let reply = sdo(&mut node, [0x40, 0x17, 0x10, 0, 0, 0, 0, 0]);
     assert_eq!(reply, [CanFrame::new(0x585, &[0x4B, 0x17, 0x10, 0, 0, 0, 0, 0]).unwrap()]);
 }
+
+/// SYNC-03 without `sync-producer`: a node configured to produce SYNC (1005h bit 30, 1006h = 1 ms) is a
+/// consumer only: no SYNC goes out, 1005h reads without the gen bit, and writing the gen bit is refused
+/// with 0609 0030h; a consumer's COB-ID is still accepted.
+#[test]
+#[cfg(not(feature = "sync-producer"))]
+fn without_sync_producer() {
+    use canopen_core::{cob::CobIdEntry, sync::SyncParams};
+    let sync = SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 1000, ..SyncParams::DEFAULT };
+    let mut node: N = Node::new(NodeId::new(5).unwrap(), NodeConfig { sync, ..NodeConfig::DEFAULT }, NoApplication);
+    node.handle_timeout(Instant::ZERO);
+    drain(&mut node);
+    for t in 1..=10 {
+        node.handle_timeout(Instant::from_millis(t));
+    }
+    assert!(drain(&mut node).0.is_empty());
+    let upload = sdo(&mut node, [0x40, 0x05, 0x10, 0, 0, 0, 0, 0]);
+    assert_eq!(upload, [CanFrame::new(0x585, &[0x43, 0x05, 0x10, 0, 0x80, 0, 0, 0]).unwrap()]);
+    let gen = sdo(&mut node, [0x23, 0x05, 0x10, 0, 0x80, 0, 0, 0x40]);
+    assert_eq!(gen, [abort(0x1005, 0x0609_0030)]);
+    let consumer = sdo(&mut node, [0x23, 0x05, 0x10, 0, 0x81, 0, 0, 0]);
+    assert_eq!(consumer, [CanFrame::new(0x585, &[0x60, 0x05, 0x10, 0, 0, 0, 0, 0]).unwrap()]);
+}
+
+/// PDO-36 without `pdo-bit-mapping`: a mapping entry that is not a whole object of whole bytes (4 bits of
+/// 1001h) is refused with 0604 0041h; the whole object (8 bits) is accepted.
+#[test]
+#[cfg(not(feature = "pdo-bit-mapping"))]
+fn without_pdo_bit_mapping() {
+    let mut node = booted();
+    let part = sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x04, 0x00, 0x01, 0x10]);
+    assert_eq!(part, [CanFrame::new(0x585, &[0x80, 0x00, 0x1A, 0x01, 0x41, 0x00, 0x04, 0x06]).unwrap()]);
+    let whole = sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x08, 0x00, 0x01, 0x10]);
+    assert_eq!(whole, [CanFrame::new(0x585, &[0x60, 0x00, 0x1A, 0x01, 0, 0, 0, 0]).unwrap()]);
+}
+
+/// PDO-29 without `pdo-rtr` (the PDO read service is optional): TPDO 1's default COB-ID has bit 30 set (no
+/// RTR allowed), a remote frame on its CAN-ID gets no reply in Operational, clearing bit 30 and the RTR-only
+/// types FCh/FDh are refused with 0609 0030h (PDO-15, PDO-18).
+#[test]
+#[cfg(not(feature = "pdo-rtr"))]
+fn without_pdo_rtr() {
+    use canopen_core::{pdo::PdoDefault, NmtState};
+    const TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1001_0008], ..PdoDefault::EVENT }];
+    let mut node: N =
+        Node::new(NodeId::new(5).unwrap(), NodeConfig { tpdo: &TPDO, ..NodeConfig::DEFAULT }, NoApplication);
+    node.handle_timeout(Instant::ZERO);
+    node.enter_state(NmtState::Operational);
+    drain(&mut node);
+    node.handle_frame(Instant::from_millis(1), &CanFrame::new_rtr(0x185, 1).unwrap());
+    assert_eq!(drain(&mut node), (vec![], vec![]));
+    let cob = sdo(&mut node, [0x40, 0x00, 0x18, 0x01, 0, 0, 0, 0]);
+    assert_eq!(cob, [CanFrame::new(0x585, &[0x43, 0x00, 0x18, 0x01, 0x85, 0x01, 0x00, 0x40]).unwrap()]);
+    let refused = |sub: u8| CanFrame::new(0x585, &[0x80, 0x00, 0x18, sub, 0x30, 0x00, 0x09, 0x06]).unwrap();
+    assert_eq!(sdo(&mut node, [0x23, 0x00, 0x18, 0x01, 0x85, 0x01, 0x00, 0x80]), [refused(1)]);
+    for ttype in [0xFC, 0xFD] {
+        assert_eq!(sdo(&mut node, [0x2F, 0x00, 0x18, 0x02, ttype, 0, 0, 0]), [refused(2)]);
+    }
+}

@@ -170,7 +170,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// A remote request for TPDO `rtr_table[i]` (PDO-21, PDO-22, PDO-29).
     pub(super) fn handle_tpdo_rtr(&mut self, now: Instant, i: usize) {
-        if self.nmt.state() != NmtState::Operational {
+        if !crate::pdo::RTR || self.nmt.state() != NmtState::Operational {
             return;
         }
         let Some(&(_, k)) = self.rtr_table.get(i) else { return };

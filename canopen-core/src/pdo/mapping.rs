@@ -3,16 +3,24 @@
 //!
 //! Requirements (`docs/CONFORMANCE.md`): PDO-31 (entry layout), PDO-32 (packed in entry order from bit 0, LE, ≤ 64 bits), PDO-33
 //! (mappability per direction, through [`ObjectDictionary::pdo_resolve`]), PDO-34 (dummy entries in RPDOs),
-//! PDO-36/PDO-37 (abort codes of a bad entry / a bad count). Bit granularity: an entry may map fewer bits
-//! than its object holds (e.g. a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits); the low bits are transferred and,
-//! on reception, the remaining high bits of the object are written as 0 (no sign extension).
+//! PDO-36/PDO-37 (abort codes of a bad entry / a bad count).
 //!
-//! Packing has a byte-aligned fast path (every entry a whole number of bytes, the common case): values are
-//! copied straight between the dictionary and the frame. Otherwise the frame is assembled in a `u64`, so
-//! bit granularity costs a shift and a mask per entry, never a loop over bits.
+//! Granularity. The EDS announces byte granularity (`[DeviceInfo] Granularity=8`), and every build maps
+//! whole objects of whole bytes (and RPDO dummy entries of whole bytes): values are copied straight between
+//! the dictionary and the frame. With the Cargo feature `pdo-bit-mapping` (on by default) an entry may also
+//! map fewer bits than its object holds (e.g. a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits); the low bits are
+//! transferred and, on reception, the remaining high bits of the object are written as 0 (no sign
+//! extension). Such a mapping's frame is assembled in a `u64`, so bit granularity costs a shift and a mask
+//! per entry, never a loop over bits. Without the feature that path is not in the build (about 550 B of
+//! Cortex-M flash) and an entry that is not a whole object of whole bytes is refused like any unmappable
+//! one, 0604 0041h (PDO-36): CANopenNode makes the same cut.
 
 use crate::od::{AbortCode, ObjectDictionary, PdoDir, PdoHandle};
 use crate::wire::pdo_mapping::MappingEntry;
+
+/// Whether this build maps parts of objects and entries of any bit length (the feature `pdo-bit-mapping`);
+/// without it every entry is a whole object of whole bytes (see the module docs).
+const BIT_MAPPING: bool = cfg!(feature = "pdo-bit-mapping");
 
 /// Mapping entries per PDO that this stack stores (sub 01h–08h; CANopenNode uses the same limit). 8 entries
 /// already fill 64 bits with byte-sized objects; bit-sized mappings with more than 8 objects are not
@@ -46,7 +54,8 @@ impl Mapped {
 
 /// Resolves one mapping entry (PDO-33, PDO-34, PDO-36): the object must exist (0602 0000h / 0609 0011h),
 /// be mappable in `dir` (0604 0041h) and hold at least `bits` bits (0604 0041h otherwise); length 0 is
-/// refused with 0604 0041h. Dummy entries are accepted in RPDOs only.
+/// refused with 0604 0041h. Dummy entries are accepted in RPDOs only. Without the feature
+/// `pdo-bit-mapping`, `bits` must be the whole object (a dummy: whole bytes), else 0604 0041h.
 ///
 /// ```
 /// # use canopen_core::Sizes;
@@ -74,7 +83,7 @@ fn entry(raw: u32, dir: PdoDir) -> Result<Result<Mapped, MappingEntry>, AbortCod
     }
     match e.dummy_bits() {
         None => Ok(Err(e)),
-        Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits => {
+        Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits && (BIT_MAPPING || e.bits % 8 == 0) => {
             let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
             Ok(Ok(Mapped { handle, bits: e.bits }))
         }
@@ -82,9 +91,10 @@ fn entry(raw: u32, dir: PdoDir) -> Result<Result<Mapped, MappingEntry>, AbortCod
     }
 }
 
-/// The object must hold at least `bits` bits (PDO-36).
+/// The object must hold at least `bits` bits (PDO-36); without `pdo-bit-mapping`, exactly `bits`.
 fn checked_len(handle: PdoHandle, bits: u8) -> Result<Mapped, AbortCode> {
-    if handle.size == 0 || u16::from(bits) > u16::from(handle.size) * 8 {
+    let object_bits = u16::from(handle.size) * 8;
+    if handle.size == 0 || u16::from(bits) > object_bits || (!BIT_MAPPING && u16::from(bits) != object_bits) {
         return Err(AbortCode::NotMappable);
     }
     Ok(Mapped { handle, bits })
@@ -118,8 +128,8 @@ impl ResolvedMap {
     /// # use canopen_core::Sizes;
     /// use canopen_core::{profile::NodeConfig, od::{PdoDir, AbortCode}, profile::CommProfile, pdo::mapping::ResolvedMap};
     /// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
-    /// let m = ResolvedMap::resolve(&od, &[0x1001_0008, 0x1001_0004], PdoDir::Tpdo).unwrap();
-    /// assert_eq!((m.len(), m.bits(), m.bytes()), (2, 12, 2));
+    /// let m = ResolvedMap::resolve(&od, &[0x1001_0008, 0x1001_0008], PdoDir::Tpdo).unwrap();
+    /// assert_eq!((m.len(), m.bits(), m.bytes()), (2, 16, 2));
     /// assert_eq!(ResolvedMap::resolve(&od, &[0x1001_0008; 9], PdoDir::Tpdo), Err(AbortCode::PdoLengthExceeded));
     /// ```
     pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: &[u32], dir: PdoDir) -> Result<Self, AbortCode> {
@@ -187,7 +197,7 @@ impl ResolvedMap {
     /// read leaves zeros. For a TPDO mapping: those have no dummy entries (PDO-34, [`resolve`] refuses them),
     /// so the byte-aligned path does not test for one.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
-        if !self.aligned {
+        if BIT_MAPPING && !self.aligned {
             *out = self.pack_bits(od).to_le_bytes();
             return self.bytes();
         }
@@ -225,7 +235,7 @@ impl ResolvedMap {
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
     /// how many writes the dictionary refused (limits, hooks).
     pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
-        if self.aligned {
+        if !BIT_MAPPING || self.aligned {
             return self.unpack_bytes(od, data);
         }
         let mut refused = 0;
@@ -372,6 +382,7 @@ mod tests {
 
     /// Bit granularity: a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits, a dummy of 3 bits, a UNSIGNED16.
     #[test]
+    #[cfg(feature = "pdo-bit-mapping")]
     fn bit_granularity() {
         let od = Od { a: 0xFA, b: 0xBEEF, c: 0, d: true };
         let (_, out, n) = pack(&od, &[0x2000_0401, 0x2000_0104, 0x2000_0210]);
@@ -384,6 +395,25 @@ mod tests {
         assert_eq!(rx.a, 0);
         assert_eq!(rxm.unpack(&mut rx, &out[..3]), 0);
         assert_eq!((rx.d, rx.a, rx.b), (true, 0, 0xBEEF));
+    }
+
+    /// PDO-36 without `pdo-bit-mapping`: only whole objects of whole bytes are mappable (the EDS says
+    /// Granularity=8); a BOOLEAN as 1 bit, 4 bits of a UNSIGNED8, 8 bits of a UNSIGNED16 and a 4-bit dummy
+    /// are refused with 0604 0041h, the whole objects and a whole-byte dummy resolve and round-trip.
+    #[test]
+    #[cfg(not(feature = "pdo-bit-mapping"))]
+    fn whole_objects_only() {
+        let od = Od { a: 0x11, b: 0x2233, c: 0, d: true };
+        for raw in [0x2000_0401, 0x2000_0104, 0x2000_0208, 0x2000_0220] {
+            assert_eq!(resolve(&od, raw, PdoDir::Tpdo), Err(AbortCode::NotMappable), "{raw:08X}h");
+        }
+        assert_eq!(resolve(&od, 0x0005_0004, PdoDir::Rpdo), Err(AbortCode::NotMappable));
+        let (_, out, n) = pack(&od, &[0x2000_0108, 0x2000_0408, 0x2000_0210]);
+        assert_eq!(out[..n], [0x11, 0x01, 0x33, 0x22]);
+        let rxm = ResolvedMap::resolve(&od, &[0x2000_0108, 0x0005_0008, 0x2000_0210], PdoDir::Rpdo).unwrap();
+        let mut rx = Od::default();
+        assert_eq!(rxm.unpack(&mut rx, &out[..n]), 0);
+        assert_eq!((rx.a, rx.b), (0x11, 0x2233));
     }
 
     /// PDO-36/PDO-37 error codes.

@@ -9,12 +9,21 @@
 //! - [`mapping`] resolves and packs mappings.
 //!
 //! Not implemented: MPDO (MPDO-01..05, optional), more than [`mapping::MAX_ENTRIES`] entries per mapping.
+//!
+//! Remote requests of TPDOs (PDO-29: "the PDO read service is optional"; PDO-21/22: the RTR-only types FCh
+//! and FDh) are the Cargo feature `pdo-rtr` (on by default). Without it no TPDO answers a remote frame: a
+//! TPDO's COB-ID has bit 30 set (no RTR allowed) in its defaults and writing it clear is refused with
+//! 0609 0030h, as are the transmission types FCh and FDh (PDO-18, [`tpdo_type_ok`]); the RTR path is not in
+//! the build (about 140 B of Cortex-M flash).
 
 pub mod mapping;
 pub mod rpdo;
 pub mod tpdo;
 
 use crate::cob::CobIdEntry;
+
+/// Whether TPDOs answer remote requests in this build (the feature `pdo-rtr`, see the module docs).
+pub const RTR: bool = cfg!(feature = "pdo-rtr");
 
 /// The communication parameter record of one PDO (1400h+k / 1800h+k, PDO-06..PDO-26).
 ///
@@ -123,11 +132,12 @@ impl PdoDefault {
     pub const UNUSED: PdoDefault = PdoDefault { valid: false, ..Self::EVENT };
 
     /// The default parameters of PDO number `k` (0-based) for `node_id`; `base` is 180h (TPDO) or 200h (RPDO).
+    /// A TPDO's COB-ID has bit 30 set (no RTR allowed) in a build without the feature `pdo-rtr`.
     ///
     /// ```
-    /// use canopen_core::pdo::PdoDefault;
+    /// use canopen_core::pdo::{self, PdoDefault};
     /// let (c, _) = PdoDefault::EVENT.params(2, 0x180, 5);
-    /// assert_eq!(c.cob_id, 0x385); // COB-05: TPDO3 = 380h + node
+    /// assert_eq!(c.cob_id, if pdo::RTR { 0x385 } else { 0x4000_0385 }); // COB-05: TPDO3 = 380h + node
     /// let (c, _) = PdoDefault::UNUSED.params(4, 0x200, 5);
     /// assert_eq!(c.cob_id, 0x8000_0000); // PDO-08: beyond 4, no pre-defined ID, invalid
     /// ```
@@ -138,7 +148,10 @@ impl PdoDefault {
             None => 0,
         };
         let valid = self.valid && id != 0;
-        let cob_id = if valid { id as u32 } else { CobIdEntry::BIT31 | id as u32 };
+        let mut cob_id = if valid { id as u32 } else { CobIdEntry::BIT31 | id as u32 };
+        if !RTR && base == TPDO_BASE {
+            cob_id |= CobIdEntry::BIT30; // no RTR allowed: this build serves none (PDO-15, PDO-29)
+        }
         let comm = PdoComm {
             cob_id,
             transmission_type: self.transmission_type,
@@ -148,6 +161,24 @@ impl PdoDefault {
         };
         (comm, PdoMapParams::from_slice(self.mapping))
     }
+}
+
+/// The CAN-ID base of TPDO 1 in the pre-defined connection set (COB-05: 180h + node).
+const TPDO_BASE: u16 = 0x180;
+
+/// Bit 30 of a TPDO's COB-ID as this build can have it: without the feature `pdo-rtr` it must be set (no
+/// RTR allowed), else 0609 0030h (PDO-15, PDO-29).
+///
+/// ```
+/// use canopen_core::pdo;
+/// assert_eq!(pdo::check_tpdo_rtr(0x4000_0181), Ok(()));
+/// assert_eq!(pdo::check_tpdo_rtr(0x0000_0181).is_ok(), pdo::RTR);
+/// ```
+pub const fn check_tpdo_rtr(raw: u32) -> Result<(), crate::abort::AbortCode> {
+    if !RTR && raw & CobIdEntry::BIT30 == 0 {
+        return Err(crate::abort::AbortCode::InvalidValue);
+    }
+    Ok(())
 }
 
 /// RPDO transmission types (PDO-09): 00h–F0h synchronous, FEh/FFh event-driven.
@@ -160,12 +191,19 @@ pub const fn rpdo_type_ok(t: u8) -> bool {
     t <= 240 || t >= 254
 }
 
-/// TPDO transmission types (PDO-18): 00h–F0h, FCh–FFh.
+/// TPDO transmission types (PDO-18): 00h–F0h, FCh–FFh; without the feature `pdo-rtr` not the RTR-only FCh
+/// and FDh.
 ///
 /// ```
-/// assert!(canopen_core::pdo::tpdo_type_ok(0xFC));
-/// assert!(!canopen_core::pdo::tpdo_type_ok(0xF1));
+/// use canopen_core::pdo::{self, tpdo_type_ok};
+/// assert_eq!(tpdo_type_ok(0xFC), pdo::RTR);
+/// assert!(tpdo_type_ok(0xFE));
+/// assert!(!tpdo_type_ok(0xF1));
 /// ```
 pub const fn tpdo_type_ok(t: u8) -> bool {
-    t <= 240 || t >= 252
+    if RTR {
+        t <= 240 || t >= 252
+    } else {
+        t <= 240 || t >= 254
+    }
 }

@@ -95,9 +95,9 @@ impl Tpdo {
         self.cob.can_id()
     }
 
-    /// Whether a remote request is served (bit 30 = 0, PDO-29).
+    /// Whether a remote request is served (bit 30 = 0, PDO-29; never without the feature `pdo-rtr`).
     pub const fn rtr_allowed(&self) -> bool {
-        self.is_valid() && !self.cob.bit30()
+        super::RTR && self.is_valid() && !self.cob.bit30()
     }
 
     /// The transmission type.

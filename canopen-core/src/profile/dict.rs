@@ -245,7 +245,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                 }),
                 _ => Err(AbortCode::SubIndexDoesNotExist),
             },
-            0x1005 => var("COB-ID SYNC message", Unsigned32, Rw, uint(c.sync.cob_id.raw())),
+            0x1005 => var("COB-ID SYNC message", Unsigned32, Rw, uint(c.sync.supported().cob_id.raw())),
             0x1006 => var("Communication cycle period", Unsigned32, Rw, uint(c.sync.period_us)),
             0x1007 => var("Synchronous window length", Unsigned32, Rw, uint(c.sync.window_us)),
             0x1008 => var("Manufacturer device name", VisibleString, Const, Value::Str(c.device_name)),
@@ -417,7 +417,10 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         };
         match f.slot {
             Slot::History => self.errors.write_history_count(v as u8)?,
-            Slot::SyncCob => p.sync.cob_id = CobIdEntry::from_raw(cob(p.sync.cob_id.raw(), |e| e.bit30())?),
+            Slot::SyncCob => {
+                crate::sync::check_producible(v)?; // SYNC-03: also a stored value, the build cannot produce
+                p.sync.cob_id = CobIdEntry::from_raw(cob(p.sync.cob_id.raw(), |e| e.bit30())?);
+            }
             Slot::SyncPeriod => p.sync.period_us = v,
             Slot::SyncWindow => p.sync.window_us = v,
             #[cfg(feature = "guarding")]
@@ -478,6 +481,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         match f.slot {
             Slot::MapCount | Slot::MapEntry => return set_map(comm, map, sub, v, rules),
             Slot::PdoCob => {
+                if f.tx() {
+                    crate::pdo::check_tpdo_rtr(v)?; // a build without TPDO remote requests: bit 30 stays set
+                }
                 if rules {
                     let new = comm.cob().check_change(v, |e| !e.bit31())?;
                     if !new.bit31() && is_restricted(new.can_id()) {

@@ -257,7 +257,7 @@ impl<Z: ProfileSizes> CommParams<Z> {
         self.heartbeat_consumers = Z::ZERO_TIMES;
         self.guard_time_ms = config.guard_time_ms;
         self.life_time_factor = config.life_time_factor;
-        self.sync = config.sync;
+        self.sync = config.sync.supported();
         self.time_cob_id = config.time_cob_id;
         self.emcy_cob_id = 0x80 + node_id as u32;
         self.emcy_inhibit_100us = config.emcy_inhibit_100us;

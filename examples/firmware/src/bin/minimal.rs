@@ -1,9 +1,11 @@
 //! The minimal device of issue 13 on the same board as `node.rs`: NMT, heartbeat producer (1017h, 1000 ms),
 //! the SDO server with expedited and segmented transfer (no block transfer), 4 RPDOs and 4 TPDOs with
 //! dynamic mapping, the SYNC consumer and EMCY with the 1003h history. No heartbeat consumer (1016h has no
-//! entries), no LSS, TIME, node guarding, SDO client or SDO block transfer: canopen-core is built without
-//! its optional features (`cargo build --release --no-default-features --features minimal --bin minimal`,
-//! which `scripts/footprint.sh` runs), so none of them is in the image.
+//! entries), no SYNC producer, no TPDO remote requests, no LSS, TIME, node guarding, SDO client or SDO block
+//! transfer, and PDO mapping of whole objects of whole bytes only (the EDS's Granularity=8, no bit-granular
+//! entries): canopen-core is built without its optional features (`cargo build --release
+//! --no-default-features --features minimal --bin minimal`, which `scripts/footprint.sh` runs), so none of
+//! them is in the image.
 //!
 //! The application is `node.rs`'s without the TIME object: the same tasks, glue and process values.
 #![no_std]
