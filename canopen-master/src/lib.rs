@@ -293,9 +293,12 @@ impl Master {
         let task = {
             let (io, router) = (io.clone(), router.clone());
             tokio::spawn(async move {
+                // Every frame queued at a wake-up is taken at once (one recvmmsg on SocketCAN) and routed
+                // before the transfers run: a block upload's sub-block wakes each side once, not per frame.
+                let mut batch = Vec::with_capacity(canopen_socketcan::BATCH);
                 loop {
-                    match io.recv().await {
-                        Ok(f) => router.dispatch(f),
+                    match io.recv_many(&mut batch).await {
+                        Ok(_) => batch.drain(..).for_each(|f| router.dispatch(f)),
                         Err(e) => return router.close(e.to_string()),
                     }
                 }
@@ -716,32 +719,51 @@ impl Master {
     ) -> Result<usize, Error> {
         use canopen_core::sdo::client::ClientEvent;
         let clock = self.inner.clock;
+        let mut out = Vec::new();
+        let mut now = clock.now();
         loop {
-            self.flush(client, data, tx_cob).await?;
+            self.flush(client, data, tx_cob, now, &mut out).await?;
             if let Some(e) = data.take_error() {
                 client.abort(AbortCode::GeneralError);
-                self.flush(client, data, tx_cob).await?;
+                self.flush(client, data, tx_cob, now, &mut out).await?;
                 return Err(Error::Io(e));
             }
             let deadline = client.poll_timeout().map(|t| clock.to_tokio(t));
             let event = tokio::select! {
                 frame = route.rx.recv() => match frame {
-                    Some(f) => client.handle_response(clock.now(), f.data(), data),
+                    Some(f) => {
+                        // One clock reading for every frame already routed to this transfer (a block
+                        // upload's sub-block arrives as one batch); what the client answers in between
+                        // is collected and sent in order after them.
+                        now = clock.now();
+                        let mut event = client.handle_response(now, f.data(), data);
+                        while event.is_none() {
+                            queue(client, data, tx_cob, now, &mut out);
+                            match route.rx.try_recv() {
+                                Ok(f) => event = client.handle_response(now, f.data(), data),
+                                Err(_) => break,
+                            }
+                        }
+                        event
+                    }
                     None => return Err(self.inner.router.closed_error()),
                 },
-                _ = sleep_until(deadline) => client.handle_timeout(clock.now()),
+                _ = sleep_until(deadline) => {
+                    now = clock.now();
+                    client.handle_timeout(now)
+                }
             };
             match event {
                 None => {}
                 Some(ClientEvent::Done { len }) => {
-                    self.flush(client, data, tx_cob).await?;
+                    self.flush(client, data, tx_cob, now, &mut out).await?;
                     return match data.take_error() {
                         Some(e) => Err(Error::Io(e)),
                         None => Ok(len),
                     };
                 }
                 Some(ClientEvent::Failed(e)) => {
-                    self.flush(client, data, tx_cob).await?;
+                    self.flush(client, data, tx_cob, now, &mut out).await?;
                     // A local write error (a file) is reported as itself, not only as its abort code.
                     return Err(data.take_error().map_or_else(|| e.into(), Error::Io));
                 }
@@ -749,16 +771,37 @@ impl Master {
         }
     }
 
-    /// Sends what the client has to send. The clock is read once per call, not per frame: a block
-    /// download's sub-block (up to 127 segments) goes out on one reading, so its time-out runs from the
-    /// start of the sub-block (scripts/bench-master.sh counts the clock reads per frame).
-    async fn flush(&self, client: &mut SdoClient, data: &mut dyn Data, tx_cob: u16) -> Result<(), Error> {
-        let now = self.inner.clock.now();
-        while let Some(bytes) = client.poll_transmit(now, data) {
-            self.inner.io.send(&CanFrame::from_parts(tx_cob, bytes, 8)).await?;
+    /// Sends what the client has to send (after what `out` already holds), in one
+    /// [`CanIo::send_many`]: a block download's sub-block (up to 127 segments) goes out in two `sendmmsg`
+    /// on one clock reading, `now` (the time of the frames just handled), so its time-out runs from there
+    /// (scripts/bench-master.sh counts the system calls per frame).
+    async fn flush(
+        &self,
+        client: &mut SdoClient,
+        data: &mut dyn Data,
+        tx_cob: u16,
+        now: canopen_core::Instant,
+        out: &mut Vec<CanFrame>,
+    ) -> Result<(), Error> {
+        queue(client, data, tx_cob, now, out);
+        if !out.is_empty() {
+            let sent = self.inner.io.send_many(out).await;
+            out.clear();
+            sent?;
         }
         Ok(())
     }
+}
+
+/// Appends what the client has to send at `now` to `out`.
+fn queue(
+    client: &mut SdoClient,
+    data: &mut dyn Data,
+    tx_cob: u16,
+    now: canopen_core::Instant,
+    out: &mut Vec<CanFrame>,
+) {
+    out.extend(std::iter::from_fn(|| client.poll_transmit(now, data)).map(|b| CanFrame::from_parts(tx_cob, b, 8)));
 }
 
 async fn sleep_until(deadline: Option<tokio::time::Instant>) {

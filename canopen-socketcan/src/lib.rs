@@ -66,7 +66,7 @@ mod shared;
 #[cfg(feature = "tokio")]
 pub mod tokio_runner;
 
-pub use batch::BATCH;
+pub use batch::{send_frames, BatchReceiver, BATCH};
 pub use blocking::{run_blocking, BlockingBus, BusWaker, Rx};
 pub use file_storage::FileStorage;
 pub use master::{Master, MasterError, MasterStats};
