@@ -248,6 +248,19 @@ pub(crate) enum ErrorClass {
     Fatal,
 }
 
+/// Whether a socket error means the interface went down or away (`ENETDOWN`, `ENODEV`, `ENXIO`,
+/// `ENETUNREACH`): what the runners wait out and reopen after ([`AdapterEvent::InterfaceDown`]), and what
+/// `canopen-master` reopens its socket after.
+///
+/// ```
+/// use std::io::Error;
+/// assert!(canopen_socketcan::is_interface_down(&Error::from_raw_os_error(libc::ENETDOWN)));
+/// assert!(!canopen_socketcan::is_interface_down(&Error::from_raw_os_error(libc::ENOBUFS)));
+/// ```
+pub fn is_interface_down(e: &io::Error) -> bool {
+    classify(e) == ErrorClass::Down
+}
+
 pub(crate) fn classify(e: &io::Error) -> ErrorClass {
     match e.raw_os_error() {
         Some(libc::ENETDOWN) | Some(libc::ENODEV) | Some(libc::ENXIO) | Some(libc::ENETUNREACH) => ErrorClass::Down,

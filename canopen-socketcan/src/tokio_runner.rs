@@ -178,7 +178,8 @@ impl TokioBus {
 
     /// Waits until frames are queued, then appends every queued 11-bit frame (up to
     /// [`BATCH`](crate::BATCH)) to `out` with one `recvmmsg` into `buffers`; returns how many it appended
-    /// (at least one). Error frames are reported to `observe` and skipped, 29-bit frames are skipped. So a
+    /// (at least one). Error frames are reported to `observe` and skipped, 29-bit frames are skipped; the
+    /// socket's own error (the interface went down: `ENETDOWN`) ends the wait as an error. So a
     /// burst of frames (an SDO block upload's sub-block) costs one wake-up and one system call per
     /// [`BATCH`](crate::BATCH) frames instead of one each. Cancel-safe: frames are only taken from the
     /// socket in the call that returns them.
@@ -199,7 +200,9 @@ impl TokioBus {
     ) -> io::Result<usize> {
         let before = out.len();
         loop {
-            let mut guard = self.socket.readable().await?;
+            // ERROR too: an interface going down sets the socket's error (`ENETDOWN`) and wakes it with
+            // EPOLLERR alone, which a wait for readability never sees.
+            let mut guard = self.socket.ready(Interest::READABLE | Interest::ERROR).await?;
             let taken = buffers.recv_frames(self.socket.as_raw_fd(), |raw| {
                 for r in raw {
                     match map_received(&socketcan::CanFrame::from(*r)) {
@@ -219,8 +222,12 @@ impl TokioBus {
                         return Ok(out.len() - before);
                     }
                 }
-                Err(e) if matches!(classify(&e), ErrorClass::Interrupted | ErrorClass::Timeout) => {}
-                Err(e) => return Err(e),
+                Err(e) => {
+                    guard.clear_ready();
+                    if !matches!(classify(&e), ErrorClass::Interrupted | ErrorClass::Timeout) {
+                        return Err(e);
+                    }
+                }
             }
         }
     }
