@@ -22,6 +22,7 @@ use canopen_core::sdo::client::Mode;
 use canopen_core::wire::nmt::NmtCommand;
 use canopen_core::NodeId;
 use canopen_socketcan::{BlockingBus, Master, MasterError};
+use canopenctl::{parse_in, Type};
 use clap::{Parser, Subcommand, ValueEnum};
 
 /// A CANopen master on SocketCAN for trying a node: SDO read/write, block transfer of files, NMT
@@ -53,9 +54,9 @@ enum Cmd {
         index: u16,
         #[arg(value_parser = parse_u8)]
         sub: u8,
-        /// How to print the value.
-        #[arg(long, value_enum, default_value_t = Ty::Hex)]
-        r#type: Ty,
+        /// How to print the value (canopenctl's types: u8..u64, i8..i64, f32, f64, bool, str, bytes).
+        #[arg(long, default_value = "bytes")]
+        r#type: Type,
         /// Write the bytes to FILE instead of printing them.
         #[arg(long, value_name = "FILE")]
         out: Option<String>,
@@ -75,9 +76,9 @@ enum Cmd {
         /// The value, encoded as --type.
         #[arg(allow_hyphen_values = true)]
         value: Option<String>,
-        /// How to encode the value.
-        #[arg(long, value_enum, default_value_t = Ty::Hex)]
-        r#type: Ty,
+        /// How to encode the value (canopenctl's types: u8..u64, i8..i64, f32, f64, bool, str, bytes).
+        #[arg(long, default_value = "bytes")]
+        r#type: Type,
         /// Send the bytes of FILE.
         #[arg(long, value_name = "FILE")]
         file: Option<String>,
@@ -119,21 +120,6 @@ enum Cmd {
     },
 }
 
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-enum Ty {
-    Hex,
-    Str,
-    U8,
-    U16,
-    U32,
-    U64,
-    I8,
-    I16,
-    I32,
-    I64,
-    F32,
-}
-
 #[derive(ValueEnum, Clone, Copy, Debug)]
 enum NmtCmd {
     Start,
@@ -143,66 +129,12 @@ enum NmtCmd {
     ResetComm,
 }
 
-fn parse_int(s: &str) -> Result<i128, String> {
-    let (neg, digits) = s.strip_prefix('-').map_or((false, s), |d| (true, d));
-    let v = match digits.strip_prefix("0x").or_else(|| digits.strip_prefix("0X")) {
-        Some(h) => i128::from_str_radix(h, 16),
-        None => digits.parse::<i128>(),
-    }
-    .map_err(|e| format!("{s}: {e}"))?;
-    Ok(if neg { -v } else { v })
-}
-
 fn parse_u16(s: &str) -> Result<u16, String> {
-    u16::try_from(parse_int(s)?).map_err(|e| e.to_string())
+    parse_in(s)
 }
 
 fn parse_u8(s: &str) -> Result<u8, String> {
-    u8::try_from(parse_int(s)?).map_err(|e| e.to_string())
-}
-
-fn encode(ty: Ty, s: &str) -> Result<Vec<u8>, String> {
-    fn int<T: TryFrom<i128>>(s: &str) -> Result<T, String> {
-        T::try_from(parse_int(s)?).map_err(|_| format!("{s}: out of range"))
-    }
-    Ok(match ty {
-        Ty::Hex => (0..s.len())
-            .step_by(2)
-            .map(|i| s.get(i..i + 2).and_then(|b| u8::from_str_radix(b, 16).ok()).ok_or(format!("{s}: not hex")))
-            .collect::<Result<_, _>>()?,
-        Ty::Str => s.as_bytes().to_vec(),
-        Ty::U8 => int::<u8>(s)?.to_le_bytes().to_vec(),
-        Ty::U16 => int::<u16>(s)?.to_le_bytes().to_vec(),
-        Ty::U32 => int::<u32>(s)?.to_le_bytes().to_vec(),
-        Ty::U64 => int::<u64>(s)?.to_le_bytes().to_vec(),
-        Ty::I8 => int::<i8>(s)?.to_le_bytes().to_vec(),
-        Ty::I16 => int::<i16>(s)?.to_le_bytes().to_vec(),
-        Ty::I32 => int::<i32>(s)?.to_le_bytes().to_vec(),
-        Ty::I64 => int::<i64>(s)?.to_le_bytes().to_vec(),
-        Ty::F32 => s.parse::<f32>().map_err(|e| e.to_string())?.to_le_bytes().to_vec(),
-    })
-}
-
-fn decode(ty: Ty, b: &[u8]) -> String {
-    fn arr<const N: usize>(b: &[u8]) -> [u8; N] {
-        let mut a = [0u8; N];
-        let n = b.len().min(N);
-        a[..n].copy_from_slice(&b[..n]);
-        a
-    }
-    match ty {
-        Ty::Hex => b.iter().map(|x| format!("{x:02X}")).collect::<Vec<_>>().join(" "),
-        Ty::Str => String::from_utf8_lossy(b).into_owned(),
-        Ty::U8 => arr::<1>(b)[0].to_string(),
-        Ty::U16 => u16::from_le_bytes(arr(b)).to_string(),
-        Ty::U32 => format!("{0} (0x{0:08X})", u32::from_le_bytes(arr(b))),
-        Ty::U64 => u64::from_le_bytes(arr(b)).to_string(),
-        Ty::I8 => (arr::<1>(b)[0] as i8).to_string(),
-        Ty::I16 => i16::from_le_bytes(arr(b)).to_string(),
-        Ty::I32 => i32::from_le_bytes(arr(b)).to_string(),
-        Ty::I64 => i64::from_le_bytes(arr(b)).to_string(),
-        Ty::F32 => f32::from_le_bytes(arr(b)).to_string(),
-    }
+    parse_in(s)
 }
 
 fn block_mode(crc: bool) -> Mode {
@@ -238,13 +170,13 @@ fn run(args: Args) -> Result<(), Box<dyn std::error::Error>> {
                         t.elapsed().as_secs_f64()
                     );
                 }
-                None => println!("{}", decode(r#type, &data)),
+                None => println!("{}", r#type.decode(&data)?),
             }
         }
         Cmd::Write { index, sub, value, r#type, file, block, crc, segmented } => {
             let data = match (file, value) {
                 (Some(path), _) => std::fs::read(path)?,
-                (None, Some(v)) => encode(r#type, &v)?,
+                (None, Some(v)) => r#type.encode(&v)?,
                 (None, None) => return Err("give a VALUE or --file".into()),
             };
             let mode = if block {

@@ -6,7 +6,8 @@
 #   2. tests/vcan_node.rs: OUR SDO client moves 64 KiB through the example node's DOMAIN (segmented, block
 #      with and without CRC, byte-exact) and the bounded load test (block transfers under a COB-ID flood);
 #   3. tests/vcan_master.rs: canopen-master with ten nodes at once, a stopped node's time-out while its
-#      heartbeats arrive, 64 KiB block/segmented byte-exact and 1 MiB block+CRC each way, timed;
+#      heartbeats arrive, 64 KiB block/segmented byte-exact and 1 MiB block+CRC each way, timed, and the
+#      master surviving vcan1 going down and up (transfers in flight fail at once, later ones work);
 #   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS);
 #   5. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
 #      node, on the EDS the node wrote with --eds;
@@ -40,7 +41,7 @@ echo "== canopen-socketcan on vcan0/vcan1"
 cargo test -q -p canopen-socketcan --test vcan -- --include-ignored
 echo "== our SDO client + load test on the example node"
 cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test-threads 1
-echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed"
+echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed, vcan1 down/up"
 cargo test --release -q --test vcan_master -- --include-ignored --nocapture --test-threads 1
 echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, LSS)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1

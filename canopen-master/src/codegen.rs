@@ -1,7 +1,8 @@
 //! EDS → Rust: a module that uses only `canopen-core` and `canopen-od-derive` and compiles as it is: the
 //! application objects (2000h–FFFFh) as a struct with `#[derive(ObjectDictionary)]`, and a `NodeConfig`
 //! with what the EDS says of 1000h–1FFFh that the configuration carries (device type, identity, names,
-//! producer heartbeat time).
+//! producer heartbeat time, the defaults of RPDO and TPDO 1–4: COB-ID, transmission type, inhibit time,
+//! event timer, SYNC start value, mapping).
 //!
 //! Real EDS files (python canopen's sample.eds, datatypes.eds and e35.eds, in tests/eds_real.rs) showed
 //! what is handled here: signed limits and defaults in two's complement hex (`LowLimit=0x80000000` of an
@@ -16,8 +17,10 @@
 //! DOMAIN access other than rw, OCTET_STRING defaults whose bytes are not UTF-8 (a derive default is a
 //! string literal), defaults relative to `$NODEID` and limits that are no number of the type, limits on
 //! anything but numbers. Of 1000h–1FFFh only what `NodeConfig` holds (device type, identity, names, producer
-//! heartbeat time): PDO communication and mapping parameters (1400h–1BFFh), SDO parameters, error behaviour
-//! and the rest take the node's `NodeConfig::DEFAULT` values. Sub-index 0 of an ARRAY or RECORD is const in
+//! heartbeat time, PDO defaults): SDO parameters, error behaviour and the rest take the node's
+//! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–30 set
+//! (RTR not allowed, 29-bit) or relative to `$NODEID` but not the pre-defined connection set, mapping
+//! entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters. Sub-index 0 of an ARRAY or RECORD is const in
 //! the derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
 
 use std::fmt::Write as _;
@@ -329,7 +332,7 @@ fn record(g: &mut Generated, o: &Object) {
 /// The Rust module for `eds`; `source` names the file in its header.
 ///
 /// The application objects (2000h–FFFFh) become a struct with `#[derive(ObjectDictionary)]`, and
-/// 1000h–1FFFh a `NodeConfig` (device type, identity, names, producer heartbeat time). What is not carried
+/// 1000h–1FFFh a `NodeConfig` (device type, identity, names, producer heartbeat time, PDO defaults). What is not carried
 /// over is listed in the module docs, and by [`generate`] for a given file.
 ///
 /// ```
@@ -369,6 +372,7 @@ pub fn generate(eds: &Eds, source: &str) -> Generated {
         "use canopen_core::od::{{DomainBuf, OctetString, TimeDifference, TimeOfDay, UnicodeString, VisibleString}};"
     );
     let _ = writeln!(out, "use canopen_core::od::{{I24, I40, I48, I56, U24, U40, U48, U56}};");
+    let _ = writeln!(out, "use canopen_core::pdo::PdoDefault;");
     let _ = writeln!(out, "use canopen_core::profile::{{Identity, NodeConfig}};");
     let _ = writeln!(out, "use canopen_od_derive::ObjectDictionary;");
     let _ = writeln!(out);
@@ -421,14 +425,161 @@ pub fn generate(eds: &Eds, source: &str) -> Generated {
     if let Some(v) = u32_of(0x1017, 0).and_then(|v| u16::try_from(v).ok()) {
         let _ = writeln!(out, "    heartbeat_time_ms: {v},");
     }
+    for (field, comm, map) in [("rpdo", 0x1400, 0x1600), ("tpdo", 0x1800, 0x1A00)] {
+        pdo_defaults(&mut g, eds, field, comm, map);
+    }
+    let out = &mut g.rust;
     let _ = writeln!(out, "    ..NodeConfig::DEFAULT");
     let _ = writeln!(out, "}};");
     g
 }
 
+/// PDOs a node configuration carries the defaults of, each way (`canopen_core::Sizes`: RPDO 1-4, TPDO 1-4).
+pub(crate) const CARRIED_PDOS: u16 = 4;
+
+/// The CAN-ID of the pre-defined connection set for PDO `k` (0-based, 0..4; COB-05/06): 180h/200h + 100h·k.
+fn predefined_pdo_id(tpdo: bool, k: u16) -> u32 {
+    (if tpdo { 0x180u32 } else { 0x200 }) + 0x100 * u32::from(k)
+}
+
+/// The `rpdo`/`tpdo` field of the node configuration: a `PdoDefault` per PDO the EDS describes among the
+/// first [`CARRIED_PDOS`] (communication parameter `comm` + k: COB-ID, transmission type, inhibit time,
+/// event timer, SYNC start value; mapping parameter `map` + k: the entries up to sub-index 0's count). A
+/// COB-ID relative to `$NODEID` is the pre-defined connection set only (anything else relative is left
+/// out); mapping entries beyond the count with a value are left out (a default mapping is its entries).
+fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) {
+    let tpdo = field == "tpdo";
+    let last = (0..CARRIED_PDOS).rev().find(|&k| eds.objects.contains_key(&(comm + k)));
+    let Some(last) = last else { return };
+    let value =
+        |index: u16, sub: u8| eds.entry(index, sub).and_then(|e| Some((e, eval_default(e.default.as_deref()?, 0)?)));
+    let mut items = Vec::new();
+    for k in 0..=last {
+        if !eds.objects.contains_key(&(comm + k)) {
+            items.push("PdoDefault::UNUSED".to_owned());
+            continue;
+        }
+        let mut fields = Vec::new();
+        let subs = [(comm + k, [1u8, 2, 3, 5, 6].as_slice()), (map + k, [0u8, 1, 2, 3, 4, 5, 6, 7, 8].as_slice())];
+        for (index, subs) in subs {
+            for e in
+                subs.iter().filter_map(|&sub| eds.entry(index, sub)).filter(|e| e.low.is_some() || e.high.is_some())
+            {
+                g.leave_out(e, None, Dropped::Limits, "the communication profile's parameters have none".into());
+            }
+        }
+        if let Some((e, v)) = value(comm + k, 1) {
+            let raw = u32::try_from(v).unwrap_or(0);
+            let relative = e.default.as_deref().is_some_and(|d| d.to_ascii_uppercase().contains("$NODEID"));
+            let id = raw & 0x7FF;
+            let can_id = match (relative, k < 4 && id == predefined_pdo_id(tpdo, k)) {
+                _ if raw & 0x7FFF_F800 != 0 => Err("bits 11-30 of the COB-ID (RTR, 29-bit frame) set"),
+                (true, true) => Ok("None".to_owned()),
+                (true, false) => Err("a node-ID-relative COB-ID other than the pre-defined connection set"),
+                (false, _) => Ok(format!("Some(0x{id:03X})")),
+            };
+            match can_id {
+                Ok(c) => fields.push(format!("valid: {}, can_id: {c}", raw & 0x8000_0000 == 0)),
+                Err(why) => g.leave_out(e, None, Dropped::Default, why.into()),
+            }
+        }
+        for (sub, name, max) in [
+            (2, "transmission_type", 0xFF),
+            (3, "inhibit_100us", 0xFFFF),
+            (5, "event_timer_ms", 0xFFFF),
+            (6, "sync_start", 0xFF),
+        ] {
+            if let Some((_, v)) = value(comm + k, sub).filter(|&(_, v)| (0..=max).contains(&v)) {
+                fields.push(format!("{name}: {v}"));
+            }
+        }
+        let max = canopen_core::pdo::mapping::MAX_ENTRIES;
+        let listed: Vec<(u8, &Entry, i128)> =
+            (1..=max as u8).filter_map(|sub| value(map + k, sub).map(|(e, v)| (sub, e, v))).collect();
+        let count = value(map + k, 0).and_then(|(_, c)| usize::try_from(c).ok()).filter(|&c| c <= max);
+        let usable = count.filter(|&c| (1..=c).all(|sub| listed.iter().any(|&(s, _, _)| usize::from(s) == sub)));
+        match usable {
+            Some(count) => {
+                let mapping: Vec<String> = listed
+                    .iter()
+                    .filter(|&&(sub, _, _)| usize::from(sub) <= count)
+                    .map(|&(_, _, v)| format!("0x{:08X}", u32::try_from(v).unwrap_or(0)))
+                    .collect();
+                for &(_, e, _) in listed.iter().filter(|&&(sub, _, v)| usize::from(sub) > count && v != 0) {
+                    g.leave_out(e, None, Dropped::Default, "beyond the mapping's entry count".into());
+                }
+                fields.push(format!("mapping: &[{}]", mapping.join(", ")));
+            }
+            None => {
+                // No default entry count, or one the listed entries do not fill: no default mapping.
+                let why = "the mapping's entry count (sub-index 0) has no usable DefaultValue";
+                if let Some(e) = eds.entry(map + k, 0).filter(|e| e.default.is_some()) {
+                    g.leave_out(e, None, Dropped::Default, why.into());
+                }
+                for &(_, e, _) in listed.iter().filter(|&&(_, _, v)| v != 0) {
+                    g.leave_out(e, None, Dropped::Default, why.into());
+                }
+            }
+        }
+        items.push(if fields.is_empty() {
+            "PdoDefault::EVENT".to_owned()
+        } else {
+            format!("PdoDefault {{ {}, ..PdoDefault::EVENT }}", fields.join(", "))
+        });
+    }
+    let out = &mut g.rust;
+    let _ = writeln!(out, "    {field}: &[");
+    for i in items {
+        let _ = writeln!(out, "        {i},");
+    }
+    let _ = writeln!(out, "    ],");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// PDO defaults (1400h-1BFFh) into the node configuration: a pre-defined COB-ID as `None`, a fixed one
+    /// as itself, an invalid one as `valid: false`, the mapping up to its count; what a `PdoDefault` cannot
+    /// hold (bit 30 of a COB-ID, an entry beyond the count, limits) is left out and listed. The round trip
+    /// of these through the core's EDS writer runs in tests/eds_to_rust.rs and tests/eds_real.rs.
+    #[test]
+    fn pdo_defaults_go_into_the_node_configuration() {
+        let eds = Eds::parse(
+            "[1400]\nObjectType=0x9\n[1400sub1]\nDataType=7\nDefaultValue=$NODEID+0x200\n\
+             [1400sub2]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=255\n\
+             [1401]\nObjectType=0x9\n[1401sub1]\nDataType=7\nDefaultValue=0x80000321\n\
+             [1600]\nObjectType=0x9\n[1600sub0]\nDataType=5\nDefaultValue=1\n\
+             [1600sub1]\nDataType=7\nDefaultValue=0x20000108\n[1600sub2]\nDataType=7\nDefaultValue=0x20010108\n\
+             [1800]\nObjectType=0x9\n[1800sub1]\nDataType=7\nDefaultValue=$NODEID+0x40000180\n\
+             [1800sub5]\nDataType=6\nDefaultValue=100\n",
+        )
+        .unwrap();
+        let g = generate(&eds, "pdo.eds");
+        assert!(g.rust.contains("use canopen_core::pdo::PdoDefault;"));
+        assert!(g.rust.contains(
+            "PdoDefault { valid: true, can_id: None, transmission_type: 1, mapping: &[0x20000108], ..PdoDefault::EVENT },"
+        ), "{}", g.rust);
+        assert!(
+            g.rust.contains("PdoDefault { valid: false, can_id: Some(0x321), ..PdoDefault::EVENT },"),
+            "{}",
+            g.rust
+        );
+        assert!(
+            g.rust.contains("tpdo: &[\n        PdoDefault { event_timer_ms: 100, ..PdoDefault::EVENT },"),
+            "{}",
+            g.rust
+        );
+        let left: Vec<_> = g.left_out.iter().map(|l| (l.index, l.sub, l.dropped)).collect();
+        assert_eq!(
+            left,
+            [
+                (0x1400, Some(2), Dropped::Limits),
+                (0x1600, Some(2), Dropped::Default), // beyond the count of 1
+                (0x1800, Some(1), Dropped::Default), // bit 30
+            ]
+        );
+    }
 
     /// What python canopen's real files (tests/eds_real.rs) showed: signed limits in two's complement hex,
     /// an ARRAY whose entries differ in access and default, strings marked PDO-mappable, an OCTET_STRING

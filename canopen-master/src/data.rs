@@ -18,30 +18,11 @@ pub(crate) trait Data: ClientData + Send {
     }
 }
 
-/// Upload into a growing `Vec` of at most `cap` bytes (more aborts with 0504 0005h).
-pub(crate) struct VecSink {
-    pub(crate) buf: Vec<u8>,
-    pub(crate) cap: usize,
-}
+/// Upload into a growing `Vec` of at most `cap` bytes (more aborts with 0504 0005h): the blocking master's
+/// [`VecData`](canopen_socketcan::master::VecData).
+pub(crate) use canopen_socketcan::master::VecData as VecSink;
 
-impl ClientData for VecSink {
-    fn download_len(&self) -> usize {
-        0
-    }
-    fn read(&mut self, _offset: usize, _buf: &mut [u8]) -> usize {
-        0
-    }
-    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
-        let end = offset.checked_add(data.len()).filter(|&e| e <= self.cap).ok_or(AbortCode::OutOfMemory)?;
-        if self.buf.len() < end {
-            self.buf.resize(end, 0);
-        }
-        self.buf[offset..end].copy_from_slice(data);
-        Ok(())
-    }
-}
-
-impl Data for VecSink {}
+impl Data for VecSink<'_> {}
 
 /// Download from a slice.
 pub(crate) struct SliceSource<'a> {

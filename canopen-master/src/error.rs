@@ -43,8 +43,12 @@ pub enum Error {
     /// A peer answered something the protocol does not allow there, or a sequence failed (the text says
     /// what).
     Protocol(String),
-    /// The master's receive task has stopped (the socket failed); the text says why.
+    /// The master's receive task has stopped (the socket failed for good); the text says why.
     Closed(String),
+    /// The transfer was cut off because the socket failed while it waited (the interface went down); the
+    /// text says why. The master reopens its socket when the interface is up again: a later transfer can
+    /// work on the same master.
+    Interrupted(String),
 }
 
 impl Error {
@@ -87,6 +91,7 @@ impl fmt::Display for Error {
             }
             Error::InvalidArgument(what) | Error::Protocol(what) => f.write_str(what),
             Error::Closed(why) => write!(f, "the master's receive task stopped: {why}"),
+            Error::Interrupted(why) => write!(f, "transfer interrupted: {why}"),
         }
     }
 }

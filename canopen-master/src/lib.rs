@@ -49,7 +49,7 @@ use canopen_core::sdo::SdoClientParams;
 use canopen_core::wire::emcy::Emergency;
 use canopen_core::wire::sdo::{abort_frame, Multiplexer};
 use canopen_core::{CanFrame, NodeId};
-use tokio::sync::{broadcast, mpsc};
+use tokio::sync::{broadcast, mpsc, watch};
 use tokio::task::JoinHandle;
 
 pub mod blocking;
@@ -147,6 +147,20 @@ struct Router {
     frames: broadcast::Sender<CanFrame>,
     /// Why the receive task stopped, once it has.
     closed: Mutex<Option<String>>,
+    /// Why the transfers waiting for frames were last cut off (the socket failed and was reopened).
+    interrupted: Mutex<Option<String>>,
+    /// Whether the socket can be used: transfers cut off by an outage wait for it to abort their server.
+    link: watch::Sender<Link>,
+}
+
+/// The state of the master's socket, as its receive task sees it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Link {
+    Up,
+    /// Failed; the receive task waits for it to come back ([`CanIo::reopen`]).
+    Down,
+    /// The receive task stopped.
+    Closed,
 }
 
 fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
@@ -163,6 +177,8 @@ impl Router {
             emcy: broadcast::channel(256).0,
             frames: broadcast::channel(4096).0,
             closed: Mutex::new(None),
+            interrupted: Mutex::new(None),
+            link: watch::channel(Link::Up).0,
         }
     }
 
@@ -193,10 +209,26 @@ impl Router {
     fn close(&self, why: String) {
         *lock(&self.closed) = Some(why);
         lock(&self.routes).clear();
+        self.link.send_replace(Link::Closed);
     }
 
+    /// The socket failed (`why`) while the receive task may go on: every transfer waiting for frames
+    /// ends with [`Error::Interrupted`] (its route's sender is dropped).
+    fn interrupt(&self, why: String) {
+        *lock(&self.interrupted) = Some(why);
+        self.link.send_replace(Link::Down);
+        lock(&self.routes).clear();
+    }
+
+    /// Why a route stopped delivering: the master closed, or the socket failed under the transfer.
     fn closed_error(&self) -> Error {
-        Error::Closed(lock(&self.closed).clone().unwrap_or_else(|| "the master was dropped".into()))
+        if let Some(why) = lock(&self.closed).clone() {
+            return Error::Closed(why);
+        }
+        match lock(&self.interrupted).clone() {
+            Some(why) => Error::Interrupted(why),
+            None => Error::Closed("the master was dropped".into()),
+        }
     }
 
     fn turn(&self, cob: u16) -> Arc<tokio::sync::Mutex<()>> {
@@ -277,9 +309,12 @@ impl Master {
     ///
     /// # When the socket fails
     ///
-    /// The receive task stops at the first receive error (the interface went down or away); every waiting
-    /// and later transfer then fails with [`Error::Closed`] and the reason. Make a new master once the
-    /// interface is back (`canopen-socketcan`'s runners wait and reopen; a master does not, yet).
+    /// At a receive error every transfer waiting for frames fails at once with [`Error::Interrupted`] and
+    /// the reason, then the receive task asks [`CanIo::reopen`] to wait for the socket: on [`SocketCan`],
+    /// when the interface went down (`ip link set can0 down`) or away, until it is up again, then on a
+    /// fresh socket. Meanwhile transfers fail when they send (`Network is down`); once it is back they work
+    /// again on the same master. Any other receive error (or an `io` that cannot reopen) stops the task:
+    /// every waiting and later transfer then fails with [`Error::Closed`] and the reason.
     ///
     /// ```
     /// # let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
@@ -293,10 +328,23 @@ impl Master {
         let task = {
             let (io, router) = (io.clone(), router.clone());
             tokio::spawn(async move {
+                // Every frame queued at a wake-up is taken at once (one recvmmsg on SocketCAN) and routed
+                // before the transfers run: a block upload's sub-block wakes each side once, not per frame.
+                let mut batch = Vec::with_capacity(canopen_socketcan::BATCH);
                 loop {
-                    match io.recv().await {
-                        Ok(f) => router.dispatch(f),
-                        Err(e) => return router.close(e.to_string()),
+                    match io.recv_many(&mut batch).await {
+                        Ok(_) => batch.drain(..).for_each(|f| router.dispatch(f)),
+                        Err(e) => {
+                            // Transfers in flight end now; the task waits for the socket to come back.
+                            router.interrupt(e.to_string());
+                            match io.reopen().await {
+                                Ok(true) => {
+                                    router.link.send_replace(Link::Up);
+                                }
+                                Ok(false) => return router.close(e.to_string()),
+                                Err(again) => return router.close(format!("{e}; reopening failed: {again}")),
+                            }
+                        }
                     }
                 }
             })
@@ -515,7 +563,7 @@ impl Master {
         // A fixed-size type still takes a few bytes more, so that a wrong type is a type mismatch and not an
         // "out of memory" abort.
         let cap = T::SIZE.map_or(usize::MAX, |s| s.max(64));
-        let mut sink = VecSink { buf: Vec::new(), cap };
+        let mut sink = VecSink::upload(cap);
         let len = self.transfer(node, Multiplexer::new(index, sub), Start::Upload(Mode::Auto), &mut sink).await?;
         sink.buf.truncate(len);
         T::decode(&sink.buf)
@@ -552,7 +600,7 @@ impl Master {
     /// # });
     /// ```
     pub async fn upload(&self, node: u8, index: u16, sub: u8, mode: Mode) -> Result<Vec<u8>, Error> {
-        let mut sink = VecSink { buf: Vec::new(), cap: usize::MAX };
+        let mut sink = VecSink::upload(usize::MAX);
         let len = self.transfer(node, Multiplexer::new(index, sub), Start::Upload(mode), &mut sink).await?;
         sink.buf.truncate(len);
         Ok(sink.buf)
@@ -680,6 +728,9 @@ impl Master {
         let params = SdoClientParams::for_server(node_id(node)?);
         let (tx_cob, rx_cob) = (params.tx_cob_id(), params.rx_cob_id());
         let router = &self.inner.router;
+        if *router.link.borrow() == Link::Down {
+            return Err(router.closed_error()); // at once, not after a time-out
+        }
         let turn = router.turn(rx_cob).lock_owned().await;
         let mut route = router.route(rx_cob)?;
         let timeout = canopen_core::Duration::from_micros(self.sdo_timeout.as_micros() as u64);
@@ -696,10 +747,22 @@ impl Master {
         let mut armed = AbortOnDrop { io: self.inner.io.clone(), cob: tx_cob, mux: Some(mux) };
         let result = self.drive(&mut client, &mut route, data, tx_cob).await;
         armed.mux = None;
-        if result.is_err() {
+        if let Err(e) = &result {
+            // A transfer cut off by the socket (the interface went down) leaves the server in it: once the
+            // socket is back, abort it (0800 0000h), so that the next transfer finds the server idle.
+            let cut_off = matches!(e, Error::Interrupted(_) | Error::Io(_))
+                .then(|| CanFrame::from_parts(tx_cob, abort_frame(mux, AbortCode::GeneralError.code()), 8));
+            let (io, router) = (self.inner.io.clone(), self.inner.router.clone());
             // What the server still sends for this transfer must not be taken for the next one's answer: the
             // next transfer to this server waits until its line has been quiet for QUIET; this one returns now.
             tokio::spawn(async move {
+                if let Some(abort) = cut_off {
+                    drop(route); // dead after an outage: routed anew below
+                    route = match abort_after_outage(&*io, &router, rx_cob, &abort).await {
+                        Some(r) => r,
+                        None => return, // the master closed
+                    };
+                }
                 while let Ok(Some(_)) = tokio::time::timeout(QUIET, route.rx.recv()).await {}
                 drop((route, turn));
             });
@@ -716,32 +779,51 @@ impl Master {
     ) -> Result<usize, Error> {
         use canopen_core::sdo::client::ClientEvent;
         let clock = self.inner.clock;
+        let mut out = Vec::new();
+        let mut now = clock.now();
         loop {
-            self.flush(client, data, tx_cob).await?;
+            self.flush(client, data, tx_cob, now, &mut out).await?;
             if let Some(e) = data.take_error() {
                 client.abort(AbortCode::GeneralError);
-                self.flush(client, data, tx_cob).await?;
+                self.flush(client, data, tx_cob, now, &mut out).await?;
                 return Err(Error::Io(e));
             }
             let deadline = client.poll_timeout().map(|t| clock.to_tokio(t));
             let event = tokio::select! {
                 frame = route.rx.recv() => match frame {
-                    Some(f) => client.handle_response(clock.now(), f.data(), data),
+                    Some(f) => {
+                        // One clock reading for every frame already routed to this transfer (a block
+                        // upload's sub-block arrives as one batch); what the client answers in between
+                        // is collected and sent in order after them.
+                        now = clock.now();
+                        let mut event = client.handle_response(now, f.data(), data);
+                        while event.is_none() {
+                            queue(client, data, tx_cob, now, &mut out);
+                            match route.rx.try_recv() {
+                                Ok(f) => event = client.handle_response(now, f.data(), data),
+                                Err(_) => break,
+                            }
+                        }
+                        event
+                    }
                     None => return Err(self.inner.router.closed_error()),
                 },
-                _ = sleep_until(deadline) => client.handle_timeout(clock.now()),
+                _ = sleep_until(deadline) => {
+                    now = clock.now();
+                    client.handle_timeout(now)
+                }
             };
             match event {
                 None => {}
                 Some(ClientEvent::Done { len }) => {
-                    self.flush(client, data, tx_cob).await?;
+                    self.flush(client, data, tx_cob, now, &mut out).await?;
                     return match data.take_error() {
                         Some(e) => Err(Error::Io(e)),
                         None => Ok(len),
                     };
                 }
                 Some(ClientEvent::Failed(e)) => {
-                    self.flush(client, data, tx_cob).await?;
+                    self.flush(client, data, tx_cob, now, &mut out).await?;
                     // A local write error (a file) is reported as itself, not only as its abort code.
                     return Err(data.take_error().map_or_else(|| e.into(), Error::Io));
                 }
@@ -749,16 +831,59 @@ impl Master {
         }
     }
 
-    /// Sends what the client has to send. The clock is read once per call, not per frame: a block
-    /// download's sub-block (up to 127 segments) goes out on one reading, so its time-out runs from the
-    /// start of the sub-block (scripts/bench-master.sh counts the clock reads per frame).
-    async fn flush(&self, client: &mut SdoClient, data: &mut dyn Data, tx_cob: u16) -> Result<(), Error> {
-        let now = self.inner.clock.now();
-        while let Some(bytes) = client.poll_transmit(now, data) {
-            self.inner.io.send(&CanFrame::from_parts(tx_cob, bytes, 8)).await?;
+    /// Sends what the client has to send (after what `out` already holds), in one
+    /// [`CanIo::send_many`]: a block download's sub-block (up to 127 segments) goes out in two `sendmmsg`
+    /// on one clock reading, `now` (the time of the frames just handled), so its time-out runs from there
+    /// (scripts/bench-master.sh counts the system calls per frame).
+    async fn flush(
+        &self,
+        client: &mut SdoClient,
+        data: &mut dyn Data,
+        tx_cob: u16,
+        now: canopen_core::Instant,
+        out: &mut Vec<CanFrame>,
+    ) -> Result<(), Error> {
+        queue(client, data, tx_cob, now, out);
+        if !out.is_empty() {
+            let sent = self.inner.io.send_many(out).await;
+            out.clear();
+            sent?;
         }
         Ok(())
     }
+}
+
+/// Appends what the client has to send at `now` to `out`.
+fn queue(
+    client: &mut SdoClient,
+    data: &mut dyn Data,
+    tx_cob: u16,
+    now: canopen_core::Instant,
+    out: &mut Vec<CanFrame>,
+) {
+    out.extend(std::iter::from_fn(|| client.poll_transmit(now, data)).map(|b| CanFrame::from_parts(tx_cob, b, 8)));
+}
+
+/// Sends `abort` for a transfer an outage cut off, once the socket is up again and
+/// 2 × [`REOPEN_POLL`](canopen_socketcan::REOPEN_POLL) later (a send that fails because
+/// the receive task has not seen the outage yet is retried after it has, up to three times), and returns
+/// a route for the server's COB-ID `cob` to discard what it still sends; `None` when the master closed.
+async fn abort_after_outage(io: &dyn CanIo, router: &Arc<Router>, cob: u16, abort: &CanFrame) -> Option<Route> {
+    let mut link = router.link.subscribe();
+    for _ in 0..3 {
+        if !matches!(link.wait_for(|l| *l != Link::Down).await.map(|l| *l), Ok(Link::Up)) {
+            return None;
+        }
+        // Nodes on the same interface (vcan) reopen their sockets too, polling as often as the master
+        // (canopen-socketcan's runners): an abort sent before they did would be lost.
+        tokio::time::sleep(2 * canopen_socketcan::REOPEN_POLL).await;
+        if io.send(abort).await.is_ok() {
+            break;
+        }
+        // Not an outage after all, or one the receive task has not seen yet: wait a little for it.
+        let _ = tokio::time::timeout(Duration::from_secs(1), link.changed()).await;
+    }
+    router.route(cob).ok()
 }
 
 async fn sleep_until(deadline: Option<tokio::time::Instant>) {

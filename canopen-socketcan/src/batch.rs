@@ -1,5 +1,6 @@
-//! Batched socket calls for the runners: `recvmmsg` takes every queued frame (up to [`BATCH`]) in one
-//! system call, `sendmmsg` sends a whole pass's frames in one, `ppoll` waits for the socket, the wake-up
+//! Batched socket calls for the runners and the async master (`canopen-master`): `recvmmsg` takes every
+//! queued frame (up to [`BATCH`]) in one system call ([`BatchReceiver`]), `sendmmsg` sends a whole pass's
+//! frames (or an SDO block transfer's sub-block) in one ([`send_frames`]), `ppoll` waits for the socket, the wake-up
 //! socket and the next deadline together; plus the monotonic clock and the `timerfd` the tokio runner
 //! sleeps on. The `socketcan` crate reads and writes one frame per call, so these calls go through `libc`
 //! (and tokio's `AsyncFd::register` is `unsafe` too); this module is the adapter's only `unsafe` code.
@@ -48,22 +49,55 @@ struct RecvBufs {
     msgs: [libc::mmsghdr; BATCH],
 }
 
-/// A runner's receive buffers for `recvmmsg`, on the heap so that the pointers between them stay valid
-/// wherever the `Receiver` moves.
-pub(crate) struct Receiver(Box<RecvBufs>);
+/// Receive buffers for `recvmmsg` ([`BATCH`] frames and the kernel's message headers pointing at them),
+/// set up once and reused by every call; on the heap so that the pointers between them stay valid wherever
+/// the `BatchReceiver` moves. The runners keep one each; so does `canopen-master`'s receive task
+/// ([`TokioBus::recv_many`](crate::TokioBus::recv_many)).
+///
+/// ```
+/// use std::os::fd::AsRawFd;
+/// use std::os::unix::net::UnixDatagram;
+/// use canopen_socketcan::{send_frames, BatchReceiver};
+/// // A datagram socket pair stands in for a CAN socket (one 16-byte can_frame per message).
+/// let (a, b) = UnixDatagram::pair()?;
+/// let frame = |i: usize| {
+///     let mut f: libc::can_frame = unsafe { std::mem::zeroed() };
+///     (f.can_id, f.can_dlc, f.data[0]) = (0x585, 1, i as u8);
+///     Ok(f)
+/// };
+/// assert_eq!(send_frames(a.as_raw_fd(), 3, frame)?, 3); // one sendmmsg
+/// let mut rx = BatchReceiver::new();
+/// let mut got = Vec::new();
+/// assert_eq!(rx.recv_frames(b.as_raw_fd(), |raw| got.extend(raw.iter().map(|f| f.data[0])))?, 3); // one recvmmsg
+/// assert_eq!(got, [0, 1, 2]);
+/// assert_eq!(rx.recv_frames(b.as_raw_fd(), |_| unreachable!())?, 0); // nothing queued
+/// # Ok::<(), std::io::Error>(())
+/// ```
+pub struct BatchReceiver(Box<RecvBufs>);
 
 // SAFETY: the raw pointers in `RecvBufs` point only into the same heap allocation, which moves (between
-// threads too) with the `Receiver` that owns it and is used only through `&mut self`.
-unsafe impl Send for Receiver {}
+// threads too) with the `BatchReceiver` that owns it and is used only through `&mut self`.
+unsafe impl Send for BatchReceiver {}
 
-impl Default for Receiver {
+impl Default for BatchReceiver {
     fn default() -> Self {
-        Receiver::new()
+        BatchReceiver::new()
     }
 }
 
-impl Receiver {
-    pub(crate) fn new() -> Self {
+impl std::fmt::Debug for BatchReceiver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("BatchReceiver")
+    }
+}
+
+impl BatchReceiver {
+    /// Buffers for [`BATCH`] frames (about 5 KiB, one allocation).
+    ///
+    /// ```
+    /// let rx = canopen_socketcan::BatchReceiver::new();
+    /// ```
+    pub fn new() -> Self {
         // SAFETY: can_frame, iovec and mmsghdr are plain old data; all-zero bytes are valid values (null
         // pointers, no name, no control data).
         let mut b: Box<RecvBufs> = Box::new(unsafe { std::mem::zeroed() });
@@ -76,12 +110,21 @@ impl Receiver {
             bufs.msgs[i].msg_hdr.msg_iov = &mut bufs.iov[i];
             bufs.msgs[i].msg_hdr.msg_iovlen = 1;
         }
-        Receiver(b)
+        BatchReceiver(b)
     }
 
-    /// Takes up to [`BATCH`] queued frames without waiting, oldest first, and hands them to `take` (not
-    /// called when none is queued). Returns how many were taken: `Ok(0)` when none is queued.
-    pub(crate) fn recv_frames(&mut self, fd: RawFd, take: impl FnOnce(&[libc::can_frame])) -> io::Result<usize> {
+    /// Takes up to [`BATCH`] queued frames from the socket `fd` without waiting (one `recvmmsg`), oldest
+    /// first, and hands them to `take` (not called when none is queued). Returns how many were taken:
+    /// `Ok(0)` when none is queued; fewer than [`BATCH`] means the queue was empty at the end of the call.
+    /// Messages that are not a whole `can_frame` (impossible on a CAN_RAW socket) end the batch.
+    ///
+    /// ```no_run
+    /// # fn demo(fd: std::os::fd::RawFd) -> std::io::Result<()> {
+    /// let mut rx = canopen_socketcan::BatchReceiver::new();
+    /// let n = rx.recv_frames(fd, |frames| println!("{} frames", frames.len()))?;
+    /// # Ok(()) }
+    /// ```
+    pub fn recv_frames(&mut self, fd: RawFd, take: impl FnOnce(&[libc::can_frame])) -> io::Result<usize> {
         let size = std::mem::size_of::<libc::can_frame>();
         let bufs = &mut *self.0;
         loop {
@@ -116,14 +159,18 @@ impl Receiver {
     }
 }
 
-/// Sends `count` frames, the `i`th made by `frame(i)`, in order without waiting, in as few calls as the
-/// kernel allows. Returns how many went out: a prefix (the rest must be sent again, in order). An error is
-/// returned only when not even the first frame went out (or `frame` failed).
-pub(crate) fn send_frames(
-    fd: RawFd,
-    count: usize,
-    frame: impl Fn(usize) -> io::Result<libc::can_frame>,
-) -> io::Result<usize> {
+/// Sends `count` frames on the socket `fd`, the `i`th made by `frame(i)`, in order without waiting, one
+/// `sendmmsg` per [`BATCH`] frames. Returns how many went out: a prefix (the rest must be sent again, in
+/// order, e.g. after a back-off when the queue is full). An error is returned only when not even the first
+/// frame went out (`ENOBUFS`/`EAGAIN` for a full queue, `ENETDOWN` for an interface that went down), or
+/// when `frame` failed. See [`BatchReceiver`] for an example.
+///
+/// ```no_run
+/// # fn demo(fd: std::os::fd::RawFd, frames: &[libc::can_frame]) -> std::io::Result<()> {
+/// let sent = canopen_socketcan::send_frames(fd, frames.len(), |i| Ok(frames[i]))?;
+/// # Ok(()) }
+/// ```
+pub fn send_frames(fd: RawFd, count: usize, frame: impl Fn(usize) -> io::Result<libc::can_frame>) -> io::Result<usize> {
     let mut sent = 0;
     while sent < count {
         let n = (count - sent).min(BATCH);
@@ -295,7 +342,7 @@ mod tests {
         let frames: Vec<libc::can_frame> = (0..100).map(|i| frame(0x100 + i, i as u8)).collect();
         let mut sent = 0;
         let mut got = Vec::new();
-        let mut rx = Receiver::new();
+        let mut rx = BatchReceiver::new();
         while sent < frames.len() {
             // A small socket queue makes sends partial; the prefix rule lets the caller resume in order.
             match send_frames(a.as_raw_fd(), frames.len() - sent, |i| Ok(frames[sent + i])) {

@@ -66,7 +66,7 @@ mod shared;
 #[cfg(feature = "tokio")]
 pub mod tokio_runner;
 
-pub use batch::BATCH;
+pub use batch::{send_frames, BatchReceiver, BATCH};
 pub use blocking::{run_blocking, BlockingBus, BusWaker, Rx};
 pub use file_storage::FileStorage;
 pub use master::{Master, MasterError, MasterStats};
@@ -246,6 +246,19 @@ pub(crate) enum ErrorClass {
     Interrupted,
     /// Anything else: the runner stops with it.
     Fatal,
+}
+
+/// Whether a socket error means the interface went down or away (`ENETDOWN`, `ENODEV`, `ENXIO`,
+/// `ENETUNREACH`): what the runners wait out and reopen after ([`AdapterEvent::InterfaceDown`]), and what
+/// `canopen-master` reopens its socket after.
+///
+/// ```
+/// use std::io::Error;
+/// assert!(canopen_socketcan::is_interface_down(&Error::from_raw_os_error(libc::ENETDOWN)));
+/// assert!(!canopen_socketcan::is_interface_down(&Error::from_raw_os_error(libc::ENOBUFS)));
+/// ```
+pub fn is_interface_down(e: &io::Error) -> bool {
+    classify(e) == ErrorClass::Down
 }
 
 pub(crate) fn classify(e: &io::Error) -> ErrorClass {

@@ -60,11 +60,51 @@ impl MasterError {
 /// How long the line must be quiet after a failed transfer before the next one starts.
 pub const QUIET: StdDuration = StdDuration::from_millis(50);
 
-/// Upload data into a growable buffer of at most `cap` bytes.
-struct VecData<'a> {
-    buf: &'a mut Vec<u8>,
-    cap: usize,
-    src: &'a [u8],
+/// The bytes of one SDO transfer for the core's client ([`ClientData`]) over a `Vec`: a download reads
+/// `src`; an upload writes into `buf`, which grows up to `cap` bytes (a longer value aborts the transfer
+/// with 0504 0005h, out of memory, instead of growing without bound). Used by this blocking [`Master`] and
+/// by `canopen-master`.
+///
+/// ```
+/// use canopen_core::sdo::client::ClientData;
+/// use canopen_socketcan::master::VecData;
+/// let mut up = VecData::upload(4);
+/// up.write(0, &[1, 2, 3]).unwrap();
+/// assert_eq!(up.buf, [1, 2, 3]);
+/// assert_eq!(up.write(3, &[4, 5]).unwrap_err().code(), 0x0504_0005);
+/// let mut down = VecData::download(&[9, 8, 7]);
+/// let mut seg = [0; 2];
+/// assert_eq!((down.download_len(), down.read(1, &mut seg)), (3, 2));
+/// assert_eq!(seg, [8, 7]);
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct VecData<'a> {
+    /// The bytes uploaded so far.
+    pub buf: Vec<u8>,
+    /// At most this many bytes are uploaded.
+    pub cap: usize,
+    /// The bytes to download.
+    pub src: &'a [u8],
+}
+
+impl<'a> VecData<'a> {
+    /// An upload of at most `cap` bytes.
+    ///
+    /// ```
+    /// assert!(canopen_socketcan::master::VecData::upload(64).buf.is_empty());
+    /// ```
+    pub fn upload(cap: usize) -> Self {
+        VecData { buf: Vec::new(), cap, src: &[] }
+    }
+
+    /// A download of `src`.
+    ///
+    /// ```
+    /// assert_eq!(canopen_socketcan::master::VecData::download(&[1, 2]).src, [1, 2]);
+    /// ```
+    pub fn download(src: &'a [u8]) -> Self {
+        VecData { buf: Vec::new(), cap: 0, src }
+    }
 }
 
 impl ClientData for VecData<'_> {
@@ -143,8 +183,7 @@ impl Master {
 
     /// Writes `data` to `index:sub`.
     pub fn download(&mut self, index: u16, sub: u8, data: &[u8], mode: Mode) -> Result<(), MasterError> {
-        let mut scratch = Vec::new();
-        let mut d = VecData { buf: &mut scratch, cap: 0, src: data };
+        let mut d = VecData::download(data);
         let now = self.bus.now();
         let _ = self.client.abort(AbortCode::GeneralError);
         self.client
@@ -155,18 +194,15 @@ impl Master {
 
     /// Reads `index:sub` (at most `cap` bytes; more aborts with 0504 0005h).
     pub fn upload(&mut self, index: u16, sub: u8, mode: Mode, cap: usize) -> Result<Vec<u8>, MasterError> {
-        let mut out = Vec::new();
-        {
-            let mut d = VecData { buf: &mut out, cap, src: &[] };
-            let now = self.bus.now();
-            let _ = self.client.abort(AbortCode::GeneralError);
-            self.client
-                .start_upload(now, Multiplexer::new(index, sub), mode)
-                .map_err(|_| MasterError::Io(io::Error::other("SDO client busy")))?;
-            let len = self.drive(&mut d)?;
-            d.buf.truncate(len);
-        }
-        Ok(out)
+        let mut d = VecData::upload(cap);
+        let now = self.bus.now();
+        let _ = self.client.abort(AbortCode::GeneralError);
+        self.client
+            .start_upload(now, Multiplexer::new(index, sub), mode)
+            .map_err(|_| MasterError::Io(io::Error::other("SDO client busy")))?;
+        let len = self.drive(&mut d)?;
+        d.buf.truncate(len);
+        Ok(d.buf)
     }
 
     fn send(&mut self, frame: &CanFrame) -> io::Result<()> {

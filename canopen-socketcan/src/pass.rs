@@ -117,7 +117,7 @@ pub(crate) struct Pass {
     /// The node's [`ReceiveFilters::rx_filters_generation`] when its filters were last computed.
     generation: Option<u32>,
     /// The `recvmmsg` buffers, set up once.
-    receiver: crate::batch::Receiver,
+    receiver: crate::batch::BatchReceiver,
 }
 
 impl Pass {

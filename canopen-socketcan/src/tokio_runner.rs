@@ -45,7 +45,7 @@ use tokio::io::Interest;
 use tokio::sync::Notify;
 
 use crate::pass::{count, kernel_filters, Counter, Pass, ReceiveFilters};
-use crate::{classify, map_received, open_error, to_socket_frame, AdapterEvent, Clock, ErrorClass, Observed};
+use crate::{classify, map_received, open_error, AdapterEvent, Clock, ErrorClass, Observed};
 
 /// The observer the tokio runner reports to (shared by the receive half, the transmit half and the driver's
 /// event callback).
@@ -85,15 +85,47 @@ impl TokioBus {
     /// Sends one frame, waiting for room: `ENOBUFS` is retried every
     /// [`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF) (reported once as [`AdapterEvent::TxBufferFull`]); after
     /// [`TX_STALL_LIMIT`](crate::TX_STALL_LIMIT) the frame is dropped and reported.
+    ///
+    /// ```no_run
+    /// # async fn demo() -> std::io::Result<()> {
+    /// let bus = canopen_socketcan::TokioBus::open("vcan0")?;
+    /// bus.send(&canopen_core::CanFrame::new(0x80, &[]).unwrap(), &|_| {}).await?; // a SYNC
+    /// # Ok(()) }
+    /// ```
     pub async fn send(&self, frame: &CanFrame, observe: Observer<'_>) -> io::Result<()> {
-        let out = to_socket_frame(frame)?;
+        self.send_many(std::slice::from_ref(frame), observe).await
+    }
+
+    /// Sends `frames` in order, one `sendmmsg` per [`BATCH`](crate::BATCH) frames (an SDO block
+    /// download's sub-block of 127 segments in two calls instead of 127), waiting for room as
+    /// [`send`](Self::send) does: a full queue (`ENOBUFS`, `EAGAIN`) is retried every
+    /// [`ENOBUFS_BACKOFF`](crate::ENOBUFS_BACKOFF) from the first unsent frame on (reported once per stall as
+    /// [`AdapterEvent::TxBufferFull`]); a frame still not sent after [`TX_STALL_LIMIT`](crate::TX_STALL_LIMIT)
+    /// is dropped and reported ([`AdapterEvent::TxDropped`]). Nothing is reordered. An interface that went
+    /// down is an error (`ENETDOWN`); the frames before it went out.
+    ///
+    /// ```no_run
+    /// # async fn demo() -> std::io::Result<()> {
+    /// use canopen_core::CanFrame;
+    /// let bus = canopen_socketcan::TokioBus::open("vcan0")?;
+    /// let frames = [CanFrame::new(0x80, &[]).unwrap(), CanFrame::new(0x000, &[0x01, 0x00]).unwrap()];
+    /// bus.send_many(&frames, &|_| {}).await?;
+    /// # Ok(()) }
+    /// ```
+    pub async fn send_many(&self, frames: &[CanFrame], observe: Observer<'_>) -> io::Result<()> {
+        let fd = self.socket.as_raw_fd();
+        let mut next = 0;
         let mut stalled: Option<std::time::Instant> = None;
         let mut backoff: Option<TimerFd> = None;
-        loop {
+        while next < frames.len() {
+            let rest = &frames[next..];
             // The socket is registered for readability only (see `batch::register`): a full queue
             // (`ENOBUFS`, or `EAGAIN` from the socket's own buffer) is retried after a back-off.
-            match self.socket.get_ref().write_frame(&out) {
-                Ok(()) => return Ok(()),
+            match crate::batch::send_frames(fd, rest.len(), |i| crate::pass::raw_frame(&rest[i])) {
+                Ok(n) => {
+                    next += n;
+                    stalled = None;
+                }
                 Err(e) => match classify(&e) {
                     ErrorClass::NoBufs | ErrorClass::Timeout => {
                         let since = *stalled.get_or_insert_with(|| {
@@ -101,8 +133,10 @@ impl TokioBus {
                             std::time::Instant::now()
                         });
                         if since.elapsed() >= crate::TX_STALL_LIMIT {
-                            observe(Observed::Adapter(&AdapterEvent::TxDropped(*frame)));
-                            return Ok(());
+                            observe(Observed::Adapter(&AdapterEvent::TxDropped(frames[next])));
+                            next += 1;
+                            stalled = None;
+                            continue;
                         }
                         let timer = match &mut backoff {
                             Some(t) => t,
@@ -115,10 +149,18 @@ impl TokioBus {
                 },
             }
         }
+        Ok(())
     }
 
     /// Waits for the next 11-bit frame; error frames are reported to `observe` and skipped, 29-bit frames
     /// are skipped. Cancel-safe.
+    ///
+    /// ```no_run
+    /// # async fn demo() -> std::io::Result<()> {
+    /// let bus = canopen_socketcan::TokioBus::open("vcan0")?;
+    /// let frame = bus.recv(&|_| {}).await?;
+    /// # Ok(()) }
+    /// ```
     pub async fn recv(&self, observe: Observer<'_>) -> io::Result<CanFrame> {
         loop {
             let read = self.socket.async_io(Interest::READABLE, |s| s.read_frame()).await;
@@ -132,6 +174,76 @@ impl TokioBus {
                 Err(e) => return Err(e),
             }
         }
+    }
+
+    /// Waits until frames are queued, then appends every queued 11-bit frame (up to
+    /// [`BATCH`](crate::BATCH)) to `out` with one `recvmmsg` into `buffers`; returns how many it appended
+    /// (at least one). Error frames are reported to `observe` and skipped, 29-bit frames are skipped; the
+    /// socket's own error (the interface went down: `ENETDOWN`) ends the wait as an error. So a
+    /// burst of frames (an SDO block upload's sub-block) costs one wake-up and one system call per
+    /// [`BATCH`](crate::BATCH) frames instead of one each. Cancel-safe: frames are only taken from the
+    /// socket in the call that returns them.
+    ///
+    /// ```no_run
+    /// # async fn demo() -> std::io::Result<()> {
+    /// let bus = canopen_socketcan::TokioBus::open("vcan0")?;
+    /// let (mut buffers, mut frames) = (canopen_socketcan::BatchReceiver::new(), Vec::new());
+    /// let n = bus.recv_many(&mut buffers, &mut frames, &|_| {}).await?;
+    /// assert_eq!(frames.len(), n);
+    /// # Ok(()) }
+    /// ```
+    pub async fn recv_many(
+        &self,
+        buffers: &mut crate::BatchReceiver,
+        out: &mut Vec<CanFrame>,
+        observe: Observer<'_>,
+    ) -> io::Result<usize> {
+        let before = out.len();
+        loop {
+            // ERROR too: an interface going down sets the socket's error (`ENETDOWN`) and wakes it with
+            // EPOLLERR alone, which a wait for readability never sees.
+            let mut guard = self.socket.ready(Interest::READABLE | Interest::ERROR).await?;
+            let taken = buffers.recv_frames(self.socket.as_raw_fd(), |raw| {
+                for r in raw {
+                    match map_received(&socketcan::CanFrame::from(*r)) {
+                        Some(Ok(frame)) => out.push(frame),
+                        Some(Err(event)) => observe(Observed::Adapter(&event)),
+                        None => {}
+                    }
+                }
+            });
+            match taken {
+                Ok(n) => {
+                    if n < crate::BATCH {
+                        // The queue was empty at the end of this call: wait for the next edge.
+                        guard.clear_ready();
+                    }
+                    if out.len() > before {
+                        return Ok(out.len() - before);
+                    }
+                }
+                Err(e) => {
+                    guard.clear_ready();
+                    if !matches!(classify(&e), ErrorClass::Interrupted | ErrorClass::Timeout) {
+                        return Err(e);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Sets the socket's receive buffer to at least `bytes` (`SO_RCVBUFFORCE` when privileged, else
+    /// `SO_RCVBUF`, capped by `net.core.rmem_max`), so that a burst (a whole SDO block sub-block) is not
+    /// dropped while the task is busy. Returns the size the kernel reports.
+    ///
+    /// ```no_run
+    /// # async fn demo() -> std::io::Result<()> {
+    /// let bus = canopen_socketcan::TokioBus::open("vcan0")?;
+    /// bus.grow_receive_buffer(canopen_socketcan::RECEIVE_BUFFER)?;
+    /// # Ok(()) }
+    /// ```
+    pub fn grow_receive_buffer(&self, bytes: usize) -> io::Result<usize> {
+        crate::batch::grow_receive_buffer(self.socket.as_raw_fd(), bytes)
     }
 }
 
@@ -332,7 +444,7 @@ pub async fn run_tokio<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
     let mut pass = Pass::default();
     let mut bus = TokioBus::open(iface)?;
     loop {
-        let _ = crate::batch::grow_receive_buffer(bus.socket.as_raw_fd(), crate::RECEIVE_BUFFER);
+        let _ = bus.grow_receive_buffer(crate::RECEIVE_BUFFER);
         pass.reinstall();
         let e = match run_passes(shared, &bus, &mut pass, &clock, &mut timer, wake, observe).await {
             Ok(never) => match never {},

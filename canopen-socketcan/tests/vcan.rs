@@ -130,6 +130,38 @@ fn node(id: u8, heartbeat_ms: u16) -> TestNode {
 
 /// The tokio runner serves SDO and NMT to our master on another socket; another task changes the node and
 /// wakes the driver, which acts at once.
+/// A burst of 300 frames (more than two SDO block sub-blocks) sent by one `TokioBus::send_many` arrives
+/// whole and in order through `recv_many` on another socket, at most `BATCH` frames per call: the batched
+/// calls canopen-master sends and receives through (SDO-40: block segments in sequence).
+#[test]
+#[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
+fn tokio_bus_sends_and_receives_bursts_in_order() {
+    let ifc = iface("vcan0");
+    let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
+    rt.block_on(async {
+        let a = canopen_socketcan::TokioBus::open(ifc).unwrap();
+        let b = canopen_socketcan::TokioBus::open(ifc).unwrap();
+        b.set_filters(&[(0x5A1, 0x7FF)]).unwrap();
+        assert!(b.grow_receive_buffer(canopen_socketcan::RECEIVE_BUFFER).unwrap() > 0);
+        let frames: Vec<CanFrame> =
+            (0..300u16).map(|i| CanFrame::new(0x5A1, &[(i & 0xFF) as u8, (i >> 8) as u8, 7]).unwrap()).collect();
+        let seen = Mutex::new(Vec::new());
+        let observe = |o: Observed<'_>| seen.lock().unwrap().push(format!("{o:?}"));
+        a.send_many(&frames, &observe).await.unwrap();
+        let (mut buffers, mut got, mut calls) = (canopen_socketcan::BatchReceiver::new(), Vec::new(), 0);
+        while got.len() < frames.len() {
+            let wait = b.recv_many(&mut buffers, &mut got, &observe);
+            let n = tokio::time::timeout(Duration::from_secs(2), wait).await.expect("frames lost").unwrap();
+            assert!((1..=canopen_socketcan::BATCH).contains(&n), "{n} frames in one call");
+            calls += 1;
+        }
+        assert_eq!(got, frames);
+        assert!(calls < frames.len() / 4, "{calls} receive calls for {} frames: not batched", frames.len());
+        // No adapter event: no full queue, no dropped frame.
+        assert!(seen.lock().unwrap().is_empty(), "{:?}", seen.lock().unwrap());
+    });
+}
+
 #[test]
 #[ignore = "needs SocketCAN (vcan0, vcan1): scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
 fn tokio_runner_serves_a_master_and_wakes_on_application_changes() {

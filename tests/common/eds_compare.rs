@@ -1,7 +1,8 @@
 //! EDS → Rust → EDS comparison, shared by tests/eds_to_rust.rs (our fixtures) and tests/eds_real.rs
 //! (python canopen's files): the EDS a generated module's dictionary writes equals the original on every
-//! entry the module carries (index, sub-index, data type, access, default, limits, PDO mapping), and
-//! what it does not carry is exactly what `generate` listed as left out.
+//! entry the module carries (index, sub-index, data type, access, default, limits, PDO mapping; of
+//! 1000h-1FFFh what a node configuration holds, PDO defaults included), and what it does not carry is
+//! exactly what `generate` listed as left out.
 #![allow(dead_code)]
 
 use canopen_master::eds::{eval_typed, Access, Dropped, Eds, Entry, LeftOut};
@@ -49,7 +50,14 @@ pub fn compare(file: &str, original: &Eds, back: &Eds, left_out: &[LeftOut]) -> 
     let dropped = |e: &Entry, what: Dropped| {
         left_out.iter().any(|l| l.index == e.index && l.sub.is_none_or(|s| s == e.sub) && l.dropped == what)
     };
-    let config = |e: &Entry| matches!(e.index, 0x1000 | 0x1008 | 0x1009 | 0x100A | 0x1017 | 0x1018);
+    // The PDO defaults a node configuration carries (RPDO/TPDO 1-4): the communication parameters'
+    // COB-ID, transmission type, inhibit time, event timer, SYNC start value, and the mapping entries.
+    let pdo = |e: &Entry| match e.index {
+        0x1400..=0x1403 | 0x1800..=0x1803 => matches!(e.sub, 1 | 2 | 3 | 5 | 6),
+        0x1600..=0x1603 | 0x1A00..=0x1A03 => e.sub <= 8,
+        _ => false,
+    };
+    let config = |e: &Entry| matches!(e.index, 0x1000 | 0x1008 | 0x1009 | 0x100A | 0x1017 | 0x1018) || pdo(e);
     let mut compared = 0;
     for e in original.entries().filter(|e| e.index >= 0x2000 || config(e)) {
         if dropped(e, Dropped::Entry) {

@@ -5,6 +5,7 @@
 
 use canopen_core::od::{DomainBuf, OctetString, TimeDifference, TimeOfDay, UnicodeString, VisibleString};
 use canopen_core::od::{I24, I40, I48, I56, U24, U40, U48, U56};
+use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::{Identity, NodeConfig};
 use canopen_od_derive::ObjectDictionary;
 
@@ -45,5 +46,17 @@ pub const CONFIG: NodeConfig = NodeConfig {
     hardware_version: "vcan",
     software_version: "0.1.0",
     heartbeat_time_ms: 1000,
+    rpdo: &[
+        PdoDefault { valid: true, can_id: None, transmission_type: 255, inhibit_100us: 0, event_timer_ms: 0, mapping: &[0x62000108, 0x62000208, 0x62000308, 0x62000408, 0x62000508, 0x62000608, 0x62000708, 0x62000808], ..PdoDefault::EVENT },
+        PdoDefault { valid: true, can_id: None, transmission_type: 255, inhibit_100us: 0, event_timer_ms: 0, mapping: &[0x64110110, 0x64110210, 0x64110310, 0x64110410], ..PdoDefault::EVENT },
+        PdoDefault { valid: false, can_id: None, transmission_type: 254, inhibit_100us: 0, event_timer_ms: 0, mapping: &[], ..PdoDefault::EVENT },
+        PdoDefault { valid: false, can_id: None, transmission_type: 254, inhibit_100us: 0, event_timer_ms: 0, mapping: &[], ..PdoDefault::EVENT },
+    ],
+    tpdo: &[
+        PdoDefault { valid: true, can_id: None, transmission_type: 255, inhibit_100us: 100, event_timer_ms: 0, sync_start: 0, mapping: &[0x60000108, 0x60000208, 0x60000308, 0x60000408, 0x60000508, 0x60000608, 0x60000708, 0x60000808], ..PdoDefault::EVENT },
+        PdoDefault { valid: true, can_id: None, transmission_type: 255, inhibit_100us: 100, event_timer_ms: 0, sync_start: 0, mapping: &[0x64010110, 0x64010210, 0x64010310, 0x64010410], ..PdoDefault::EVENT },
+        PdoDefault { valid: false, can_id: None, transmission_type: 254, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0, mapping: &[], ..PdoDefault::EVENT },
+        PdoDefault { valid: false, can_id: None, transmission_type: 254, inhibit_100us: 0, event_timer_ms: 0, sync_start: 0, mapping: &[], ..PdoDefault::EVENT },
+    ],
     ..NodeConfig::DEFAULT
 };

@@ -5,6 +5,7 @@
 
 use canopen_core::od::{DomainBuf, OctetString, TimeDifference, TimeOfDay, UnicodeString, VisibleString};
 use canopen_core::od::{I24, I40, I48, I56, U24, U40, U48, U56};
+use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::{Identity, NodeConfig};
 use canopen_od_derive::ObjectDictionary;
 
