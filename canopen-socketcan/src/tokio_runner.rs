@@ -163,7 +163,7 @@ impl TokioBus {
     /// ```
     pub async fn recv(&self, observe: Observer<'_>) -> io::Result<CanFrame> {
         loop {
-            let read = self.socket.async_io(Interest::READABLE, |s| s.read_frame()).await;
+            let read = self.socket.async_io(Interest::READABLE | Interest::ERROR, |s| s.read_frame()).await;
             match read {
                 Ok(f) => match map_received(&f) {
                     Some(Ok(frame)) => return Ok(frame),
@@ -493,7 +493,9 @@ async fn run_passes<N: SansIo + ReceiveFilters, S: Shared<N>, W: Wake>(
         timer.arm_lazily(deadline, now)?;
         let ready = tokio::select! {
             biased;
-            r = bus.socket.readable() => Some(r?),
+            // ERROR too: an interface going down wakes the socket with EPOLLERR alone (its `ENETDOWN`),
+            // which a wait for readability never sees; the next receive then returns it.
+            r = bus.socket.ready(Interest::READABLE | Interest::ERROR) => Some(r?),
             r = timer.fired() => {
                 r?;
                 None
