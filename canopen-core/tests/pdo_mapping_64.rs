@@ -4,10 +4,13 @@
 //! order). Run with `cargo test -p canopen-core --features pdo-mapping-64`.
 
 use canopen_core::node::Node;
-use canopen_core::od::{AbortCode, Access, DataType, ObjectDictionary, PdoMapping, SubInfo};
+use canopen_core::od::{
+    AbortCode, Access, DataType, EntryDesc, ObjectDesc, ObjectDictionary, OdDescribe, PdoMapping, SubInfo,
+};
 use canopen_core::pdo::{mapping::MAX_ENTRIES, PdoDefault};
 use canopen_core::profile::eds::{write_eds, EdsInfo};
 use canopen_core::profile::{CommProfile, NodeConfig};
+use canopen_core::storage::{NoStorage, Storage, StorageError};
 use canopen_core::{CanFrame, Instant, NmtState, NodeId, Sizes};
 
 /// 2000h sub 01h–40h: 64 BOOLEANs (bit `i - 1` of `bits`), 2001h: a UNSIGNED8; mappable both ways.
@@ -46,25 +49,66 @@ impl ObjectDictionary for Flags {
     }
 }
 
-type N = Node<Flags>;
+/// Nothing to store of the application: the test stores the communication parameters (1010h sub 02h).
+impl OdDescribe for Flags {
+    fn object_count(&self) -> usize {
+        0
+    }
+    fn object(&self, _: usize) -> Option<ObjectDesc> {
+        None
+    }
+    fn entry(&self, _: u16, _: u8) -> Option<EntryDesc> {
+        None
+    }
+}
+
+/// Two RAM slots of 8 KiB (the communication record with 64-entry mappings is over 4 KiB: every entry
+/// of every mapping is stored, 8 bytes each).
+struct Ram(Vec<Vec<u8>>);
+
+impl Storage for Ram {
+    fn capacity(&self) -> usize {
+        8192
+    }
+    fn erase(&mut self, slot: u8) -> Result<(), StorageError> {
+        self.0.get_mut(usize::from(slot)).ok_or(StorageError::Io)?.fill(0xFF);
+        Ok(())
+    }
+    fn write(&mut self, slot: u8, offset: usize, data: &[u8]) -> Result<(), StorageError> {
+        let s = self.0.get_mut(usize::from(slot)).ok_or(StorageError::Io)?;
+        s.get_mut(offset..offset + data.len()).ok_or(StorageError::TooLarge)?.copy_from_slice(data);
+        Ok(())
+    }
+    fn read(&mut self, slot: u8, offset: usize, buf: &mut [u8]) -> Result<(), StorageError> {
+        let s = self.0.get(usize::from(slot)).ok_or(StorageError::Io)?;
+        buf.copy_from_slice(s.get(offset..offset + buf.len()).ok_or(StorageError::TooLarge)?);
+        Ok(())
+    }
+}
+
+type N<S = NoStorage> = Node<Flags, Sizes, S>;
+
+const CFG: NodeConfig = NodeConfig { rpdo: &[PdoDefault::EVENT], tpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT };
 
 /// Node 5 with RPDO1 and TPDO1 event-driven (FEh), booted, queues drained.
 fn booted() -> N {
-    let cfg = NodeConfig { rpdo: &[PdoDefault::EVENT], tpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT };
-    let mut node = Node::new(NodeId::new(5).unwrap(), cfg, Flags::default());
+    boot(Node::new(NodeId::new(5).unwrap(), CFG, Flags::default()))
+}
+
+fn boot<S: Storage>(mut node: N<S>) -> N<S> {
     node.handle_timeout(Instant::ZERO);
     drain(&mut node);
     node
 }
 
-fn drain(node: &mut N) -> Vec<CanFrame> {
+fn drain<S: Storage>(node: &mut N<S>) -> Vec<CanFrame> {
     while node.poll_event().is_some() {}
     core::iter::from_fn(|| node.poll_transmit()).collect()
 }
 
 /// An expedited download to node 5: the SDO response's command byte and its last four bytes (the abort
 /// code of an abort, zeros for a confirmation).
-fn download(node: &mut N, index: u16, sub: u8, value: u32, len: usize) -> (u8, u32) {
+fn download<S: Storage>(node: &mut N<S>, index: u16, sub: u8, value: u32, len: usize) -> (u8, u32) {
     let cmd = 0x23 | ((4 - len as u8) << 2);
     let [i0, i1] = index.to_le_bytes();
     let [v0, v1, v2, v3] = value.to_le_bytes();
@@ -83,7 +127,7 @@ fn aborted(code: u32) -> (u8, u32) {
 
 /// PDO-35 with 64 entries: the PDO made not valid, the mapping disabled, `entries` written to sub 01h–40h,
 /// and the count set; returns the answer to the count.
-fn remap(node: &mut N, comm: u16, map: u16, cob_id: u32, entries: &[u32]) -> (u8, u32) {
+fn remap<S: Storage>(node: &mut N<S>, comm: u16, map: u16, cob_id: u32, entries: &[u32]) -> (u8, u32) {
     assert_eq!(download(node, comm, 1, cob_id | 0x8000_0000, 4), OK);
     assert_eq!(download(node, map, 0, 0, 1), OK);
     for (i, &e) in entries.iter().enumerate() {
@@ -145,6 +189,29 @@ fn mapping_limits_at_64_entries_pdo_37() {
     entries[0] = 0x2000_0101;
     assert_eq!(download(&mut node, 0x1A00, 1, entries[0], 4), OK);
     assert_eq!(download(&mut node, 0x1A00, 0, 0x40, 1), OK);
+    // PDO-35: entries only while sub 00h = 0, the mapping only while the PDO is not valid (0601 0000h).
+    assert_eq!(download(&mut node, 0x1A00, 0x40, 0x2000_4001, 4), aborted(0x0601_0000));
+    assert_eq!(download(&mut node, 0x1800, 1, 0x4000_0185, 4), OK);
+    assert_eq!(download(&mut node, 0x1A00, 0, 0, 1), aborted(0x0601_0000));
+}
+
+/// STORE-04 and PDO-30: a 64-entry RPDO mapping saved with 1010h sub 02h ("save") comes back after a reset
+/// communication (NMT 82h), resolved again: the RPDO applies the frame 00 00 00 00 00 00 00 C0 (objects 63
+/// and 64).
+#[test]
+fn a_stored_64_entry_mapping_survives_reset_communication() {
+    let ram = Ram(vec![vec![0xFF; 8192]; 2]);
+    let mut node = boot(Node::with_storage(NodeId::new(5).unwrap(), CFG, Flags::default(), ram));
+    assert_eq!(remap(&mut node, 0x1400, 0x1600, 0x205, &one_bit_entries()), OK);
+    assert_eq!(download(&mut node, 0x1400, 1, 0x205, 4), OK);
+    assert_eq!(download(&mut node, 0x1010, 2, u32::from_le_bytes(*b"save"), 4), OK);
+    node.handle_frame(Instant::from_millis(2), &CanFrame::new(0x000, &[0x82, 0x05]).unwrap());
+    drain(&mut node);
+    assert_eq!(node.params().rpdo_map[0].active(), one_bit_entries());
+    node.enter_state(NmtState::Operational);
+    drain(&mut node);
+    node.handle_frame(Instant::from_millis(3), &CanFrame::new(0x205, &[0, 0, 0, 0, 0, 0, 0, 0xC0]).unwrap());
+    assert_eq!(node.app_mut().bits, 3 << 62);
 }
 
 /// PDO-30: the EDS lists the mapping records with sub 00h–40h (SubNumber 41h) and the highest sub-index.
