@@ -173,7 +173,7 @@ fn rpdo_of_64_one_bit_entries_with_a_dummy() {
 
 /// PDO-30/37 and OD-16 at the 64-entry limit: sub 41h does not exist (0609 0011h), a count of 41h is
 /// refused (0604 0042h), so are 64 entries of more than 64 bits (an 8-bit one and 63 one-bit ones: 71 bits);
-/// each refused write leaves the mapping disabled.
+/// a bad entry at sub 40h gets its PDO-36 code; each refused write leaves the mapping as it was.
 #[test]
 fn mapping_limits_at_64_entries_pdo_37() {
     let mut node = booted();
@@ -184,6 +184,14 @@ fn mapping_limits_at_64_entries_pdo_37() {
     entries[0] = 0x2001_0008;
     assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x185, &entries), aborted(0x0604_0042));
     assert_eq!(download(&mut node, 0x1A00, 0, 0x41, 1), aborted(0x0604_0042));
+    assert_eq!(download(&mut node, 0x1A00, 0, 0xFE, 1), aborted(0x0604_0042)); // SAM-MPDO: no MPDO here
+                                                                               // PDO-34/36 at sub 40h: a missing object, a missing sub-index, 65 bits, a dummy in a TPDO.
+    assert_eq!(download(&mut node, 0x1A00, 0x40, 0x5000_0001, 4), aborted(0x0602_0000));
+    assert_eq!(download(&mut node, 0x1A00, 0x40, 0x2000_4101, 4), aborted(0x0609_0011));
+    assert_eq!(download(&mut node, 0x1A00, 0x40, 0x2000_0141, 4), aborted(0x0604_0041));
+    assert_eq!(download(&mut node, 0x1A00, 0x40, 0x0001_0001, 4), aborted(0x0604_0041));
+    node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x605, &[0x40, 0x00, 0x1A, 0x40, 0, 0, 0, 0]).unwrap());
+    assert_eq!(drain(&mut node).last().unwrap().data(), &[0x43, 0x00, 0x1A, 0x40, 0x01, 0x40, 0x00, 0x20]);
     node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x605, &[0x40, 0x00, 0x1A, 0, 0, 0, 0, 0]).unwrap());
     assert_eq!(drain(&mut node).last().unwrap().data(), &[0x4F, 0x00, 0x1A, 0, 0, 0, 0, 0]); // still 0
     entries[0] = 0x2000_0101;
