@@ -147,7 +147,7 @@ fn one_bit_entries() -> Vec<u32> {
 fn tpdo_of_64_one_bit_entries() {
     assert_eq!(MAX_ENTRIES, 64);
     let mut node = booted();
-    assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x185, &one_bit_entries()), OK);
+    assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x4000_0185, &one_bit_entries()), OK);
     assert_eq!(download(&mut node, 0x1800, 1, 0x4000_0185, 4), OK);
     node.enter_state(NmtState::Operational);
     assert_eq!(drain(&mut node), [CanFrame::new(0x185, &[0; 8]).unwrap()]); // PDO-28: sent on entering
@@ -177,12 +177,12 @@ fn rpdo_of_64_one_bit_entries_with_a_dummy() {
 #[test]
 fn mapping_limits_at_64_entries_pdo_37() {
     let mut node = booted();
-    assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x185, &one_bit_entries()[..1]), OK);
+    assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x4000_0185, &one_bit_entries()[..1]), OK);
     assert_eq!(download(&mut node, 0x1A00, 0, 0, 1), OK);
     assert_eq!(download(&mut node, 0x1A00, 0x41, 0x2000_0101, 4), aborted(0x0609_0011));
     let mut entries = one_bit_entries();
     entries[0] = 0x2001_0008;
-    assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x185, &entries), aborted(0x0604_0042));
+    assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x4000_0185, &entries), aborted(0x0604_0042));
     assert_eq!(download(&mut node, 0x1A00, 0, 0x41, 1), aborted(0x0604_0042));
     assert_eq!(download(&mut node, 0x1A00, 0, 0xFE, 1), aborted(0x0604_0042)); // SAM-MPDO: no MPDO here
                                                                                // PDO-34/36 at sub 40h: a missing object, a missing sub-index, 65 bits, a dummy in a TPDO.
