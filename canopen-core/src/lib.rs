@@ -28,6 +28,9 @@
 //! [`pdo::mapping`]), `sync-producer` (the SYNC producer; without it a SYNC consumer only, see [`sync`]),
 //! and `pdo-rtr` (TPDOs answering remote requests, types FCh/FDh; see [`pdo`]).
 //!
+//! A capacity, off by default: `pdo-mapping-64` (64 mapping entries per PDO instead of 8, PDO-30; it costs
+//! about 670 B of RAM in every PDO whether the device uses it or not, see [`pdo::mapping::MAX_ENTRIES`]).
+//!
 //! Optional features: `defmt` (derives `defmt::Format` on the public types; NMT state changes, SDO aborts,
 //! driver errors and frames are logged through defmt) and `log` (the same trace points through the `log`
 //! facade, for std users). Both are off by default; the trace points sit in the [`driver`].

@@ -22,10 +22,14 @@ use crate::wire::pdo_mapping::MappingEntry;
 /// without it every entry is a whole object of whole bytes (see the module docs).
 const BIT_MAPPING: bool = cfg!(feature = "pdo-bit-mapping");
 
-/// Mapping entries per PDO that this stack stores (sub 01h–08h; CANopenNode uses the same limit). 8 entries
-/// already fill 64 bits with byte-sized objects; bit-sized mappings with more than 8 objects are not
-/// supported (writing sub 09h and up → 0609 0011h, a count above 8 → 0604 0042h).
-pub const MAX_ENTRIES: usize = 8;
+/// Mapping entries per PDO that this stack stores: 8 (sub 01h–08h; CANopenNode's default limit), or 64
+/// (sub 01h–40h, all that CiA 301 allows, PDO-30) with the Cargo feature `pdo-mapping-64`. 8 entries
+/// already fill 64 bits with byte-sized objects; only bit-sized entries need more. Writing a sub-index
+/// above it → 0609 0011h, a count above it → 0604 0042h (PDO-37).
+///
+/// The feature is off by default: every PDO keeps this many raw entries (1600h+k / 1A00h+k, 4 bytes each)
+/// and this many resolved ones (8 bytes each), 8 → 64 costs about 670 B of RAM per PDO.
+pub const MAX_ENTRIES: usize = if cfg!(feature = "pdo-mapping-64") { 64 } else { 8 };
 
 /// One resolved entry (8 bytes): the object's handle and the mapped length in bits. A dummy entry (RPDO only,
 /// PDO-34) has a handle of size 0: its bits are skipped, nothing is read or written.

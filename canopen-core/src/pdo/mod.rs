@@ -8,7 +8,8 @@
 //! - [`rpdo::Rpdo`] / [`tpdo::Tpdo`] are the run-time state machines the `Node` drives;
 //! - [`mapping`] resolves and packs mappings.
 //!
-//! Not implemented: MPDO (MPDO-01..05, optional), more than [`mapping::MAX_ENTRIES`] entries per mapping.
+//! Not implemented: MPDO (MPDO-01..05, optional). A mapping holds at most [`mapping::MAX_ENTRIES`] entries:
+//! 8, or the 64 of CiA 301 (PDO-30) with the Cargo feature `pdo-mapping-64` (off by default: RAM, see there).
 //!
 //! Remote requests of TPDOs (PDO-29: "the PDO read service is optional"; PDO-21/22: the RTR-only types FCh
 //! and FDh) are the Cargo feature `pdo-rtr` (on by default). Without it no TPDO answers a remote frame: a
@@ -65,12 +66,19 @@ impl PdoComm {
 /// let m = PdoMapParams::from_slice(&[0x6040_0010, 0x607A_0020]);
 /// assert_eq!(m.active(), &[0x6040_0010, 0x607A_0020]);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PdoMapParams {
     /// Sub 00h: number of valid entries.
     pub count: u8,
-    /// Sub 01h..08h.
+    /// Sub 01h..08h (01h..40h with the feature `pdo-mapping-64`).
     pub entries: [u32; mapping::MAX_ENTRIES],
+}
+
+/// No entries (the derive stops at arrays of 32).
+impl Default for PdoMapParams {
+    fn default() -> Self {
+        Self::from_slice(&[])
+    }
 }
 
 impl PdoMapParams {

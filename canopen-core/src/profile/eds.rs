@@ -200,7 +200,9 @@ mod tests {
         write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
         assert!(s.contains("NrOfRXPDO=3\nNrOfTXPDO=2\n"));
         assert!(s.contains("[1400sub1]\nParameterName=COB-ID used by RPDO\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=$NODEID+0x80000200\n"));
-        assert!(s.contains("[1A01]\nParameterName=TPDO mapping parameter\nObjectType=0x9\nSubNumber=0x9\n"));
+        let subs = crate::pdo::mapping::MAX_ENTRIES + 1; // 9, or 41h with `pdo-mapping-64` (PDO-30)
+        let want = std::format!("[1A01]\nParameterName=TPDO mapping parameter\nObjectType=0x9\nSubNumber={subs:#X}\n");
+        assert!(s.contains(&want));
         assert!(s.contains("[1801sub6]\nParameterName=SYNC start value\n"));
         assert!(!s.contains("[1400sub4]") && !s.contains("[1400sub6]"));
     }

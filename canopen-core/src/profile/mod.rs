@@ -329,7 +329,8 @@ mod tests {
     use super::*;
 
     /// The power-on mappings (PDO-30..33) are the defaults' entries, as `PdoMapParams::from_slice` reads them:
-    /// none, one, eight, and a ninth entry beyond [`MAX_ENTRIES`] left out; PDOs past the defaults are empty.
+    /// none, one, eight, and a ninth entry kept only up to [`MAX_ENTRIES`] (left out unless the feature
+    /// `pdo-mapping-64` is on); PDOs past the defaults are empty.
     #[test]
     fn for_node_fills_the_default_mappings() {
         const NINE: [u32; 9] = [
@@ -357,7 +358,8 @@ mod tests {
             assert_eq!(*m, PdoMapParams::from_slice(cfg.rpdo_default(k).mapping), "RPDO {k}");
         }
         assert_eq!((p.rpdo_map[2].count, p.rpdo_map[3].count), (8, 0));
-        assert_eq!(p.tpdo_map[0], PdoMapParams::from_slice(&EIGHT));
+        assert_eq!(p.tpdo_map[0], PdoMapParams::from_slice(&NINE[..MAX_ENTRIES.min(9)]));
+        assert_eq!(p.tpdo_map[0].count, if MAX_ENTRIES == 8 { 8 } else { 9 });
         assert_eq!(p.tpdo_map[1], PdoMapParams::from_slice(&[]));
         assert_eq!(p.rpdo_comm[1], cfg.rpdo_default(1).params(1, 0x200, 5).0);
     }
