@@ -8,11 +8,12 @@
 //! what is handled here: signed limits and defaults in two's complement hex (`LowLimit=0x80000000` of an
 //! INTEGER32 is -2147483648, as python canopen reads it), ARRAYs whose entries differ in access, default or
 //! limits (written as a record, one field per entry: every entry is kept, the derived EDS says RECORD),
-//! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults.
+//! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults, limits at the type's bounds (none), an
+//! ARRAY or RECORD with sub-index 0 only (a VAR).
 //!
 //! Not carried over, each listed by [`generate`] (`Generated::left_out`) and named by a comment in the
 //! module where the field would be: data types the derive does not know (0040h and up, the object or entry
-//! is left out), an ARRAY without entries, a RECORD with nothing beyond sub-index 0, PDO mapping of strings
+//! is left out), an ARRAY without any entry, PDO mapping of strings
 //! and DOMAINs (only fixed-size types of at most 8 bytes map in a derived dictionary), DOMAIN defaults and
 //! DOMAIN access other than rw, OCTET_STRING defaults whose bytes are not UTF-8 (a derive default is a
 //! string literal), defaults relative to `$NODEID` and limits that are no number of the type, limits on
@@ -20,12 +21,13 @@
 //! heartbeat time, PDO defaults): SDO parameters, error behaviour and the rest take the node's
 //! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–30 set
 //! (RTR not allowed, 29-bit) or relative to `$NODEID` but not the pre-defined connection set, mapping
-//! entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters. Sub-index 0 of an ARRAY or RECORD is const in
+//! entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters (but those at
+//! the type's bounds, which limit nothing). Sub-index 0 of an ARRAY or RECORD is const in
 //! the derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
 
 use std::fmt::Write as _;
 
-use crate::eds::{eval_default, eval_typed, Access, Eds, Entry, Object, ObjectKind};
+use crate::eds::{eval_default, eval_typed, no_limit, Access, Eds, Entry, Object, ObjectKind};
 
 /// What the generated module does not carry of an EDS, so that a round trip knows what to skip and a
 /// reader of the module sees it: each one is also a comment in the module, where the field would be.
@@ -284,7 +286,7 @@ fn var(g: &mut Generated, o: &Object, e: &Entry) {
 fn array(g: &mut Generated, o: &Object) {
     let subs: Vec<&Entry> = o.entries.values().filter(|e| e.sub > 0).collect();
     let Some(first) = subs.first() else {
-        return g.leave_out_object(o, "an array without entries");
+        return only_sub_zero(g, o);
     };
     let contiguous = subs.iter().enumerate().all(|(i, e)| usize::from(e.sub) == i + 1);
     let alike = subs.iter().all(|e| {
@@ -325,7 +327,23 @@ fn record(g: &mut Generated, o: &Object) {
         let _ = writeln!(g.rust, "    pub {}: {ty},", ident(&e.name, o.index, Some(e.sub)));
     }
     if first {
-        g.leave_out_object(o, "a record without entries beyond sub-index 0");
+        only_sub_zero(g, o);
+    }
+}
+
+/// An ARRAY or RECORD with no entry beyond sub-index 0 (sample.eds's 3010h ReadRawValue, a REAL32 at
+/// sub-index 0): its one entry is written as a VAR, which holds the same entry at the same index and
+/// sub-index (the derived EDS says VAR). One without any entry (sample.eds's 3003h: no `CompactSubObj`, no
+/// sub sections) has nothing a dictionary could hold, not even the entry count CiA 301 gives every ARRAY.
+fn only_sub_zero(g: &mut Generated, o: &Object) {
+    match o.entries.get(&0) {
+        Some(e) => {
+            let kind = if o.kind == ObjectKind::Array { "ARRAY" } else { "RECORD" };
+            let _ =
+                writeln!(g.rust, "    // {:04X}h {}: a {kind} with sub-index 0 only, held as a VAR.", o.index, o.name);
+            var(g, o, e);
+        }
+        None => g.leave_out_object(o, "no entries, not even sub-index 0: nothing to hold"),
     }
 }
 
@@ -462,9 +480,11 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
         let mut fields = Vec::new();
         let subs = [(comm + k, [1u8, 2, 3, 5, 6].as_slice()), (map + k, [0u8, 1, 2, 3, 4, 5, 6, 7, 8].as_slice())];
         for (index, subs) in subs {
-            for e in
-                subs.iter().filter_map(|&sub| eds.entry(index, sub)).filter(|e| e.low.is_some() || e.high.is_some())
-            {
+            // Limits at the type's bounds (sample.eds's transmission types 0..255) limit nothing.
+            let limited = |e: &&Entry| {
+                !no_limit(e.low.as_deref(), e.data_type, true) || !no_limit(e.high.as_deref(), e.data_type, false)
+            };
+            for e in subs.iter().filter_map(|&sub| eds.entry(index, sub)).filter(limited) {
                 g.leave_out(e, None, Dropped::Limits, "the communication profile's parameters have none".into());
             }
         }
@@ -547,8 +567,9 @@ mod tests {
     fn pdo_defaults_go_into_the_node_configuration() {
         let eds = Eds::parse(
             "[1400]\nObjectType=0x9\n[1400sub1]\nDataType=7\nDefaultValue=$NODEID+0x200\n\
-             [1400sub2]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=255\n\
+             [1400sub2]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=240\n\
              [1401]\nObjectType=0x9\n[1401sub1]\nDataType=7\nDefaultValue=0x80000321\n\
+             [1401sub2]\nDataType=5\nDefaultValue=254\nLowLimit=0x0\nHighLimit=255\n\
              [1600]\nObjectType=0x9\n[1600sub0]\nDataType=5\nDefaultValue=1\n\
              [1600sub1]\nDataType=7\nDefaultValue=0x20000108\n[1600sub2]\nDataType=7\nDefaultValue=0x20010108\n\
              [1800]\nObjectType=0x9\n[1800sub1]\nDataType=7\nDefaultValue=$NODEID+0x40000180\n\
@@ -561,7 +582,9 @@ mod tests {
             "PdoDefault { valid: true, can_id: None, transmission_type: 1, mapping: &[0x20000108], ..PdoDefault::EVENT },"
         ), "{}", g.rust);
         assert!(
-            g.rust.contains("PdoDefault { valid: false, can_id: Some(0x321), ..PdoDefault::EVENT },"),
+            g.rust.contains(
+                "PdoDefault { valid: false, can_id: Some(0x321), transmission_type: 254, ..PdoDefault::EVENT },"
+            ),
             "{}",
             g.rust
         );
@@ -574,7 +597,7 @@ mod tests {
         assert_eq!(
             left,
             [
-                (0x1400, Some(2), Dropped::Limits),
+                (0x1400, Some(2), Dropped::Limits), // 0..240; 1401h:02's 0..255 is UNSIGNED8's range: none
                 (0x1600, Some(2), Dropped::Default), // beyond the count of 1
                 (0x1800, Some(1), Dropped::Default), // bit 30
             ]
@@ -583,7 +606,8 @@ mod tests {
 
     /// What python canopen's real files (tests/eds_real.rs) showed: signed limits in two's complement hex,
     /// an ARRAY whose entries differ in access and default, strings marked PDO-mappable, an OCTET_STRING
-    /// default in hex pairs, a UNICODE_STRING default, and a RECORD with nothing beyond sub-index 0.
+    /// default in hex pairs, a UNICODE_STRING default, a RECORD with nothing beyond sub-index 0 (a VAR) and
+    /// an ARRAY without entries (left out).
     const REAL: &str = "\
 [3030]
 ParameterName=Negative
@@ -653,6 +677,12 @@ ObjectType=0x9
 ParameterName=Temperature
 DataType=0x0008
 AccessType=ro
+
+[3011]
+ParameterName=Valve % open
+ObjectType=0x8
+DataType=0x0008
+AccessType=rw
 ";
 
     #[test]
@@ -670,9 +700,11 @@ AccessType=ro
         let left: Vec<_> = g.left_out.iter().map(|l| (l.index, l.sub, l.dropped)).collect();
         assert_eq!(
             left,
-            [(0x2009, None, Dropped::PdoMapping), (0x200C, None, Dropped::Default), (0x3010, None, Dropped::Entry)]
+            [(0x2009, None, Dropped::PdoMapping), (0x200C, None, Dropped::Default), (0x3011, None, Dropped::Entry)]
         );
         has("// 200Ch Raw octets: default ABCD not carried (bytes that are not UTF-8");
-        has("// 3010h ReadRawValue: a record without entries beyond sub-index 0; left out.");
+        has("// 3010h ReadRawValue: a RECORD with sub-index 0 only, held as a VAR.\n    \
+             #[od(index = 0x3010, name = \"ReadRawValue\", access = \"ro\")]\n    pub readrawvalue_3010: f32,");
+        has("// 3011h Valve % open: no entries, not even sub-index 0: nothing to hold; left out.");
     }
 }

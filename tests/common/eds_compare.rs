@@ -5,7 +5,7 @@
 //! exactly what `generate` listed as left out.
 #![allow(dead_code)]
 
-use canopen_master::eds::{eval_typed, Access, Dropped, Eds, Entry, LeftOut};
+use canopen_master::eds::{eval_typed, no_limit, Access, Dropped, Eds, Entry, LeftOut};
 
 /// Two values of a data type are the same: equal text, or equal numbers however written (`0x0` and `0`,
 /// `0xFFFFFFFF` and `-1` for an INTEGER32).
@@ -37,7 +37,16 @@ fn differences(a: &Entry, b: &Entry) -> Vec<Dropped> {
     if !same(&a.default, &b.default, a.data_type) {
         d.push(Dropped::Default);
     }
-    if !same(&a.low, &b.low, a.data_type) || !same(&a.high, &b.high, a.data_type) {
+    // A limit at its type's bound limits nothing: the same as none (sample.eds's transmission types 0..255).
+    let limit = |e: &Entry, low: bool| {
+        let v = if low { &e.low } else { &e.high };
+        if no_limit(v.as_deref(), e.data_type, low) {
+            None
+        } else {
+            v.clone()
+        }
+    };
+    if !same(&limit(a, true), &limit(b, true), a.data_type) || !same(&limit(a, false), &limit(b, false), a.data_type) {
         d.push(Dropped::Limits);
     }
     d
