@@ -9,7 +9,8 @@
 //! INTEGER32 is -2147483648, as python canopen reads it), ARRAYs whose entries differ in access, default or
 //! limits (written as a record, one field per entry: every entry is kept, the derived EDS says RECORD),
 //! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults, limits at the type's bounds (none), an
-//! ARRAY or RECORD with sub-index 0 only (a VAR).
+//! ARRAY or RECORD with sub-index 0 only (a VAR), a TPDO COB-ID's bit 30 (`rtr_allowed: false`), a mapping
+//! count's limits 0..n, n < 8 (`max_mapped`).
 //!
 //! Not carried over, each listed by [`generate`] (`Generated::left_out`) and named by a comment in the
 //! module where the field would be: data types the derive does not know (0040h and up, the object or entry
@@ -19,10 +20,10 @@
 //! string literal), defaults relative to `$NODEID` and limits that are no number of the type, limits on
 //! anything but numbers. Of 1000h–1FFFh only what `NodeConfig` holds (device type, identity, names, producer
 //! heartbeat time, PDO defaults): SDO parameters, error behaviour and the rest take the node's
-//! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–30 set
-//! (RTR not allowed, 29-bit) or relative to `$NODEID` but not the pre-defined connection set, mapping
-//! entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters (but those at
-//! the type's bounds, which limit nothing). Sub-index 0 of an ARRAY or RECORD is const in
+//! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–29
+//! set (29-bit) or an RPDO's bit 30 (reserved) or relative to `$NODEID` but not the pre-defined connection
+//! set, mapping entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters
+//! (but a mapping count's 0..n and those at the type's bounds, which limit nothing). Sub-index 0 of an ARRAY or RECORD is const in
 //! the derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
 
 use std::fmt::Write as _;
@@ -478,6 +479,9 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
             continue;
         }
         let mut fields = Vec::new();
+        let mut max_mapped = None;
+        let max = canopen_core::pdo::mapping::MAX_ENTRIES;
+        let count = value(map + k, 0).and_then(|(_, c)| usize::try_from(c).ok()).filter(|&c| c <= max);
         let subs = [(comm + k, [1u8, 2, 3, 5, 6].as_slice()), (map + k, [0u8, 1, 2, 3, 4, 5, 6, 7, 8].as_slice())];
         for (index, subs) in subs {
             // Limits at the type's bounds (sample.eds's transmission types 0..255) limit nothing.
@@ -485,7 +489,21 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
                 !no_limit(e.low.as_deref(), e.data_type, true) || !no_limit(e.high.as_deref(), e.data_type, false)
             };
             for e in subs.iter().filter_map(|&sub| eds.entry(index, sub)).filter(limited) {
-                g.leave_out(e, None, Dropped::Limits, "the communication profile's parameters have none".into());
+                // The mapping count's 0..n (sample.eds: 0..4) is `max_mapped` when n is below MAX_ENTRIES
+                // (what every derived node takes, for which the core's EDS states no limit) and the count.
+                let high = e.high.as_deref().and_then(|h| eval_default(h, 0)).and_then(|h| usize::try_from(h).ok());
+                let count_limits = index == map + k && e.sub == 0 && no_limit(e.low.as_deref(), e.data_type, true);
+                match high.filter(|_| count_limits) {
+                    Some(h) if h < max && count.unwrap_or(0) <= h => max_mapped = Some(h),
+                    _ => g.leave_out(
+                        e,
+                        None,
+                        Dropped::Limits,
+                        "of the communication profile's parameters, only a mapping count's 0..n (n < 8, n >= the \
+                         count) is carried"
+                            .into(),
+                    ),
+                }
             }
         }
         if let Some((e, v)) = value(comm + k, 1) {
@@ -493,13 +511,19 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
             let relative = e.default.as_deref().is_some_and(|d| d.to_ascii_uppercase().contains("$NODEID"));
             let id = raw & 0x7FF;
             let can_id = match (relative, k < 4 && id == predefined_pdo_id(tpdo, k)) {
-                _ if raw & 0x7FFF_F800 != 0 => Err("bits 11-30 of the COB-ID (RTR, 29-bit frame) set"),
+                _ if raw & 0x3FFF_F800 != 0 => Err("bits 11-29 of the COB-ID (29-bit frame) set"),
+                _ if !tpdo && raw & 0x4000_0000 != 0 => Err("bit 30 of an RPDO's COB-ID is reserved (PDO-07)"),
                 (true, true) => Ok("None".to_owned()),
                 (true, false) => Err("a node-ID-relative COB-ID other than the pre-defined connection set"),
                 (false, _) => Ok(format!("Some(0x{id:03X})")),
             };
             match can_id {
-                Ok(c) => fields.push(format!("valid: {}, can_id: {c}", raw & 0x8000_0000 == 0)),
+                Ok(c) => {
+                    fields.push(format!("valid: {}, can_id: {c}", raw & 0x8000_0000 == 0));
+                    if raw & 0x4000_0000 != 0 {
+                        fields.push("rtr_allowed: false".into()); // PDO-15: no remote request
+                    }
+                }
                 Err(why) => g.leave_out(e, None, Dropped::Default, why.into()),
             }
         }
@@ -513,10 +537,8 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
                 fields.push(format!("{name}: {v}"));
             }
         }
-        let max = canopen_core::pdo::mapping::MAX_ENTRIES;
         let listed: Vec<(u8, &Entry, i128)> =
             (1..=max as u8).filter_map(|sub| value(map + k, sub).map(|(e, v)| (sub, e, v))).collect();
-        let count = value(map + k, 0).and_then(|(_, c)| usize::try_from(c).ok()).filter(|&c| c <= max);
         let usable = count.filter(|&c| (1..=c).all(|sub| listed.iter().any(|&(s, _, _)| usize::from(s) == sub)));
         match usable {
             Some(count) => {
@@ -541,6 +563,7 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
                 }
             }
         }
+        fields.extend(max_mapped.map(|h| format!("max_mapped: {h}")));
         items.push(if fields.is_empty() {
             "PdoDefault::EVENT".to_owned()
         } else {
@@ -560,8 +583,9 @@ mod tests {
     use super::*;
 
     /// PDO defaults (1400h-1BFFh) into the node configuration: a pre-defined COB-ID as `None`, a fixed one
-    /// as itself, an invalid one as `valid: false`, the mapping up to its count; what a `PdoDefault` cannot
-    /// hold (bit 30 of a COB-ID, an entry beyond the count, limits) is left out and listed. The round trip
+    /// as itself, an invalid one as `valid: false`, a TPDO's bit 30 as `rtr_allowed: false`, the mapping up
+    /// to its count, a count's limits 0..4 as `max_mapped`; what a `PdoDefault` cannot hold (bit 30 of an
+    /// RPDO, an entry beyond the count, other limits) is left out and listed. The round trip
     /// of these through the core's EDS writer runs in tests/eds_to_rust.rs and tests/eds_real.rs.
     #[test]
     fn pdo_defaults_go_into_the_node_configuration() {
@@ -570,26 +594,36 @@ mod tests {
              [1400sub2]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=240\n\
              [1401]\nObjectType=0x9\n[1401sub1]\nDataType=7\nDefaultValue=0x80000321\n\
              [1401sub2]\nDataType=5\nDefaultValue=254\nLowLimit=0x0\nHighLimit=255\n\
-             [1600]\nObjectType=0x9\n[1600sub0]\nDataType=5\nDefaultValue=1\n\
+             [1402]\nObjectType=0x9\n[1402sub1]\nDataType=7\nDefaultValue=$NODEID+0x40000400\n\
+             [1600]\nObjectType=0x9\n[1600sub0]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=4\n\
              [1600sub1]\nDataType=7\nDefaultValue=0x20000108\n[1600sub2]\nDataType=7\nDefaultValue=0x20010108\n\
+             [1601]\nObjectType=0x9\n[1601sub0]\nDataType=5\nDefaultValue=0\nLowLimit=0\nHighLimit=8\n\
              [1800]\nObjectType=0x9\n[1800sub1]\nDataType=7\nDefaultValue=$NODEID+0x40000180\n\
              [1800sub5]\nDataType=6\nDefaultValue=100\n",
         )
         .unwrap();
         let g = generate(&eds, "pdo.eds");
         assert!(g.rust.contains("use canopen_core::pdo::PdoDefault;"));
-        assert!(g.rust.contains(
-            "PdoDefault { valid: true, can_id: None, transmission_type: 1, mapping: &[0x20000108], ..PdoDefault::EVENT },"
-        ), "{}", g.rust);
         assert!(
             g.rust.contains(
-                "PdoDefault { valid: false, can_id: Some(0x321), transmission_type: 254, ..PdoDefault::EVENT },"
+                "PdoDefault { valid: true, can_id: None, transmission_type: 1, mapping: &[0x20000108], max_mapped: 4, \
+             ..PdoDefault::EVENT },"
             ),
             "{}",
             g.rust
         );
         assert!(
-            g.rust.contains("tpdo: &[\n        PdoDefault { event_timer_ms: 100, ..PdoDefault::EVENT },"),
+            g.rust.contains(
+                "PdoDefault { valid: false, can_id: Some(0x321), transmission_type: 254, mapping: &[], ..PdoDefault::EVENT },"
+            ),
+            "{}",
+            g.rust
+        );
+        assert!(
+            g.rust.contains(
+                "tpdo: &[\n        PdoDefault { valid: true, can_id: None, rtr_allowed: false, event_timer_ms: 100, \
+                 ..PdoDefault::EVENT },"
+            ),
             "{}",
             g.rust
         );
@@ -599,7 +633,8 @@ mod tests {
             [
                 (0x1400, Some(2), Dropped::Limits), // 0..240; 1401h:02's 0..255 is UNSIGNED8's range: none
                 (0x1600, Some(2), Dropped::Default), // beyond the count of 1
-                (0x1800, Some(1), Dropped::Default), // bit 30
+                (0x1601, Some(0), Dropped::Limits), // 0..8: every derived node's, stated nowhere
+                (0x1402, Some(1), Dropped::Default), // bit 30 of an RPDO: reserved
             ]
         );
     }

@@ -106,6 +106,12 @@ pub struct PdoDefault {
     pub sync_start: u8,
     /// Default mapping entries (raw UNSIGNED32, at most [`mapping::MAX_ENTRIES`]).
     pub mapping: &'static [u32],
+    /// The most entries the mapping takes (sub-index 00h's `HighLimit`; an EDS's "0..4"): writing a larger
+    /// count is refused with 0609 0031h. [`mapping::MAX_ENTRIES`] (the default) states no limit of its own.
+    pub max_mapped: u8,
+    /// (TPDO) Whether a remote request is served: `false` sets COB-ID bit 30 (PDO-15, PDO-29). An RPDO's
+    /// bit 30 is reserved (PDO-07): leave it `true`.
+    pub rtr_allowed: bool,
 }
 
 impl PdoDefault {
@@ -118,6 +124,8 @@ impl PdoDefault {
         event_timer_ms: 0,
         sync_start: 0,
         mapping: &[],
+        max_mapped: mapping::MAX_ENTRIES as u8,
+        rtr_allowed: true,
     };
     /// Not valid, event-driven, pre-defined COB-ID, no mapping: a PDO without a configured default.
     pub const UNUSED: PdoDefault = PdoDefault { valid: false, ..Self::EVENT };
@@ -130,6 +138,8 @@ impl PdoDefault {
     /// assert_eq!(c.cob_id, 0x385); // COB-05: TPDO3 = 380h + node
     /// let (c, _) = PdoDefault::UNUSED.params(4, 0x200, 5);
     /// assert_eq!(c.cob_id, 0x8000_0000); // PDO-08: beyond 4, no pre-defined ID, invalid
+    /// let (c, _) = PdoDefault { rtr_allowed: false, ..PdoDefault::EVENT }.params(0, 0x180, 5);
+    /// assert_eq!(c.cob_id, 0x4000_0185); // PDO-15: bit 30, no RTR allowed
     /// ```
     pub const fn params(&self, k: usize, base: u16, node_id: u8) -> (PdoComm, PdoMapParams) {
         let id = match self.can_id {
@@ -138,7 +148,8 @@ impl PdoDefault {
             None => 0,
         };
         let valid = self.valid && id != 0;
-        let cob_id = if valid { id as u32 } else { CobIdEntry::BIT31 | id as u32 };
+        let rtr = if self.rtr_allowed { 0 } else { 1 << 30 };
+        let cob_id = rtr | if valid { id as u32 } else { CobIdEntry::BIT31 | id as u32 };
         let comm = PdoComm {
             cob_id,
             transmission_type: self.transmission_type,
