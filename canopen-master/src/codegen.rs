@@ -10,14 +10,13 @@
 //! limits (written as a record, one field per entry: every entry is kept, the derived EDS says RECORD),
 //! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults, limits at the type's bounds (none), an
 //! ARRAY or RECORD with sub-index 0 only (a VAR), a TPDO COB-ID's bit 30 (`rtr_allowed: false`), a mapping
-//! count's limits 0..n, n < 8 (`max_mapped`).
+//! count's limits 0..n, n < 8 (`max_mapped`), OCTET_STRING defaults that are no UTF-8 (a byte string).
 //!
 //! Not carried over, each listed by [`generate`] (`Generated::left_out`) and named by a comment in the
 //! module where the field would be: data types the derive does not know (0040h and up, the object or entry
 //! is left out), an ARRAY without any entry, PDO mapping of strings
 //! and DOMAINs (only fixed-size types of at most 8 bytes map in a derived dictionary), DOMAIN defaults and
-//! DOMAIN access other than rw, OCTET_STRING defaults whose bytes are not UTF-8 (a derive default is a
-//! string literal), defaults relative to `$NODEID` and limits that are no number of the type, limits on
+//! DOMAIN access other than rw, defaults relative to `$NODEID` and limits that are no number of the type, limits on
 //! anything but numbers. Of 1000h–1FFFh only what `NodeConfig` holds (device type, identity, names, producer
 //! heartbeat time, PDO defaults): SDO parameters, error behaviour and the rest take the node's
 //! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–29
@@ -194,8 +193,8 @@ fn pdo(entry: &Entry) -> Option<&'static str> {
     })
 }
 
-/// An OCTET_STRING default (hex pairs, CiA 306) as the text whose bytes the derive stores, when they are
-/// UTF-8 (the derive's `default` is a string literal).
+/// An OCTET_STRING default (hex pairs, CiA 306) as the derive's `default` literal: the text whose bytes
+/// they are when UTF-8 (`"ABCD"` for 41424344), else a byte string (`b"\xab\xcd"` for ABCD).
 fn octets(hex: &str) -> Result<String, &'static str> {
     let hex: String = hex.split_whitespace().collect();
     if hex.len() % 2 != 0 {
@@ -206,7 +205,10 @@ fn octets(hex: &str) -> Result<String, &'static str> {
         .map(|i| hex.get(i..i + 2).and_then(|b| u8::from_str_radix(b, 16).ok()))
         .collect::<Option<Vec<u8>>>()
         .ok_or("not hex pairs")?;
-    String::from_utf8(bytes).map_err(|_| "bytes that are not UTF-8, which a derive default cannot hold")
+    Ok(match String::from_utf8(bytes) {
+        Ok(text) => quote(&text),
+        Err(e) => format!("b\"{}\"", e.as_bytes().escape_ascii()),
+    })
 }
 
 /// The attributes besides index/sub/name of a value (access, pdo, limits, default); what cannot be
@@ -241,7 +243,7 @@ fn value_attrs(g: &mut Generated, e: &Entry, object: Option<&Object>, numeric: b
     let literal = match e.data_type {
         0x0001 => eval_default(d, 0).map(|v| (v != 0).to_string()).ok_or("not 0 or 1"),
         0x0009 | 0x000B => Ok(quote(d)),
-        0x000A => octets(d).map(|s| quote(&s)),
+        0x000A => octets(d),
         _ if numeric => number_literal(d, e).ok_or("not a number of the type, or relative to $NODEID"),
         _ => Err("a default of this type is not supported"),
     };
@@ -730,14 +732,10 @@ AccessType=rw
         has("#[od(index = 0x20C2, sub = 2, name = \"Max\", access = \"rw\", default = 85000)]");
         has("name = \"Text\", access = \"rw\", default = \"ABCD\")]");
         has("name = \"Octets\", access = \"rw\", default = \"ABCD\")]");
-        has("name = \"Raw octets\", access = \"rw\")]");
+        has("name = \"Raw octets\", access = \"rw\", default = b\"\\xab\\xcd\")]");
         has("name = \"Unicode\", access = \"rw\", default = \"abc\u{2713}\")]");
         let left: Vec<_> = g.left_out.iter().map(|l| (l.index, l.sub, l.dropped)).collect();
-        assert_eq!(
-            left,
-            [(0x2009, None, Dropped::PdoMapping), (0x200C, None, Dropped::Default), (0x3011, None, Dropped::Entry)]
-        );
-        has("// 200Ch Raw octets: default ABCD not carried (bytes that are not UTF-8");
+        assert_eq!(left, [(0x2009, None, Dropped::PdoMapping), (0x3011, None, Dropped::Entry)]);
         has("// 3010h ReadRawValue: a RECORD with sub-index 0 only, held as a VAR.\n    \
              #[od(index = 0x3010, name = \"ReadRawValue\", access = \"ro\")]\n    pub readrawvalue_3010: f32,");
         has("// 3011h Valve % open: no entries, not even sub-index 0: nothing to hold; left out.");

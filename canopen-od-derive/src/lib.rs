@@ -49,7 +49,8 @@
 //! - `name = "..."` (ParameterName; default: the field name), `record = "..."` (the record's name);
 //! - `access = "ro" | "wo" | "rw" | "rwr" | "rww" | "const"` (default `rw`; OD-08, OD-09);
 //! - `pdo = "no" | "tpdo" | "rpdo" | "both"` (default `no`; only fixed-size types ≤ 8 bytes);
-//! - `min = …`, `max = …`, `default = …` (literals; checked against each other and the type's range);
+//! - `min = …`, `max = …`, `default = …` (literals; checked against each other and the type's range; an
+//!   `OctetString<N>` default is a string literal, its UTF-8 bytes, or a byte string `b"\xAB\xCD"`);
 //! - `domain` (the field implements `Domain` and is streamed);
 //! - `check = "method"`: `fn(&self, sub: u8, new: &T) -> Result<(), AbortCode>` runs after the length and
 //!   limit checks and before anything changes: return an abort code to refuse the value;
@@ -77,7 +78,8 @@
 //!
 //! Compile errors (pinned by the trybuild tests in `tests/ui/`): duplicate index/sub-index, a type that is
 //! not PDO-mappable marked mappable, an index in 0000h–1FFFh, a default outside its limits (or min > max,
-//! or a limit outside the type), an unsupported field type, a malformed attribute.
+//! or a limit outside the type), a text default given as a byte string that is not UTF-8, an unsupported
+//! field type, a malformed attribute.
 
 use proc_macro::TokenStream;
 use proc_macro2::{Span, TokenStream as Ts};
@@ -161,6 +163,8 @@ enum ConstLit {
     Float(f64),
     Bool(bool),
     Str(String),
+    /// A byte string literal (`b"\xAB\xCD"`): an OCTET_STRING default whose bytes need not be UTF-8.
+    Bytes(Vec<u8>),
 }
 
 impl ConstLit {
@@ -171,7 +175,7 @@ impl ConstLit {
                 Lit::Float(f) => Ok(ConstLit::Float(f.base10_parse()?)),
                 Lit::Bool(b) => Ok(ConstLit::Bool(b.value)),
                 Lit::Str(s) => Ok(ConstLit::Str(s.value())),
-                Lit::ByteStr(s) => Ok(ConstLit::Str(String::from_utf8_lossy(&s.value()).into_owned())),
+                Lit::ByteStr(s) => Ok(ConstLit::Bytes(s.value())),
                 _ => Err(syn::Error::new_spanned(e, "expected an integer, float, bool or string literal")),
             },
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match ConstLit::parse(&u.expr)? {
@@ -190,7 +194,7 @@ impl ConstLit {
             ConstLit::Int(i) => Some(i as f64),
             ConstLit::Float(f) => Some(f),
             ConstLit::Bool(b) => Some(f64::from(u8::from(b))),
-            ConstLit::Str(_) => None,
+            ConstLit::Str(_) | ConstLit::Bytes(_) => None,
         }
     }
 
@@ -200,6 +204,7 @@ impl ConstLit {
             ConstLit::Float(f) => f.to_string(),
             ConstLit::Bool(b) => b.to_string(),
             ConstLit::Str(s) => format!("{s:?}"),
+            ConstLit::Bytes(b) => format!("b\"{}\"", b.escape_ascii()),
         }
     }
 }
@@ -366,6 +371,17 @@ fn check_value(lit: &ConstLit, st: &ScalarType, expr: &Expr, what: &str) -> syn:
         (Class::Bool, ConstLit::Bool(_)) => {}
         (Class::Bool, ConstLit::Int(0 | 1)) => {}
         (Class::Text | Class::Bytes, ConstLit::Str(_)) if what == "default" => {}
+        (Class::Bytes, ConstLit::Bytes(_)) if what == "default" => {}
+        // A byte string for text: its bytes must be the text's UTF-8.
+        (Class::Text, ConstLit::Bytes(b)) if what == "default" => {
+            if std::str::from_utf8(b).is_err() {
+                return bad(format!(
+                    "default {} is not UTF-8: a {} default is text (a byte string default is for OCTET_STRING)",
+                    lit.show(),
+                    spec_name(st.dt)
+                ));
+            }
+        }
         (Class::Text | Class::Bytes, _) => return bad(format!("a {what} is not allowed for {}", spec_name(st.dt))),
         _ => return bad(format!("{what} {} does not match the field type {}", lit.show(), spec_name(st.dt))),
     }
@@ -408,6 +424,15 @@ fn value_tokens(core: &Ts, lit: &ConstLit, st: &ScalarType) -> Ts {
             quote!(#core::od::Value::Real64(#v))
         }
         (_, ConstLit::Str(s)) => quote!(#core::od::Value::Str(#s)),
+        (Class::Bytes, ConstLit::Bytes(b)) => {
+            let b = proc_macro2::Literal::byte_string(b);
+            quote!(#core::od::Value::Bytes(#b))
+        }
+        // Text given as a byte string: check_value made sure it is UTF-8.
+        (_, ConstLit::Bytes(b)) => {
+            let s = String::from_utf8_lossy(b);
+            quote!(#core::od::Value::Str(#s))
+        }
         _ => quote!(#core::od::Value::Uint(0)),
     }
 }
