@@ -22,8 +22,8 @@
 //! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–29
 //! set (29-bit) or an RPDO's bit 30 (reserved) or relative to `$NODEID` but not the pre-defined connection
 //! set, mapping entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters
-//! (but a mapping count's 0..n and those at the type's bounds, which limit nothing). Sub-index 0 of an ARRAY or RECORD is const in
-//! the derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
+//! (but a mapping count's 0..n and those at the type's bounds, which limit nothing). Sub-index 0 of an
+//! ARRAY or RECORD is ro (`count_access = "ro"`) or const as the EDS says; a writable one is left out.
 
 use std::fmt::Write as _;
 
@@ -299,7 +299,7 @@ fn array(g: &mut Generated, o: &Object) {
     let Some((ty, numeric)) = rust_type(first).filter(|_| contiguous && alike) else {
         return record(g, o);
     };
-    let attrs = value_attrs(g, first, Some(o), numeric, first.default.as_deref());
+    let attrs = value_attrs(g, first, Some(o), numeric, first.default.as_deref()) + &count_access(g, o);
     let _ = writeln!(
         g.rust,
         "    #[od(index = 0x{:04X}, sub = 1..={}, name = {}{attrs})]",
@@ -317,7 +317,7 @@ fn record(g: &mut Generated, o: &Object) {
             g.leave_out(e, None, Dropped::Entry, format!("data type {:04X}h is not supported", e.data_type));
             continue;
         };
-        let record = if first { format!(", record = {}", quote(&o.name)) } else { String::new() };
+        let record = if first { format!(", record = {}", quote(&o.name)) + &count_access(g, o) } else { String::new() };
         first = false;
         let attrs = value_attrs(g, e, None, numeric, e.default.as_deref());
         let _ = writeln!(
@@ -331,6 +331,20 @@ fn record(g: &mut Generated, o: &Object) {
     }
     if first {
         only_sub_zero(g, o);
+    }
+}
+
+/// The `count_access` of an ARRAY or RECORD: `ro` when its sub-index 0 says so (CiA 306 has ro for a
+/// `CompactSubObj` array), nothing for `const` (the derive's default); a writable count is left out (the
+/// derived count is the fixed number of entries).
+fn count_access(g: &mut Generated, o: &Object) -> String {
+    match o.entries.get(&0).map(|e| (e, e.access)) {
+        Some((_, Access::ReadOnly)) => ", count_access = \"ro\"".into(),
+        Some((e, Access::ReadWrite | Access::WriteOnly)) => {
+            g.leave_out(e, None, Dropped::Access, "a derived count is the fixed number of entries: ro or const".into());
+            String::new()
+        }
+        _ => String::new(),
     }
 }
 
@@ -720,6 +734,27 @@ ParameterName=Valve % open
 ObjectType=0x8
 DataType=0x0008
 AccessType=rw
+
+[3050]
+ParameterName=Compact
+ObjectType=0x8
+CompactSubObj=2
+DataType=0x0006
+AccessType=ro
+
+[3060]
+ParameterName=Writable count
+ObjectType=0x9
+
+[3060sub0]
+DataType=0x0005
+AccessType=rw
+DefaultValue=1
+
+[3060sub1]
+ParameterName=Only
+DataType=0x0005
+AccessType=rw
 ";
 
     #[test]
@@ -735,9 +770,17 @@ AccessType=rw
         has("name = \"Raw octets\", access = \"rw\", default = b\"\\xab\\xcd\")]");
         has("name = \"Unicode\", access = \"rw\", default = \"abc\u{2713}\")]");
         let left: Vec<_> = g.left_out.iter().map(|l| (l.index, l.sub, l.dropped)).collect();
-        assert_eq!(left, [(0x2009, None, Dropped::PdoMapping), (0x3011, None, Dropped::Entry)]);
+        assert_eq!(
+            left,
+            [(0x2009, None, Dropped::PdoMapping), (0x3011, None, Dropped::Entry), (0x3060, Some(0), Dropped::Access)]
+        );
         has("// 3010h ReadRawValue: a RECORD with sub-index 0 only, held as a VAR.\n    \
              #[od(index = 0x3010, name = \"ReadRawValue\", access = \"ro\")]\n    pub readrawvalue_3010: f32,");
         has("// 3011h Valve % open: no entries, not even sub-index 0: nothing to hold; left out.");
+        // Sub-index 0's access: ro as CompactSubObj implies (count_access), const as the derive's default
+        // (20C2h), a writable count left out.
+        has("#[od(index = 0x3050, sub = 1..=2, name = \"Compact\", access = \"ro\", count_access = \"ro\")]");
+        has("#[od(index = 0x20C2, sub = 1, record = \"Driver temperature\", name = \"Actual\", access = \"ro\", pdo = \"tpdo\")]");
+        has("// 3060h:00 : access rw not carried (a derived count is the fixed number of entries: ro or const).");
     }
 }

@@ -52,6 +52,8 @@
 //! - `min = …`, `max = …`, `default = …` (literals; checked against each other and the type's range; an
 //!   `OctetString<N>` default is a string literal, its UTF-8 bytes, or a byte string `b"\xAB\xCD"`);
 //! - `domain` (the field implements `Domain` and is streamed);
+//! - `count_access = "ro" | "const"` (an array field or a record member: the access of the object's
+//!   sub-index 00h, its fixed number of entries; default `const`);
 //! - `check = "method"`: `fn(&self, sub: u8, new: &T) -> Result<(), AbortCode>` runs after the length and
 //!   limit checks and before anything changes: return an abort code to refuse the value;
 //! - `on_write = "method"`: `fn(&mut self, sub: u8)` runs after an accepted write (side effects).
@@ -223,6 +225,7 @@ struct FieldAttr {
     domain: bool,
     check: Option<Ident>,
     on_write: Option<Ident>,
+    count_access: Option<(String, Span)>,
 }
 
 #[derive(Clone)]
@@ -276,6 +279,7 @@ fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
             "record" => a.record = Some(str_lit(&meta)?.0),
             "access" => a.access = Some(str_lit(&meta)?),
             "pdo" => a.pdo = Some(str_lit(&meta)?),
+            "count_access" => a.count_access = Some(str_lit(&meta)?),
             "min" | "max" | "default" => {
                 let e: Expr = meta.value()?.parse()?;
                 let v = (ConstLit::parse(&e)?, e);
@@ -299,7 +303,7 @@ fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
             _ => {
                 return Err(meta.error(
                     "unknown `od` key: expected index, sub, name, record, access, pdo, min, max, default, domain, \
-                     check or on_write",
+                     check, on_write or count_access",
                 ))
             }
         }
@@ -335,6 +339,8 @@ struct Row {
     limited: bool,
     /// SDO and RPDOs may write it (`rw`, `wo`, `rwr`, `rww`): only then is a write arm generated.
     writable: bool,
+    /// The access of its ARRAY's or RECORD's sub-index 00h (`count_access`), when not const.
+    count_access: Option<Ts>,
     target: Target,
     span: Span,
     field: String,
@@ -542,6 +548,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             continue;
         }
         let highest = rows.iter().filter(|x| x.index == r.index).map(|x| x.sub).max().unwrap_or(0);
+        let count_access = rows.iter().filter(|x| x.index == r.index).find_map(|x| x.count_access.clone());
         objects.push(Object {
             index: r.index,
             name: String::new(),
@@ -549,7 +556,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             span: r.span,
             field: r.field.clone(),
         });
-        record_rows.push(count_row(&core, r.index, highest, r.span, &r.field));
+        record_rows.push(count_row(&core, r.index, highest, r.span, &r.field, count_access));
     }
     rows.append(&mut record_rows);
     rows.sort_by_key(|r| (r.index, r.sub));
@@ -944,14 +951,16 @@ fn record_names(fields: &syn::FieldsNamed) -> syn::Result<Vec<(u16, String)>> {
     Ok(out)
 }
 
-fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str) -> Row {
+/// Sub-index 00h of an ARRAY or RECORD: its highest sub-index, `const` unless `access` (`count_access`)
+/// says `ro`.
+fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str, access: Option<Ts>) -> Row {
     Row {
         index,
         sub: 0,
         name: "Highest sub-index supported".into(),
         numbered: false,
         dt: "Unsigned8",
-        access: quote!(#core::od::Access::Const),
+        access: access.unwrap_or_else(|| quote!(#core::od::Access::Const)),
         pdo: quote!(#core::od::PdoMapping::No),
         max_size: quote!(1),
         default: quote!(::core::option::Option::Some(#core::od::Value::Uint(#highest as u64))),
@@ -959,6 +968,7 @@ fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str) -> Row
         high: quote!(::core::option::Option::None),
         limited: false,
         writable: false,
+        count_access: None,
         target: Target::Count(highest),
         span,
         field: field.into(),
@@ -999,6 +1009,9 @@ fn field_rows(
     let ty = &field.ty;
 
     if a.domain {
+        if let Some((_, sp)) = a.count_access {
+            return Err(syn::Error::new(sp, "count_access applies to an array field or a record member"));
+        }
         if mapped {
             return Err(syn::Error::new(a.pdo.map(|p| p.1).unwrap_or(span), "a DOMAIN cannot be mapped to a PDO"));
         }
@@ -1031,6 +1044,7 @@ fn field_rows(
             high: quote!(::core::option::Option::None),
             limited: false,
             writable,
+            count_access: None,
             target: Target::Domain { member: quote!(#fident) },
             span: key_span,
             field: fname.into(),
@@ -1125,6 +1139,21 @@ fn field_rows(
     let low = opt(a.min.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let high = opt(a.max.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let _ = readable;
+    // Sub-index 00h of an ARRAY or RECORD holds its fixed count: `const` (the default) or `ro`.
+    let count_access = match &a.count_access {
+        None => None,
+        Some((_, sp)) if len.is_none() && !matches!(a.sub, Some(SubSpec::One(1.., _))) => {
+            return Err(syn::Error::new(*sp, "count_access applies to an array field or a record member"));
+        }
+        Some((s, _)) if s == "const" => None,
+        Some((s, _)) if s == "ro" => Some(quote!(#core::od::Access::Ro)),
+        Some((_, sp)) => {
+            return Err(syn::Error::new(
+                *sp,
+                "count_access must be \"ro\" or \"const\": sub-index 0 holds the fixed number of entries",
+            ))
+        }
+    };
 
     let make = |sub: u8, name: String, numbered: bool, member: Ts| Row {
         index,
@@ -1140,6 +1169,7 @@ fn field_rows(
         high: high.clone(),
         limited: a.min.is_some() || a.max.is_some(),
         writable,
+        count_access: count_access.clone(),
         target: Target::Field {
             member,
             ty: elem_ty.clone(),
@@ -1177,7 +1207,7 @@ fn field_rows(
                 })
                 .collect();
             let highest = first + (n - 1) as u8;
-            rows.push(count_row(core, index, highest, key_span, fname));
+            rows.push(count_row(core, index, highest, key_span, fname, count_access.clone()));
             Ok((rows, Some(Object { index, name, code: "Array", span: key_span, field: fname.into() })))
         }
         None => match a.sub {

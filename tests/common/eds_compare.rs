@@ -28,10 +28,12 @@ fn differences(a: &Entry, b: &Entry) -> Vec<Dropped> {
     if a.pdo_mapping != b.pdo_mapping {
         d.push(Dropped::PdoMapping);
     }
-    // Sub-index 0 of an ARRAY or RECORD (the entry count) is always const in a derived dictionary;
-    // CiA 306 has the one CompactSubObj implies be ro. Both are read-only: the same to a master.
+    // Sub-index 0 of the communication profile's records (1018h, the PDO parameters) is as the core
+    // describes it (const), not a NodeConfig field: ro there is the same to a master, and listed as not
+    // carried in canopen-master's README. Application objects' counts are compared exactly (count_access).
     let read_only = |e: &Entry| matches!(e.access, Access::ReadOnly | Access::Const);
-    if a.access != b.access && !(a.sub == 0 && read_only(a) && read_only(b)) {
+    let profile_count = a.index < 0x2000 && a.sub == 0 && read_only(a) && read_only(b);
+    if a.access != b.access && !profile_count {
         d.push(Dropped::Access);
     }
     if !same(&a.default, &b.default, a.data_type) {

@@ -1,3 +1,6 @@
+//! Attributes eds-to-rust needs to carry real EDS files: a byte string default of an OCTET_STRING, and
+//! the access of sub-index 00h of an ARRAY or RECORD.
+//!
 //! An OCTET_STRING default given as a byte string (`default = b"\xAB\xCD"`, bytes that are no UTF-8, as
 //! python canopen's datatypes.eds has `DefaultValue=ABCD` for its 200Ah): the field restores those bytes,
 //! SDO reads them, and the EDS writes them as hex pairs (CiA 306), as eds-to-rust's round trip needs.
@@ -34,4 +37,31 @@ fn a_byte_string_default_is_the_octet_strings_bytes() {
     assert!(eds.contains("DefaultValue=ABCD\n"), "{eds}");
     assert!(eds.contains("DefaultValue=ok\n"), "{eds}");
     assert!(eds.contains("DefaultValue=4142\n"), "{eds}");
+}
+
+#[derive(ObjectDictionary, Default)]
+struct Counts {
+    #[od(index = 0x2100, count_access = "ro")]
+    gains: [u16; 2],
+    #[od(index = 0x2101, sub = 1, record = "Limits", count_access = "ro")]
+    low: u8,
+    #[od(index = 0x2101, sub = 2)]
+    high: u8,
+    #[od(index = 0x2102)]
+    consts: [u8; 1],
+}
+
+/// `count_access = "ro"`: sub-index 00h of an ARRAY or a RECORD is ro as an EDS may say (CiA 306 has ro for
+/// a `CompactSubObj` array), const without it; read the same, written by nobody (0601 0002h).
+#[test]
+fn count_access_sets_sub_index_0s_access() {
+    use canopen_core::od::{AbortCode, Access};
+    let mut od = Counts::default();
+    assert_eq!(od.entry(0x2100, 0).unwrap().access, Access::Ro);
+    assert_eq!(od.entry(0x2101, 0).unwrap().access, Access::Ro);
+    assert_eq!(od.entry(0x2102, 0).unwrap().access, Access::Const);
+    let mut b = [0u8; 1];
+    assert_eq!(od.read(0x2101, 0, 0, &mut b), Ok(1));
+    assert_eq!(b, [2]);
+    assert_eq!(od.write(0x2100, 0, &[1]), Err(AbortCode::WriteOfReadOnly));
 }
