@@ -21,7 +21,8 @@
 //! heartbeat time, PDO defaults): SDO parameters, error behaviour and the rest take the node's
 //! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–29
 //! set (29-bit) or an RPDO's bit 30 (reserved) or relative to `$NODEID` but not the pre-defined connection
-//! set, mapping entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters
+//! set, mapping entries beyond sub-index 0's count or under a count they do not fill (a count without
+//! DefaultValue keeps the entries, none mapped: `count: Some(0)`), and limits on PDO parameters
 //! (but a mapping count's 0..n and those at the type's bounds, which limit nothing). Sub-index 0 of an
 //! ARRAY or RECORD is ro (`count_access = "ro"`) or const as the EDS says; a writable one is left out.
 
@@ -568,8 +569,21 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
                 }
                 fields.push(format!("mapping: &[{}]", mapping.join(", ")));
             }
+            // No DefaultValue for the count (its type's zero, as for any entry) but entries 1..=n with
+            // values (e35.eds's 1600h, whose count has only a ParameterValue): the entries, none mapped.
+            None if eds.entry(map + k, 0).is_some_and(|e| e.default.is_none())
+                && !listed.is_empty()
+                && listed.iter().enumerate().all(|(i, &(sub, _, _))| usize::from(sub) == i + 1) =>
+            {
+                let last = listed.iter().rposition(|&(_, _, v)| v != 0).map_or(0, |i| i + 1);
+                let mapping: Vec<String> = listed[..last]
+                    .iter()
+                    .map(|&(_, _, v)| format!("0x{:08X}", u32::try_from(v).unwrap_or(0)))
+                    .collect();
+                fields.push(format!("mapping: &[{}], count: Some(0)", mapping.join(", ")));
+            }
             None => {
-                // No default entry count, or one the listed entries do not fill: no default mapping.
+                // A count the listed entries do not fill, or entries with gaps: no default mapping.
                 let why = "the mapping's entry count (sub-index 0) has no usable DefaultValue";
                 if let Some(e) = eds.entry(map + k, 0).filter(|e| e.default.is_some()) {
                     g.leave_out(e, None, Dropped::Default, why.into());
@@ -614,6 +628,8 @@ mod tests {
              [1600]\nObjectType=0x9\n[1600sub0]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=4\n\
              [1600sub1]\nDataType=7\nDefaultValue=0x20000108\n[1600sub2]\nDataType=7\nDefaultValue=0x20010108\n\
              [1601]\nObjectType=0x9\n[1601sub0]\nDataType=5\nDefaultValue=0\nLowLimit=0\nHighLimit=8\n\
+             [1602]\nObjectType=0x9\n[1602sub0]\nDataType=5\nParameterValue=2\n\
+             [1602sub1]\nDataType=7\nDefaultValue=0x60FF0020\n[1602sub2]\nDataType=7\nDefaultValue=0\n\
              [1800]\nObjectType=0x9\n[1800sub1]\nDataType=7\nDefaultValue=$NODEID+0x40000180\n\
              [1800sub5]\nDataType=6\nDefaultValue=100\n",
         )
@@ -632,6 +648,12 @@ mod tests {
             g.rust.contains(
                 "PdoDefault { valid: false, can_id: Some(0x321), transmission_type: 254, mapping: &[], ..PdoDefault::EVENT },"
             ),
+            "{}",
+            g.rust
+        );
+        // e35.eds's shape: a count without DefaultValue (zero), entries with values: kept, none mapped.
+        assert!(
+            g.rust.contains("PdoDefault { mapping: &[0x60FF0020], count: Some(0), ..PdoDefault::EVENT },"),
             "{}",
             g.rust
         );

@@ -109,6 +109,9 @@ pub struct PdoDefault {
     /// The most entries the mapping takes (sub-index 00h's `HighLimit`; an EDS's "0..4"): writing a larger
     /// count is refused with 0609 0031h. [`mapping::MAX_ENTRIES`] (the default) states no limit of its own.
     pub max_mapped: u8,
+    /// The default entry count (sub-index 00h) when it is not all of `mapping`: `Some(0)` keeps the entries
+    /// but maps none (an EDS whose count has no `DefaultValue`), at most `mapping.len()`. `None`: all.
+    pub count: Option<u8>,
     /// (TPDO) Whether a remote request is served: `false` sets COB-ID bit 30 (PDO-15, PDO-29). An RPDO's
     /// bit 30 is reserved (PDO-07): leave it `true`.
     pub rtr_allowed: bool,
@@ -125,6 +128,7 @@ impl PdoDefault {
         sync_start: 0,
         mapping: &[],
         max_mapped: mapping::MAX_ENTRIES as u8,
+        count: None,
         rtr_allowed: true,
     };
     /// Not valid, event-driven, pre-defined COB-ID, no mapping: a PDO without a configured default.
@@ -157,7 +161,24 @@ impl PdoDefault {
             event_timer_ms: self.event_timer_ms,
             sync_start: self.sync_start,
         };
-        (comm, PdoMapParams::from_slice(self.mapping))
+        (comm, self.map_params())
+    }
+
+    /// The default mapping parameters: `mapping`'s entries, `count` of them mapped (all by default).
+    ///
+    /// ```
+    /// use canopen_core::pdo::PdoDefault;
+    /// let d = PdoDefault { mapping: &[0x6000_0108, 0x6001_0108], count: Some(0), ..PdoDefault::EVENT };
+    /// assert_eq!((d.map_params().count, d.map_params().entries[1]), (0, 0x6001_0108));
+    /// ```
+    pub const fn map_params(&self) -> PdoMapParams {
+        let mut m = PdoMapParams::from_slice(self.mapping);
+        if let Some(c) = self.count {
+            if c < m.count {
+                m.count = c;
+            }
+        }
+        m
     }
 }
 

@@ -321,7 +321,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             PdoObj::RpdoMap(k) | PdoObj::TpdoMap(k) => {
                 let tx = matches!(obj, PdoObj::TpdoMap(_));
                 let d = if tx { self.config.tpdo_default(k) } else { self.config.rpdo_default(k) };
-                let m = PdoMapParams::from_slice(d.mapping);
+                let m = d.map_params();
                 match usize::from(sub) {
                     0 => {
                         let e = EntryDesc::var(index, 0, "Number of mapped application objects in PDO", Unsigned8, Rw)
