@@ -64,8 +64,8 @@ fn eds_to_rust_to_eds_is_the_same_dictionary() {
     assert_eq!(n, 2 + 3 + 4 + 4);
 }
 
-/// The comparison is not vacuous: a default, an access or a PDO mapping changed in the EDS written back,
-/// or an entry gone, fails it; listing the change as left out is what makes it pass.
+/// The comparison is not vacuous: a default, an access (sub-index 0's too) or a PDO mapping changed in the
+/// EDS written back, or an entry gone, fails it; listing the change as left out is what makes it pass.
 #[test]
 fn the_comparison_catches_a_changed_entry() {
     let original = Eds::parse(SHAPES).unwrap();
@@ -79,6 +79,8 @@ fn the_comparison_catches_a_changed_entry() {
         ("[2010]", "PDOMapping=1", "PDOMapping=0"),
         ("[2011]", "LowLimit=-100000", "LowLimit=-99999"),
         ("[2020sub3]", "[2020sub3]", "[2020sub7]"),
+        // CompactSubObj's count is ro (count_access): const is a different entry.
+        ("[2030sub0]", "AccessType=ro", "AccessType=const"),
     ] {
         let start = section(at);
         let end = start + back[start..].find("\n\n").unwrap_or(back.len() - start);

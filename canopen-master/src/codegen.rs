@@ -8,24 +8,27 @@
 //! what is handled here: signed limits and defaults in two's complement hex (`LowLimit=0x80000000` of an
 //! INTEGER32 is -2147483648, as python canopen reads it), ARRAYs whose entries differ in access, default or
 //! limits (written as a record, one field per entry: every entry is kept, the derived EDS says RECORD),
-//! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults.
+//! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults, limits at the type's bounds (none), an
+//! ARRAY or RECORD with sub-index 0 only (a VAR), a TPDO COB-ID's bit 30 (`rtr_allowed: false`), a mapping
+//! count's limits 0..n, n < 8 (`max_mapped`), OCTET_STRING defaults that are no UTF-8 (a byte string).
 //!
 //! Not carried over, each listed by [`generate`] (`Generated::left_out`) and named by a comment in the
 //! module where the field would be: data types the derive does not know (0040h and up, the object or entry
-//! is left out), an ARRAY without entries, a RECORD with nothing beyond sub-index 0, PDO mapping of strings
+//! is left out), an ARRAY without any entry, PDO mapping of strings
 //! and DOMAINs (only fixed-size types of at most 8 bytes map in a derived dictionary), DOMAIN defaults and
-//! DOMAIN access other than rw, OCTET_STRING defaults whose bytes are not UTF-8 (a derive default is a
-//! string literal), defaults relative to `$NODEID` and limits that are no number of the type, limits on
+//! DOMAIN access other than rw, defaults relative to `$NODEID` and limits that are no number of the type, limits on
 //! anything but numbers. Of 1000h–1FFFh only what `NodeConfig` holds (device type, identity, names, producer
 //! heartbeat time, PDO defaults): SDO parameters, error behaviour and the rest take the node's
-//! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–30 set
-//! (RTR not allowed, 29-bit) or relative to `$NODEID` but not the pre-defined connection set, mapping
-//! entries beyond sub-index 0's count or without a usable count, and limits on PDO parameters. Sub-index 0 of an ARRAY or RECORD is const in
-//! the derived dictionary whatever the EDS says (ro, as CiA 306 has it for `CompactSubObj`).
+//! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–29
+//! set (29-bit) or an RPDO's bit 30 (reserved) or relative to `$NODEID` but not the pre-defined connection
+//! set, mapping entries beyond sub-index 0's count or under a count they do not fill (a count without
+//! DefaultValue keeps the entries, none mapped: `count: Some(0)`), and limits on PDO parameters
+//! (but a mapping count's 0..n and those at the type's bounds, which limit nothing). Sub-index 0 of an
+//! ARRAY or RECORD is ro (`count_access = "ro"`) or const as the EDS says; a writable one is left out.
 
 use std::fmt::Write as _;
 
-use crate::eds::{eval_default, eval_typed, Access, Eds, Entry, Object, ObjectKind};
+use crate::eds::{eval_default, eval_typed, no_limit, Access, Eds, Entry, Object, ObjectKind};
 
 /// What the generated module does not carry of an EDS, so that a round trip knows what to skip and a
 /// reader of the module sees it: each one is also a comment in the module, where the field would be.
@@ -191,8 +194,8 @@ fn pdo(entry: &Entry) -> Option<&'static str> {
     })
 }
 
-/// An OCTET_STRING default (hex pairs, CiA 306) as the text whose bytes the derive stores, when they are
-/// UTF-8 (the derive's `default` is a string literal).
+/// An OCTET_STRING default (hex pairs, CiA 306) as the derive's `default` literal: the text whose bytes
+/// they are when UTF-8 (`"ABCD"` for 41424344), else a byte string (`b"\xab\xcd"` for ABCD).
 fn octets(hex: &str) -> Result<String, &'static str> {
     let hex: String = hex.split_whitespace().collect();
     if hex.len() % 2 != 0 {
@@ -203,7 +206,10 @@ fn octets(hex: &str) -> Result<String, &'static str> {
         .map(|i| hex.get(i..i + 2).and_then(|b| u8::from_str_radix(b, 16).ok()))
         .collect::<Option<Vec<u8>>>()
         .ok_or("not hex pairs")?;
-    String::from_utf8(bytes).map_err(|_| "bytes that are not UTF-8, which a derive default cannot hold")
+    Ok(match String::from_utf8(bytes) {
+        Ok(text) => quote(&text),
+        Err(e) => format!("b\"{}\"", e.as_bytes().escape_ascii()),
+    })
 }
 
 /// The attributes besides index/sub/name of a value (access, pdo, limits, default); what cannot be
@@ -238,7 +244,7 @@ fn value_attrs(g: &mut Generated, e: &Entry, object: Option<&Object>, numeric: b
     let literal = match e.data_type {
         0x0001 => eval_default(d, 0).map(|v| (v != 0).to_string()).ok_or("not 0 or 1"),
         0x0009 | 0x000B => Ok(quote(d)),
-        0x000A => octets(d).map(|s| quote(&s)),
+        0x000A => octets(d),
         _ if numeric => number_literal(d, e).ok_or("not a number of the type, or relative to $NODEID"),
         _ => Err("a default of this type is not supported"),
     };
@@ -284,7 +290,7 @@ fn var(g: &mut Generated, o: &Object, e: &Entry) {
 fn array(g: &mut Generated, o: &Object) {
     let subs: Vec<&Entry> = o.entries.values().filter(|e| e.sub > 0).collect();
     let Some(first) = subs.first() else {
-        return g.leave_out_object(o, "an array without entries");
+        return only_sub_zero(g, o);
     };
     let contiguous = subs.iter().enumerate().all(|(i, e)| usize::from(e.sub) == i + 1);
     let alike = subs.iter().all(|e| {
@@ -294,7 +300,7 @@ fn array(g: &mut Generated, o: &Object) {
     let Some((ty, numeric)) = rust_type(first).filter(|_| contiguous && alike) else {
         return record(g, o);
     };
-    let attrs = value_attrs(g, first, Some(o), numeric, first.default.as_deref());
+    let attrs = value_attrs(g, first, Some(o), numeric, first.default.as_deref()) + &count_access(g, o);
     let _ = writeln!(
         g.rust,
         "    #[od(index = 0x{:04X}, sub = 1..={}, name = {}{attrs})]",
@@ -312,7 +318,7 @@ fn record(g: &mut Generated, o: &Object) {
             g.leave_out(e, None, Dropped::Entry, format!("data type {:04X}h is not supported", e.data_type));
             continue;
         };
-        let record = if first { format!(", record = {}", quote(&o.name)) } else { String::new() };
+        let record = if first { format!(", record = {}", quote(&o.name)) + &count_access(g, o) } else { String::new() };
         first = false;
         let attrs = value_attrs(g, e, None, numeric, e.default.as_deref());
         let _ = writeln!(
@@ -325,7 +331,37 @@ fn record(g: &mut Generated, o: &Object) {
         let _ = writeln!(g.rust, "    pub {}: {ty},", ident(&e.name, o.index, Some(e.sub)));
     }
     if first {
-        g.leave_out_object(o, "a record without entries beyond sub-index 0");
+        only_sub_zero(g, o);
+    }
+}
+
+/// The `count_access` of an ARRAY or RECORD: `ro` when its sub-index 0 says so (CiA 306 has ro for a
+/// `CompactSubObj` array), nothing for `const` (the derive's default); a writable count is left out (the
+/// derived count is the fixed number of entries).
+fn count_access(g: &mut Generated, o: &Object) -> String {
+    match o.entries.get(&0).map(|e| (e, e.access)) {
+        Some((_, Access::ReadOnly)) => ", count_access = \"ro\"".into(),
+        Some((e, Access::ReadWrite | Access::WriteOnly)) => {
+            g.leave_out(e, None, Dropped::Access, "a derived count is the fixed number of entries: ro or const".into());
+            String::new()
+        }
+        _ => String::new(),
+    }
+}
+
+/// An ARRAY or RECORD with no entry beyond sub-index 0 (sample.eds's 3010h ReadRawValue, a REAL32 at
+/// sub-index 0): its one entry is written as a VAR, which holds the same entry at the same index and
+/// sub-index (the derived EDS says VAR). One without any entry (sample.eds's 3003h: no `CompactSubObj`, no
+/// sub sections) has nothing a dictionary could hold, not even the entry count CiA 301 gives every ARRAY.
+fn only_sub_zero(g: &mut Generated, o: &Object) {
+    match o.entries.get(&0) {
+        Some(e) => {
+            let kind = if o.kind == ObjectKind::Array { "ARRAY" } else { "RECORD" };
+            let _ =
+                writeln!(g.rust, "    // {:04X}h {}: a {kind} with sub-index 0 only, held as a VAR.", o.index, o.name);
+            var(g, o, e);
+        }
+        None => g.leave_out_object(o, "no entries, not even sub-index 0: nothing to hold"),
     }
 }
 
@@ -460,12 +496,31 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
             continue;
         }
         let mut fields = Vec::new();
+        let mut max_mapped = None;
+        let max = canopen_core::pdo::mapping::MAX_ENTRIES;
+        let count = value(map + k, 0).and_then(|(_, c)| usize::try_from(c).ok()).filter(|&c| c <= max);
         let subs = [(comm + k, [1u8, 2, 3, 5, 6].as_slice()), (map + k, [0u8, 1, 2, 3, 4, 5, 6, 7, 8].as_slice())];
         for (index, subs) in subs {
-            for e in
-                subs.iter().filter_map(|&sub| eds.entry(index, sub)).filter(|e| e.low.is_some() || e.high.is_some())
-            {
-                g.leave_out(e, None, Dropped::Limits, "the communication profile's parameters have none".into());
+            // Limits at the type's bounds (sample.eds's transmission types 0..255) limit nothing.
+            let limited = |e: &&Entry| {
+                !no_limit(e.low.as_deref(), e.data_type, true) || !no_limit(e.high.as_deref(), e.data_type, false)
+            };
+            for e in subs.iter().filter_map(|&sub| eds.entry(index, sub)).filter(limited) {
+                // The mapping count's 0..n (sample.eds: 0..4) is `max_mapped` when n is below MAX_ENTRIES
+                // (what every derived node takes, for which the core's EDS states no limit) and the count.
+                let high = e.high.as_deref().and_then(|h| eval_default(h, 0)).and_then(|h| usize::try_from(h).ok());
+                let count_limits = index == map + k && e.sub == 0 && no_limit(e.low.as_deref(), e.data_type, true);
+                match high.filter(|_| count_limits) {
+                    Some(h) if h < max && count.unwrap_or(0) <= h => max_mapped = Some(h),
+                    _ => g.leave_out(
+                        e,
+                        None,
+                        Dropped::Limits,
+                        "of the communication profile's parameters, only a mapping count's 0..n (n < 8, n >= the \
+                         count) is carried"
+                            .into(),
+                    ),
+                }
             }
         }
         if let Some((e, v)) = value(comm + k, 1) {
@@ -473,13 +528,19 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
             let relative = e.default.as_deref().is_some_and(|d| d.to_ascii_uppercase().contains("$NODEID"));
             let id = raw & 0x7FF;
             let can_id = match (relative, k < 4 && id == predefined_pdo_id(tpdo, k)) {
-                _ if raw & 0x7FFF_F800 != 0 => Err("bits 11-30 of the COB-ID (RTR, 29-bit frame) set"),
+                _ if raw & 0x3FFF_F800 != 0 => Err("bits 11-29 of the COB-ID (29-bit frame) set"),
+                _ if !tpdo && raw & 0x4000_0000 != 0 => Err("bit 30 of an RPDO's COB-ID is reserved (PDO-07)"),
                 (true, true) => Ok("None".to_owned()),
                 (true, false) => Err("a node-ID-relative COB-ID other than the pre-defined connection set"),
                 (false, _) => Ok(format!("Some(0x{id:03X})")),
             };
             match can_id {
-                Ok(c) => fields.push(format!("valid: {}, can_id: {c}", raw & 0x8000_0000 == 0)),
+                Ok(c) => {
+                    fields.push(format!("valid: {}, can_id: {c}", raw & 0x8000_0000 == 0));
+                    if raw & 0x4000_0000 != 0 {
+                        fields.push("rtr_allowed: false".into()); // PDO-15: no remote request
+                    }
+                }
                 Err(why) => g.leave_out(e, None, Dropped::Default, why.into()),
             }
         }
@@ -493,10 +554,8 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
                 fields.push(format!("{name}: {v}"));
             }
         }
-        let max = canopen_core::pdo::mapping::MAX_ENTRIES;
         let listed: Vec<(u8, &Entry, i128)> =
             (1..=max as u8).filter_map(|sub| value(map + k, sub).map(|(e, v)| (sub, e, v))).collect();
-        let count = value(map + k, 0).and_then(|(_, c)| usize::try_from(c).ok()).filter(|&c| c <= max);
         let usable = count.filter(|&c| (1..=c).all(|sub| listed.iter().any(|&(s, _, _)| usize::from(s) == sub)));
         match usable {
             Some(count) => {
@@ -510,8 +569,21 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
                 }
                 fields.push(format!("mapping: &[{}]", mapping.join(", ")));
             }
+            // No DefaultValue for the count (its type's zero, as for any entry) but entries 1..=n with
+            // values (e35.eds's 1600h, whose count has only a ParameterValue): the entries, none mapped.
+            None if eds.entry(map + k, 0).is_some_and(|e| e.default.is_none())
+                && !listed.is_empty()
+                && listed.iter().enumerate().all(|(i, &(sub, _, _))| usize::from(sub) == i + 1) =>
+            {
+                let last = listed.iter().rposition(|&(_, _, v)| v != 0).map_or(0, |i| i + 1);
+                let mapping: Vec<String> = listed[..last]
+                    .iter()
+                    .map(|&(_, _, v)| format!("0x{:08X}", u32::try_from(v).unwrap_or(0)))
+                    .collect();
+                fields.push(format!("mapping: &[{}], count: Some(0)", mapping.join(", ")));
+            }
             None => {
-                // No default entry count, or one the listed entries do not fill: no default mapping.
+                // A count the listed entries do not fill, or entries with gaps: no default mapping.
                 let why = "the mapping's entry count (sub-index 0) has no usable DefaultValue";
                 if let Some(e) = eds.entry(map + k, 0).filter(|e| e.default.is_some()) {
                     g.leave_out(e, None, Dropped::Default, why.into());
@@ -521,6 +593,7 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
                 }
             }
         }
+        fields.extend(max_mapped.map(|h| format!("max_mapped: {h}")));
         items.push(if fields.is_empty() {
             "PdoDefault::EVENT".to_owned()
         } else {
@@ -540,33 +613,55 @@ mod tests {
     use super::*;
 
     /// PDO defaults (1400h-1BFFh) into the node configuration: a pre-defined COB-ID as `None`, a fixed one
-    /// as itself, an invalid one as `valid: false`, the mapping up to its count; what a `PdoDefault` cannot
-    /// hold (bit 30 of a COB-ID, an entry beyond the count, limits) is left out and listed. The round trip
+    /// as itself, an invalid one as `valid: false`, a TPDO's bit 30 as `rtr_allowed: false`, the mapping up
+    /// to its count, a count's limits 0..4 as `max_mapped`; what a `PdoDefault` cannot hold (bit 30 of an
+    /// RPDO, an entry beyond the count, other limits) is left out and listed. The round trip
     /// of these through the core's EDS writer runs in tests/eds_to_rust.rs and tests/eds_real.rs.
     #[test]
     fn pdo_defaults_go_into_the_node_configuration() {
         let eds = Eds::parse(
             "[1400]\nObjectType=0x9\n[1400sub1]\nDataType=7\nDefaultValue=$NODEID+0x200\n\
-             [1400sub2]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=255\n\
+             [1400sub2]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=240\n\
              [1401]\nObjectType=0x9\n[1401sub1]\nDataType=7\nDefaultValue=0x80000321\n\
-             [1600]\nObjectType=0x9\n[1600sub0]\nDataType=5\nDefaultValue=1\n\
+             [1401sub2]\nDataType=5\nDefaultValue=254\nLowLimit=0x0\nHighLimit=255\n\
+             [1402]\nObjectType=0x9\n[1402sub1]\nDataType=7\nDefaultValue=$NODEID+0x40000400\n\
+             [1600]\nObjectType=0x9\n[1600sub0]\nDataType=5\nDefaultValue=1\nLowLimit=0\nHighLimit=4\n\
              [1600sub1]\nDataType=7\nDefaultValue=0x20000108\n[1600sub2]\nDataType=7\nDefaultValue=0x20010108\n\
+             [1601]\nObjectType=0x9\n[1601sub0]\nDataType=5\nDefaultValue=0\nLowLimit=0\nHighLimit=8\n\
+             [1602]\nObjectType=0x9\n[1602sub0]\nDataType=5\nParameterValue=2\n\
+             [1602sub1]\nDataType=7\nDefaultValue=0x60FF0020\n[1602sub2]\nDataType=7\nDefaultValue=0\n\
              [1800]\nObjectType=0x9\n[1800sub1]\nDataType=7\nDefaultValue=$NODEID+0x40000180\n\
              [1800sub5]\nDataType=6\nDefaultValue=100\n",
         )
         .unwrap();
         let g = generate(&eds, "pdo.eds");
         assert!(g.rust.contains("use canopen_core::pdo::PdoDefault;"));
-        assert!(g.rust.contains(
-            "PdoDefault { valid: true, can_id: None, transmission_type: 1, mapping: &[0x20000108], ..PdoDefault::EVENT },"
-        ), "{}", g.rust);
         assert!(
-            g.rust.contains("PdoDefault { valid: false, can_id: Some(0x321), ..PdoDefault::EVENT },"),
+            g.rust.contains(
+                "PdoDefault { valid: true, can_id: None, transmission_type: 1, mapping: &[0x20000108], max_mapped: 4, \
+             ..PdoDefault::EVENT },"
+            ),
             "{}",
             g.rust
         );
         assert!(
-            g.rust.contains("tpdo: &[\n        PdoDefault { event_timer_ms: 100, ..PdoDefault::EVENT },"),
+            g.rust.contains(
+                "PdoDefault { valid: false, can_id: Some(0x321), transmission_type: 254, mapping: &[], ..PdoDefault::EVENT },"
+            ),
+            "{}",
+            g.rust
+        );
+        // e35.eds's shape: a count without DefaultValue (zero), entries with values: kept, none mapped.
+        assert!(
+            g.rust.contains("PdoDefault { mapping: &[0x60FF0020], count: Some(0), ..PdoDefault::EVENT },"),
+            "{}",
+            g.rust
+        );
+        assert!(
+            g.rust.contains(
+                "tpdo: &[\n        PdoDefault { valid: true, can_id: None, rtr_allowed: false, event_timer_ms: 100, \
+                 ..PdoDefault::EVENT },"
+            ),
             "{}",
             g.rust
         );
@@ -574,16 +669,18 @@ mod tests {
         assert_eq!(
             left,
             [
-                (0x1400, Some(2), Dropped::Limits),
+                (0x1400, Some(2), Dropped::Limits), // 0..240; 1401h:02's 0..255 is UNSIGNED8's range: none
                 (0x1600, Some(2), Dropped::Default), // beyond the count of 1
-                (0x1800, Some(1), Dropped::Default), // bit 30
+                (0x1601, Some(0), Dropped::Limits), // 0..8: every derived node's, stated nowhere
+                (0x1402, Some(1), Dropped::Default), // bit 30 of an RPDO: reserved
             ]
         );
     }
 
     /// What python canopen's real files (tests/eds_real.rs) showed: signed limits in two's complement hex,
     /// an ARRAY whose entries differ in access and default, strings marked PDO-mappable, an OCTET_STRING
-    /// default in hex pairs, a UNICODE_STRING default, and a RECORD with nothing beyond sub-index 0.
+    /// default in hex pairs, a UNICODE_STRING default, a RECORD with nothing beyond sub-index 0 (a VAR) and
+    /// an ARRAY without entries (left out).
     const REAL: &str = "\
 [3030]
 ParameterName=Negative
@@ -653,6 +750,33 @@ ObjectType=0x9
 ParameterName=Temperature
 DataType=0x0008
 AccessType=ro
+
+[3011]
+ParameterName=Valve % open
+ObjectType=0x8
+DataType=0x0008
+AccessType=rw
+
+[3050]
+ParameterName=Compact
+ObjectType=0x8
+CompactSubObj=2
+DataType=0x0006
+AccessType=ro
+
+[3060]
+ParameterName=Writable count
+ObjectType=0x9
+
+[3060sub0]
+DataType=0x0005
+AccessType=rw
+DefaultValue=1
+
+[3060sub1]
+ParameterName=Only
+DataType=0x0005
+AccessType=rw
 ";
 
     #[test]
@@ -665,14 +789,20 @@ AccessType=ro
         has("#[od(index = 0x20C2, sub = 2, name = \"Max\", access = \"rw\", default = 85000)]");
         has("name = \"Text\", access = \"rw\", default = \"ABCD\")]");
         has("name = \"Octets\", access = \"rw\", default = \"ABCD\")]");
-        has("name = \"Raw octets\", access = \"rw\")]");
+        has("name = \"Raw octets\", access = \"rw\", default = b\"\\xab\\xcd\")]");
         has("name = \"Unicode\", access = \"rw\", default = \"abc\u{2713}\")]");
         let left: Vec<_> = g.left_out.iter().map(|l| (l.index, l.sub, l.dropped)).collect();
         assert_eq!(
             left,
-            [(0x2009, None, Dropped::PdoMapping), (0x200C, None, Dropped::Default), (0x3010, None, Dropped::Entry)]
+            [(0x2009, None, Dropped::PdoMapping), (0x3011, None, Dropped::Entry), (0x3060, Some(0), Dropped::Access)]
         );
-        has("// 200Ch Raw octets: default ABCD not carried (bytes that are not UTF-8");
-        has("// 3010h ReadRawValue: a record without entries beyond sub-index 0; left out.");
+        has("// 3010h ReadRawValue: a RECORD with sub-index 0 only, held as a VAR.\n    \
+             #[od(index = 0x3010, name = \"ReadRawValue\", access = \"ro\")]\n    pub readrawvalue_3010: f32,");
+        has("// 3011h Valve % open: no entries, not even sub-index 0: nothing to hold; left out.");
+        // Sub-index 0's access: ro as CompactSubObj implies (count_access), const as the derive's default
+        // (20C2h), a writable count left out.
+        has("#[od(index = 0x3050, sub = 1..=2, name = \"Compact\", access = \"ro\", count_access = \"ro\")]");
+        has("#[od(index = 0x20C2, sub = 1, record = \"Driver temperature\", name = \"Actual\", access = \"ro\", pdo = \"tpdo\")]");
+        has("// 3060h:00 : access rw not carried (a derived count is the fixed number of entries: ro or const).");
     }
 }

@@ -197,6 +197,50 @@ fn signed_bits(data_type: u16) -> Option<u32> {
     })
 }
 
+/// The range of an integer data type (INTEGER8..64, UNSIGNED8..64, BOOLEAN as 0..1), `None` for any other.
+/// A `LowLimit`/`HighLimit` at its bound limits nothing: `LowLimit=0`, `HighLimit=255` of an UNSIGNED8 (as
+/// sample.eds gives the transmission types) is the same entry as one without limits.
+///
+/// ```
+/// use canopen_master::eds::type_range;
+/// assert_eq!(type_range(0x0005), Some((0, 255)));
+/// assert_eq!(type_range(0x0003), Some((-32768, 32767)));
+/// assert_eq!(type_range(0x0008), None); // REAL32
+/// ```
+pub fn type_range(data_type: u16) -> Option<(i128, i128)> {
+    if let Some(bits) = signed_bits(data_type) {
+        return Some((-(1 << (bits - 1)), (1 << (bits - 1)) - 1));
+    }
+    let bits: u32 = match data_type {
+        0x0001 => 1,
+        0x0005 => 8,
+        0x0006 => 16,
+        0x0007 => 32,
+        0x0016 => 24,
+        0x0018 => 40,
+        0x0019 => 48,
+        0x001A => 56,
+        0x001B => 64,
+        _ => return None,
+    };
+    Some((0, (1 << bits) - 1))
+}
+
+/// Whether a `LowLimit` (`low`) or `HighLimit` limits nothing: absent, or at the bound of its integer type
+/// ([`type_range`]).
+///
+/// ```
+/// use canopen_master::eds::no_limit;
+/// assert!(no_limit(Some("255"), 0x0005, false) && no_limit(Some("0x0"), 0x0005, true) && no_limit(None, 5, true));
+/// assert!(!no_limit(Some("4"), 0x0005, false));
+/// assert!(no_limit(Some("0x80"), 0x0002, true)); // INTEGER8's -128 in two's complement
+/// ```
+pub fn no_limit(limit: Option<&str>, data_type: u16, low: bool) -> bool {
+    let Some(text) = limit else { return true };
+    let bound = type_range(data_type).map(|(lo, hi)| if low { lo } else { hi });
+    bound.is_some() && eval_typed(text, data_type, 0) == bound
+}
+
 /// [`eval_default`] for a value of a data type: a signed integer written in hex is its two's complement
 /// bits, as tools write limits (`LowLimit=0x80000000` of an INTEGER32 is -2147483648, `0xFFFFFFFFFFFFFFF6`
 /// of an INTEGER64 is -10; python canopen reads them so), while a decimal or a `-0x..` value is as written.

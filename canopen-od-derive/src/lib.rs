@@ -49,8 +49,11 @@
 //! - `name = "..."` (ParameterName; default: the field name), `record = "..."` (the record's name);
 //! - `access = "ro" | "wo" | "rw" | "rwr" | "rww" | "const"` (default `rw`; OD-08, OD-09);
 //! - `pdo = "no" | "tpdo" | "rpdo" | "both"` (default `no`; only fixed-size types ≤ 8 bytes);
-//! - `min = …`, `max = …`, `default = …` (literals; checked against each other and the type's range);
+//! - `min = …`, `max = …`, `default = …` (literals; checked against each other and the type's range; an
+//!   `OctetString<N>` default is a string literal, its UTF-8 bytes, or a byte string `b"\xAB\xCD"`);
 //! - `domain` (the field implements `Domain` and is streamed);
+//! - `count_access = "ro" | "const"` (an array field or a record member: the access of the object's
+//!   sub-index 00h, its fixed number of entries; default `const`);
 //! - `check = "method"`: `fn(&self, sub: u8, new: &T) -> Result<(), AbortCode>` runs after the length and
 //!   limit checks and before anything changes: return an abort code to refuse the value;
 //! - `on_write = "method"`: `fn(&mut self, sub: u8)` runs after an accepted write (side effects).
@@ -79,7 +82,8 @@
 //!
 //! Compile errors (pinned by the trybuild tests in `tests/ui/`): duplicate index/sub-index, a type that is
 //! not PDO-mappable marked mappable, an index in 0000h–1FFFh, a default outside its limits (or min > max,
-//! or a limit outside the type), an unsupported field type, a malformed attribute.
+//! or a limit outside the type), a text default given as a byte string that is not UTF-8, an unsupported
+//! field type, a malformed attribute.
 
 use proc_macro::TokenStream;
 use proc_macro2::{Span, TokenStream as Ts};
@@ -163,6 +167,8 @@ enum ConstLit {
     Float(f64),
     Bool(bool),
     Str(String),
+    /// A byte string literal (`b"\xAB\xCD"`): an OCTET_STRING default whose bytes need not be UTF-8.
+    Bytes(Vec<u8>),
 }
 
 impl ConstLit {
@@ -173,7 +179,7 @@ impl ConstLit {
                 Lit::Float(f) => Ok(ConstLit::Float(f.base10_parse()?)),
                 Lit::Bool(b) => Ok(ConstLit::Bool(b.value)),
                 Lit::Str(s) => Ok(ConstLit::Str(s.value())),
-                Lit::ByteStr(s) => Ok(ConstLit::Str(String::from_utf8_lossy(&s.value()).into_owned())),
+                Lit::ByteStr(s) => Ok(ConstLit::Bytes(s.value())),
                 _ => Err(syn::Error::new_spanned(e, "expected an integer, float, bool or string literal")),
             },
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => match ConstLit::parse(&u.expr)? {
@@ -192,7 +198,7 @@ impl ConstLit {
             ConstLit::Int(i) => Some(i as f64),
             ConstLit::Float(f) => Some(f),
             ConstLit::Bool(b) => Some(f64::from(u8::from(b))),
-            ConstLit::Str(_) => None,
+            ConstLit::Str(_) | ConstLit::Bytes(_) => None,
         }
     }
 
@@ -202,6 +208,7 @@ impl ConstLit {
             ConstLit::Float(f) => f.to_string(),
             ConstLit::Bool(b) => b.to_string(),
             ConstLit::Str(s) => format!("{s:?}"),
+            ConstLit::Bytes(b) => format!("b\"{}\"", b.escape_ascii()),
         }
     }
 }
@@ -220,6 +227,7 @@ struct FieldAttr {
     domain: bool,
     check: Option<Ident>,
     on_write: Option<Ident>,
+    count_access: Option<(String, Span)>,
 }
 
 #[derive(Clone)]
@@ -273,6 +281,7 @@ fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
             "record" => a.record = Some(str_lit(&meta)?.0),
             "access" => a.access = Some(str_lit(&meta)?),
             "pdo" => a.pdo = Some(str_lit(&meta)?),
+            "count_access" => a.count_access = Some(str_lit(&meta)?),
             "min" | "max" | "default" => {
                 let e: Expr = meta.value()?.parse()?;
                 let v = (ConstLit::parse(&e)?, e);
@@ -296,7 +305,7 @@ fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
             _ => {
                 return Err(meta.error(
                     "unknown `od` key: expected index, sub, name, record, access, pdo, min, max, default, domain, \
-                     check or on_write",
+                     check, on_write or count_access",
                 ))
             }
         }
@@ -332,6 +341,8 @@ struct Row {
     limited: bool,
     /// SDO and RPDOs may write it (`rw`, `wo`, `rwr`, `rww`): only then is a write arm generated.
     writable: bool,
+    /// The access of its ARRAY's or RECORD's sub-index 00h (`count_access`), when not const.
+    count_access: Option<Ts>,
     target: Target,
     span: Span,
     field: String,
@@ -368,6 +379,17 @@ fn check_value(lit: &ConstLit, st: &ScalarType, expr: &Expr, what: &str) -> syn:
         (Class::Bool, ConstLit::Bool(_)) => {}
         (Class::Bool, ConstLit::Int(0 | 1)) => {}
         (Class::Text | Class::Bytes, ConstLit::Str(_)) if what == "default" => {}
+        (Class::Bytes, ConstLit::Bytes(_)) if what == "default" => {}
+        // A byte string for text: its bytes must be the text's UTF-8.
+        (Class::Text, ConstLit::Bytes(b)) if what == "default" => {
+            if std::str::from_utf8(b).is_err() {
+                return bad(format!(
+                    "default {} is not UTF-8: a {} default is text (a byte string default is for OCTET_STRING)",
+                    lit.show(),
+                    spec_name(st.dt)
+                ));
+            }
+        }
         (Class::Text | Class::Bytes, _) => return bad(format!("a {what} is not allowed for {}", spec_name(st.dt))),
         _ => return bad(format!("{what} {} does not match the field type {}", lit.show(), spec_name(st.dt))),
     }
@@ -410,6 +432,15 @@ fn value_tokens(core: &Ts, lit: &ConstLit, st: &ScalarType) -> Ts {
             quote!(#core::od::Value::Real64(#v))
         }
         (_, ConstLit::Str(s)) => quote!(#core::od::Value::Str(#s)),
+        (Class::Bytes, ConstLit::Bytes(b)) => {
+            let b = proc_macro2::Literal::byte_string(b);
+            quote!(#core::od::Value::Bytes(#b))
+        }
+        // Text given as a byte string: check_value made sure it is UTF-8.
+        (_, ConstLit::Bytes(b)) => {
+            let s = String::from_utf8_lossy(b);
+            quote!(#core::od::Value::Str(#s))
+        }
         _ => quote!(#core::od::Value::Uint(0)),
     }
 }
@@ -526,6 +557,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             continue;
         }
         let highest = rows.iter().filter(|x| x.index == r.index).map(|x| x.sub).max().unwrap_or(0);
+        let count_access = rows.iter().filter(|x| x.index == r.index).find_map(|x| x.count_access.clone());
         objects.push(Object {
             index: r.index,
             name: String::new(),
@@ -533,7 +565,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             span: r.span,
             field: r.field.clone(),
         });
-        record_rows.push(count_row(&core, r.index, highest, r.span, &r.field));
+        record_rows.push(count_row(&core, r.index, highest, r.span, &r.field, count_access));
     }
     rows.append(&mut record_rows);
     rows.sort_by_key(|r| (r.index, r.sub));
@@ -949,14 +981,16 @@ fn record_names(fields: &syn::FieldsNamed) -> syn::Result<Vec<(u16, String)>> {
     Ok(out)
 }
 
-fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str) -> Row {
+/// Sub-index 00h of an ARRAY or RECORD: its highest sub-index, `const` unless `access` (`count_access`)
+/// says `ro`.
+fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str, access: Option<Ts>) -> Row {
     Row {
         index,
         sub: 0,
         name: "Highest sub-index supported".into(),
         numbered: false,
         dt: "Unsigned8",
-        access: quote!(#core::od::Access::Const),
+        access: access.unwrap_or_else(|| quote!(#core::od::Access::Const)),
         pdo: quote!(#core::od::PdoMapping::No),
         max_size: quote!(1),
         default: quote!(::core::option::Option::Some(#core::od::Value::Uint(#highest as u64))),
@@ -964,6 +998,7 @@ fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str) -> Row
         high: quote!(::core::option::Option::None),
         limited: false,
         writable: false,
+        count_access: None,
         target: Target::Count(highest),
         span,
         field: field.into(),
@@ -1004,6 +1039,9 @@ fn field_rows(
     let ty = &field.ty;
 
     if a.domain {
+        if let Some((_, sp)) = a.count_access {
+            return Err(syn::Error::new(sp, "count_access applies to an array field or a record member"));
+        }
         if mapped {
             return Err(syn::Error::new(a.pdo.map(|p| p.1).unwrap_or(span), "a DOMAIN cannot be mapped to a PDO"));
         }
@@ -1036,6 +1074,7 @@ fn field_rows(
             high: quote!(::core::option::Option::None),
             limited: false,
             writable,
+            count_access: None,
             target: Target::Domain { member: quote!(#fident) },
             span: key_span,
             field: fname.into(),
@@ -1130,6 +1169,21 @@ fn field_rows(
     let low = opt(a.min.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let high = opt(a.max.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let _ = readable;
+    // Sub-index 00h of an ARRAY or RECORD holds its fixed count: `const` (the default) or `ro`.
+    let count_access = match &a.count_access {
+        None => None,
+        Some((_, sp)) if len.is_none() && !matches!(a.sub, Some(SubSpec::One(1.., _))) => {
+            return Err(syn::Error::new(*sp, "count_access applies to an array field or a record member"));
+        }
+        Some((s, _)) if s == "const" => None,
+        Some((s, _)) if s == "ro" => Some(quote!(#core::od::Access::Ro)),
+        Some((_, sp)) => {
+            return Err(syn::Error::new(
+                *sp,
+                "count_access must be \"ro\" or \"const\": sub-index 0 holds the fixed number of entries",
+            ))
+        }
+    };
 
     let make = |sub: u8, name: String, numbered: bool, member: Ts| Row {
         index,
@@ -1145,6 +1199,7 @@ fn field_rows(
         high: high.clone(),
         limited: a.min.is_some() || a.max.is_some(),
         writable,
+        count_access: count_access.clone(),
         target: Target::Field {
             member,
             ty: elem_ty.clone(),
@@ -1182,7 +1237,7 @@ fn field_rows(
                 })
                 .collect();
             let highest = first + (n - 1) as u8;
-            rows.push(count_row(core, index, highest, key_span, fname));
+            rows.push(count_row(core, index, highest, key_span, fname, count_access.clone()));
             Ok((rows, Some(Object { index, name, code: "Array", span: key_span, field: fname.into() })))
         }
         None => match a.sub {

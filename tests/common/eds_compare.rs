@@ -5,7 +5,7 @@
 //! exactly what `generate` listed as left out.
 #![allow(dead_code)]
 
-use canopen_master::eds::{eval_typed, Access, Dropped, Eds, Entry, LeftOut};
+use canopen_master::eds::{eval_typed, no_limit, Access, Dropped, Eds, Entry, LeftOut};
 
 /// Two values of a data type are the same: equal text, or equal numbers however written (`0x0` and `0`,
 /// `0xFFFFFFFF` and `-1` for an INTEGER32).
@@ -28,16 +28,27 @@ fn differences(a: &Entry, b: &Entry) -> Vec<Dropped> {
     if a.pdo_mapping != b.pdo_mapping {
         d.push(Dropped::PdoMapping);
     }
-    // Sub-index 0 of an ARRAY or RECORD (the entry count) is always const in a derived dictionary;
-    // CiA 306 has the one CompactSubObj implies be ro. Both are read-only: the same to a master.
+    // Sub-index 0 of the communication profile's records (1018h, the PDO parameters) is as the core
+    // describes it (const), not a NodeConfig field: ro there is the same to a master, and listed as not
+    // carried in canopen-master's README. Application objects' counts are compared exactly (count_access).
     let read_only = |e: &Entry| matches!(e.access, Access::ReadOnly | Access::Const);
-    if a.access != b.access && !(a.sub == 0 && read_only(a) && read_only(b)) {
+    let profile_count = a.index < 0x2000 && a.sub == 0 && read_only(a) && read_only(b);
+    if a.access != b.access && !profile_count {
         d.push(Dropped::Access);
     }
     if !same(&a.default, &b.default, a.data_type) {
         d.push(Dropped::Default);
     }
-    if !same(&a.low, &b.low, a.data_type) || !same(&a.high, &b.high, a.data_type) {
+    // A limit at its type's bound limits nothing: the same as none (sample.eds's transmission types 0..255).
+    let limit = |e: &Entry, low: bool| {
+        let v = if low { &e.low } else { &e.high };
+        if no_limit(v.as_deref(), e.data_type, low) {
+            None
+        } else {
+            v.clone()
+        }
+    };
+    if !same(&limit(a, true), &limit(b, true), a.data_type) || !same(&limit(a, false), &limit(b, false), a.data_type) {
         d.push(Dropped::Limits);
     }
     d

@@ -123,6 +123,15 @@ pub struct PdoDefault {
     pub sync_start: u8,
     /// Default mapping entries (raw UNSIGNED32, at most [`mapping::MAX_ENTRIES`]).
     pub mapping: &'static [u32],
+    /// The most entries the mapping takes (sub-index 00h's `HighLimit`; an EDS's "0..4"): writing a larger
+    /// count is refused with 0609 0031h. [`mapping::MAX_ENTRIES`] (the default) states no limit of its own.
+    pub max_mapped: u8,
+    /// The default entry count (sub-index 00h) when it is not all of `mapping`: `Some(0)` keeps the entries
+    /// but maps none (an EDS whose count has no `DefaultValue`), at most `mapping.len()`. `None`: all.
+    pub count: Option<u8>,
+    /// (TPDO) Whether a remote request is served: `false` sets COB-ID bit 30 (PDO-15, PDO-29). An RPDO's
+    /// bit 30 is reserved (PDO-07): leave it `true`.
+    pub rtr_allowed: bool,
 }
 
 impl PdoDefault {
@@ -135,6 +144,9 @@ impl PdoDefault {
         event_timer_ms: 0,
         sync_start: 0,
         mapping: &[],
+        max_mapped: mapping::MAX_ENTRIES as u8,
+        count: None,
+        rtr_allowed: true,
     };
     /// Not valid, event-driven, pre-defined COB-ID, no mapping: a PDO without a configured default.
     pub const UNUSED: PdoDefault = PdoDefault { valid: false, ..Self::EVENT };
@@ -148,6 +160,8 @@ impl PdoDefault {
     /// assert_eq!(c.cob_id, if pdo::RTR { 0x385 } else { 0x4000_0385 }); // COB-05: TPDO3 = 380h + node
     /// let (c, _) = PdoDefault::UNUSED.params(4, 0x200, 5);
     /// assert_eq!(c.cob_id, 0x8000_0000); // PDO-08: beyond 4, no pre-defined ID, invalid
+    /// let (c, _) = PdoDefault { rtr_allowed: false, ..PdoDefault::EVENT }.params(0, 0x180, 5);
+    /// assert_eq!(c.cob_id, 0x4000_0185); // PDO-15: bit 30, no RTR allowed
     /// ```
     pub const fn params(&self, k: usize, base: u16, node_id: u8) -> (PdoComm, PdoMapParams) {
         let id = match self.can_id {
@@ -157,8 +171,9 @@ impl PdoDefault {
         };
         let valid = self.valid && id != 0;
         let mut cob_id = if valid { id as u32 } else { CobIdEntry::BIT31 | id as u32 };
-        if !RTR && base == TPDO_BASE {
-            cob_id |= CobIdEntry::BIT30; // no RTR allowed: this build serves none (PDO-15, PDO-29)
+        if !self.rtr_allowed || (!RTR && base == TPDO_BASE) {
+            // No RTR allowed: the device's EDS says so, or this build serves none (PDO-15, PDO-29).
+            cob_id |= CobIdEntry::BIT30;
         }
         let comm = PdoComm {
             cob_id,
@@ -167,7 +182,24 @@ impl PdoDefault {
             event_timer_ms: self.event_timer_ms,
             sync_start: self.sync_start,
         };
-        (comm, PdoMapParams::from_slice(self.mapping))
+        (comm, self.map_params())
+    }
+
+    /// The default mapping parameters: `mapping`'s entries, `count` of them mapped (all by default).
+    ///
+    /// ```
+    /// use canopen_core::pdo::PdoDefault;
+    /// let d = PdoDefault { mapping: &[0x6000_0108, 0x6001_0108], count: Some(0), ..PdoDefault::EVENT };
+    /// assert_eq!((d.map_params().count, d.map_params().entries[1]), (0, 0x6001_0108));
+    /// ```
+    pub const fn map_params(&self) -> PdoMapParams {
+        let mut m = PdoMapParams::from_slice(self.mapping);
+        if let Some(c) = self.count {
+            if c < m.count {
+                m.count = c;
+            }
+        }
+        m
     }
 }
 

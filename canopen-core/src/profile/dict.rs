@@ -321,10 +321,18 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             PdoObj::RpdoMap(k) | PdoObj::TpdoMap(k) => {
                 let tx = matches!(obj, PdoObj::TpdoMap(_));
                 let d = if tx { self.config.tpdo_default(k) } else { self.config.rpdo_default(k) };
-                let m = PdoMapParams::from_slice(d.mapping);
+                let m = d.map_params();
                 match usize::from(sub) {
-                    0 => Ok(EntryDesc::var(index, 0, "Number of mapped application objects in PDO", Unsigned8, Rw)
-                        .with_default(uint(m.count.into()))),
+                    0 => {
+                        let e = EntryDesc::var(index, 0, "Number of mapped application objects in PDO", Unsigned8, Rw)
+                            .with_default(uint(m.count.into()));
+                        // A limit below MAX_ENTRIES is the configuration's own: the EDS says it.
+                        Ok(if usize::from(d.max_mapped) < MAX_ENTRIES {
+                            e.with_limits(Some(uint(0)), Some(uint(d.max_mapped.into())))
+                        } else {
+                            e
+                        })
+                    }
                     s if s <= MAX_ENTRIES => Ok(EntryDesc {
                         numbered: true,
                         ..EntryDesc::var(index, sub, "Application object", Unsigned32, Rw)
@@ -468,6 +476,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     }
 
     fn set_pdo(&mut self, f: &Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
+        let d = if f.tx() { self.config.tpdo_default(f.k()) } else { self.config.rpdo_default(f.k()) };
         let p = &mut self.params;
         let (comm, map) = if f.tx() {
             (p.tpdo_comm.as_mut().get_mut(f.k()), p.tpdo_map.as_mut().get_mut(f.k()))
@@ -479,7 +488,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         };
         let valid = comm.is_valid();
         match f.slot {
-            Slot::MapCount | Slot::MapEntry => return set_map(comm, map, sub, v, rules),
+            Slot::MapCount | Slot::MapEntry => return set_map(comm, map, sub, v, rules, d.max_mapped),
             Slot::PdoCob => {
                 if f.tx() {
                     crate::pdo::check_tpdo_rtr(v)?; // a build without TPDO remote requests: bit 30 stays set
@@ -549,7 +558,9 @@ fn pdo_map_value(m: &PdoMapParams, sub: u8) -> u32 {
 }
 
 /// PDO-30/35/37: the mapping changes only while the PDO is not valid, entries only while sub 00h = 0.
-fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
+/// `max` is the configuration's highest count (`PdoDefault::max_mapped`), above which a count is refused
+/// with 0609 0031h (its `HighLimit`).
+fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool, max: u8) -> Result<(), AbortCode> {
     if rules && comm.is_valid() {
         return Err(AbortCode::UnsupportedAccess);
     }
@@ -557,6 +568,9 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool)
         0 => {
             if v as usize > MAX_ENTRIES {
                 return Err(AbortCode::PdoLengthExceeded);
+            }
+            if v > u32::from(max) {
+                return Err(AbortCode::ValueTooHigh);
             }
             if rules && map.entries.iter().take(v as usize).any(|&e| e & 0xFF == 0) {
                 return Err(AbortCode::PdoLengthExceeded); // an empty entry inside the count
@@ -719,6 +733,7 @@ impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pdo::PdoDefault;
     use crate::profile::Identity;
 
     const CFG: NodeConfig = NodeConfig {
@@ -753,6 +768,28 @@ mod tests {
         assert_eq!(read(&od, 0x1002, 0), Err(AbortCode::ObjectDoesNotExist));
         assert_eq!(od.info(0x1008, 0).unwrap().size, 9);
         assert_eq!(od.info(0x1008, 0).unwrap().access, Access::Const);
+    }
+
+    /// A configuration's own PDO limits (what an EDS says, eds-to-rust carries): a mapping of at most 4
+    /// entries has 1A00h:00 limits 0..4 and refuses a count of 5 with 0609 0031h; a TPDO without RTR has
+    /// COB-ID bit 30 (PDO-15), relative to the node-ID in the EDS; the defaults state no limits.
+    #[test]
+    fn pdo_defaults_limit_the_mapping_count_and_set_bit_30() {
+        static TPDO: [PdoDefault; 1] = [PdoDefault { max_mapped: 4, rtr_allowed: false, ..PdoDefault::EVENT }];
+        let cfg = NodeConfig { tpdo: &TPDO, ..CFG };
+        let mut od: CommProfile<Sizes<0, 16, 16, 1, 2>> = CommProfile::for_node(cfg, 5);
+        let count = od.entry(0x1A00, 0).unwrap();
+        assert_eq!((count.low, count.high), (Some(Value::Uint(0)), Some(Value::Uint(4))));
+        assert_eq!(od.entry(0x1A01, 0).unwrap().high, None);
+        assert_eq!(od.entry(0x1800, 1).unwrap().default, Some(Value::NodeIdPlus(0x4000_0180)));
+        assert_eq!(read(&od, 0x1800, 1).unwrap()[..], [0x85, 0x01, 0, 0x40]);
+        od.write(0x1800, 1, &[0x85, 0x01, 0, 0xC0]).unwrap(); // not valid: the mapping may change
+        for (index, sub) in (1..=5).flat_map(|sub| [(0x1A00, sub), (0x1A01, sub)]) {
+            od.write(index, sub, &[0x08, 0x01, 0x00, 0x60]).unwrap();
+        }
+        assert_eq!(od.write(0x1A00, 0, &[5]), Err(AbortCode::ValueTooHigh));
+        od.write(0x1A00, 0, &[4]).unwrap();
+        od.write(0x1A01, 0, &[5]).unwrap(); // TPDO 2 (no default): up to MAX_ENTRIES
     }
 
     /// Heartbeat consumer entries 1016h:01..04 through the dictionary (0002 0064h, 0003 0190h, 0007 0FA0h;

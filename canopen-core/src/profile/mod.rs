@@ -320,7 +320,10 @@ fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], defaults: &[PdoD
         if let Some(dst) = m.entries.get_mut(..raw.len()) {
             dst.copy_from_slice(raw);
         }
-        m.count = raw.len() as u8;
+        m.count = match d.count {
+            Some(c) if usize::from(c) < raw.len() => c,
+            _ => raw.len() as u8,
+        };
     }
 }
 
@@ -346,18 +349,21 @@ mod tests {
         ];
         const EIGHT: [u32; 8] =
             [0x6000_0108, 0x6001_0108, 0x6002_0108, 0x6003_0108, 0x6004_0108, 0x6005_0108, 0x6006_0108, 0x6007_0108];
-        static RPDO: [PdoDefault; 3] = [
+        static RPDO: [PdoDefault; 4] = [
             PdoDefault { mapping: &[], ..PdoDefault::EVENT },
             PdoDefault { mapping: &[0x6200_0108], ..PdoDefault::EVENT },
             PdoDefault { mapping: &EIGHT, ..PdoDefault::EVENT },
+            // Entries prepared, none mapped (an EDS whose count has no DefaultValue: e35.eds's 1600h).
+            PdoDefault { mapping: &[0x6200_0108, 0x6201_0108], count: Some(0), ..PdoDefault::EVENT },
         ];
         static TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &NINE, ..PdoDefault::EVENT }];
         let cfg = NodeConfig { rpdo: &RPDO, tpdo: &TPDO, ..NodeConfig::DEFAULT };
         let p: CommParams<Sizes<0, 8, 8, 4, 2>> = CommParams::for_node(&cfg, 5);
         for (k, m) in p.rpdo_map.iter().enumerate() {
-            assert_eq!(*m, PdoMapParams::from_slice(cfg.rpdo_default(k).mapping), "RPDO {k}");
+            assert_eq!(*m, cfg.rpdo_default(k).map_params(), "RPDO {k}");
         }
         assert_eq!((p.rpdo_map[2].count, p.rpdo_map[3].count), (8, 0));
+        assert_eq!(p.rpdo_map[3].entries[..3], [0x6200_0108, 0x6201_0108, 0]);
         assert_eq!(p.tpdo_map[0], PdoMapParams::from_slice(&NINE[..MAX_ENTRIES.min(9)]));
         assert_eq!(p.tpdo_map[0].count, if MAX_ENTRIES == 8 { 8 } else { 9 });
         assert_eq!(p.tpdo_map[1], PdoMapParams::from_slice(&[]));

@@ -24,7 +24,7 @@ pub struct Device {
     pub ki_2020_2: f32,
     #[od(index = 0x2020, sub = 3, name = "Limit", access = "ro", pdo = "tpdo", default = 1000)]
     pub limit_2020_3: u16,
-    #[od(index = 0x2030, sub = 1..=3, name = "Gains", access = "rw", default = 2.5)]
+    #[od(index = 0x2030, sub = 1..=3, name = "Gains", access = "rw", default = 2.5, count_access = "ro")]
     pub gains_2030: [f64; 3],
     // 2040h Complex: data type 0040h is not supported; left out.
 }
