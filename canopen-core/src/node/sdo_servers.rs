@@ -1,0 +1,355 @@
+//! Additional SDO servers 1201h–127Fh (issue 17, SDO-54, SDO-55, SDO-57): [`WithSdoServers`]`<Z, N>` gives a
+//! node `N` of them beside the default server 1200h; [`Sizes`](crate::Sizes) gives none, and then none of
+//! this code is built into a firmware (every path below is behind `N > 0`, a constant).
+//!
+//! - The records 1201h+ live in the node (`sdo_records`) and are read and written by SDO through
+//!   [`WithRecords`] over the node's dictionary (only when `N > 0`: with none, the servers see the node's
+//!   dictionary as before, the same code and bytes): sub 00h = 2 (const), sub 01h COB-ID
+//!   client → server and sub 02h COB-ID server → client (rw, UNSIGNED32). Power-on and every reset
+//!   communication set both COB-IDs to 8000_0000h: invalid, the server does not exist (SDO-54).
+//! - A write follows COB-14/COB-15/COB-16/COB-13: the frame bit (29-bit) or bits 28–11 set → 0609 0030h; a
+//!   CAN-ID change while the entry is valid (bit 31 = 0) → 0609 0030h (invalidate, change, re-validate); a
+//!   valid entry on a restricted CAN-ID → 0609 0030h. Bit 30 (dyn) is kept as written.
+//! - A server exists while bit 31 = 0 in both entries (SDO-55); it then receives on sub 01h and answers on
+//!   sub 02h, and each server keeps its own transfer, so transfers on different servers run at once.
+//! - A record written by SDO takes effect when the write's response is queued (on the old COB-ID): a server
+//!   whose parameters changed drops its transfer without a frame, and the receive filters follow
+//!   ([`Node::rx_filters`]).
+//! - With `N > 0` the default server's record 1200h is readable too (SDO-53): sub 00h = 2, sub 01h = 600h +
+//!   node-ID, sub 02h = 580h + node-ID, all read-only.
+//!
+//! Not built: sub 03h (the client's node-ID, optional), storing the records (1010h), and the records in
+//! the EDS.
+
+use super::{Node, NodeSizes, PdoTable};
+use crate::cob::{is_restricted, CobIdEntry, NodeId};
+use crate::event::Event;
+use crate::frame::CanFrame;
+use crate::heartbeat::ConsumerSizes;
+use crate::nmt::Service;
+use crate::od::{AbortCode, Access, DataType, ObjectDictionary, OdValue, PdoDir, PdoHandle, PdoMapping, SubInfo};
+use crate::profile::ProfileSizes;
+use crate::sdo::{SdoServer, SdoServerParams};
+use crate::sizes::Slots;
+use crate::storage::Storage;
+use crate::time::{Deadline, Instant};
+use core::marker::PhantomData;
+use heapless::deque::DequeInner;
+
+/// The capacities `Z` plus `N` additional SDO servers 1201h..=1200h + `N` (`N` ≤ 127).
+///
+/// ```
+/// use canopen_core::{node::{NoApplication, Node, WithSdoServers}, profile::NodeConfig, CanFrame, Instant, NodeId};
+/// // The default sizes and one more server, 1201h.
+/// let mut node: Node<NoApplication, WithSdoServers> =
+///     Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+/// node.handle_timeout(Instant::ZERO);
+/// while node.poll_transmit().is_some() {}
+/// // 1201h sub 01h, read through the default server: invalid until configured (SDO-54).
+/// node.handle_frame(Instant::ZERO, &CanFrame::new(0x605, &[0x40, 0x01, 0x12, 0x01, 0, 0, 0, 0]).unwrap());
+/// assert_eq!(node.poll_transmit().unwrap().data(), &[0x43, 0x01, 0x12, 0x01, 0, 0, 0, 0x80]);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct WithSdoServers<Z = crate::Sizes, const N: usize = 1>(PhantomData<Z>);
+
+impl<Z: ConsumerSizes, const N: usize> ConsumerSizes for WithSdoServers<Z, N> {
+    const HB: usize = Z::HB;
+    type Consumers = Z::Consumers;
+    type ConsumerTimes = Z::ConsumerTimes;
+    const NO_CONSUMERS: Self::Consumers = Z::NO_CONSUMERS;
+    const ZERO_TIMES: Self::ConsumerTimes = Z::ZERO_TIMES;
+}
+
+impl<Z: ProfileSizes, const N: usize> ProfileSizes for WithSdoServers<Z, N> {
+    const RPDO: usize = Z::RPDO;
+    const TPDO: usize = Z::TPDO;
+    type RpdoComm = Z::RpdoComm;
+    type RpdoMap = Z::RpdoMap;
+    type TpdoComm = Z::TpdoComm;
+    type TpdoMap = Z::TpdoMap;
+    const RPDO_COMM: Self::RpdoComm = Z::RPDO_COMM;
+    const RPDO_MAP: Self::RpdoMap = Z::RPDO_MAP;
+    const TPDO_COMM: Self::TpdoComm = Z::TPDO_COMM;
+    const TPDO_MAP: Self::TpdoMap = Z::TPDO_MAP;
+}
+
+impl<Z: NodeSizes, const N: usize> NodeSizes for WithSdoServers<Z, N> {
+    const TXQ: usize = Z::TXQ;
+    const EVQ: usize = Z::EVQ;
+    type Rpdos = Z::Rpdos;
+    type Tpdos = Z::Tpdos;
+    type RpdoTable = Z::RpdoTable;
+    type TpdoTable = Z::TpdoTable;
+    type TxQueue = Z::TxQueue;
+    type EventQueue = Z::EventQueue;
+    const RPDO_TABLE: PdoTable<Self::RpdoTable> = Z::RPDO_TABLE;
+    const TPDO_TABLE: PdoTable<Self::TpdoTable> = Z::TPDO_TABLE;
+    const TX_QUEUE: DequeInner<CanFrame, Self::TxQueue> = Z::TX_QUEUE;
+    const EVENT_QUEUE: DequeInner<Event, Self::EventQueue> = Z::EVENT_QUEUE;
+    type ExtraSdo = [SdoServer; N];
+    type ExtraSdoParams = [SdoServerParams; N];
+}
+
+/// Whether `index` is an SDO server record, 1200h–127Fh.
+#[inline]
+pub(crate) const fn is_server_record(index: u16) -> bool {
+    index >> 7 == 0x1200 >> 7
+}
+
+/// The dictionary SDO sees on a node with additional servers: the SDO server records 1200h–127Fh from
+/// [`SdoRecords`], everything else from the node's dictionary `od`.
+pub(crate) struct WithRecords<'a, D, P> {
+    pub(crate) od: D,
+    pub(crate) sdo: SdoRecords<'a, P>,
+}
+
+impl<D: ObjectDictionary, P: Slots<SdoServerParams>> ObjectDictionary for WithRecords<'_, D, P> {
+    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.info(index, sub);
+        }
+        self.od.info(index, sub)
+    }
+    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.read(index, sub, offset, buf);
+        }
+        self.od.read(index, sub, offset, buf)
+    }
+    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.write(index, sub, data);
+        }
+        self.od.write(index, sub, data)
+    }
+    fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.begin_write(index, sub, size);
+        }
+        self.od.begin_write(index, sub, size)
+    }
+    fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.write_chunk(index, sub, offset, data);
+        }
+        self.od.write_chunk(index, sub, offset, data)
+    }
+    fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.end_write(index, sub, total);
+        }
+        self.od.end_write(index, sub, total)
+    }
+    fn abort_write(&mut self, index: u16, sub: u8) {
+        if !is_server_record(index) {
+            self.od.abort_write(index, sub)
+        }
+    }
+    fn restore_defaults(&mut self) {
+        self.od.restore_defaults()
+    }
+    fn write_events(&self) -> bool {
+        self.od.write_events()
+    }
+    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.read_expedited(index, sub, buf);
+        }
+        self.od.read_expedited(index, sub, buf)
+    }
+    fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.write_expedited(index, sub, data, len);
+        }
+        self.od.write_expedited(index, sub, data, len)
+    }
+    fn slot(&self, index: u16, sub: u8) -> u16 {
+        if is_server_record(index) {
+            return self.sdo.slot(index, sub);
+        }
+        self.od.slot(index, sub)
+    }
+    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.read_slot(index, sub, slot, offset, buf);
+        }
+        self.od.read_slot(index, sub, slot, offset, buf)
+    }
+    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
+        if is_server_record(index) {
+            return self.sdo.pdo_resolve(index, sub, dir); // not mappable: 0604 0041h
+        }
+        self.od.pdo_resolve(index, sub, dir)
+    }
+    fn pdo_read(&self, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        self.od.pdo_read(handle, buf)
+    }
+    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+        self.od.pdo_write(handle, data)
+    }
+}
+
+/// The SDO server records as a dictionary: 1200h from the node-ID, 1201h + k from `records[k]`.
+pub(crate) struct SdoRecords<'a, P> {
+    pub(crate) records: &'a mut P,
+    pub(crate) node_id: NodeId,
+}
+
+const U8_CONST: SubInfo =
+    SubInfo { data_type: DataType::Unsigned8, access: Access::Const, pdo: PdoMapping::No, size: 1 };
+
+const fn u32_entry(access: Access) -> SubInfo {
+    SubInfo { data_type: DataType::Unsigned32, access, pdo: PdoMapping::No, size: 4 }
+}
+
+impl<P: Slots<SdoServerParams>> SdoRecords<'_, P> {
+    /// The record of `index` (1200h: the default server).
+    fn params(&self, index: u16) -> Result<SdoServerParams, AbortCode> {
+        match usize::from(index & 0x7F).checked_sub(1) {
+            None => Ok(SdoServerParams::default_server(self.node_id)),
+            Some(k) => self.records.as_ref().get(k).copied().ok_or(AbortCode::ObjectDoesNotExist),
+        }
+    }
+
+    /// The value of a sub-entry as little-endian bytes and its size.
+    fn value(&self, index: u16, sub: u8) -> Result<([u8; 4], usize), AbortCode> {
+        let p = self.params(index)?;
+        match sub {
+            0 => Ok(([2, 0, 0, 0], 1)),
+            1 => Ok((p.cob_rx.raw().to_le_bytes(), 4)),
+            2 => Ok((p.cob_tx.raw().to_le_bytes(), 4)),
+            _ => Err(AbortCode::SubIndexDoesNotExist),
+        }
+    }
+}
+
+impl<P: Slots<SdoServerParams>> ObjectDictionary for SdoRecords<'_, P> {
+    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+        self.params(index)?;
+        match (index & 0x7F, sub) {
+            (_, 0) => Ok(U8_CONST),
+            (0, 1) => Ok(u32_entry(Access::Const)), // SDO-53
+            (0, 2) => Ok(u32_entry(Access::Ro)),
+            (_, 1 | 2) => Ok(u32_entry(Access::Rw)), // SDO-54
+            _ => Err(AbortCode::SubIndexDoesNotExist),
+        }
+    }
+
+    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
+        let (bytes, len) = self.value(index, sub)?;
+        let src = bytes.get(offset..len).unwrap_or(&[]);
+        let n = src.len().min(buf.len());
+        buf[..n].copy_from_slice(&src[..n]);
+        Ok(n)
+    }
+
+    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        if !self.info(index, sub)?.access.writable() {
+            return Err(AbortCode::WriteOfReadOnly);
+        }
+        let v = u32::decode(data)?; // SDO-18
+        let k = usize::from(index & 0x7F) - 1; // 1200h is read-only: k >= 0
+        let Some(p) = self.records.as_mut().get_mut(k) else {
+            return Err(AbortCode::ObjectDoesNotExist);
+        };
+        let entry = if sub == 1 { &mut p.cob_rx } else { &mut p.cob_tx };
+        // COB-15 (frame bit), COB-14 (bits 28-11), COB-16 (no ID change while valid).
+        let new = entry.check_change(v, |e: CobIdEntry| !e.bit31())?;
+        if !new.bit31() && is_restricted(new.can_id()) {
+            return Err(AbortCode::InvalidValue); // COB-13
+        }
+        *entry = new;
+        Ok(())
+    }
+}
+
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
+    /// The additional server that receives on `id`, if any (never when `N` = 0).
+    #[inline]
+    pub(super) fn extra_sdo_for(&self, id: u16) -> Option<usize> {
+        if <Z::ExtraSdo as Slots<SdoServer>>::LEN == 0 {
+            return None;
+        }
+        self.sdo_extra.as_ref().iter().position(|s| s.receives(id))
+    }
+
+    /// A request to additional server `i` (SDO-01's rules: Pre-operational and Operational only, NMT-18).
+    #[inline(never)]
+    pub(super) fn handle_extra_sdo(&mut self, now: Instant, i: usize, frame: &CanFrame) {
+        if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {
+            return;
+        }
+        let Some(cob) = self.sdo_extra.as_ref().get(i).map(SdoServer::tx_cob_id) else { return };
+        let response = sdo_dict!(self, |od| self.sdo_extra[i].handle_request(now, frame.data(), od));
+        self.sdo_response(now, response, cob);
+        #[cfg(feature = "sdo-block")]
+        self.pump_extra_sdo();
+    }
+
+    /// The earliest time-out of the additional servers.
+    #[inline]
+    pub(super) fn extra_sdo_deadline(&self) -> Deadline {
+        let mut t = Deadline::NONE;
+        for s in self.sdo_extra.as_ref() {
+            t = t.min(s.deadline());
+        }
+        t
+    }
+
+    /// SDO-31 on the additional servers.
+    #[inline]
+    pub(super) fn extra_sdo_timeout(&mut self, now: Instant) {
+        for i in 0..<Z::ExtraSdo as Slots<SdoServer>>::LEN {
+            let cob = self.sdo_extra[i].tx_cob_id();
+            let response = sdo_dict!(self, |od| self.sdo_extra[i].handle_timeout(now, od));
+            self.sdo_response(now, response, cob);
+        }
+    }
+
+    /// Block-upload segments of the additional servers, while the transmit queue has room (as the
+    /// default server's, `pump_sdo_segments`).
+    #[cfg(feature = "sdo-block")]
+    pub(super) fn pump_extra_sdo(&mut self) {
+        for i in 0..<Z::ExtraSdo as Slots<SdoServer>>::LEN {
+            while self.sdo_extra[i].wants_transmit()
+                && self.tx.storage_len() + super::TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ
+            {
+                let cob = self.sdo_extra[i].tx_cob_id();
+                let now = self.now;
+                let Some(response) = sdo_dict!(self, |od| self.sdo_extra[i].poll_transmit(now, od)) else {
+                    break;
+                };
+                self.sdo_response(self.now, response, cob);
+            }
+        }
+    }
+
+    /// Drops every additional server's transfer without a frame (NMT-18: Stopped).
+    pub(super) fn cancel_extra_sdo(&mut self) {
+        for i in 0..<Z::ExtraSdo as Slots<SdoServer>>::LEN {
+            sdo_dict!(self, |od| self.sdo_extra[i].cancel(od));
+        }
+    }
+
+    /// Reset communication: every record 1201h+ back to 8000_0000h (SDO-54), every server idle.
+    pub(super) fn reset_extra_sdo(&mut self) {
+        self.cancel_extra_sdo();
+        for i in 0..<Z::ExtraSdo as Slots<SdoServer>>::LEN {
+            self.sdo_records[i] = SdoServerParams::DISABLED;
+            self.sdo_extra[i].set_params(SdoServerParams::DISABLED);
+        }
+    }
+
+    /// Record `index` (1201h+) was written by SDO: its server takes the new COB-IDs, dropping a transfer
+    /// under way when they changed.
+    pub(super) fn sdo_record_written(&mut self, index: u16) {
+        let Some(i) = usize::from(index & 0x7F).checked_sub(1) else { return };
+        let (Some(server), Some(&p)) = (self.sdo_extra.as_ref().get(i), self.sdo_records.as_ref().get(i)) else {
+            return;
+        };
+        if *server.params() != p {
+            sdo_dict!(self, |od| self.sdo_extra[i].cancel(od));
+            self.sdo_extra[i].set_params(p);
+        }
+    }
+}
