@@ -199,3 +199,58 @@ fn the_128th_server_127fh_serves_sdo_57() {
     assert_eq!(ex("6DF [8] 40 7F 12 01 00 00 00 00"), vec![frame("6CF [8] 43 7F 12 01 DF 06 00 00")]);
     assert_eq!(ex("605 [8] 40 80 12 00 00 00 00 00"), vec![frame("585 [8] 80 80 12 00 00 00 02 06")]);
 }
+
+/// SDO-56 (client records 1280h+) and COB-14..16: a node with two client records and no additional
+/// server. 1280h reads sub 00h = 3, both COB-IDs 8000_0000h, sub 03h = 0; the node-ID is 01h–7Fh (0609
+/// 0032h / 0609 0031h); a client may use a default server's IDs (603h/583h: the restricted set is about
+/// the node's own objects); the ID of a valid entry cannot change; 1282h does not exist. The record, once
+/// valid, gives the application's `SdoClient` its parameters, and that client reads 1000h from node 3.
+#[cfg(feature = "sdo-client")]
+#[test]
+fn client_records_1280h_configure_an_sdo_client() {
+    use canopen::core::sdo::{client::Mode, client::SliceData, SdoClient};
+    use canopen::core::wire::sdo::Multiplexer;
+    type C = Node<App, WithSdoServers<Sizes<4, 16, 32>, 0, 2>>;
+    let mut n: C = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, App::default());
+    n.handle_timeout(Instant::ZERO);
+    while n.poll_transmit().is_some() {}
+    let ex = |n: &mut C, req: &str| {
+        n.handle_frame(ms(1), &frame(req));
+        core::iter::from_fn(|| n.poll_transmit()).collect::<Vec<_>>()
+    };
+    assert_eq!(ex(&mut n, "605 [8] 40 80 12 00 00 00 00 00"), vec![frame("585 [8] 4F 80 12 00 03 00 00 00")]);
+    assert_eq!(ex(&mut n, "605 [8] 40 81 12 02 00 00 00 00"), vec![frame("585 [8] 43 81 12 02 00 00 00 80")]);
+    assert_eq!(ex(&mut n, "605 [8] 40 80 12 03 00 00 00 00"), vec![frame("585 [8] 4F 80 12 03 00 00 00 00")]);
+    assert_eq!(ex(&mut n, "605 [8] 40 82 12 00 00 00 00 00"), vec![frame("585 [8] 80 82 12 00 00 00 02 06")]);
+    assert_eq!(ex(&mut n, "605 [8] 2F 80 12 00 02 00 00 00"), vec![frame("585 [8] 80 80 12 00 02 00 01 06")]);
+    assert_eq!(ex(&mut n, "605 [8] 2F 80 12 03 00 00 00 00"), vec![frame("585 [8] 80 80 12 03 32 00 09 06")]);
+    assert_eq!(ex(&mut n, "605 [8] 2F 80 12 03 80 00 00 00"), vec![frame("585 [8] 80 80 12 03 31 00 09 06")]);
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 01 03 06 00 20"), vec![frame("585 [8] 80 80 12 01 30 00 09 06")]);
+    assert_eq!(ex(&mut n, "605 [8] 2F 80 12 03 03 00 00 00"), vec![frame("585 [8] 60 80 12 03 00 00 00 00")]);
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 01 03 06 00 00"), vec![frame("585 [8] 60 80 12 01 00 00 00 00")]);
+    assert_eq!(n.sdo_client_record(0).and_then(|r| r.client_params()), None, "sub 02h still invalid");
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 02 83 05 00 00"), vec![frame("585 [8] 60 80 12 02 00 00 00 00")]);
+    assert!(events(&mut n).contains(&Event::ObjectWritten { index: 0x1280, sub: 2 }));
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 02 84 05 00 00"), vec![frame("585 [8] 80 80 12 02 30 00 09 06")]);
+    let params = n.sdo_client_record(0).and_then(|r| r.client_params()).unwrap();
+    assert_eq!((params.tx_cob_id(), params.rx_cob_id(), params.server_node), (0x603, 0x583, 3));
+
+    // The application's client on those IDs reads 1000h:00 from node 3.
+    let mut server: Node<App> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, App::default());
+    server.handle_timeout(Instant::ZERO);
+    while server.poll_transmit().is_some() {}
+    let mut client = SdoClient::new(params);
+    let mut buf = [0u8; 4];
+    let mut data = SliceData::upload(&mut buf);
+    client.start_upload(ms(2), Multiplexer::new(0x1000, 0), Mode::Auto).unwrap();
+    let req = client.poll_transmit(ms(2), &mut data).unwrap();
+    server.handle_frame(ms(2), &CanFrame::new(params.tx_cob_id(), &req).unwrap());
+    let reply = server.poll_transmit().unwrap();
+    assert_eq!(reply.cob_id(), params.rx_cob_id());
+    assert!(client.handle_response(ms(2), reply.data(), &mut data).is_some());
+    assert_eq!(data.len(), 4);
+    // Reset communication: the records are invalid again.
+    n.handle_frame(ms(3), &frame("000 [2] 82 05"));
+    n.handle_timeout(ms(3));
+    assert_eq!(n.sdo_client_record(0), Some(canopen::core::node::SdoClientRecord::DISABLED));
+}

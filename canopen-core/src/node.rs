@@ -34,11 +34,17 @@ macro_rules! sdo_dict {
     ($node:ident, |$od:ident| $body:expr) => {{
         let node_id = $node.node_id;
         let mut nd = crate::node::dict::NodeDict::new(&mut $node.comm, &mut $node.app, &mut $node.storage, $node.save);
-        if <Z::ExtraSdo as crate::sizes::Slots<crate::sdo::SdoServer>>::LEN == 0 {
+        if <Z::ExtraSdo as crate::sizes::Slots<crate::sdo::SdoServer>>::LEN == 0
+            && <Z::SdoClients as crate::sizes::Slots<crate::node::SdoClientRecord>>::LEN == 0
+        {
             let $od = &mut nd;
             $body
         } else {
-            let records = crate::node::sdo_servers::SdoRecords { records: &mut $node.sdo_records, node_id };
+            let records = crate::node::sdo_servers::SdoRecords {
+                records: &mut $node.sdo_records,
+                clients: &mut $node.sdo_clients,
+                node_id,
+            };
             let $od = &mut crate::node::sdo_servers::WithRecords { od: nd, sdo: records };
             $body
         }
@@ -52,7 +58,7 @@ mod rx_filter;
 mod sdo_servers;
 
 pub use rx_filter::{RxFilter, RxFilters, RX_FILTER_CAPACITY};
-pub use sdo_servers::WithSdoServers;
+pub use sdo_servers::{SdoClientRecord, WithSdoServers};
 
 use heapless::deque::DequeInner;
 use heapless::vec::{OwnedVecStorage, VecInner, VecStorage};
@@ -119,6 +125,8 @@ pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     sdo_extra: Z::ExtraSdo,
     /// Their records 1201h+ as SDO last wrote them.
     sdo_records: Z::ExtraSdoParams,
+    /// The SDO client records 1280h+ (none for [`Sizes`]).
+    sdo_clients: Z::SdoClients,
     /// The latest time passed in, for work that `poll_transmit` resumes (block upload segments).
     now: Instant,
     nmt: Nmt,
@@ -256,6 +264,8 @@ pub trait NodeSizes: ProfileSizes {
     type ExtraSdo: Slots<SdoServer>;
     /// Their parameter records 1201h+ as the dictionary holds them: `[SdoServerParams; N]`.
     type ExtraSdoParams: Slots<SdoServerParams>;
+    /// The SDO client records 1280h+ (SDO-56): `[SdoClientRecord; M]`, none for [`Sizes`].
+    type SdoClients: Slots<SdoClientRecord>;
 }
 
 /// A sorted (CAN-ID, PDO number) table in `S`'s storage (`heapless::Vec<(u16, u16), N>` for
@@ -279,6 +289,7 @@ impl<const HB: usize, const TXQ: usize, const EVQ: usize, const RPDO: usize, con
     const EVENT_QUEUE: Deque<Event, EVQ> = Deque::new();
     type ExtraSdo = [SdoServer; 0];
     type ExtraSdoParams = [SdoServerParams; 0];
+    type SdoClients = [SdoClientRecord; 0];
 }
 
 /// Transmit-queue slots that block-upload segments never take, so that a heartbeat, an EMCY or a PDO due
@@ -323,6 +334,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             sdo: SdoServer::new(SdoServerParams::default_server(node_id)),
             sdo_extra: Z::ExtraSdo::from_fn(|_| SdoServer::new(SdoServerParams::DISABLED)),
             sdo_records: Z::ExtraSdoParams::from_fn(|_| SdoServerParams::DISABLED),
+            sdo_clients: Z::SdoClients::from_fn(|_| SdoClientRecord::DISABLED),
             now: Instant::ZERO,
             nmt: Nmt::new(),
             boot_pending: true,

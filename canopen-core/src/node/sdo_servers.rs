@@ -36,7 +36,9 @@ use crate::time::{Deadline, Instant};
 use core::marker::PhantomData;
 use heapless::deque::DequeInner;
 
-/// The capacities `Z` plus `N` additional SDO servers 1201h..=1200h + `N` (`N` ≤ 127).
+/// The capacities `Z` plus `N` additional SDO servers 1201h..=1200h + `N` (`N` ≤ 127) and `M` SDO client
+/// records 1280h..1280h + `M` - 1 (`M` ≤ 128, SDO-56: for the application's clients, see
+/// [`Node::sdo_client_record`]).
 ///
 /// ```
 /// use canopen_core::{node::{NoApplication, Node, WithSdoServers}, profile::NodeConfig, CanFrame, Instant, NodeId};
@@ -50,9 +52,9 @@ use heapless::deque::DequeInner;
 /// assert_eq!(node.poll_transmit().unwrap().data(), &[0x43, 0x01, 0x12, 0x01, 0, 0, 0, 0x80]);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct WithSdoServers<Z = crate::Sizes, const N: usize = 1>(PhantomData<Z>);
+pub struct WithSdoServers<Z = crate::Sizes, const N: usize = 1, const M: usize = 0>(PhantomData<Z>);
 
-impl<Z: ConsumerSizes, const N: usize> ConsumerSizes for WithSdoServers<Z, N> {
+impl<Z: ConsumerSizes, const N: usize, const M: usize> ConsumerSizes for WithSdoServers<Z, N, M> {
     const HB: usize = Z::HB;
     type Consumers = Z::Consumers;
     type ConsumerTimes = Z::ConsumerTimes;
@@ -60,7 +62,7 @@ impl<Z: ConsumerSizes, const N: usize> ConsumerSizes for WithSdoServers<Z, N> {
     const ZERO_TIMES: Self::ConsumerTimes = Z::ZERO_TIMES;
 }
 
-impl<Z: ProfileSizes, const N: usize> ProfileSizes for WithSdoServers<Z, N> {
+impl<Z: ProfileSizes, const N: usize, const M: usize> ProfileSizes for WithSdoServers<Z, N, M> {
     const RPDO: usize = Z::RPDO;
     const TPDO: usize = Z::TPDO;
     type RpdoComm = Z::RpdoComm;
@@ -73,7 +75,7 @@ impl<Z: ProfileSizes, const N: usize> ProfileSizes for WithSdoServers<Z, N> {
     const TPDO_MAP: Self::TpdoMap = Z::TPDO_MAP;
 }
 
-impl<Z: NodeSizes, const N: usize> NodeSizes for WithSdoServers<Z, N> {
+impl<Z: NodeSizes, const N: usize, const M: usize> NodeSizes for WithSdoServers<Z, N, M> {
     const TXQ: usize = Z::TXQ;
     const EVQ: usize = Z::EVQ;
     type Rpdos = Z::Rpdos;
@@ -88,6 +90,7 @@ impl<Z: NodeSizes, const N: usize> NodeSizes for WithSdoServers<Z, N> {
     const EVENT_QUEUE: DequeInner<Event, Self::EventQueue> = Z::EVENT_QUEUE;
     type ExtraSdo = [SdoServer; N];
     type ExtraSdoParams = [SdoServerParams; N];
+    type SdoClients = [SdoClientRecord; M];
 }
 
 /// Whether `index` is an SDO server record, 1200h–127Fh.
@@ -96,52 +99,125 @@ pub(crate) const fn is_server_record(index: u16) -> bool {
     index >> 7 == 0x1200 >> 7
 }
 
-/// The dictionary SDO sees on a node with additional servers: the SDO server records 1200h–127Fh from
-/// [`SdoRecords`], everything else from the node's dictionary `od`.
-pub(crate) struct WithRecords<'a, D, P> {
-    pub(crate) od: D,
-    pub(crate) sdo: SdoRecords<'a, P>,
+/// Whether `index` is an SDO server or client record, 1200h–12FFh.
+#[inline]
+const fn is_sdo_record(index: u16) -> bool {
+    index >> 8 == 0x12
 }
 
-impl<D: ObjectDictionary, P: Slots<SdoServerParams>> ObjectDictionary for WithRecords<'_, D, P> {
+/// An SDO client parameter record 1280h+ (SDO-56): what the application's [`SdoClient`] of that channel
+/// uses, configured locally ([`Node::set_sdo_client_record`]) or by SDO (a configuration tool or a
+/// master writing the node's dictionary).
+///
+/// [`SdoClient`]: crate::sdo::SdoClient
+///
+/// ```
+/// use canopen_core::node::SdoClientRecord;
+/// let r = SdoClientRecord::DISABLED;
+/// assert!(r.cob_tx.bit31() && r.cob_rx.bit31() && r.server_node == 0);
+/// assert!(!r.is_valid());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SdoClientRecord {
+    /// Sub 01h: COB-ID client → server (the client sends on it).
+    pub cob_tx: CobIdEntry,
+    /// Sub 02h: COB-ID server → client (the client receives on it).
+    pub cob_rx: CobIdEntry,
+    /// Sub 03h: node-ID of the server (01h–7Fh; 0 until configured).
+    pub server_node: u8,
+}
+
+impl SdoClientRecord {
+    /// Power-on and reset communication value: both COB-IDs invalid (bit 31 = 1), no server node-ID.
+    ///
+    /// ```
+    /// # use canopen_core::node::SdoClientRecord;
+    /// assert_eq!(SdoClientRecord::DISABLED.cob_tx.raw(), 0x8000_0000);
+    /// ```
+    pub const DISABLED: SdoClientRecord = SdoClientRecord {
+        cob_tx: CobIdEntry::from_raw(CobIdEntry::BIT31),
+        cob_rx: CobIdEntry::from_raw(CobIdEntry::BIT31),
+        server_node: 0,
+    };
+
+    /// Whether the channel exists: bit 31 clear in both COB-IDs (SDO-55's rule, as for a server).
+    ///
+    /// ```
+    /// # use canopen_core::node::SdoClientRecord;
+    /// # use canopen_core::cob::CobIdEntry;
+    /// let r = SdoClientRecord { cob_tx: CobIdEntry::from_raw(0x603), cob_rx: CobIdEntry::from_raw(0x583), server_node: 3 };
+    /// assert!(r.is_valid());
+    /// ```
+    pub const fn is_valid(&self) -> bool {
+        (self.cob_tx.raw() | self.cob_rx.raw()) & (CobIdEntry::BIT31 | CobIdEntry::FRAME) == 0
+    }
+
+    /// The parameters for an [`SdoClient`](crate::sdo::SdoClient), when the channel is valid.
+    ///
+    /// ```
+    /// # use canopen_core::node::SdoClientRecord;
+    /// # use canopen_core::cob::CobIdEntry;
+    /// let r = SdoClientRecord { cob_tx: CobIdEntry::from_raw(0x603), cob_rx: CobIdEntry::from_raw(0x583), server_node: 3 };
+    /// assert_eq!(r.client_params().map(|p| (p.tx_cob_id(), p.rx_cob_id())), Some((0x603, 0x583)));
+    /// assert!(SdoClientRecord::DISABLED.client_params().is_none());
+    /// ```
+    #[cfg(feature = "sdo-client")]
+    pub const fn client_params(&self) -> Option<crate::sdo::SdoClientParams> {
+        if !self.is_valid() {
+            return None;
+        }
+        Some(crate::sdo::SdoClientParams { cob_tx: self.cob_tx, cob_rx: self.cob_rx, server_node: self.server_node })
+    }
+}
+
+/// The dictionary SDO sees on a node with additional servers: the SDO server records 1200h–127Fh from
+/// [`SdoRecords`], everything else from the node's dictionary `od`.
+pub(crate) struct WithRecords<'a, D, P, C> {
+    pub(crate) od: D,
+    pub(crate) sdo: SdoRecords<'a, P, C>,
+}
+
+impl<D: ObjectDictionary, P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> ObjectDictionary
+    for WithRecords<'_, D, P, C>
+{
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.info(index, sub);
         }
         self.od.info(index, sub)
     }
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.read(index, sub, offset, buf);
         }
         self.od.read(index, sub, offset, buf)
     }
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.write(index, sub, data);
         }
         self.od.write(index, sub, data)
     }
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.begin_write(index, sub, size);
         }
         self.od.begin_write(index, sub, size)
     }
     fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.write_chunk(index, sub, offset, data);
         }
         self.od.write_chunk(index, sub, offset, data)
     }
     fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.end_write(index, sub, total);
         }
         self.od.end_write(index, sub, total)
     }
     fn abort_write(&mut self, index: u16, sub: u8) {
-        if !is_server_record(index) {
+        if !is_sdo_record(index) {
             self.od.abort_write(index, sub)
         }
     }
@@ -152,31 +228,31 @@ impl<D: ObjectDictionary, P: Slots<SdoServerParams>> ObjectDictionary for WithRe
         self.od.write_events()
     }
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.read_expedited(index, sub, buf);
         }
         self.od.read_expedited(index, sub, buf)
     }
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.write_expedited(index, sub, data, len);
         }
         self.od.write_expedited(index, sub, data, len)
     }
     fn slot(&self, index: u16, sub: u8) -> u16 {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.slot(index, sub);
         }
         self.od.slot(index, sub)
     }
     fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.read_slot(index, sub, slot, offset, buf);
         }
         self.od.read_slot(index, sub, slot, offset, buf)
     }
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
-        if is_server_record(index) {
+        if is_sdo_record(index) {
             return self.sdo.pdo_resolve(index, sub, dir); // not mappable: 0604 0041h
         }
         self.od.pdo_resolve(index, sub, dir)
@@ -189,9 +265,11 @@ impl<D: ObjectDictionary, P: Slots<SdoServerParams>> ObjectDictionary for WithRe
     }
 }
 
-/// The SDO server records as a dictionary: 1200h from the node-ID, 1201h + k from `records[k]`.
-pub(crate) struct SdoRecords<'a, P> {
+/// The SDO records as a dictionary: 1200h from the node-ID, 1201h + k from `records[k]`, 1280h + k from
+/// `clients[k]`.
+pub(crate) struct SdoRecords<'a, P, C> {
     pub(crate) records: &'a mut P,
+    pub(crate) clients: &'a mut C,
     pub(crate) node_id: NodeId,
 }
 
@@ -202,7 +280,52 @@ const fn u32_entry(access: Access) -> SubInfo {
     SubInfo { data_type: DataType::Unsigned32, access, pdo: PdoMapping::No, size: 4 }
 }
 
-impl<P: Slots<SdoServerParams>> SdoRecords<'_, P> {
+impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> SdoRecords<'_, P, C> {
+    /// The client record of `index` (1280h+).
+    fn client(&self, index: u16) -> Result<SdoClientRecord, AbortCode> {
+        self.clients.as_ref().get(usize::from(index & 0x7F)).copied().ok_or(AbortCode::ObjectDoesNotExist)
+    }
+
+    /// A client record's sub-entry (SDO-56: sub 00h = 3; 01h/02h COB-IDs; 03h server node-ID).
+    fn client_value(&self, index: u16, sub: u8) -> Result<([u8; 4], usize), AbortCode> {
+        let c = self.client(index)?;
+        match sub {
+            0 => Ok(([3, 0, 0, 0], 1)),
+            1 => Ok((c.cob_tx.raw().to_le_bytes(), 4)),
+            2 => Ok((c.cob_rx.raw().to_le_bytes(), 4)),
+            3 => Ok(([c.server_node, 0, 0, 0], 1)),
+            _ => Err(AbortCode::SubIndexDoesNotExist),
+        }
+    }
+
+    /// Writes a client record's sub 01h–03h: the COB-ID rules of COB-14..16 (the IDs are the server's,
+    /// often a default server's 600h/580h + node-ID, so the restricted set does not apply), the node-ID
+    /// 01h–7Fh (0609 0032h below, 0609 0031h above).
+    fn write_client(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+        self.client(index)?;
+        let Some(c) = self.clients.as_mut().get_mut(usize::from(index & 0x7F)) else {
+            return Err(AbortCode::ObjectDoesNotExist);
+        };
+        match sub {
+            0 => Err(AbortCode::WriteOfReadOnly),
+            1 | 2 => {
+                let v = u32::decode(data)?;
+                let entry = if sub == 1 { &mut c.cob_tx } else { &mut c.cob_rx };
+                *entry = entry.check_change(v, |e: CobIdEntry| !e.bit31())?;
+                Ok(())
+            }
+            3 => match u8::decode(data)? {
+                0 => Err(AbortCode::ValueTooLow),
+                n if n > 0x7F => Err(AbortCode::ValueTooHigh),
+                n => {
+                    c.server_node = n;
+                    Ok(())
+                }
+            },
+            _ => Err(AbortCode::SubIndexDoesNotExist),
+        }
+    }
+
     /// The record of `index` (1200h: the default server).
     fn params(&self, index: u16) -> Result<SdoServerParams, AbortCode> {
         match usize::from(index & 0x7F).checked_sub(1) {
@@ -213,6 +336,9 @@ impl<P: Slots<SdoServerParams>> SdoRecords<'_, P> {
 
     /// The value of a sub-entry as little-endian bytes and its size.
     fn value(&self, index: u16, sub: u8) -> Result<([u8; 4], usize), AbortCode> {
+        if !is_server_record(index) {
+            return self.client_value(index, sub);
+        }
         let p = self.params(index)?;
         match sub {
             0 => Ok(([2, 0, 0, 0], 1)),
@@ -223,8 +349,17 @@ impl<P: Slots<SdoServerParams>> SdoRecords<'_, P> {
     }
 }
 
-impl<P: Slots<SdoServerParams>> ObjectDictionary for SdoRecords<'_, P> {
+impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> ObjectDictionary for SdoRecords<'_, P, C> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
+        if !is_server_record(index) {
+            self.client(index)?;
+            return match sub {
+                0 => Ok(U8_CONST),
+                1 | 2 => Ok(u32_entry(Access::Rw)),
+                3 => Ok(SubInfo { access: Access::Rw, ..U8_CONST }),
+                _ => Err(AbortCode::SubIndexDoesNotExist),
+            };
+        }
         self.params(index)?;
         match (index & 0x7F, sub) {
             (_, 0) => Ok(U8_CONST),
@@ -246,6 +381,9 @@ impl<P: Slots<SdoServerParams>> ObjectDictionary for SdoRecords<'_, P> {
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         if !self.info(index, sub)?.access.writable() {
             return Err(AbortCode::WriteOfReadOnly);
+        }
+        if !is_server_record(index) {
+            return self.write_client(index, sub, data);
         }
         let v = u32::decode(data)?; // SDO-18
         let k = usize::from(index & 0x7F) - 1; // 1200h is read-only: k >= 0
@@ -337,6 +475,51 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         for i in 0..<Z::ExtraSdo as Slots<SdoServer>>::LEN {
             self.sdo_records[i] = SdoServerParams::DISABLED;
             self.sdo_extra[i].set_params(SdoServerParams::DISABLED);
+        }
+        for c in self.sdo_clients.as_mut() {
+            *c = SdoClientRecord::DISABLED; // 1280h+ too
+        }
+    }
+
+    /// SDO client record 1280h + `k` (SDO-56), as configured locally or by SDO; `None` when the node has
+    /// no such record (`M` of [`WithSdoServers`]). An application builds its [`SdoClient`] from it
+    /// ([`SdoClientRecord::client_params`]) and watches [`Event::ObjectWritten`] for 1280h + `k` to follow a
+    /// change made by SDO. Reset communication sets every record back to [`SdoClientRecord::DISABLED`].
+    ///
+    /// [`SdoClient`]: crate::sdo::SdoClient
+    ///
+    /// ```
+    /// use canopen_core::{node::{NoApplication, Node, SdoClientRecord, WithSdoServers}, profile::NodeConfig, NodeId, Sizes};
+    /// // No additional server, two client records 1280h/1281h.
+    /// let node: Node<NoApplication, WithSdoServers<Sizes, 0, 2>> =
+    ///     Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// assert_eq!(node.sdo_client_record(1), Some(SdoClientRecord::DISABLED));
+    /// assert_eq!(node.sdo_client_record(2), None);
+    /// ```
+    pub fn sdo_client_record(&self, k: usize) -> Option<SdoClientRecord> {
+        self.sdo_clients.as_ref().get(k).copied()
+    }
+
+    /// Sets SDO client record 1280h + `k` locally (the application's own configuration, without the SDO
+    /// change rules); `false` when the node has no such record.
+    ///
+    /// ```
+    /// use canopen_core::{node::{NoApplication, Node, SdoClientRecord, WithSdoServers}, profile::NodeConfig, NodeId, Sizes};
+    /// use canopen_core::cob::CobIdEntry;
+    /// let mut node: Node<NoApplication, WithSdoServers<Sizes, 0, 1>> =
+    ///     Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// let r = SdoClientRecord { cob_tx: CobIdEntry::from_raw(0x603), cob_rx: CobIdEntry::from_raw(0x583), server_node: 3 };
+    /// assert!(node.set_sdo_client_record(0, r));
+    /// assert_eq!(node.sdo_client_record(0), Some(r));
+    /// assert!(!node.set_sdo_client_record(1, r));
+    /// ```
+    pub fn set_sdo_client_record(&mut self, k: usize, record: SdoClientRecord) -> bool {
+        match self.sdo_clients.as_mut().get_mut(k) {
+            Some(c) => {
+                *c = record;
+                true
+            }
+            None => false,
         }
     }
 
