@@ -7,9 +7,11 @@
 mod common;
 
 use canopen::core::{
+    cob::CobIdEntry,
     node::{Node, WithSdoServers},
     od::VisibleString,
     profile::NodeConfig,
+    sdo::SdoServerParams,
     CanFrame, Event, Instant, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
@@ -253,4 +255,33 @@ fn client_records_1280h_configure_an_sdo_client() {
     n.handle_frame(ms(3), &frame("000 [2] 82 05"));
     n.handle_timeout(ms(3));
     assert_eq!(n.sdo_client_record(0), Some(canopen::core::node::SdoClientRecord::DISABLED));
+}
+
+/// SDO-55: invalidating server 1201h (through 1200h) while it runs a segmented download drops that
+/// transfer without a frame; validating it again starts from idle (a segment is then 0504 0001h, as on
+/// any idle server). The application's local setter does the same and moves the receive filters.
+#[test]
+fn invalidating_a_busy_server_drops_its_transfer() {
+    let mut n = node();
+    enable_1201(&mut n);
+    assert_eq!(exchange(&mut n, 10, "6C5 [8] 21 04 20 00 0A 00 00 00"), vec![frame("6D5 [8] 60 04 20 00 00 00 00 00")]);
+    assert_eq!(exchange(&mut n, 11, "605 [8] 23 01 12 01 C5 06 00 80"), vec![frame("585 [8] 60 01 12 01 00 00 00 00")]);
+    assert!(exchange(&mut n, 12, "6C5 [8] 00 61 62 63 64 65 66 67").is_empty());
+    assert_eq!(n.poll_timeout(), None, "no time-out left for the dropped transfer");
+    assert_eq!(exchange(&mut n, 13, "605 [8] 23 01 12 01 C5 06 00 00"), vec![frame("585 [8] 60 01 12 01 00 00 00 00")]);
+    assert_eq!(exchange(&mut n, 14, "6C5 [8] 00 61 62 63 64 65 66 67"), vec![frame("6D5 [8] 80 00 00 00 01 00 04 05")]);
+
+    // Locally: 1202h on 6C6h/6D6h, then off again.
+    let on =
+        SdoServerParams { cob_rx: CobIdEntry::from_raw(0x6C6), cob_tx: CobIdEntry::from_raw(0x6D6), client_node: None };
+    let g = n.rx_filters_generation();
+    assert!(n.set_sdo_server_params(1, on));
+    assert_ne!(n.rx_filters_generation(), g);
+    assert!(accepts(&n, 0x6C6));
+    assert_eq!(n.sdo_server_params(1), Some(on));
+    assert_eq!(exchange(&mut n, 15, "6C6 [8] 40 02 12 01 00 00 00 00"), vec![frame("6D6 [8] 43 02 12 01 C6 06 00 00")]);
+    assert!(n.set_sdo_server_params(1, SdoServerParams::DISABLED));
+    assert!(!accepts(&n, 0x6C6));
+    assert!(exchange(&mut n, 16, "6C6 [8] 40 02 12 01 00 00 00 00").is_empty());
+    assert!(!n.set_sdo_server_params(2, on), "two additional servers only");
 }

@@ -481,6 +481,43 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
+    /// The record of additional server 1201h + `k` (SDO-54), as last written; `None` when the node has no
+    /// such server (`N` of [`WithSdoServers`]).
+    ///
+    /// ```
+    /// use canopen_core::{node::{NoApplication, Node, WithSdoServers}, profile::NodeConfig, sdo::SdoServerParams, NodeId};
+    /// let node: Node<NoApplication, WithSdoServers> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// assert_eq!(node.sdo_server_params(0), Some(SdoServerParams::DISABLED));
+    /// assert_eq!(node.sdo_server_params(1), None);
+    /// ```
+    pub fn sdo_server_params(&self, k: usize) -> Option<SdoServerParams> {
+        self.sdo_records.as_ref().get(k).copied()
+    }
+
+    /// Sets the record of additional server 1201h + `k` locally (the application's own configuration,
+    /// e.g. after boot or a reset communication, which sets every record invalid; without the SDO change
+    /// rules): the server takes it at once, dropping a transfer under way when it changed, and the receive
+    /// filters follow. `false` when the node has no such server.
+    ///
+    /// ```
+    /// use canopen_core::{node::{NoApplication, Node, WithSdoServers}, profile::NodeConfig, NodeId};
+    /// use canopen_core::{cob::CobIdEntry, sdo::SdoServerParams};
+    /// let mut node: Node<NoApplication, WithSdoServers> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// let p = SdoServerParams { cob_rx: CobIdEntry::from_raw(0x6C5), cob_tx: CobIdEntry::from_raw(0x6D5), client_node: None };
+    /// assert!(node.set_sdo_server_params(0, p));
+    /// assert!(node.rx_filters().iter().any(|f| f.id == 0x6C5));
+    /// assert!(!node.set_sdo_server_params(1, p));
+    /// ```
+    pub fn set_sdo_server_params(&mut self, k: usize, params: SdoServerParams) -> bool {
+        let Some(r) = self.sdo_records.as_mut().get_mut(k) else {
+            return false;
+        };
+        *r = params;
+        self.apply_server_record(k);
+        self.cob_ids_may_change();
+        true
+    }
+
     /// SDO client record 1280h + `k` (SDO-56), as configured locally or by SDO; `None` when the node has
     /// no such record (`M` of [`WithSdoServers`]). An application builds its [`SdoClient`] from it
     /// ([`SdoClientRecord::client_params`]) and watches [`Event::ObjectWritten`] for 1280h + `k` to follow a
@@ -526,7 +563,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Record `index` (1201h+) was written by SDO: its server takes the new COB-IDs, dropping a transfer
     /// under way when they changed.
     pub(super) fn sdo_record_written(&mut self, index: u16) {
-        let Some(i) = usize::from(index & 0x7F).checked_sub(1) else { return };
+        if let Some(i) = usize::from(index & 0x7F).checked_sub(1) {
+            self.apply_server_record(i);
+        }
+    }
+
+    /// Additional server `i` takes its record, dropping a transfer under way when the COB-IDs changed.
+    fn apply_server_record(&mut self, i: usize) {
         let (Some(server), Some(&p)) = (self.sdo_extra.as_ref().get(i), self.sdo_records.as_ref().get(i)) else {
             return;
         };
