@@ -57,7 +57,8 @@ fn enable_1201(n: &mut N) {
 }
 
 /// SDO-53, SDO-54, OD-15 (every additional server has its record): 1200h reads 2 / 600h + node / 580h + node and is read-only; 1201h starts invalid
-/// (8000_0000h), its sub 00h is 2 and const; 1203h does not exist (two additional servers only).
+/// (8000_0000h), its sub 00h is 3 and const, sub 03h the client's node-ID; 1203h does not exist (two
+/// additional servers only).
 #[test]
 fn records_read_as_the_spec_defines_them() {
     let mut n = node();
@@ -67,11 +68,19 @@ fn records_read_as_the_spec_defines_them() {
     // 0601 0002h: write to a read-only/const entry.
     assert_eq!(exchange(&mut n, 1, "605 [8] 23 00 12 01 06 06 00 00"), vec![frame("585 [8] 80 00 12 01 02 00 01 06")]);
     assert_eq!(exchange(&mut n, 1, "605 [8] 2F 01 12 00 03 00 00 00"), vec![frame("585 [8] 80 01 12 00 02 00 01 06")]);
-    assert_eq!(exchange(&mut n, 1, "605 [8] 40 01 12 00 00 00 00 00"), vec![frame("585 [8] 4F 01 12 00 02 00 00 00")]);
+    assert_eq!(exchange(&mut n, 1, "605 [8] 40 01 12 00 00 00 00 00"), vec![frame("585 [8] 4F 01 12 00 03 00 00 00")]);
     assert_eq!(exchange(&mut n, 1, "605 [8] 40 01 12 01 00 00 00 00"), vec![frame("585 [8] 43 01 12 01 00 00 00 80")]);
     assert_eq!(exchange(&mut n, 1, "605 [8] 40 02 12 02 00 00 00 00"), vec![frame("585 [8] 43 02 12 02 00 00 00 80")]);
-    // 0609 0011h: no sub 03h (the optional client node-ID is not built); 0602 0000h: no 1203h.
-    assert_eq!(exchange(&mut n, 1, "605 [8] 40 01 12 03 00 00 00 00"), vec![frame("585 [8] 80 01 12 03 11 00 09 06")]);
+    // Sub 03h, the client's node-ID: 0 until written, 01h-7Fh (0609 0032h / 0609 0031h); 1200h has none.
+    assert_eq!(exchange(&mut n, 1, "605 [8] 40 01 12 03 00 00 00 00"), vec![frame("585 [8] 4F 01 12 03 00 00 00 00")]);
+    assert_eq!(exchange(&mut n, 1, "605 [8] 2F 01 12 03 00 00 00 00"), vec![frame("585 [8] 80 01 12 03 32 00 09 06")]);
+    assert_eq!(exchange(&mut n, 1, "605 [8] 2F 01 12 03 80 00 00 00"), vec![frame("585 [8] 80 01 12 03 31 00 09 06")]);
+    assert_eq!(exchange(&mut n, 1, "605 [8] 2F 01 12 03 20 00 00 00"), vec![frame("585 [8] 60 01 12 03 00 00 00 00")]);
+    assert_eq!(exchange(&mut n, 1, "605 [8] 40 01 12 03 00 00 00 00"), vec![frame("585 [8] 4F 01 12 03 20 00 00 00")]);
+    assert_eq!(n.sdo_server_params(0).and_then(|p| p.client_node).map(|c| c.get()), Some(0x20));
+    assert_eq!(exchange(&mut n, 1, "605 [8] 40 00 12 03 00 00 00 00"), vec![frame("585 [8] 80 00 12 03 11 00 09 06")]);
+    // 0609 0011h: no sub 04h; 0602 0000h: no 1203h.
+    assert_eq!(exchange(&mut n, 1, "605 [8] 40 01 12 04 00 00 00 00"), vec![frame("585 [8] 80 01 12 04 11 00 09 06")]);
     assert_eq!(exchange(&mut n, 1, "605 [8] 40 03 12 01 00 00 00 00"), vec![frame("585 [8] 80 03 12 01 00 00 02 06")]);
 }
 
@@ -270,6 +279,10 @@ fn invalidating_a_busy_server_drops_its_transfer() {
     assert_eq!(n.poll_timeout(), None, "no time-out left for the dropped transfer");
     assert_eq!(exchange(&mut n, 13, "605 [8] 23 01 12 01 C5 06 00 00"), vec![frame("585 [8] 60 01 12 01 00 00 00 00")]);
     assert_eq!(exchange(&mut n, 14, "6C5 [8] 00 61 62 63 64 65 66 67"), vec![frame("6D5 [8] 80 00 00 00 01 00 04 05")]);
+    // Sub 03h (the client's node-ID) is information only: writing it keeps a transfer under way.
+    assert_eq!(exchange(&mut n, 14, "6C5 [8] 21 04 20 00 0A 00 00 00"), vec![frame("6D5 [8] 60 04 20 00 00 00 00 00")]);
+    assert_eq!(exchange(&mut n, 14, "605 [8] 2F 01 12 03 7F 00 00 00"), vec![frame("585 [8] 60 01 12 03 00 00 00 00")]);
+    assert_eq!(exchange(&mut n, 14, "6C5 [8] 00 61 62 63 64 65 66 67"), vec![frame("6D5 [8] 20 00 00 00 00 00 00 00")]);
 
     // Locally: 1202h on 6C6h/6D6h, then off again.
     let on =

@@ -3,9 +3,10 @@
 //! this code is built into a firmware (every path below is behind `N > 0`, a constant).
 //!
 //! - The records 1201h+ live in the node (`sdo_records`) and are read and written by SDO through
-//!   [`WithRecords`] over the node's dictionary (only when `N > 0`: with none, the servers see the node's
-//!   dictionary as before, the same code and bytes): sub 00h = 2 (const), sub 01h COB-ID
-//!   client → server and sub 02h COB-ID server → client (rw, UNSIGNED32). Power-on and every reset
+//!   [`WithRecords`] over the node's dictionary (only when `N > 0` or `M > 0`: with none, the servers see the node's
+//!   dictionary as before, the same code and bytes): sub 00h = 3 (const), sub 01h COB-ID
+//!   client → server and sub 02h COB-ID server → client (rw, UNSIGNED32), sub 03h the client's node-ID
+//!   (rw, UNSIGNED8 01h–7Fh, 0 until written; information only). Power-on and every reset
 //!   communication set both COB-IDs to 8000_0000h: invalid, the server does not exist (SDO-54).
 //! - A write follows COB-14/COB-15/COB-16/COB-13: the frame bit (29-bit) or bits 28–11 set → 0609 0030h; a
 //!   CAN-ID change while the entry is valid (bit 31 = 0) → 0609 0030h (invalidate, change, re-validate); a
@@ -18,8 +19,7 @@
 //! - With `N > 0` the default server's record 1200h is readable too (SDO-53): sub 00h = 2, sub 01h = 600h +
 //!   node-ID, sub 02h = 580h + node-ID, all read-only.
 //!
-//! Not built: sub 03h (the client's node-ID, optional), storing the records (1010h), and the records in
-//! the EDS.
+//! Not built: storing the records (1010h; STORE-13 holds: never stored) and the records in the EDS.
 
 use super::{Node, NodeSizes, PdoTable};
 use crate::cob::{is_restricted, CobIdEntry, NodeId};
@@ -265,6 +265,15 @@ impl<D: ObjectDictionary, P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> 
     }
 }
 
+/// A node-ID written to sub 03h of a server or client record: 01h–7Fh (0609 0032h below, 0609 0031h above).
+fn node_id_value(data: &[u8]) -> Result<u8, AbortCode> {
+    match u8::decode(data)? {
+        0 => Err(AbortCode::ValueTooLow),
+        n if n > 0x7F => Err(AbortCode::ValueTooHigh),
+        n => Ok(n),
+    }
+}
+
 /// The SDO records as a dictionary: 1200h from the node-ID, 1201h + k from `records[k]`, 1280h + k from
 /// `clients[k]`.
 pub(crate) struct SdoRecords<'a, P, C> {
@@ -314,14 +323,10 @@ impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> SdoRecords<'_, P, C> 
                 *entry = entry.check_change(v, |e: CobIdEntry| !e.bit31())?;
                 Ok(())
             }
-            3 => match u8::decode(data)? {
-                0 => Err(AbortCode::ValueTooLow),
-                n if n > 0x7F => Err(AbortCode::ValueTooHigh),
-                n => {
-                    c.server_node = n;
-                    Ok(())
-                }
-            },
+            3 => {
+                c.server_node = node_id_value(data)?;
+                Ok(())
+            }
             _ => Err(AbortCode::SubIndexDoesNotExist),
         }
     }
@@ -340,10 +345,12 @@ impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> SdoRecords<'_, P, C> 
             return self.client_value(index, sub);
         }
         let p = self.params(index)?;
+        let default = index & 0x7F == 0;
         match sub {
-            0 => Ok(([2, 0, 0, 0], 1)),
+            0 => Ok(([if default { 2 } else { 3 }, 0, 0, 0], 1)),
             1 => Ok((p.cob_rx.raw().to_le_bytes(), 4)),
             2 => Ok((p.cob_tx.raw().to_le_bytes(), 4)),
+            3 if !default => Ok(([p.client_node.map_or(0, NodeId::get), 0, 0, 0], 1)),
             _ => Err(AbortCode::SubIndexDoesNotExist),
         }
     }
@@ -365,7 +372,8 @@ impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> ObjectDictionary for 
             (_, 0) => Ok(U8_CONST),
             (0, 1) => Ok(u32_entry(Access::Const)), // SDO-53
             (0, 2) => Ok(u32_entry(Access::Ro)),
-            (_, 1 | 2) => Ok(u32_entry(Access::Rw)), // SDO-54
+            (_, 1 | 2) => Ok(u32_entry(Access::Rw)),                    // SDO-54
+            (1.., 3) => Ok(SubInfo { access: Access::Rw, ..U8_CONST }), // SDO-54: the client's node-ID
             _ => Err(AbortCode::SubIndexDoesNotExist),
         }
     }
@@ -385,11 +393,15 @@ impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> ObjectDictionary for 
         if !is_server_record(index) {
             return self.write_client(index, sub, data);
         }
-        let v = u32::decode(data)?; // SDO-18
         let k = usize::from(index & 0x7F) - 1; // 1200h is read-only: k >= 0
         let Some(p) = self.records.as_mut().get_mut(k) else {
             return Err(AbortCode::ObjectDoesNotExist);
         };
+        if sub == 3 {
+            p.client_node = NodeId::new(node_id_value(data)?);
+            return Ok(());
+        }
+        let v = u32::decode(data)?; // SDO-18
         let entry = if sub == 1 { &mut p.cob_rx } else { &mut p.cob_tx };
         // COB-15 (frame bit), COB-14 (bits 28-11), COB-16 (no ID change while valid).
         let new = entry.check_change(v, |e: CobIdEntry| !e.bit31())?;
@@ -573,7 +585,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let (Some(server), Some(&p)) = (self.sdo_extra.as_ref().get(i), self.sdo_records.as_ref().get(i)) else {
             return;
         };
-        if *server.params() != p {
+        let old = server.params();
+        if (old.cob_rx, old.cob_tx) != (p.cob_rx, p.cob_tx) {
             sdo_dict!(self, |od| self.sdo_extra[i].cancel(od));
             self.sdo_extra[i].set_params(p);
         }
