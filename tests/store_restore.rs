@@ -374,3 +374,32 @@ fn slot_status_tells_valid_crc_and_format_failures() {
     ram.0.borrow_mut().fail_read = true;
     assert_eq!(slot_status(&mut ram, 0), Err(StorageError::Io));
 }
+
+/// STORE-13, SDO-55: the additional SDO servers' records are never stored: 1201h configured with the dyn
+/// bit (dynamically allocated) and 1017h written, "save" all (1010h:01); after a power cycle on the same
+/// memory 1017h comes back from storage, 1201h is invalid (8000_0000h) and its COB-ID is not served.
+#[test]
+fn sdo_server_records_are_never_stored_store_13() {
+    type WithServer = Node<App, canopen::core::node::WithSdoServers<Sizes<2, 32, 64, 2, 2>, 1>, Ram>;
+    let ram = Ram::default();
+    let power_on = |ram: &Ram| -> WithServer {
+        let mut n: WithServer = Node::with_storage(NodeId::new(3).unwrap(), CFG, App { byte: 1, word: 0 }, ram.clone());
+        n.handle_timeout(canopen::core::Instant::ZERO);
+        while n.poll_transmit().is_some() {}
+        n
+    };
+    let ex = |n: &mut WithServer, req: &str| {
+        n.handle_frame(canopen::core::Instant::ZERO, &frame(req));
+        core::iter::from_fn(|| n.poll_transmit()).collect::<Vec<CanFrame>>()
+    };
+    let mut n = power_on(&ram);
+    assert_eq!(ex(&mut n, "603 [8] 23 01 12 02 D3 06 00 40"), vec![frame("583 [8] 60 01 12 02 00 00 00 00")]);
+    assert_eq!(ex(&mut n, "603 [8] 23 01 12 01 C3 06 00 40"), vec![frame("583 [8] 60 01 12 01 00 00 00 00")]);
+    assert_eq!(ex(&mut n, "6C3 [8] 40 01 12 01 00 00 00 00"), vec![frame("6D3 [8] 43 01 12 01 C3 06 00 40")]);
+    assert_eq!(ex(&mut n, "603 [8] 2B 17 10 00 2C 01 00 00"), vec![frame("583 [8] 60 17 10 00 00 00 00 00")]);
+    assert_eq!(ex(&mut n, "603 [8] 23 10 10 01 73 61 76 65"), vec![frame("583 [8] 60 10 10 01 00 00 00 00")]);
+    let mut n = power_on(&ram);
+    assert_eq!(ex(&mut n, "603 [8] 40 17 10 00 00 00 00 00"), vec![frame("583 [8] 4B 17 10 00 2C 01 00 00")]);
+    assert_eq!(ex(&mut n, "603 [8] 40 01 12 01 00 00 00 00"), vec![frame("583 [8] 43 01 12 01 00 00 00 80")]);
+    assert!(ex(&mut n, "6C3 [8] 40 01 12 01 00 00 00 00").is_empty());
+}

@@ -27,12 +27,38 @@
 //! `co_nmt_startup_slave`: "enter the operational state automatically if bit 2 of the NMT startup value is
 //! 0"), ERR-10..13 (1029h sub 01h decides the reaction to a communication error).
 
+/// Evaluates `$body` with `$od` bound to the dictionary the SDO servers see: the node's [`dict::NodeDict`],
+/// wrapped in [`sdo_servers::WithRecords`] (the records 1200h–127Fh) only when the node has additional
+/// servers; with none (a constant) the wrapper is not built at all, so `Sizes` nodes keep their code.
+macro_rules! sdo_dict {
+    ($node:ident, |$od:ident| $body:expr) => {{
+        let node_id = $node.node_id;
+        let mut nd = crate::node::dict::NodeDict::new(&mut $node.comm, &mut $node.app, &mut $node.storage, $node.save);
+        if <Z::ExtraSdo as crate::sizes::Slots<crate::sdo::SdoServer>>::LEN == 0
+            && <Z::SdoClients as crate::sizes::Slots<crate::node::SdoClientRecord>>::LEN == 0
+        {
+            let $od = &mut nd;
+            $body
+        } else {
+            let records = crate::node::sdo_servers::SdoRecords {
+                records: &mut $node.sdo_records,
+                clients: &mut $node.sdo_clients,
+                node_id,
+            };
+            let $od = &mut crate::node::sdo_servers::WithRecords { od: nd, sdo: records };
+            $body
+        }
+    }};
+}
+
 mod dict;
 mod errors;
 mod pdo;
 mod rx_filter;
+mod sdo_servers;
 
 pub use rx_filter::{RxFilter, RxFilters, RX_FILTER_CAPACITY};
+pub use sdo_servers::{SdoClientRecord, WithSdoServers};
 
 use heapless::deque::DequeInner;
 use heapless::vec::{OwnedVecStorage, VecInner, VecStorage};
@@ -66,7 +92,7 @@ use crate::sync::Sync;
 use crate::time::Instant;
 use crate::wire::error_control::{Heartbeat, StateCode};
 use crate::wire::nmt::NodeControl;
-use dict::{NodeDict, SaveFn};
+use dict::SaveFn;
 
 /// A CANopen node with application dictionary `A`, the capacities `Z` ([`Sizes`]`<HB, TXQ, EVQ, RPDO,
 /// TPDO>`: heartbeat consumer entries, transmit queue frames, event queue events, receive and transmit PDOs)
@@ -95,6 +121,12 @@ pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     node_id: NodeId,
     comm: CommProfile<Z>,
     sdo: SdoServer,
+    /// The additional SDO servers 1201h+ (none for [`Sizes`]; `node/sdo_servers.rs`).
+    sdo_extra: Z::ExtraSdo,
+    /// Their records 1201h+ as SDO last wrote them.
+    sdo_records: Z::ExtraSdoParams,
+    /// The SDO client records 1280h+ (none for [`Sizes`]).
+    sdo_clients: Z::SdoClients,
     /// The latest time passed in, for work that `poll_transmit` resumes (block upload segments).
     now: Instant,
     nmt: Nmt,
@@ -227,6 +259,13 @@ pub trait NodeSizes: ProfileSizes {
     const TX_QUEUE: DequeInner<CanFrame, Self::TxQueue>;
     /// An empty event queue.
     const EVENT_QUEUE: DequeInner<Event, Self::EventQueue>;
+    /// The additional SDO servers 1201h+ (issue 17): `[SdoServer; N]`, none (`N` = 0) for [`Sizes`], `N` for
+    /// [`WithSdoServers`]`<Z, N>`.
+    type ExtraSdo: Slots<SdoServer>;
+    /// Their parameter records 1201h+ as the dictionary holds them: `[SdoServerParams; N]`.
+    type ExtraSdoParams: Slots<SdoServerParams>;
+    /// The SDO client records 1280h+ (SDO-56): `[SdoClientRecord; M]`, none for [`Sizes`].
+    type SdoClients: Slots<SdoClientRecord>;
 }
 
 /// A sorted (CAN-ID, PDO number) table in `S`'s storage (`heapless::Vec<(u16, u16), N>` for
@@ -248,6 +287,9 @@ impl<const HB: usize, const TXQ: usize, const EVQ: usize, const RPDO: usize, con
     const TPDO_TABLE: Vec<(u16, u16), TPDO> = Vec::new();
     const TX_QUEUE: Deque<CanFrame, TXQ> = Deque::new();
     const EVENT_QUEUE: Deque<Event, EVQ> = Deque::new();
+    type ExtraSdo = [SdoServer; 0];
+    type ExtraSdoParams = [SdoServerParams; 0];
+    type SdoClients = [SdoClientRecord; 0];
 }
 
 /// Transmit-queue slots that block-upload segments never take, so that a heartbeat, an EMCY or a PDO due
@@ -290,6 +332,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             node_id,
             comm,
             sdo: SdoServer::new(SdoServerParams::default_server(node_id)),
+            sdo_extra: Z::ExtraSdo::from_fn(|_| SdoServer::new(SdoServerParams::DISABLED)),
+            sdo_records: Z::ExtraSdoParams::from_fn(|_| SdoServerParams::DISABLED),
+            sdo_clients: Z::SdoClients::from_fn(|_| SdoClientRecord::DISABLED),
             now: Instant::ZERO,
             nmt: Nmt::new(),
             boot_pending: true,
@@ -489,6 +534,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             t = t.min(crate::time::Deadline::new(self.lss.poll_timeout()));
         }
         t = t.min(self.sdo.deadline());
+        t = t.min(self.extra_sdo_deadline());
         t = t.min(self.sync.deadline());
         t = t.min(self.emcy_timeout());
         t = t.min(self.pdo_timeout());
@@ -500,9 +546,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.ensure_booted(now);
         #[cfg(feature = "lss")]
         self.lss_timeout(now);
-        let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
-        let response = self.sdo.handle_timeout(now, &mut od); // nothing unless its deadline passed
+        let response = sdo_dict!(self, |od| self.sdo.handle_timeout(now, od)); // nothing unless its deadline passed
         self.sdo_response(now, response, self.sdo.tx_cob_id());
+        self.extra_sdo_timeout(now);
         if self.producer.due(now) {
             self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
         }
@@ -530,6 +576,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             // First: the SDO CAN-ID is restricted (COB-13), no other service may use it (nor LSS's 7E5h, in
             // the restricted 780h–7FFh), and SDO is the per-frame-heaviest service.
             return self.handle_sdo(now, frame);
+        }
+        if has_node_id {
+            if let Some(i) = self.extra_sdo_for(id) {
+                return self.handle_extra_sdo(now, i, frame); // 1201h+ (none unless WithSdoServers)
+            }
         }
         #[cfg(feature = "lss")]
         if id == crate::cob::LSS_MASTER_ID {
@@ -575,8 +626,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {
             return;
         }
-        let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
-        let response = self.sdo.handle_request(now, frame.data(), &mut od);
+        let response = sdo_dict!(self, |od| self.sdo.handle_request(now, frame.data(), od));
         // The frame came in on the rx COB-ID, so the channel is valid (SdoServerParams::is_valid covers both
         // COB-IDs, and a request never changes the server's own parameters): no second validity test.
         self.sdo_response(now, response, Some(self.sdo.params().cob_tx.can_id()));
@@ -609,6 +659,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     fn sdo_event(&mut self, now: Instant, event: SdoEvent) {
         match event {
             SdoEvent::Written { index, sub } => {
+                if <Z::ExtraSdo as Slots<SdoServer>>::LEN > 0 && sdo_servers::is_server_record(index) {
+                    self.sdo_record_written(index); // a 1201h+ record: its server follows
+                }
                 if index < 0x2000 {
                     self.comm_written(now, index, sub); // only 1000h–1FFFh have side effects here
                 }
@@ -633,14 +686,17 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if self.sdo.wants_transmit() {
             self.pump_sdo_segments();
         }
+        if <Z::ExtraSdo as Slots<SdoServer>>::LEN > 0 {
+            self.pump_extra_sdo();
+        }
     }
 
     #[cfg(feature = "sdo-block")]
     #[inline(never)]
     fn pump_sdo_segments(&mut self) {
         while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
-            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
-            let Some(response) = self.sdo.poll_transmit(self.now, &mut od) else {
+            let now = self.now;
+            let Some(response) = sdo_dict!(self, |od| self.sdo.poll_transmit(now, od)) else {
                 break;
             };
             self.sdo_response(self.now, response, self.sdo.tx_cob_id());
@@ -673,6 +729,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// ```
     pub fn set_sdo_timeout(&mut self, timeout: crate::time::Duration) {
         self.sdo.set_timeout(timeout);
+        for s in self.sdo_extra.as_mut() {
+            s.set_timeout(timeout); // the additional servers 1201h+ alike
+        }
     }
 
     /// Writes 1017h producer heartbeat time (HB-01, HB-04: effective at once).
@@ -766,6 +825,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         #[cfg(feature = "guarding")]
         self.guarding.reset();
         self.sdo.set_params(SdoServerParams::default_server(self.node_id));
+        self.reset_extra_sdo(); // SDO-54: 1201h+ invalid again
+        let p = &self.comm.params;
         self.sync = Sync::new(p.sync);
         self.sync.start(now);
         self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
@@ -875,8 +936,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         if to == NmtState::Stopped {
             // NMT-18: no SDO in Stopped; a transfer under way is dropped, so no time-out abort follows.
-            let mut od = NodeDict::new(&mut self.comm, &mut self.app, &mut self.storage, self.save);
-            self.sdo.cancel(&mut od);
+            sdo_dict!(self, |od| self.sdo.cancel(od));
+            self.cancel_extra_sdo();
         }
         if from == NmtState::Stopped {
             self.pump_emcy(self.now); // NMT-22: the most recent pending EMCY goes out now

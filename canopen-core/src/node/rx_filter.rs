@@ -101,6 +101,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             if let Some(sdo) = self.sdo.rx_cob_id() {
                 ok &= push(exact(sdo));
             }
+            for sdo in self.sdo_extra.as_ref().iter().filter_map(|s| s.rx_cob_id()) {
+                ok &= push(exact(sdo)); // the valid additional servers 1201h+
+            }
             for &(id, _) in self.rx_table.iter().chain(self.rtr_table.iter()) {
                 ok &= push(exact(id));
             }
