@@ -405,7 +405,7 @@ impl<S: Storage + ?Sized> Writer<'_, S> {
 }
 
 /// Every storable entry of `od` with index in `range`: readable and writable, not DOMAIN, at most 255 bytes.
-/// 1010h/1011h (commands) and 1003h (history) are never stored.
+/// 1010h/1011h (commands), 1003h (history) and 1013h (a clock) are never stored.
 fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
     od: &D,
     range: core::ops::RangeInclusive<u16>,
@@ -414,7 +414,7 @@ fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
     let mut buf = [0u8; 255];
     for n in 0..od.object_count() {
         let Some(o) = od.object(n) else { continue };
-        if !range.contains(&o.index) || matches!(o.index, 0x1003 | 0x1010 | 0x1011) {
+        if !range.contains(&o.index) || matches!(o.index, 0x1003 | 0x1010 | 0x1011 | 0x1013) {
             continue;
         }
         for sub in 0..=255u8 {
@@ -453,14 +453,14 @@ pub fn write_back<D: ObjectDictionary + ?Sized>(od: &mut D, index: u16, sub: u8,
 /// # use canopen_core::Sizes;
 /// # use canopen_core::storage::*;
 /// # use canopen_core::{profile::{CommProfile, NodeConfig}, node::NoApplication};
-/// # struct Ram([[u8; 512]; 2]);
+/// # struct Ram([[u8; 2048]; 2]);
 /// # impl Storage for Ram {
-/// #     fn capacity(&self) -> usize { 512 }
+/// #     fn capacity(&self) -> usize { 2048 }
 /// #     fn erase(&mut self, s: u8) -> Result<(), StorageError> { self.0[usize::from(s)].fill(0xFF); Ok(()) }
 /// #     fn write(&mut self, s: u8, o: usize, d: &[u8]) -> Result<(), StorageError> { self.0[usize::from(s)][o..o + d.len()].copy_from_slice(d); Ok(()) }
 /// #     fn read(&mut self, s: u8, o: usize, b: &mut [u8]) -> Result<(), StorageError> { b.copy_from_slice(&self.0[usize::from(s)][o..o + b.len()]); Ok(()) }
 /// # }
-/// let mut ram = Ram([[0xFF; 512]; 2]);
+/// let mut ram = Ram([[0xFF; 2048]; 2]); // 1028h's 127 entries alone take 1,016 bytes of a record
 /// let mut od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
 /// od.params.heartbeat_time_ms = 250;
 /// save(&mut ram, Groups::ALL, &od, &NoApplication).unwrap();
@@ -498,8 +498,8 @@ where
             crc_data = CrcBuf(Some(h.digest_start()));
         }
         let mut w = Writer { st: &mut *st, slot: target, len: 0, crc_data };
-        write_group(&mut w, Groups::COMM, groups, kept, old, comm, 0x1000..=0x1FFF)?;
-        write_group(&mut w, Groups::APP, groups, kept, old, app, 0x2000..=0xFFFF)?;
+        write_group(&mut w, Groups::COMM, groups, kept, old, comm, 0x1000..=0x1FFF, 0)?;
+        write_group(&mut w, Groups::APP, groups, kept, old, app, 0x2000..=0xFFFF, 0)?;
         len = w.len;
         if pass == 1 {
             let crc = w.crc_data.0.map_or(0, |d| d.finalize());
@@ -510,6 +510,9 @@ where
     Ok(())
 }
 
+/// Writes `group`: from `od` when it is in `fresh`, else copied from the `old` record when `kept` has it,
+/// without the items of index `skip` (0: none).
+#[allow(clippy::too_many_arguments)]
 fn write_group<S, D>(
     w: &mut Writer<'_, S>,
     group: Groups,
@@ -518,6 +521,7 @@ fn write_group<S, D>(
     old: Option<(u8, Header)>,
     od: &D,
     range: core::ops::RangeInclusive<u16>,
+    skip: u16,
 ) -> Result<(), StorageError>
 where
     S: Storage + ?Sized,
@@ -542,7 +546,7 @@ where
         w.st.read(slot, HEADER_LEN + off + 4, &mut buf[..n])?;
         off += 4 + n;
         let index = u16::from_le_bytes([head[0], head[1]]);
-        if range.contains(&index) {
+        if range.contains(&index) && index != skip {
             w.item(index, head[2], &buf[..n])?;
         }
     }
@@ -579,6 +583,18 @@ where
 /// Removes the groups `groups` from the stored record (1011h "load", STORE-08..10): their defaults come
 /// back at the next reset. Writes a new record (same A/B rule as [`save`]), so it is power-safe too.
 pub fn restore_defaults<S: Storage + ?Sized>(st: &mut S, groups: Groups) -> Result<(), StorageError> {
+    rewrite(st, groups, 0)
+}
+
+/// Removes the stored values of object `index` from the record (1020h verify configuration once another
+/// command changed the boot-up configuration, STORE-12); same A/B rule as [`save`].
+#[cfg(feature = "verify-config")]
+pub(crate) fn forget<S: Storage + ?Sized>(st: &mut S, index: u16) -> Result<(), StorageError> {
+    rewrite(st, Groups::NONE, index)
+}
+
+/// A new record holding the newest one's items but the groups `groups` and the items of index `skip`.
+fn rewrite<S: Storage + ?Sized>(st: &mut S, groups: Groups, skip: u16) -> Result<(), StorageError> {
     if st.capacity() < HEADER_LEN {
         return Err(StorageError::Unsupported);
     }
@@ -602,8 +618,8 @@ pub fn restore_defaults<S: Storage + ?Sized>(st: &mut S, groups: Groups) -> Resu
             CrcBuf(None)
         };
         let mut w = Writer { st: &mut *st, slot: target, len: 0, crc_data };
-        write_group(&mut w, Groups::COMM, Groups::NONE, remaining, old, &empty, 0x1000..=0x1FFF)?;
-        write_group(&mut w, Groups::APP, Groups::NONE, remaining, old, &empty, 0x2000..=0xFFFF)?;
+        write_group(&mut w, Groups::COMM, Groups::NONE, remaining, old, &empty, 0x1000..=0x1FFF, skip)?;
+        write_group(&mut w, Groups::APP, Groups::NONE, remaining, old, &empty, 0x2000..=0xFFFF, skip)?;
         len = w.len;
         if pass == 1 {
             let crc = w.crc_data.0.map_or(0, |d| d.finalize());
