@@ -588,7 +588,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
         // The optional objects only where the table has none: no cost on the profile's own objects.
         let f = match Self::find(index, sub) {
-            Err(_) if optional::serves(index) => return if rules { self.optional.write(index, sub, data) } else { self.optional.load(index, sub, data) },
+            Err(_) if optional::serves(index) => {
+                return if rules { self.optional.write(index, sub, data) } else { self.optional.load(index, sub, data) }
+            }
             f => f?,
         };
         self.write_found(&f, sub, data, rules)
@@ -686,7 +688,9 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// the entry's size (SDO-13).
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
         let f = match Self::find(index, sub) {
-            Err(_) if optional::serves(index) => return self.optional.write(index, sub, data.get(..len.unwrap_or(4)).unwrap_or(data)),
+            Err(_) if optional::serves(index) => {
+                return self.optional.write(index, sub, data.get(..len.unwrap_or(4)).unwrap_or(data))
+            }
             f => f?,
         };
         let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
@@ -850,7 +854,8 @@ mod tests {
         let od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
         // The optional objects (1002h, 1013h, 1020h, 1028h: those this build has) merge into the order.
         let opt = od.optional.object_count();
-        let before_1016 = opt - usize::from(cfg!(feature = "verify-config")) - usize::from(cfg!(feature = "emcy-consumer"));
+        let before_1016 =
+            opt - usize::from(cfg!(feature = "verify-config")) - usize::from(cfg!(feature = "emcy-consumer"));
         assert_eq!(od.object_count(), 22 + opt);
         let hb = od.object(16 + before_1016).unwrap();
         assert_eq!((hb.index, hb.code, hb.subs), (0x1016, ObjectCode::Array, 3));
