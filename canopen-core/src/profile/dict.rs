@@ -35,6 +35,33 @@ use crate::pdo::{mapping::MAX_ENTRIES, rpdo_type_ok, tpdo_type_ok, PdoComm, PdoM
 use crate::sizes::Sizes;
 use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 
+/// `Self::find(index, sub)?`, except that an index the table has not and [`optional`] serves returns
+/// `$optional` (the optional objects are asked only where the table has nothing: no cost on the profile's
+/// own objects). Without the optional objects' features it is exactly `Self::find(index, sub)?`: the
+/// match with a constant-false guard still cost the minimal firmware 240 B of flash.
+macro_rules! find_or_optional {
+    ($index:expr, $sub:expr, $optional:expr) => {{
+        #[cfg(any(
+            feature = "manufacturer-status",
+            feature = "high-res-time",
+            feature = "verify-config",
+            feature = "emcy-consumer"
+        ))]
+        let f = match Self::find($index, $sub) {
+            Err(_) if optional::serves($index) => return $optional,
+            f => f?,
+        };
+        #[cfg(not(any(
+            feature = "manufacturer-status",
+            feature = "high-res-time",
+            feature = "verify-config",
+            feature = "emcy-consumer"
+        )))]
+        let f = Self::find($index, $sub)?;
+        f
+    }};
+}
+
 /// The communication-profile dictionary of a node with the capacities `Z` (`Z::HB` heartbeat consumer
 /// entries, `Z::RPDO` receive and `Z::TPDO` transmit PDOs; see [`Sizes`]).
 ///
@@ -586,13 +613,11 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     }
 
     fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
-        // The optional objects only where the table has none: no cost on the profile's own objects.
-        let f = match Self::find(index, sub) {
-            Err(_) if optional::serves(index) => {
-                return if rules { self.optional.write(index, sub, data) } else { self.optional.load(index, sub, data) }
-            }
-            f => f?,
-        };
+        let f = find_or_optional!(
+            index,
+            sub,
+            if rules { self.optional.write(index, sub, data) } else { self.optional.load(index, sub, data) }
+        );
         self.write_found(&f, sub, data, rules)
     }
     /// Writes a stored value without the SDO change rules (store/restore after a reset: the record was
@@ -641,10 +666,7 @@ impl<Z: ProfileSizes> ObjectDictionary for Unchecked<'_, Z> {
 
 impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
-        let f = match Self::find(index, sub) {
-            Err(_) if optional::serves(index) => return self.optional.info(index, sub),
-            f => f?,
-        };
+        let f = find_or_optional!(index, sub, self.optional.info(index, sub));
         let (data_type, access, pdo) = f.meta();
         let size = self.text(f.slot).map_or(f.ty.size(), str::len);
         Ok(SubInfo { data_type, access, pdo, size })
@@ -654,10 +676,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// registers (bench-node.sh segmented_upload +10 instructions per frame).
     #[inline(never)]
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        let f = match Self::find(index, sub) {
-            Err(_) if optional::serves(index) => return self.optional.read(index, sub, offset, buf),
-            f => f?,
-        };
+        let f = find_or_optional!(index, sub, self.optional.read(index, sub, offset, buf));
         if let Some(text) = self.text(f.slot) {
             return Ok(copy_at(text.as_bytes(), offset, buf));
         }
@@ -671,10 +690,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
 
     /// One table walk; every entry here is readable.
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
-        let f = match Self::find(index, sub) {
-            Err(_) if optional::serves(index) => return self.optional.read_expedited(index, sub, buf),
-            f => f?,
-        };
+        let f = find_or_optional!(index, sub, self.optional.read_expedited(index, sub, buf));
         if let Some(text) = self.text(f.slot) {
             return Ok(text_expedited(text, buf));
         }
@@ -687,12 +703,11 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// One table walk; the writable entries are all numeric (1..=4 bytes), so `len` not indicated means
     /// the entry's size (SDO-13).
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        let f = match Self::find(index, sub) {
-            Err(_) if optional::serves(index) => {
-                return self.optional.write(index, sub, data.get(..len.unwrap_or(4)).unwrap_or(data))
-            }
-            f => f?,
-        };
+        let f = find_or_optional!(
+            index,
+            sub,
+            self.optional.write(index, sub, data.get(..len.unwrap_or(4)).unwrap_or(data))
+        );
         let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
         self.write_found(&f, sub, bytes, true)
     }

@@ -374,17 +374,17 @@ impl OptionalObjects {
                 _ => 0,
             });
         }
-        Ok(match index {
+        match index {
             #[cfg(feature = "manufacturer-status")]
-            0x1002 => self.manufacturer_status,
+            0x1002 => Ok(self.manufacturer_status),
             #[cfg(feature = "high-res-time")]
-            0x1013 => self.high_res.value(),
+            0x1013 => Ok(self.high_res.value()),
             #[cfg(feature = "verify-config")]
-            0x1020 => self.verify_configuration[usize::from(sub) - 1],
+            0x1020 => Ok(self.verify_configuration[usize::from(sub) - 1]),
             #[cfg(feature = "emcy-consumer")]
-            0x1028 => self.emcy.get(sub)?,
-            _ => return Err(AbortCode::ObjectDoesNotExist),
-        })
+            0x1028 => self.emcy.get(sub),
+            _ => Err(AbortCode::ObjectDoesNotExist),
+        }
     }
 
     /// Reads bytes `offset..` of a sub-entry (SDO, PDO, store).
@@ -421,13 +421,18 @@ impl OptionalObjects {
         let _ = (v, rules);
         match index {
             #[cfg(feature = "high-res-time")]
-            0x1013 => self.high_res.set(v),
+            0x1013 => {
+                self.high_res.set(v);
+                Ok(())
+            }
             #[cfg(feature = "verify-config")]
-            0x1020 => self.verify_configuration[usize::from(sub) - 1] = v,
+            0x1020 => {
+                self.verify_configuration[usize::from(sub) - 1] = v;
+                Ok(())
+            }
             #[cfg(feature = "emcy-consumer")]
-            0x1028 => self.emcy.set(sub, v, rules)?,
-            _ => return Err(AbortCode::WriteOfReadOnly),
+            0x1028 => self.emcy.set(sub, v, rules),
+            _ => Err(AbortCode::WriteOfReadOnly),
         }
-        Ok(())
     }
 }
