@@ -405,7 +405,9 @@ impl<S: Storage + ?Sized> Writer<'_, S> {
 }
 
 /// Every storable entry of `od` with index in `range`: readable and writable, not DOMAIN, at most 255 bytes.
-/// 1010h/1011h (commands), 1003h (history) and 1013h (a clock) are never stored.
+/// 1010h/1011h (commands), 1003h (history) and 1013h (a clock) are never stored; 1028h entries that hold
+/// their default are left out (the 127 of them would take 1,016 bytes of every record, and a load sets
+/// every entry to its default before it writes the stored ones back).
 fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
     od: &D,
     range: core::ops::RangeInclusive<u16>,
@@ -423,6 +425,10 @@ fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
                 continue;
             }
             if let Ok(len) = od.read(o.index, sub, 0, &mut buf) {
+                #[cfg(feature = "emcy-consumer")]
+                if o.index == 0x1028 && holds_default(&e, &buf[..len]) {
+                    continue; // a load leaves it at its default anyway
+                }
                 f(o.index, sub, &buf[..len])?;
             }
             if sub == 255 {
@@ -431,6 +437,13 @@ fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
         }
     }
     Ok(())
+}
+
+/// Whether `value` (little-endian, at most 8 bytes) is the entry's numeric default.
+#[cfg(feature = "emcy-consumer")]
+fn holds_default(e: &crate::od::EntryDesc, value: &[u8]) -> bool {
+    let v = value.iter().rev().fold(0u64, |v, &b| v << 8 | u64::from(b));
+    value.len() <= 8 && e.default == Some(crate::od::Value::Uint(v))
 }
 
 /// Writes one stored value back through the dictionary (whole for fixed sizes, streamed otherwise).
@@ -453,14 +466,14 @@ pub fn write_back<D: ObjectDictionary + ?Sized>(od: &mut D, index: u16, sub: u8,
 /// # use canopen_core::Sizes;
 /// # use canopen_core::storage::*;
 /// # use canopen_core::{profile::{CommProfile, NodeConfig}, node::NoApplication};
-/// # struct Ram([[u8; 2048]; 2]);
+/// # struct Ram([[u8; 512]; 2]);
 /// # impl Storage for Ram {
-/// #     fn capacity(&self) -> usize { 2048 }
+/// #     fn capacity(&self) -> usize { 512 }
 /// #     fn erase(&mut self, s: u8) -> Result<(), StorageError> { self.0[usize::from(s)].fill(0xFF); Ok(()) }
 /// #     fn write(&mut self, s: u8, o: usize, d: &[u8]) -> Result<(), StorageError> { self.0[usize::from(s)][o..o + d.len()].copy_from_slice(d); Ok(()) }
 /// #     fn read(&mut self, s: u8, o: usize, b: &mut [u8]) -> Result<(), StorageError> { b.copy_from_slice(&self.0[usize::from(s)][o..o + b.len()]); Ok(()) }
 /// # }
-/// let mut ram = Ram([[0xFF; 2048]; 2]); // 1028h's 127 entries alone take 1,016 bytes of a record
+/// let mut ram = Ram([[0xFF; 512]; 2]);
 /// let mut od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
 /// od.params.heartbeat_time_ms = 250;
 /// save(&mut ram, Groups::ALL, &od, &NoApplication).unwrap();

@@ -306,3 +306,25 @@ fn optional_objects_in_the_eds() {
         cfg!(feature = "manufacturer-status")
     );
 }
+
+/// EMCY-10, STORE-03: 1028h is stored with the communication parameters; only the entries that differ from
+/// their default go into the record (a default one loads as the default anyway), so the record stays small.
+#[test]
+#[cfg(feature = "emcy-consumer")]
+fn emergency_consumer_is_stored_emcy10() {
+    let mut node: TestNode<Ram> =
+        booted(Node::with_storage(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication, Ram::new()));
+    let used = |node: &TestNode<Ram>, slot: usize| node.storage().0[slot].iter().rposition(|&b| b != 0xFF);
+    assert_eq!(download(&mut node, ms(1), 0x1010, 2, SAVE), Ok(())); // slot 0: every 1028h entry default
+    assert_eq!(download(&mut node, ms(1), 0x1028, 3, 0x8000_0083), Ok(()));
+    assert_eq!(download(&mut node, ms(1), 0x1010, 2, SAVE), Ok(())); // slot 1: entry 3 changed
+    let (all_default, one_changed) = (used(&node, 0).unwrap(), used(&node, 1).unwrap());
+    assert_eq!(one_changed - all_default, 8, "one item (index, sub, length, 4 bytes) more, not 127");
+    node.handle_frame(ms(2), &CanFrame::new(0x000, &[0x82, 0x05]).unwrap()); // reset communication
+    assert_eq!(upload(&mut node, ms(3), 0x1028, 3), Ok(0x8000_0083));
+    assert_eq!(upload(&mut node, ms(3), 0x1028, 4), Ok(0x84));
+    while node.poll_event().is_some() {}
+    node.handle_frame(ms(4), &emcy_frame(0x083));
+    node.handle_frame(ms(4), &emcy_frame(0x084));
+    assert_eq!(emcy_events(&mut node), [(4, 0x8130)]);
+}
