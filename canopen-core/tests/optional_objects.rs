@@ -93,7 +93,7 @@ fn manufacturer_status_in_a_tpdo_err03() {
 
 /// TIME-06: 1013h is a VAR UNSIGNED32 in µs, rw, default 0, mappable both ways; it runs on the node's clock
 /// from its last set value, and TIME received (1012h bit 31) or produced (bit 30) sets it to the time of
-/// day's ms × 1000.
+/// day's ms × 1000 (TIME-02: consume bit 31, produce bit 30; TIME-04: the 6-byte TIME_OF_DAY frame on 100h).
 #[test]
 #[cfg(feature = "high-res-time")]
 fn high_resolution_time_stamp_time06() {
