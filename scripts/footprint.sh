@@ -2,7 +2,7 @@
 # Flash and RAM of the stack on a Cortex-M4F (DESIGN.md "Performance", footprint): builds the firmware
 # example (examples/firmware, STM32F446RE, embassy) with the footprint profile (opt-level "s", LTO,
 # panic = "abort", codegen-units = 1) in two builds, since a Cargo feature holds for a whole build:
-#   node      every canopen-core feature (the default): the full reference feature set;
+#   node      every canopen-core feature but the optional objects (see --optional): the full reference set;
 #   minimal   canopen-core without its optional features (issue 13's minimal device: NMT, heartbeat, SDO
 #             expedited + segmented, 4 RPDO + 4 TPDO, SYNC, EMCY), `--no-default-features --features minimal`;
 # and the CAN-echo baseline. It prints text/data/bss of each and each device's difference to the baseline,

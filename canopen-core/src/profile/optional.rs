@@ -12,7 +12,8 @@
 //! What each one does (CiA 301 §7.5.2.3, §7.5.2.16, §7.5.2.23, §7.5.2.31; the checklist rows cited):
 //!
 //! - **1002h** (ERR-03): VAR UNSIGNED32, ro, TPDO-mappable; the application sets it
-//!   (`Node::set_manufacturer_status`), the stack never does. No default (CiA 301), 0 at power-on here.
+//!   (`Node::set_manufacturer_status`), the stack never does. CiA 301 gives no default; it is 0 at power-on
+//!   here, and the EDS says so (as for 1001h).
 //! - **1013h** (TIME-06): VAR UNSIGNED32 in µs, rw, mappable both ways, default 0. It is a running
 //!   microsecond clock: it reads its last set value plus the time passed since (the node's clock, so a
 //!   TPDO that maps it carries the time of its own transmission), modulo 2³². Writing it (SDO, or an RPDO:
@@ -338,9 +339,9 @@ impl OptionalObjects {
         }
         let zero = Value::Uint(0);
         Ok(match (index, sub) {
-            (0x1002, 0) => {
-                EntryDesc::var(index, 0, "Manufacturer status register", Unsigned32, Ro).with_pdo(PdoMapping::Tpdo)
-            }
+            (0x1002, 0) => EntryDesc::var(index, 0, "Manufacturer status register", Unsigned32, Ro)
+                .with_pdo(PdoMapping::Tpdo)
+                .with_default(zero),
             (0x1013, 0) => EntryDesc::var(index, 0, "High resolution time stamp", Unsigned32, Rw)
                 .with_pdo(PdoMapping::Both)
                 .with_default(zero),
