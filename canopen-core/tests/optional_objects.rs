@@ -2,7 +2,7 @@
 //! CiA 301 (SDO expedited requests on 605h, TIME on 100h, EMCY on 080h + node) and simulated time:
 //! 1002h (ERR-03), 1013h (TIME-06), 1020h (STORE-12), 1028h (EMCY-10, COB-14/15/16).
 //!
-//! Run: `cargo test -p canopen-core --test optional_objects`.
+//! Run: `cargo test -p canopen-core --test optional_objects` (needs the four features, the default).
 
 use canopen_core::event::Event;
 use canopen_core::node::{NoApplication, Node};
@@ -63,7 +63,6 @@ fn download<S: Storage>(node: &mut TestNode<S>, t: Instant, index: u16, sub: u8,
 
 /// ERR-03: 1002h is a VAR UNSIGNED32, ro, TPDO-mappable, set by the application only.
 #[test]
-#[cfg(feature = "manufacturer-status")]
 fn manufacturer_status_err03() {
     let mut node = node(NodeConfig::DEFAULT);
     assert_eq!(upload(&mut node, ms(1), 0x1002, 0), Ok(0));
@@ -79,7 +78,6 @@ fn manufacturer_status_err03() {
 
 /// ERR-03: 1002h mapped into TPDO1 (1A00h:01 = 1002 0020h) goes out with the status register's value.
 #[test]
-#[cfg(feature = "manufacturer-status")]
 fn manufacturer_status_in_a_tpdo_err03() {
     static TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1002_0020], ..PdoDefault::EVENT }];
     let mut node = node(NodeConfig { tpdo: &TPDO, ..NodeConfig::DEFAULT });
@@ -95,7 +93,6 @@ fn manufacturer_status_in_a_tpdo_err03() {
 /// from its last set value, and TIME received (1012h bit 31) or produced (bit 30) sets it to the time of
 /// day's ms × 1000 (TIME-02: consume bit 31, produce bit 30; TIME-04: the 6-byte TIME_OF_DAY frame on 100h).
 #[test]
-#[cfg(feature = "high-res-time")]
 fn high_resolution_time_stamp_time06() {
     let mut node = node(NodeConfig::DEFAULT);
     let e = node.dictionary().entry(0x1013, 0).unwrap();
@@ -126,7 +123,6 @@ fn high_resolution_time_stamp_time06() {
 
 /// TIME-06: 1013h consumed through an RPDO (1600h:01 = 1013 0020h) and produced in a TPDO (1A00h:01).
 #[test]
-#[cfg(feature = "high-res-time")]
 fn high_resolution_time_stamp_in_pdos_time06() {
     static RPDO: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1013_0020], ..PdoDefault::EVENT }];
     static TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1013_0020], ..PdoDefault::EVENT }];
@@ -178,7 +174,6 @@ const LOAD: u32 = 0x6461_6F6C;
 /// configuration, and set to 0 by the device when a 1011h restore changes the boot-up configuration — live
 /// at once, and in the stored record, while the rest of the stored configuration stays.
 #[test]
-#[cfg(feature = "verify-config")]
 fn verify_configuration_store12() {
     let mut node: TestNode<Ram> =
         booted(Node::with_storage(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication, Ram::new()));
@@ -224,7 +219,6 @@ fn emcy_frame(can_id: u16) -> CanFrame {
 /// valid entry's CAN-ID reach the application (as node n); bit 29 and bit 30 and bits 28–11 are refused
 /// with 0609 0030h, the CAN-ID does not change while valid; reset communication brings the defaults back.
 #[test]
-#[cfg(feature = "emcy-consumer")]
 fn emergency_consumer_emcy10() {
     let mut node = node(NodeConfig::DEFAULT);
     assert_eq!(upload(&mut node, ms(1), 0x1028, 0), Ok(0x7F));
@@ -271,7 +265,6 @@ fn emergency_consumer_emcy10() {
 /// EMCY-10: two entries on one CAN-ID report the first; a listed CAN-ID that another service owns first
 /// (SYNC 080h) stays that service's.
 #[test]
-#[cfg(feature = "emcy-consumer")]
 fn emergency_consumer_lookup_emcy10() {
     let mut node = node(NodeConfig::DEFAULT);
     for sub in [9, 10] {
@@ -310,7 +303,6 @@ fn optional_objects_in_the_eds() {
 /// EMCY-10, STORE-03: 1028h is stored with the communication parameters; only the entries that differ from
 /// their default go into the record (a default one loads as the default anyway), so the record stays small.
 #[test]
-#[cfg(feature = "emcy-consumer")]
 fn emergency_consumer_is_stored_emcy10() {
     let mut node: TestNode<Ram> =
         booted(Node::with_storage(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication, Ram::new()));
