@@ -2,7 +2,7 @@
 # Flash and RAM of the stack on a Cortex-M4F (DESIGN.md "Performance", footprint): builds the firmware
 # example (examples/firmware, STM32F446RE, embassy) with the footprint profile (opt-level "s", LTO,
 # panic = "abort", codegen-units = 1) in two builds, since a Cargo feature holds for a whole build:
-#   node      every canopen-core feature (the default): the full reference feature set;
+#   node      every canopen-core feature but the optional objects (see --optional): the full reference set;
 #   minimal   canopen-core without its optional features (issue 13's minimal device: NMT, heartbeat, SDO
 #             expedited + segmented, 4 RPDO + 4 TPDO, SYNC, EMCY), `--no-default-features --features minimal`;
 # and the CAN-echo baseline. It prints text/data/bss of each and each device's difference to the baseline,
@@ -13,25 +13,29 @@
 # in embassy-executor 0.10): it is reported apart. The node itself is a `static` (StaticCell) in .bss, so it
 # is counted in RAM.
 #
-# Usage: scripts/footprint.sh [--check] [--ratchet] [--breakdown]
+# Usage: scripts/footprint.sh [--check] [--ratchet] [--breakdown] [--optional]
 #   --check      exit 1 when a device's share is over its target (node: flash 12,000 B, RAM 2,500 B;
 #                minimal: flash 8,000 B, RAM 2,500 B)
 #   --ratchet    exit 1 when a figure grew more than 2 % over its line in scripts/footprint.baseline; a
 #                figure that went down prints the one-line update of that file
 #   --breakdown  also print where the node and minimal binaries' flash goes, by crate/module (DWARF line
 #                table)
+#   --optional   also build node with each optional object of canopen-core (features manufacturer-status
+#                1002h, high-res-time 1013h, verify-config 1020h, emcy-consumer 1028h; the reference set
+#                leaves them out) and print the flash and RAM each adds to node
 # Needs: rustup target add thumbv7em-none-eabihf; binutils `size` and `nm` (they read ARM ELF files).
 set -euo pipefail
 SCRIPTS=$(cd "$(dirname "$0")" && pwd)
 cd "$SCRIPTS/../examples/firmware"
 declare -A FLASH_TARGET=([node]=12000 [minimal]=8000) RAM_TARGET=([node]=2500 [minimal]=2500)
-check=0 ratchet=0 breakdown=0
+check=0 ratchet=0 breakdown=0 optional=0
 for a in "$@"; do
   case $a in
     --check) check=1 ;;
     --ratchet) ratchet=1 ;;
     --breakdown) breakdown=1 ;;
-    *) echo "usage: $0 [--check] [--ratchet] [--breakdown]" >&2; exit 2 ;;
+    --optional) optional=1 ;;
+    *) echo "usage: $0 [--check] [--ratchet] [--breakdown] [--optional]" >&2; exit 2 ;;
   esac
 done
 
@@ -87,6 +91,17 @@ if [ "$breakdown" = 1 ]; then
   echo
   echo "minimal binary, flash by source, bytes:"
   python3 ../../scripts/footprint-breakdown.py "$T/minimal" "$T/baseline"
+fi
+
+if [ "$optional" = 1 ]; then
+  echo
+  echo "optional objects, each built into node (canopen-core feature; bytes added to node):"
+  for f in manufacturer-status high-res-time verify-config emcy-consumer; do
+    cargo build --release --no-default-features --features "full,canopen-core/$f" --bin node --quiet
+    read -r text data bss < <(berkeley "$T/node")
+    printf '  %-20s flash %+6d  RAM %+6d\n' "$f" $((text + data - F[node])) $((data + bss - R[node]))
+  done
+  cargo build --release --no-default-features --features full --bin node --quiet # leave node as measured
 fi
 
 status=0

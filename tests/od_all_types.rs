@@ -298,7 +298,7 @@ fn merged_with_the_comm_profile() {
     assert_eq!(od.write(0x1016, 2, &[0xC8, 0, 2, 0]), Err(AbortCode::ParameterIncompatibility));
     assert_eq!(od.write(0x1001, 0, &[1]), Err(AbortCode::WriteOfReadOnly));
     assert_eq!(read(&od, 0x1005, 0).unwrap(), [0x80, 0, 0, 0]); // 1005h default 0000 0080h
-    assert_eq!(read(&od, 0x1002, 0), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(read(&od, 0x1004, 0), Err(AbortCode::ObjectDoesNotExist));
     od.write(0x2002, 0, &[5, 0]).unwrap();
     assert_eq!(od.app.int16, 5);
     let h = od.pdo_resolve(0x1001, 0, PdoDir::Tpdo).unwrap();
@@ -306,7 +306,7 @@ fn merged_with_the_comm_profile() {
     let mut b = [0u8; 1];
     assert_eq!(od.pdo_read(&h, &mut b), Ok(1));
     assert_eq!(b, [0x11]);
-    assert_eq!(od.object_count(), 22 + 16 + 31);
+    assert_eq!(od.object_count(), 22 + 16 + 31 + od.comm.optional.object_count()); // + 1002h/1013h/1020h/1028h
     let indices: Vec<u16> = (0..od.object_count()).map(|n| od.object(n).unwrap().index).collect();
     assert!(indices.windows(2).all(|w| w[0] < w[1]));
     // Through references too.

@@ -53,6 +53,7 @@ macro_rules! sdo_dict {
 
 mod dict;
 mod errors;
+mod optional;
 mod pdo;
 mod rx_filter;
 mod sdo_servers;
@@ -604,6 +605,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if id == self.time_can_id() {
             return self.handle_time(frame);
         }
+        // EMCY-10: with 1028h, an EMCY is consumed on the CAN-ID of a valid entry only (`node/optional.rs`).
+        #[cfg(feature = "emcy-consumer")]
+        if let Some(node) = self.comm.optional.emcy_producer(id) {
+            return self.handle_emcy(node, frame);
+        }
         let Some((function, node)) = FunctionCode::of(id) else {
             return;
         };
@@ -614,6 +620,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             #[cfg(not(feature = "guarding"))]
             FunctionCode::NmtErrorControl if node == self.node_id.get() => {}
             FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
+            #[cfg(not(feature = "emcy-consumer"))]
             FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),
             _ => {}
         }
@@ -775,12 +782,15 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 self.guarding.set_life_time(now, p.guard_time_ms, p.life_time_factor);
                 self.error_control_recovered(); // life guarding switched off or restarted
             }
+            #[cfg(feature = "verify-config")]
+            0x1011 => self.boot_configuration_restored(), // STORE-12: 1020h set to 0
             _ => {}
         }
     }
 
     fn ensure_booted(&mut self, now: Instant) {
         self.now = self.now.max(now);
+        self.comm.optional.set_now(self.now); // 1013h runs on the node's clock (nothing without the feature)
         if self.boot_pending {
             self.boot_pending = false;
             self.reset(now, true);

@@ -405,7 +405,9 @@ impl<S: Storage + ?Sized> Writer<'_, S> {
 }
 
 /// Every storable entry of `od` with index in `range`: readable and writable, not DOMAIN, at most 255 bytes.
-/// 1010h/1011h (commands) and 1003h (history) are never stored.
+/// 1010h/1011h (commands), 1003h (history) and 1013h (a clock) are never stored; 1028h entries that hold
+/// their default are left out (the 127 of them would take 1,016 bytes of every record, and a load sets
+/// every entry to its default before it writes the stored ones back).
 fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
     od: &D,
     range: core::ops::RangeInclusive<u16>,
@@ -414,7 +416,8 @@ fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
     let mut buf = [0u8; 255];
     for n in 0..od.object_count() {
         let Some(o) = od.object(n) else { continue };
-        if !range.contains(&o.index) || matches!(o.index, 0x1003 | 0x1010 | 0x1011) {
+        let clock = cfg!(feature = "high-res-time") && o.index == 0x1013;
+        if !range.contains(&o.index) || matches!(o.index, 0x1003 | 0x1010 | 0x1011) || clock {
             continue;
         }
         for sub in 0..=255u8 {
@@ -423,6 +426,10 @@ fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
                 continue;
             }
             if let Ok(len) = od.read(o.index, sub, 0, &mut buf) {
+                #[cfg(feature = "emcy-consumer")]
+                if o.index == 0x1028 && holds_default(&e, &buf[..len]) {
+                    continue; // a load leaves it at its default anyway
+                }
                 f(o.index, sub, &buf[..len])?;
             }
             if sub == 255 {
@@ -431,6 +438,13 @@ fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
         }
     }
     Ok(())
+}
+
+/// Whether `value` (little-endian, at most 8 bytes) is the entry's numeric default.
+#[cfg(feature = "emcy-consumer")]
+fn holds_default(e: &crate::od::EntryDesc, value: &[u8]) -> bool {
+    let v = value.iter().rev().fold(0u64, |v, &b| v << 8 | u64::from(b));
+    value.len() <= 8 && e.default == Some(crate::od::Value::Uint(v))
 }
 
 /// Writes one stored value back through the dictionary (whole for fixed sizes, streamed otherwise).
@@ -498,8 +512,8 @@ where
             crc_data = CrcBuf(Some(h.digest_start()));
         }
         let mut w = Writer { st: &mut *st, slot: target, len: 0, crc_data };
-        write_group(&mut w, Groups::COMM, groups, kept, old, comm, 0x1000..=0x1FFF)?;
-        write_group(&mut w, Groups::APP, groups, kept, old, app, 0x2000..=0xFFFF)?;
+        write_group(&mut w, Groups::COMM, groups, kept, old, comm, 0x1000..=0x1FFF, 0)?;
+        write_group(&mut w, Groups::APP, groups, kept, old, app, 0x2000..=0xFFFF, 0)?;
         len = w.len;
         if pass == 1 {
             let crc = w.crc_data.0.map_or(0, |d| d.finalize());
@@ -510,6 +524,9 @@ where
     Ok(())
 }
 
+/// Writes `group`: from `od` when it is in `fresh`, else copied from the `old` record when `kept` has it,
+/// without the items of index `skip` (0: none).
+#[allow(clippy::too_many_arguments)]
 fn write_group<S, D>(
     w: &mut Writer<'_, S>,
     group: Groups,
@@ -518,6 +535,7 @@ fn write_group<S, D>(
     old: Option<(u8, Header)>,
     od: &D,
     range: core::ops::RangeInclusive<u16>,
+    skip: u16,
 ) -> Result<(), StorageError>
 where
     S: Storage + ?Sized,
@@ -542,7 +560,8 @@ where
         w.st.read(slot, HEADER_LEN + off + 4, &mut buf[..n])?;
         off += 4 + n;
         let index = u16::from_le_bytes([head[0], head[1]]);
-        if range.contains(&index) {
+        // `skip` is only ever set with verify-config (`forget`): no compare in a build without it.
+        if range.contains(&index) && (!cfg!(feature = "verify-config") || index != skip) {
             w.item(index, head[2], &buf[..n])?;
         }
     }
@@ -579,6 +598,18 @@ where
 /// Removes the groups `groups` from the stored record (1011h "load", STORE-08..10): their defaults come
 /// back at the next reset. Writes a new record (same A/B rule as [`save`]), so it is power-safe too.
 pub fn restore_defaults<S: Storage + ?Sized>(st: &mut S, groups: Groups) -> Result<(), StorageError> {
+    rewrite(st, groups, 0)
+}
+
+/// Removes the stored values of object `index` from the record (1020h verify configuration once another
+/// command changed the boot-up configuration, STORE-12); same A/B rule as [`save`].
+#[cfg(feature = "verify-config")]
+pub(crate) fn forget<S: Storage + ?Sized>(st: &mut S, index: u16) -> Result<(), StorageError> {
+    rewrite(st, Groups::NONE, index)
+}
+
+/// A new record holding the newest one's items but the groups `groups` and the items of index `skip`.
+fn rewrite<S: Storage + ?Sized>(st: &mut S, groups: Groups, skip: u16) -> Result<(), StorageError> {
     if st.capacity() < HEADER_LEN {
         return Err(StorageError::Unsupported);
     }
@@ -602,8 +633,8 @@ pub fn restore_defaults<S: Storage + ?Sized>(st: &mut S, groups: Groups) -> Resu
             CrcBuf(None)
         };
         let mut w = Writer { st: &mut *st, slot: target, len: 0, crc_data };
-        write_group(&mut w, Groups::COMM, Groups::NONE, remaining, old, &empty, 0x1000..=0x1FFF)?;
-        write_group(&mut w, Groups::APP, Groups::NONE, remaining, old, &empty, 0x2000..=0xFFFF)?;
+        write_group(&mut w, Groups::COMM, Groups::NONE, remaining, old, &empty, 0x1000..=0x1FFF, skip)?;
+        write_group(&mut w, Groups::APP, Groups::NONE, remaining, old, &empty, 0x2000..=0xFFFF, skip)?;
         len = w.len;
         if pass == 1 {
             let crc = w.crc_data.0.map_or(0, |d| d.finalize());

@@ -243,3 +243,31 @@ fn merged_routes_the_program_objects() {
     assert_eq!(plain.read(0x1F57, 1, 0, &mut b), Err(AbortCode::ObjectDoesNotExist));
     assert_eq!(plain.write(0x1F51, 1, &[1]), Err(AbortCode::ObjectDoesNotExist));
 }
+
+/// The merged dictionary lists every object in index order (OD-12: the EDS object lists and sections),
+/// the program objects of the application half (1F50h–1F57h) before the profile's 1F80h: the EDS has
+/// them all, sorted. PRG-06.
+#[test]
+fn merged_eds_lists_the_program_objects_in_order() {
+    use canopen_core::od::{Merged, OdDescribe};
+    use canopen_core::profile::{eds, CommProfile, NodeConfig};
+    type Z = canopen_core::Sizes<1, 16, 16, 1, 1>;
+    let app = ProgramDownload::new(Recorder::default(), NoApplication);
+    let m = Merged { comm: CommProfile::<Z>::new(NodeConfig::DEFAULT), app };
+    let all: Vec<u16> = (0..m.object_count()).map(|n| m.object(n).unwrap().index).collect();
+    assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
+    assert_eq!(all[all.len() - 5..], [0x1F50, 0x1F51, 0x1F56, 0x1F57, 0x1F80]);
+    assert_eq!(m.object(all.len()), None);
+    let mut text = String::new();
+    eds::write_eds(&mut text, &eds::EdsInfo::DEFAULT, &m).unwrap();
+    let sections: Vec<u16> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix('[')?.strip_suffix(']'))
+        .filter(|s| s.len() == 4)
+        .filter_map(|s| u16::from_str_radix(s, 16).ok())
+        .collect();
+    assert_eq!(sections, all, "one section per object, in index order");
+    let listed = text.split("[OptionalObjects]").nth(1).unwrap();
+    let pos = |index: &str| listed.find(index).unwrap();
+    assert!(pos("=0x1F50\n") < pos("=0x1F57\n") && pos("=0x1F57\n") < pos("=0x1F80\n"), "{listed}");
+}

@@ -356,11 +356,13 @@ pub fn error_injection_after_reset(node: &mut IoNode) -> (u16, u16) {
     apply_error_injection(node)
 }
 
-/// The EDS text of the node (`storage`: whether 1010h/1011h announce that saving is supported).
+/// The EDS text of the node (`storage`: whether 1010h/1011h announce that saving is supported): the
+/// dictionary the node serves, program download (1F50h–1F57h) included, every object in index order.
 pub fn eds_text(config: NodeConfig, storage: bool) -> String {
     let mut comm = canopen_core::profile::CommProfile::<Sizes>::new(config);
     comm.storage_supported = storage;
-    let od = canopen_core::od::Merged { comm, app: IoModule::with_defaults() };
+    let app: IoApp = ProgramDownload::new(ImageFile::new(None), IoModule::with_defaults());
+    let od = canopen_core::od::Merged { comm, app };
     let mut text = String::new();
     canopen_core::profile::eds::write_eds(&mut text, &EDS_INFO, &od).expect("formatting into a String cannot fail");
     text

@@ -30,6 +30,9 @@ VARS = {
     0x1015: ("Inhibit time EMCY", dt.UNSIGNED16, "rw", 0, False, None, None),
     0x1019: ("Synchronous counter overflow value", dt.UNSIGNED8, "rw", 0, False, None, None),
     0x1F80: ("NMT startup", dt.UNSIGNED32, "rw", 4, False, None, None),
+    # The optional objects of canopen-core's default features (profile::optional).
+    0x1002: ("Manufacturer status register", dt.UNSIGNED32, "ro", 0, True, None, None),
+    0x1013: ("High resolution time stamp", dt.UNSIGNED32, "rw", 0, True, None, None),
     0x2000: ("Boolean", dt.BOOLEAN, "rw", 1, True, None, None),
     0x2001: ("Integer8", dt.INTEGER8, "rw", -1, True, -100, 100),
     0x2002: ("Integer16", dt.INTEGER16, "rww", 0, True, -1000, 1000),
@@ -81,6 +84,13 @@ COMPOUND = {
         2: ("Restore communication default parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
         3: ("Restore application default parameters", dt.UNSIGNED32, "rw", 0, False, None, None),
     }, 3),
+    0x1020: (ODArray, "Verify configuration", {
+        1: ("Configuration date", dt.UNSIGNED32, "rw", 0, False, None, None),
+        2: ("Configuration time", dt.UNSIGNED32, "rw", 0, False, None, None),
+    }, 2),
+    0x1028: (ODArray, "Emergency consumer object", {
+        s: (f"Emergency consumer {s}", dt.UNSIGNED32, "rw", 0x80 + s, False, None, None) for s in range(1, 128)
+    }, 127),
     0x1029: (ODArray, "Error behaviour", {1: ("Communication error", dt.UNSIGNED8, "rw", 0, False, None, None)}, 1),
     **{0x1400 + k: (ODRecord, "RPDO communication parameter", {
         1: ("COB-ID used by RPDO", dt.UNSIGNED32, "rw", (0x200 + 0x100 * k + 5) | (0 if k == 0 else 0x80000000), False, None, None),

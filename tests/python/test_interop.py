@@ -34,8 +34,9 @@ from canopen.sdo.exceptions import SdoAbortedError  # noqa: E402
 
 NODE_BIN = os.environ.get("NODE_BIN", str(ROOT / "target/debug/examples/node"))
 
-# Objects whose value changes while the node runs (the application task updates them).
-LIVE = {0x2006, 0x6000, 0x6401}
+# Objects whose value changes while the node runs (the application task updates them; 1013h is a µs clock;
+# 1F51h/1F56h/1F57h follow the program download).
+LIVE = {0x1013, 0x1F51, 0x1F56, 0x1F57, 0x2006, 0x6000, 0x6401}
 
 
 @pytest.fixture(scope="module")
@@ -451,6 +452,52 @@ def test_error_injection_raises_an_emcy_and_fills_1003h(node):
     assert wait_until(lambda: any(e.code == 0 for e in node.emcy.log[mark:])), node.emcy.log[mark:]
     assert node.emcy.log[-1].code == 0 and node.emcy.log[-1].register == 0
     assert node.sdo.upload(0x1001, 0)[0] == 0
+
+
+def test_emcy_consumer_reports_listed_producers_only(node, network, node_process):
+    """EMCY-10, COB-15, COB-16: a second node's EMCY (node 9: python canopen's EmcyProducer on 089h) reaches
+    our application (the example node prints the event) while 1028h sub 09h is valid, not once the entry is
+    invalidated (bit 31), and from its new CAN-ID once moved (invalidate, change, validate); the frame bit
+    and a CAN-ID change of a valid entry are refused with 0609 0030h."""
+    log = pathlib.Path(node_process.log_path)
+    producer = canopen.emcy.EmcyProducer(0x89)
+    producer.network = network
+
+    def reported_after(mark, code):
+        return f"Emergency {{ node: 9, emcy: Emergency {{ code: {code}," in log.read_text()[mark:]
+
+    assert node.sdo.upload(0x1028, 0)[0] == 0x7F
+    assert node.sdo[0x1028][9].raw == 0x89  # default: node 9 on 80h + 9, consumed
+    mark = len(log.read_text())
+    producer.send(0x8130, 0x11)
+    assert wait_until(lambda: reported_after(mark, 0x8130)), "node 9's EMCY was not reported"
+
+    with pytest.raises(SdoAbortedError) as e:
+        node.sdo[0x1028][9].raw = 0x99  # COB-16: a valid entry's CAN-ID does not change
+    assert abort_code(e) == 0x06090030
+    with pytest.raises(SdoAbortedError) as e:
+        node.sdo[0x1028][9].raw = 0x2000_0089  # COB-15: 11-bit only
+    assert abort_code(e) == 0x06090030
+
+    node.sdo[0x1028][9].raw = 0x8000_0089  # not valid: no longer consumed
+    mark = len(log.read_text())
+    producer.send(0x5000, 0x01)
+    time.sleep(0.5)
+    assert not reported_after(mark, 0x5000), "an EMCY of an unlisted producer was reported"
+
+    node.sdo[0x1028][9].raw = 0x8000_0321  # invalidate, change, validate
+    node.sdo[0x1028][9].raw = 0x321
+    moved = canopen.emcy.EmcyProducer(0x321)
+    moved.network = network
+    mark = len(log.read_text())
+    producer.send(0x5000, 0x01)
+    moved.send(0x4210, 0x09)
+    assert wait_until(lambda: reported_after(mark, 0x4210)), "the EMCY on 321h was not reported"
+    assert not reported_after(mark, 0x5000), "089h is no longer node 9's EMCY"
+
+    node.sdo[0x1028][9].raw = 0x8000_0321  # back to the default for the other tests
+    node.sdo[0x1028][9].raw = 0x89
+    assert node.sdo[0x1028][9].raw == 0x89
 
 
 # ---- PDOs through python canopen's PDO API ---------------------------------------------------------------

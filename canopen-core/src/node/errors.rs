@@ -163,8 +163,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    /// Another node's EMCY (EMCY-10/11: every EMCY on 081h–0FFh is reported; 1028h is not implemented).
-    /// EMCY-06: an RTR is never answered.
+    /// Another node's EMCY, `node` the producer's node-ID (EMCY-11: reported, the reaction is the
+    /// application's): without the `emcy-consumer` feature every EMCY on 081h–0FFh, with it those on a valid
+    /// 1028h entry's CAN-ID (EMCY-10, `node` its sub-index). EMCY-06: an RTR is never answered.
     pub(super) fn handle_emcy(&mut self, node: u8, frame: &CanFrame) {
         if frame.is_rtr() || node == self.node_id.get() || !self.nmt.state().allows(Service::Emcy) {
             return;

@@ -304,6 +304,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return;
         }
         if let Ok(TimeStamp { days, ms }) = TimeStamp::parse(frame.data()) {
+            self.comm.optional.time_of_day(ms); // 1013h consumed with TIME (TIME-06)
             self.push_event(Event::Time(TimeOfDay { days, ms }));
         }
     }
@@ -331,6 +332,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let mut data = [0u8; 8];
         data[..6].copy_from_slice(&b);
         self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));
+        self.comm.optional.time_of_day(time.ms); // 1013h produced with TIME (TIME-06)
         true
     }
 }

@@ -90,6 +90,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             // NMT 000h; the EMCY consumer (every node's 081h–0FFh, which covers SYNC 080h); guarding on
             // 700h + own node-ID.
             ok &= push(exact(0x000)) && push(RxFilter { id: 0x080, mask: 0x780 }) && push(exact(own));
+            // EMCY-10: the valid 1028h entries outside 081h–0FFh (none without the feature).
+            for id in self.comm.optional.emcy_ids_outside_range() {
+                ok &= push(exact(id));
+            }
             let sync = self.sync.can_id();
             if sync != 0 {
                 ok &= push(exact(sync));

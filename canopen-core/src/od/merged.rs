@@ -6,8 +6,9 @@ use super::{AbortCode, EntryDesc, ObjectDesc, ObjectDictionary, OdDescribe, PdoD
 
 /// The communication profile `comm` (1000h–1FFFh) merged with the application dictionary `app`.
 ///
-/// Objects are listed comm first, then app, so the order is increasing as long as the application has no
-/// index below 1000h (the derive macro refuses 0000h–1FFFh).
+/// Objects are listed in increasing index order, the two halves' (each in increasing order) merged
+/// ([`merge_nth`]): the application half may list objects inside the communication range (1F50h–1F57h of a
+/// `program::ProgramDownload`), which come before the profile's 1F80h.
 ///
 /// ```
 /// # use canopen_core::Sizes;
@@ -124,16 +125,58 @@ impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A>
     }
 }
 
+/// Where the `n`-th object of two increasing lists merged into one increasing list is: `(true, i)` for the
+/// `i`-th of list `a` (`a_len` objects, index of the `i`-th `a(i)`), `(false, j)` for the `j`-th of `b`;
+/// `None` past the end. A binary search over the split (how many of the first `n` come from `a`), so
+/// listing every object costs `O(n log n)` index look-ups, with no buffer.
+///
+/// ```
+/// # use canopen_core::od::merge_nth;
+/// let (a, b) = ([0x1000u16, 0x1018, 0x1F80], [0x1F50u16, 0x2000]);
+/// let merged: Vec<u16> = (0..6)
+///     .map_while(|n| merge_nth(n, a.len(), |i| a[i], b.len(), |j| b[j]))
+///     .map(|(in_a, i)| if in_a { a[i] } else { b[i] })
+///     .collect();
+/// assert_eq!(merged, [0x1000, 0x1018, 0x1F50, 0x1F80, 0x2000]);
+/// ```
+pub fn merge_nth(
+    n: usize,
+    a_len: usize,
+    a: impl Fn(usize) -> u16,
+    b_len: usize,
+    b: impl Fn(usize) -> u16,
+) -> Option<(bool, usize)> {
+    if n >= a_len + b_len {
+        return None;
+    }
+    // The smallest split i (objects of `a` among the first n) at which a(i) is not below b(n - i - 1).
+    let (mut lo, mut hi) = (n.saturating_sub(b_len), n.min(a_len));
+    while lo < hi {
+        let i = lo + (hi - lo) / 2;
+        if a(i) < b(n - i - 1) {
+            lo = i + 1;
+        } else {
+            hi = i;
+        }
+    }
+    let j = n - lo;
+    Some(if lo < a_len && (j >= b_len || a(lo) < b(j)) { (true, lo) } else { (false, j) })
+}
+
+/// The index of an object a description lists at `n` (`u16::MAX` for a hole, so it sorts last).
+fn index_of<D: OdDescribe + ?Sized>(od: &D, n: usize) -> u16 {
+    od.object(n).map_or(u16::MAX, |o| o.index)
+}
+
 impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
     fn object_count(&self) -> usize {
         self.comm.object_count() + self.app.object_count()
     }
     fn object(&self, n: usize) -> Option<ObjectDesc> {
-        let c = self.comm.object_count();
-        if n < c {
-            self.comm.object(n)
-        } else {
-            self.app.object(n - c)
+        let (c, a) = (&self.comm, &self.app);
+        match merge_nth(n, c.object_count(), |i| index_of(c, i), a.object_count(), |j| index_of(a, j))? {
+            (true, i) => c.object(i),
+            (false, j) => a.object(j),
         }
     }
     /// 1F50h–1F57h: the communication profile's entry, else the application's (which serves them when it

@@ -25,7 +25,7 @@ pub use domain::{Domain, DomainBuf};
 pub(crate) use merged::is_comm_for;
 #[cfg(feature = "program-download")]
 pub(crate) use merged::is_program;
-pub use merged::Merged;
+pub use merged::{merge_nth, Merged};
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
     check_len, check_limits, copy_at, OctetString, OdValue, TimeDifference, TimeOfDay, UnicodeString, VisibleString,

@@ -24,7 +24,7 @@
 //! `table` module, walked once per access; reading and writing a value is one `match` on its slot.
 
 use super::table::{self, Counts, Found, Slot};
-use super::{CommParams, NodeConfig, ProfileSizes};
+use super::{optional, CommParams, NodeConfig, ProfileSizes};
 use crate::cob::{is_restricted, CobIdEntry};
 use crate::emcy::{NodeErrors, HISTORY};
 use crate::od::{
@@ -34,6 +34,47 @@ use crate::od::{
 use crate::pdo::{mapping::MAX_ENTRIES, rpdo_type_ok, tpdo_type_ok, PdoComm, PdoMapParams};
 use crate::sizes::Sizes;
 use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
+
+/// `Self::find(index, sub)?`, except that an index the table has not and [`optional`] serves returns
+/// `$optional` (the optional objects are asked only where the table has nothing: no cost on the profile's
+/// own objects). Without the optional objects' features it is exactly `Self::find(index, sub)?`: the
+/// match with a constant-false guard still cost the minimal firmware 240 B of flash.
+macro_rules! find_or_optional {
+    ($index:expr, $sub:expr, $optional:expr) => {{
+        #[cfg(any(
+            feature = "manufacturer-status",
+            feature = "high-res-time",
+            feature = "verify-config",
+            feature = "emcy-consumer"
+        ))]
+        let f = match Self::find($index, $sub) {
+            Ok(f) => f,
+            Err(e) => return cold(|| if optional::serves($index) { $optional } else { Err(e) }),
+        };
+        #[cfg(not(any(
+            feature = "manufacturer-status",
+            feature = "high-res-time",
+            feature = "verify-config",
+            feature = "emcy-consumer"
+        )))]
+        let f = Self::find($index, $sub)?;
+        f
+    }};
+}
+
+/// Runs `f` out of line, as the unlikely path: the optional objects' fallback kept the SDO upload of the
+/// profile's own objects 4 instructions slower when it was inline (bench-node.sh expedited_upload).
+#[cfg(any(
+    feature = "manufacturer-status",
+    feature = "high-res-time",
+    feature = "verify-config",
+    feature = "emcy-consumer"
+))]
+#[cold]
+#[inline(never)]
+fn cold<T>(f: impl FnOnce() -> T) -> T {
+    f()
+}
 
 /// The communication-profile dictionary of a node with the capacities `Z` (`Z::HB` heartbeat consumer
 /// entries, `Z::RPDO` receive and `Z::TPDO` transmit PDOs; see [`Sizes`]).
@@ -63,6 +104,8 @@ pub struct CommProfile<Z: ProfileSizes = Sizes> {
     pub errors: NodeErrors,
     /// Whether 1010h can save (reads 1 in bit 0, STORE-05) and 1011h can restore (STORE-11).
     pub storage_supported: bool,
+    /// 1002h, 1013h, 1020h, 1028h (each behind its Cargo feature; see [`super::optional`]).
+    pub optional: super::optional::OptionalObjects,
 }
 
 /// Indices of the fixed objects, in increasing order (the PDO ranges and 1F80h follow); without those of
@@ -145,6 +188,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             node_id,
             errors: NodeErrors::new(),
             storage_supported: false,
+            optional: super::optional::OptionalObjects::new(),
         }
     }
 
@@ -161,6 +205,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// ```
     pub fn reset_communication(&mut self) {
         self.params.set_defaults(&self.config, self.node_id);
+        self.optional.reset_communication();
     }
 
     fn pdo_obj(index: u16) -> Option<PdoObj> {
@@ -602,7 +647,11 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     }
 
     fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
-        let f = Self::find(index, sub)?;
+        let f = find_or_optional!(
+            index,
+            sub,
+            if rules { self.optional.write(index, sub, data) } else { self.optional.load(index, sub, data) }
+        );
         self.write_found(&f, sub, data, rules)
     }
     /// Writes a stored value without the SDO change rules (store/restore after a reset: the record was
@@ -651,7 +700,7 @@ impl<Z: ProfileSizes> ObjectDictionary for Unchecked<'_, Z> {
 
 impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
-        let f = Self::find(index, sub)?;
+        let f = find_or_optional!(index, sub, self.optional.info(index, sub));
         let (data_type, access, pdo) = f.meta();
         let size = self.text(f.slot).map_or(f.ty.size(), str::len);
         Ok(SubInfo { data_type, access, pdo, size })
@@ -661,7 +710,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// registers (bench-node.sh segmented_upload +10 instructions per frame).
     #[inline(never)]
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        let f = Self::find(index, sub)?;
+        let f = find_or_optional!(index, sub, self.optional.read(index, sub, offset, buf));
         if let Some(text) = self.text(f.slot) {
             return Ok(copy_at(text.as_bytes(), offset, buf));
         }
@@ -675,7 +724,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
 
     /// One table walk; every entry here is readable.
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
-        let f = Self::find(index, sub)?;
+        let f = find_or_optional!(index, sub, self.optional.read_expedited(index, sub, buf));
         if let Some(text) = self.text(f.slot) {
             return Ok(text_expedited(text, buf));
         }
@@ -688,13 +737,21 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// One table walk; the writable entries are all numeric (1..=4 bytes), so `len` not indicated means
     /// the entry's size (SDO-13).
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        let f = Self::find(index, sub)?;
+        let f = find_or_optional!(
+            index,
+            sub,
+            self.optional.write(index, sub, data.get(..len.unwrap_or(4)).unwrap_or(data))
+        );
         let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
         self.write_found(&f, sub, bytes, true)
     }
 
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
         let _ = size;
+        if optional::serves(index) {
+            self.optional.info(index, sub)?;
+            return Err(AbortCode::UnsupportedAccess);
+        }
         if !Self::find(index, sub)?.ty.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
@@ -702,12 +759,13 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     }
 }
 
-impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
-    fn object_count(&self) -> usize {
-        OBJECTS.len() - usize::from(Z::HB == 0) + 2 * Z::RPDO + 2 * Z::TPDO + 1
+impl<Z: ProfileSizes> CommProfile<Z> {
+    /// The number of the profile's own objects (without [`optional`]'s).
+    const fn own_object_count() -> usize {
+        OBJECTS.len() - (Z::HB == 0) as usize + 2 * Z::RPDO + 2 * Z::TPDO + 1
     }
 
-    fn object(&self, n: usize) -> Option<ObjectDesc> {
+    fn own_object(&self, n: usize) -> Option<ObjectDesc> {
         let index = Self::index_at(n)?;
         let (name, code, subs) = match (index, Self::pdo_obj(index)) {
             (_, Some(PdoObj::RpdoComm(_))) => ("RPDO communication parameter", ObjectCode::Record, 5),
@@ -724,8 +782,27 @@ impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
         };
         Some(ObjectDesc { index, name, code, first: 0, subs })
     }
+}
+
+impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
+    fn object_count(&self) -> usize {
+        Self::own_object_count() + self.optional.object_count()
+    }
+
+    /// The profile's own objects and [`optional`]'s, merged in increasing index order.
+    fn object(&self, n: usize) -> Option<ObjectDesc> {
+        let own = |i| Self::index_at(i).unwrap_or(u16::MAX);
+        let opt = |j| self.optional.object(j).map_or(u16::MAX, |o| o.index);
+        match crate::od::merge_nth(n, Self::own_object_count(), own, self.optional.object_count(), opt)? {
+            (true, i) => self.own_object(i),
+            (false, j) => self.optional.object(j),
+        }
+    }
 
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
+        if optional::serves(index) {
+            return self.optional.entry(index, sub).ok();
+        }
         self.desc(index, sub).ok()
     }
 }
@@ -765,7 +842,7 @@ mod tests {
         assert_eq!(read(&od, 0x1018, 5), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1016, 4), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1000, 1), Err(AbortCode::SubIndexDoesNotExist));
-        assert_eq!(read(&od, 0x1002, 0), Err(AbortCode::ObjectDoesNotExist));
+        assert_eq!(read(&od, 0x1004, 0), Err(AbortCode::ObjectDoesNotExist));
         assert_eq!(od.info(0x1008, 0).unwrap().size, 9);
         assert_eq!(od.info(0x1008, 0).unwrap().access, Access::Const);
     }
@@ -847,19 +924,26 @@ mod tests {
     fn describes_itself() {
         extern crate std;
         let od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
-        assert_eq!(od.object_count(), 22);
-        assert_eq!(od.object(16).unwrap().index, 0x1016);
-        assert_eq!(od.object(16).unwrap().code, ObjectCode::Array);
-        assert_eq!(od.object(16).unwrap().subs, 3);
+        // The optional objects (1002h, 1013h, 1020h, 1028h: those this build has) merge into the order.
+        let opt = od.optional.object_count();
+        let before_1016 =
+            opt - usize::from(cfg!(feature = "verify-config")) - usize::from(cfg!(feature = "emcy-consumer"));
+        assert_eq!(od.object_count(), 22 + opt);
+        let hb = od.object(16 + before_1016).unwrap();
+        assert_eq!((hb.index, hb.code, hb.subs), (0x1016, ObjectCode::Array, 3));
         assert!(od.entry(0x1016, 2).unwrap().numbered);
         let none: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(CFG);
-        assert_eq!(none.object_count(), 21);
+        assert_eq!(none.object_count(), 21 + opt);
         assert_eq!(none.info(0x1016, 0), Err(AbortCode::ObjectDoesNotExist));
-        assert_eq!(none.object(16).unwrap().index, 0x1017);
+        assert_eq!(none.object(16 + before_1016).unwrap().index, 0x1017);
         let pdos: CommProfile<Sizes<0, 16, 16, 2, 3>> = CommProfile::new(CFG);
         let all: std::vec::Vec<u16> = (0..pdos.object_count()).map(|n| pdos.object(n).unwrap().index).collect();
         assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
-        assert_eq!(all[20..], [0x1400, 0x1401, 0x1600, 0x1601, 0x1800, 0x1801, 0x1802, 0x1A00, 0x1A01, 0x1A02, 0x1F80]);
+        let pdo_objects = [0x1400, 0x1401, 0x1600, 0x1601, 0x1800, 0x1801, 0x1802, 0x1A00, 0x1A01, 0x1A02, 0x1F80];
+        assert_eq!(all[20 + opt..], pdo_objects);
+        for index in [0x1002, 0x1013, 0x1020, 0x1028] {
+            assert_eq!(all.contains(&index), optional::serves(index), "{index:04X}h");
+        }
     }
 
     /// A build without guarding or TIME has no 100Ch/100Dh or 1012h: SDO gets 0602 0000h (OD-16), the EDS
@@ -883,7 +967,7 @@ mod tests {
             assert_eq!(od.write(index, 0, &[0; 4]), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");
             assert_eq!(od.entry(index, 0), None, "{index:04X}h");
         }
-        assert_eq!(od.object_count(), 22 - gone.len());
+        assert_eq!(od.object_count(), 22 - gone.len() + od.optional.object_count());
         let all: std::vec::Vec<u16> = (0..od.object_count()).map(|n| od.object(n).unwrap().index).collect();
         assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
         assert!(gone.iter().all(|i| !all.contains(i)), "{all:X?}");

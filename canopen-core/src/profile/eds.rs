@@ -103,7 +103,7 @@ fn identity<D: OdDescribe + ?Sized>(od: &D, sub: u8) -> u64 {
 /// # use canopen_core::Sizes;
 /// use canopen_core::profile::{eds::{write_eds, EdsInfo}, CommProfile, NodeConfig};
 /// let od: CommProfile<Sizes<1, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
-/// let mut s = heapless::String::<8192>::new();
+/// let mut s = String::new();
 /// write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
 /// assert!(s.contains("[1018sub1]\nParameterName=Vendor-ID\nObjectType=0x7\nDataType=0x0007\n"));
 /// ```
@@ -168,8 +168,10 @@ mod tests {
             device_name: "dev",
             ..NodeConfig::DEFAULT
         };
+        extern crate std;
         let od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
-        let mut s = heapless::String::<16384>::new();
+        // A String: 1028h's 127 entries alone are some 17 kB of EDS.
+        let mut s = std::string::String::new();
         write_eds(&mut s, &EdsInfo::DEFAULT, &od).unwrap();
         assert!(s.contains("VendorNumber=0x2B6\n"));
         assert!(s.contains("ProductNumber=0x7\n"));
@@ -210,8 +212,9 @@ mod tests {
     /// `LSS_Supported` follows the build: a node without the `lss` feature has no LSS slave to offer.
     #[test]
     fn lss_supported_follows_the_build() {
+        extern crate std;
         let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
-        let mut s = heapless::String::<8192>::new();
+        let mut s = std::string::String::new();
         write_eds(&mut s, &EdsInfo { lss_supported: true, ..EdsInfo::DEFAULT }, &od).unwrap();
         let want = if cfg!(feature = "lss") { "LSS_Supported=1\n" } else { "LSS_Supported=0\n" };
         assert!(s.contains(want), "{s}");

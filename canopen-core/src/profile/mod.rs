@@ -16,6 +16,7 @@
 
 mod dict;
 pub mod eds;
+pub mod optional;
 mod table;
 
 pub use crate::heartbeat::ConsumerEntry;
