@@ -153,6 +153,82 @@ impl<T: Storage + ?Sized> Storage for &mut T {
     }
 }
 
+/// Two slots of `N` bytes in RAM: the storage of a device whose parameters live in battery-backed or
+/// retained RAM, and a test double for any other (what a test writes can be read back with
+/// [`slot`](Self::slot)). A slot other than 0 or 1 is an [`Io`](StorageError::Io) error, an access past
+/// `N` bytes [`TooLarge`](StorageError::TooLarge); nothing panics.
+///
+/// ```
+/// use canopen_core::storage::{RamStorage, Storage, StorageError};
+///
+/// let mut ram = RamStorage::<64>::new();
+/// ram.write(1, 10, &[1, 2]).unwrap();
+/// let mut b = [0u8; 2];
+/// ram.read(1, 10, &mut b).unwrap();
+/// assert_eq!(b, [1, 2]);
+/// assert_eq!(&ram.slot(1)[9..13], &[0xFF, 1, 2, 0xFF]); // erased bytes read 0xFF
+/// assert_eq!(ram.write(1, 63, &[1, 2]), Err(StorageError::TooLarge));
+/// assert_eq!(ram.erase(2), Err(StorageError::Io));
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RamStorage<const N: usize> {
+    slots: [[u8; N]; 2],
+}
+
+impl<const N: usize> RamStorage<N> {
+    /// Both slots erased (every byte 0xFF, as erased flash reads).
+    ///
+    /// ```
+    /// use canopen_core::storage::RamStorage;
+    /// assert!(RamStorage::<8>::new().slot(0).iter().all(|&b| b == 0xFF));
+    /// ```
+    pub const fn new() -> Self {
+        RamStorage { slots: [[0xFF; N]; 2] }
+    }
+
+    /// The bytes of `slot` (0 or 1; any other reads as slot 1).
+    ///
+    /// ```
+    /// use canopen_core::storage::RamStorage;
+    /// assert_eq!(RamStorage::<4>::new().slot(0).len(), 4);
+    /// ```
+    pub fn slot(&self, slot: u8) -> &[u8; N] {
+        &self.slots[usize::from(slot.min(1))]
+    }
+
+    fn slot_mut(&mut self, slot: u8) -> Result<&mut [u8; N], StorageError> {
+        self.slots.get_mut(usize::from(slot)).ok_or(StorageError::Io)
+    }
+}
+
+impl<const N: usize> Default for RamStorage<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize> Storage for RamStorage<N> {
+    fn capacity(&self) -> usize {
+        N
+    }
+    fn erase(&mut self, slot: u8) -> Result<(), StorageError> {
+        self.slot_mut(slot)?.fill(0xFF);
+        Ok(())
+    }
+    fn write(&mut self, slot: u8, offset: usize, data: &[u8]) -> Result<(), StorageError> {
+        let end = offset.checked_add(data.len()).ok_or(StorageError::TooLarge)?;
+        let s = self.slot_mut(slot)?;
+        s.get_mut(offset..end).ok_or(StorageError::TooLarge)?.copy_from_slice(data);
+        Ok(())
+    }
+    fn read(&mut self, slot: u8, offset: usize, buf: &mut [u8]) -> Result<(), StorageError> {
+        let end = offset.checked_add(buf.len()).ok_or(StorageError::TooLarge)?;
+        let s = self.slots.get(usize::from(slot)).ok_or(StorageError::Io)?;
+        buf.copy_from_slice(s.get(offset..end).ok_or(StorageError::TooLarge)?);
+        Ok(())
+    }
+}
+
 /// Parameter groups of 1010h/1011h (STORE-02, STORE-07).
 ///
 /// ```

@@ -9,7 +9,7 @@ use canopen_core::node::{NoApplication, Node};
 use canopen_core::od::{AbortCode, Access, OdDescribe, PdoMapping};
 use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::NodeConfig;
-use canopen_core::storage::{Storage, StorageError};
+use canopen_core::storage::{RamStorage, Storage};
 use canopen_core::{CanFrame, Instant, NodeId, Sizes};
 
 type TestNode<S = canopen_core::storage::NoStorage> = Node<NoApplication, Sizes, S>;
@@ -138,34 +138,8 @@ fn high_resolution_time_stamp_in_pdos_time06() {
     assert_eq!(f.data(), &(0x0001_0000u32 + 500).to_le_bytes());
 }
 
-/// Two RAM slots, as the storage contract asks.
-struct Ram(Vec<Vec<u8>>);
-
-impl Ram {
-    fn new() -> Self {
-        Ram(vec![vec![0xFF; 4096]; 2])
-    }
-}
-
-impl Storage for Ram {
-    fn capacity(&self) -> usize {
-        4096
-    }
-    fn erase(&mut self, slot: u8) -> Result<(), StorageError> {
-        self.0.get_mut(usize::from(slot)).ok_or(StorageError::Io)?.fill(0xFF);
-        Ok(())
-    }
-    fn write(&mut self, slot: u8, offset: usize, data: &[u8]) -> Result<(), StorageError> {
-        let s = self.0.get_mut(usize::from(slot)).ok_or(StorageError::Io)?;
-        s.get_mut(offset..offset + data.len()).ok_or(StorageError::TooLarge)?.copy_from_slice(data);
-        Ok(())
-    }
-    fn read(&mut self, slot: u8, offset: usize, buf: &mut [u8]) -> Result<(), StorageError> {
-        let s = self.0.get(usize::from(slot)).ok_or(StorageError::Io)?;
-        buf.copy_from_slice(s.get(offset..offset + buf.len()).ok_or(StorageError::TooLarge)?);
-        Ok(())
-    }
-}
+/// Two 8 KiB slots: with the feature pdo-mapping-64 the communication record is over 4 KiB.
+type Ram = RamStorage<8192>;
 
 const SAVE: u32 = 0x6576_6173;
 const LOAD: u32 = 0x6461_6F6C;
@@ -306,7 +280,7 @@ fn optional_objects_in_the_eds() {
 fn emergency_consumer_is_stored_emcy10() {
     let mut node: TestNode<Ram> =
         booted(Node::with_storage(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication, Ram::new()));
-    let used = |node: &TestNode<Ram>, slot: usize| node.storage().0[slot].iter().rposition(|&b| b != 0xFF);
+    let used = |node: &TestNode<Ram>, slot: u8| node.storage().slot(slot).iter().rposition(|&b| b != 0xFF);
     assert_eq!(download(&mut node, ms(1), 0x1010, 2, SAVE), Ok(())); // slot 0: every 1028h entry default
     assert_eq!(download(&mut node, ms(1), 0x1028, 3, 0x8000_0083), Ok(()));
     assert_eq!(download(&mut node, ms(1), 0x1010, 2, SAVE), Ok(())); // slot 1: entry 3 changed

@@ -10,7 +10,7 @@ use canopen_core::od::{
 use canopen_core::pdo::{mapping::MAX_ENTRIES, PdoDefault};
 use canopen_core::profile::eds::{write_eds, EdsInfo};
 use canopen_core::profile::{CommProfile, NodeConfig};
-use canopen_core::storage::{NoStorage, Storage, StorageError};
+use canopen_core::storage::{NoStorage, RamStorage, Storage};
 use canopen_core::{CanFrame, Instant, NmtState, NodeId, Sizes};
 
 /// 2000h sub 01h–40h: 64 BOOLEANs (bit `i - 1` of `bits`), 2001h: a UNSIGNED8; mappable both ways.
@@ -64,27 +64,7 @@ impl OdDescribe for Flags {
 
 /// Two RAM slots of 8 KiB (the communication record with 64-entry mappings is over 4 KiB: every entry
 /// of every mapping is stored, 8 bytes each).
-struct Ram(Vec<Vec<u8>>);
-
-impl Storage for Ram {
-    fn capacity(&self) -> usize {
-        8192
-    }
-    fn erase(&mut self, slot: u8) -> Result<(), StorageError> {
-        self.0.get_mut(usize::from(slot)).ok_or(StorageError::Io)?.fill(0xFF);
-        Ok(())
-    }
-    fn write(&mut self, slot: u8, offset: usize, data: &[u8]) -> Result<(), StorageError> {
-        let s = self.0.get_mut(usize::from(slot)).ok_or(StorageError::Io)?;
-        s.get_mut(offset..offset + data.len()).ok_or(StorageError::TooLarge)?.copy_from_slice(data);
-        Ok(())
-    }
-    fn read(&mut self, slot: u8, offset: usize, buf: &mut [u8]) -> Result<(), StorageError> {
-        let s = self.0.get(usize::from(slot)).ok_or(StorageError::Io)?;
-        buf.copy_from_slice(s.get(offset..offset + buf.len()).ok_or(StorageError::TooLarge)?);
-        Ok(())
-    }
-}
+type Ram = RamStorage<8192>;
 
 type N<S = NoStorage> = Node<Flags, Sizes, S>;
 
@@ -208,7 +188,7 @@ fn mapping_limits_at_64_entries_pdo_37() {
 /// and 64).
 #[test]
 fn a_stored_64_entry_mapping_survives_reset_communication() {
-    let ram = Ram(vec![vec![0xFF; 8192]; 2]);
+    let ram = Ram::new();
     let mut node = boot(Node::with_storage(NodeId::new(5).unwrap(), CFG, Flags::default(), ram));
     assert_eq!(remap(&mut node, 0x1400, 0x1600, 0x205, &one_bit_entries()), OK);
     assert_eq!(download(&mut node, 0x1400, 1, 0x205, 4), OK);
