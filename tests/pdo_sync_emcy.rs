@@ -5,8 +5,13 @@
 mod common;
 
 use canopen::core::{
-    node::Node, od::TimeOfDay, pdo::PdoDefault, profile::NodeConfig, sync::SyncParams, wire::emcy::Emergency, CanFrame,
-    Event, NmtState, NodeId, Sizes,
+    node::Node,
+    od::{DomainBuf, OctetString, TimeOfDay, UnicodeString, VisibleString},
+    pdo::PdoDefault,
+    profile::NodeConfig,
+    sync::SyncParams,
+    wire::emcy::Emergency,
+    CanFrame, Event, NmtState, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
 use common::{events, frame, ms, Bus};
@@ -28,6 +33,16 @@ pub struct App {
     controlword: u16,
     #[od(index = 0x607A, access = "rww", pdo = "rpdo", name = "Target position")]
     target: i32,
+    #[od(index = 0x2020, access = "rw", pdo = "both")]
+    text: VisibleString<4>,
+    #[od(index = 0x2021, access = "rw", pdo = "both")]
+    octets: OctetString<2>,
+    #[od(index = 0x2022, access = "ro", pdo = "tpdo")]
+    units: UnicodeString<2>,
+    #[od(index = 0x2023, domain, pdo = "both")]
+    blob: DomainBuf<16>,
+    #[od(index = 0x2024, access = "rw")]
+    long_text: VisibleString<16>,
 }
 
 type TestNode = Node<App, Sizes<4, 32, 64>>;
@@ -129,6 +144,64 @@ fn rpdo_remapping_procedure_vector() {
     bus.inject(frame("203 [6] 0F 00 E8 03 00 00"));
     assert_eq!(on(&bus, 0x083).last().unwrap().1, [0; 8]);
     assert_eq!(bus.stations[0].error_register(), 0);
+}
+
+/// Strings and a DOMAIN marked PDO-mappable, remapped through SDO (PDO-31..PDO-37, ABORT-12, ABORT-13;
+/// eds-to-rust's datatypes.eds 2009h-200Bh, 200Fh): the core's validation answers as for any entry. More
+/// bits than the object (a 4-byte string mapped with 40 bits), more than 64 bits in one entry, an entry
+/// not mappable that way (ro in an RPDO, no `pdo`), an empty DOMAIN: 0604 0041h at the entry; 72 bits in
+/// all: 0604 0042h at the count. Then an RPDO writes the string (all 4 bytes), the DOMAIN (the 3 bytes it
+/// held when mapped) and a byte, and a TPDO carries a UNICODE_STRING and an OCTET_STRING, padded with 00h.
+#[test]
+fn strings_and_a_domain_in_pdos() {
+    let mut bus = Bus::booted(vec![node_with(
+        3,
+        NodeConfig { rpdo: &[PdoDefault::EVENT], tpdo: &[PdoDefault::EVENT], ..NodeConfig::DEFAULT },
+    )]);
+    sdo_ok(&mut bus, &["603 [8] 23 00 14 01 03 02 00 80", "603 [8] 2F 00 16 00 00 00 00 00"]);
+    let not_mappable = |sub: u8| frame(&format!("583 [8] 80 00 16 {sub:02X} 41 00 04 06"));
+    assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 01 28 00 20 20"), not_mappable(1)); // 2020h, 40 of 32 bits
+    assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 01 48 00 20 20"), not_mappable(1)); // 72 bits
+    assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 01 20 00 22 20"), not_mappable(1)); // 2022h ro: TPDO only
+    assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 01 40 00 24 20"), not_mappable(1)); // 2024h: no `pdo`
+    assert_eq!(sdo(&mut bus, "603 [8] 23 00 16 02 18 00 23 20"), not_mappable(2)); // 2023h empty
+    sdo_ok(
+        &mut bus,
+        &[
+            "603 [8] 27 23 20 00 01 02 03 00", // 2023h := 01 02 03 (expedited, 3 bytes)
+            "603 [8] 23 00 16 01 20 00 20 20", // 2020h:00, 32 bit: the whole string
+            "603 [8] 23 00 16 02 18 00 23 20", // 2023h:00, 24 bit: the DOMAIN's size now
+            "603 [8] 23 00 16 03 08 00 00 20", // 2000h:00, 8 bit
+            "603 [8] 23 00 16 04 08 00 01 20", // 2001h:00, 8 bit
+        ],
+    );
+    assert_eq!(sdo(&mut bus, "603 [8] 2F 00 16 00 04 00 00 00"), frame("583 [8] 80 00 16 00 42 00 04 06"));
+    sdo_ok(&mut bus, &["603 [8] 2F 00 16 00 03 00 00 00", "603 [8] 23 00 14 01 03 02 00 00"]);
+    // TPDO1: 2022h (UNICODE_STRING<2>, 32 bit) and 2021h (OCTET_STRING<2>, 16 bit), sent on every SYNC.
+    sdo_ok(
+        &mut bus,
+        &[
+            "603 [8] 23 00 18 01 83 01 00 80",
+            "603 [8] 2F 00 18 02 01 00 00 00",
+            "603 [8] 2F 00 1A 00 00 00 00 00",
+            "603 [8] 23 00 1A 01 20 00 22 20",
+            "603 [8] 23 00 1A 02 10 00 21 20",
+            "603 [8] 2F 00 1A 00 02 00 00 00",
+            "603 [8] 23 00 18 01 83 01 00 00",
+        ],
+    );
+    assert_eq!(sdo(&mut bus, "603 [8] 23 00 1A 01 20 00 20 20"), frame("583 [8] 80 00 1A 01 00 00 01 06"));
+    bus.inject(frame("000 [2] 01 03"));
+    bus.inject(frame("203 [8] 41 42 00 00 07 08 09 05"));
+    {
+        let app = bus.stations[0].app();
+        assert_eq!((app.text.as_bytes(), app.blob.as_bytes(), app.byte), (&b"AB\0\0"[..], &[7u8, 8, 9][..], 5));
+    }
+    let app = bus.stations[0].app_mut();
+    app.units = UnicodeString::from_str("h\u{e9}").unwrap();
+    app.octets = OctetString::from_bytes(&[0xAB]).unwrap();
+    bus.inject(frame("080 [0]"));
+    assert_eq!(on(&bus, 0x183).last().unwrap().1, [0x68, 0, 0xE9, 0, 0xAB, 0]);
 }
 
 /// A TPDO configured by SDO (PDO-15..20): TPDO3 of node 5 moved to 387h, every 3rd SYNC, X = 6000h:03 (16 bit),

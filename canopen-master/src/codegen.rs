@@ -10,13 +10,16 @@
 //! limits (written as a record, one field per entry: every entry is kept, the derived EDS says RECORD),
 //! OCTET_STRING defaults in hex pairs, UNICODE_STRING defaults, limits at the type's bounds (none), an
 //! ARRAY or RECORD with sub-index 0 only (a VAR), a TPDO COB-ID's bit 30 (`rtr_allowed: false`), a mapping
-//! count's limits 0..n, n < 8 (`max_mapped`), OCTET_STRING defaults that are no UTF-8 (a byte string).
+//! count's limits 0..n, n < 8 (`max_mapped`), OCTET_STRING defaults that are no UTF-8 (a byte string),
+//! strings and a DOMAIN marked PDO-mappable (a mapped string gets a capacity a PDO holds, 8 bytes or 4
+//! UTF-16 units, since it moves its whole capacity; a DOMAIN maps with its size at the time, 1 to 8
+//! bytes), a DOMAIN's default (`eds_default`: the EDS text, shown again in the derived EDS, which the node
+//! does not apply: the DOMAIN starts empty).
 //!
 //! Not carried over, each listed by [`generate`] (`Generated::left_out`) and named by a comment in the
 //! module where the field would be: data types the derive does not know (0040h and up, the object or entry
-//! is left out), an ARRAY without any entry, PDO mapping of strings
-//! and DOMAINs (only fixed-size types of at most 8 bytes map in a derived dictionary), DOMAIN defaults and
-//! DOMAIN access other than rw, defaults relative to `$NODEID` and limits that are no number of the type, limits on
+//! is left out), an ARRAY without any entry, PDO mapping of a string whose default is longer than a PDO
+//! holds, DOMAIN access other than rw, defaults relative to `$NODEID` and limits that are no number of the type, limits on
 //! anything but numbers. Of 1000h–1FFFh only what `NodeConfig` holds (device type, identity, names, producer
 //! heartbeat time, PDO defaults): SDO parameters, error behaviour and the rest take the node's
 //! `NodeConfig::DEFAULT` values; of the PDOs, those beyond the fourth each way, a COB-ID with bits 11–29
@@ -63,7 +66,8 @@ pub enum Dropped {
     Limits,
     /// Its `AccessType` (a DOMAIN is always rw).
     Access,
-    /// Its `PDOMapping=1`: only fixed-size types of at most 8 bytes map in a derived dictionary.
+    /// Its `PDOMapping=1`: a string whose default is longer than a PDO's 8 bytes (a mapped string moves its
+    /// whole capacity, which a PDO must hold).
     PdoMapping,
 }
 
@@ -137,9 +141,39 @@ fn rust_type(entry: &Entry) -> Option<(String, bool)> {
     }
 }
 
-/// A string's capacity: its default's length, at least 32.
+/// The length of a string's default in the capacity's unit (bytes; UTF-16 units for a UNICODE_STRING; an
+/// OCTET_STRING's hex pairs), 0 without one.
+fn text_len(entry: &Entry) -> usize {
+    let Some(d) = entry.default.as_deref() else { return 0 };
+    match entry.data_type {
+        0x000A => octets(d).map_or(d.len(), |_| d.split_whitespace().map(str::len).sum::<usize>() / 2),
+        0x000B => d.encode_utf16().count(),
+        _ => d.len(),
+    }
+}
+
+/// The capacity of a string mapped to PDOs that fits a PDO's 8 bytes (a mapped string moves its whole
+/// capacity): 8 bytes, 4 UTF-16 units.
+fn pdo_text_capacity(entry: &Entry) -> usize {
+    if entry.data_type == 0x000B {
+        4
+    } else {
+        8
+    }
+}
+
+/// Whether a string marked PDO-mappable gets a capacity that fits a PDO: its default fits one.
+fn text_maps(entry: &Entry) -> bool {
+    entry.pdo_mapping && text_len(entry) <= pdo_text_capacity(entry)
+}
+
+/// A string's capacity: a PDO's worth when it maps ([`text_maps`]), else its default's length, at least 32.
 fn text_capacity(entry: &Entry) -> usize {
-    entry.default.as_ref().map_or(0, |d| d.len()).max(32)
+    if text_maps(entry) {
+        pdo_text_capacity(entry)
+    } else {
+        text_len(entry).max(32)
+    }
 }
 
 /// A field name from an object's name: lower-case words joined by `_`, then the index (and sub-index).
@@ -217,8 +251,9 @@ fn octets(hex: &str) -> Result<String, &'static str> {
 fn value_attrs(g: &mut Generated, e: &Entry, object: Option<&Object>, numeric: bool, default: Option<&str>) -> String {
     let mut a = format!(", access = {}", quote(e.access.as_str()));
     if let Some(p) = pdo(e) {
-        if matches!(e.data_type, 0x0009..=0x000B) {
-            g.leave_out(e, object, Dropped::PdoMapping, "a string maps to no PDO of a derived dictionary".into());
+        if matches!(e.data_type, 0x0009..=0x000B) && !text_maps(e) {
+            let why = "its default is longer than a PDO holds, and a mapped string moves its whole capacity";
+            g.leave_out(e, object, Dropped::PdoMapping, why.into());
         } else {
             let _ = write!(a, ", pdo = {}", quote(p));
         }
@@ -266,13 +301,21 @@ fn var(g: &mut Generated, o: &Object, e: &Entry) {
         if e.access != Access::ReadWrite {
             g.leave_out(e, Some(o), Dropped::Access, "a derived DOMAIN is rw".into());
         }
-        if e.default.is_some() {
-            g.leave_out(e, Some(o), Dropped::Default, "a DOMAIN has no default".into());
+        let mut attrs = String::new();
+        if let Some(p) = pdo(e) {
+            let _ = write!(attrs, ", pdo = {}", quote(p));
         }
-        if e.pdo_mapping {
-            g.leave_out(e, Some(o), Dropped::PdoMapping, "a DOMAIN maps to no PDO".into());
+        if let Some(d) = &e.default {
+            // The EDS's text, shown again in the derived EDS; the node does not apply it (a DOMAIN's content
+            // is its `Domain` implementation's), and nothing here reads it as hex pairs (`@ABCD` is none).
+            let _ = writeln!(
+                g.rust,
+                "    // {:04X}h {}: the default is the EDS text only; the DOMAIN starts empty.",
+                o.index, o.name
+            );
+            let _ = write!(attrs, ", eds_default = {}", quote(d));
         }
-        let _ = writeln!(g.rust, "    #[od(index = 0x{:04X}, name = {}, domain)]", o.index, quote(&o.name));
+        let _ = writeln!(g.rust, "    #[od(index = 0x{:04X}, name = {}, domain{attrs})]", o.index, quote(&o.name));
         let _ = writeln!(g.rust, "    pub {}: DomainBuf<4096>,", ident(&o.name, o.index, None));
         return;
     }
@@ -678,7 +721,8 @@ mod tests {
     }
 
     /// What python canopen's real files (tests/eds_real.rs) showed: signed limits in two's complement hex,
-    /// an ARRAY whose entries differ in access and default, strings marked PDO-mappable, an OCTET_STRING
+    /// an ARRAY whose entries differ in access and default, strings and a DOMAIN marked PDO-mappable (one
+    /// string's default too long for a PDO), a DOMAIN default that is no hex pairs, an OCTET_STRING
     /// default in hex pairs, a UNICODE_STRING default, a RECORD with nothing beyond sub-index 0 (a VAR) and
     /// an ARRAY without entries (left out).
     const REAL: &str = "\
@@ -729,6 +773,21 @@ ParameterName=Octets
 DataType=0x000A
 AccessType=rw
 DefaultValue=41424344
+PDOMapping=1
+
+[200D]
+ParameterName=Long text
+DataType=0x0009
+AccessType=ro
+DefaultValue=more than a PDO
+PDOMapping=1
+
+[200F]
+ParameterName=Blob
+DataType=0x000F
+AccessType=rw
+DefaultValue=@ABCD
+PDOMapping=1
 
 [200C]
 ParameterName=Raw octets
@@ -741,6 +800,7 @@ ParameterName=Unicode
 DataType=0x000B
 AccessType=rw
 DefaultValue=abc\u{2713}
+PDOMapping=1
 
 [3010]
 ParameterName=ReadRawValue
@@ -787,14 +847,20 @@ AccessType=rw
         has("name = \"Range\", access = \"rw\", min = -10, max = 10)]");
         has("#[od(index = 0x20C2, sub = 1, record = \"Driver temperature\", name = \"Actual\", access = \"ro\", pdo = \"tpdo\")]");
         has("#[od(index = 0x20C2, sub = 2, name = \"Max\", access = \"rw\", default = 85000)]");
-        has("name = \"Text\", access = \"rw\", default = \"ABCD\")]");
-        has("name = \"Octets\", access = \"rw\", default = \"ABCD\")]");
-        has("name = \"Raw octets\", access = \"rw\", default = b\"\\xab\\xcd\")]");
-        has("name = \"Unicode\", access = \"rw\", default = \"abc\u{2713}\")]");
+        // Mapped strings: a capacity a PDO holds (8 bytes, 4 UTF-16 units); unmapped ones at least 32.
+        has("name = \"Text\", access = \"rw\", pdo = \"both\", default = \"ABCD\")]\n    pub text_2009: VisibleString<8>,");
+        has("name = \"Octets\", access = \"rw\", pdo = \"both\", default = \"ABCD\")]\n    pub octets_200a: OctetString<8>,");
+        has("name = \"Raw octets\", access = \"rw\", default = b\"\\xab\\xcd\")]\n    pub raw_octets_200c: OctetString<32>,");
+        has("name = \"Unicode\", access = \"rw\", pdo = \"both\", default = \"abc\u{2713}\")]\n    pub unicode_200b: UnicodeString<4>,");
+        has("// 200Dh Long text: PDO mapping not carried (its default is longer than a PDO holds");
+        has("name = \"Long text\", access = \"ro\", default = \"more than a PDO\")]\n    pub long_text_200d: VisibleString<32>,");
+        // A DOMAIN: mapped, and its default as the EDS text (no hex pairs: nothing else could hold it).
+        has("// 200Fh Blob: the default is the EDS text only; the DOMAIN starts empty.\n    \
+             #[od(index = 0x200F, name = \"Blob\", domain, pdo = \"both\", eds_default = \"@ABCD\")]");
         let left: Vec<_> = g.left_out.iter().map(|l| (l.index, l.sub, l.dropped)).collect();
         assert_eq!(
             left,
-            [(0x2009, None, Dropped::PdoMapping), (0x3011, None, Dropped::Entry), (0x3060, Some(0), Dropped::Access)]
+            [(0x200D, None, Dropped::PdoMapping), (0x3011, None, Dropped::Entry), (0x3060, Some(0), Dropped::Access)]
         );
         has("// 3010h ReadRawValue: a RECORD with sub-index 0 only, held as a VAR.\n    \
              #[od(index = 0x3010, name = \"ReadRawValue\", access = \"ro\")]\n    pub readrawvalue_3010: f32,");

@@ -48,10 +48,19 @@
 //! - `sub = n` (record member), `sub = a..=b` (array; must match the array length; default `1..=N`);
 //! - `name = "..."` (ParameterName; default: the field name), `record = "..."` (the record's name);
 //! - `access = "ro" | "wo" | "rw" | "rwr" | "rww" | "const"` (default `rw`; OD-08, OD-09);
-//! - `pdo = "no" | "tpdo" | "rpdo" | "both"` (default `no`; only fixed-size types ≤ 8 bytes);
+//! - `pdo = "no" | "tpdo" | "rpdo" | "both"` (default `no`; PDO-33): a fixed-size type maps with its size;
+//!   a string with its whole capacity, which must fit a PDO's 8 bytes (a compile error otherwise; a TPDO
+//!   pads the current content with 00h, an RPDO writes all mapped bytes); a DOMAIN with the size its
+//!   `Domain::size` gives when the mapping is checked, mappable only when that is 1 to 8 bytes (0604 0041h
+//!   otherwise). The core checks the mapped length against that size and the PDO's 64 bits as for any
+//!   entry (0604 0041h / 0604 0042h);
 //! - `min = …`, `max = …`, `default = …` (literals; checked against each other and the type's range; an
 //!   `OctetString<N>` default is a string literal, its UTF-8 bytes, or a byte string `b"\xAB\xCD"`);
 //! - `domain` (the field implements `Domain` and is streamed);
+//! - `eds_default = "..."` (a DOMAIN only): the text its EDS shows as `DefaultValue`, as it is (an
+//!   imported EDS's may be no hex pairs, like python canopen's datatypes.eds `@ABCD`, which python canopen
+//!   also keeps as raw text). The node does not apply it: a DOMAIN's content is its `Domain`
+//!   implementation's, which `restore_defaults` leaves alone;
 //! - `count_access = "ro" | "const"` (an array field or a record member: the access of the object's
 //!   sub-index 00h, its fixed number of entries; default `const`);
 //! - `check = "method"`: `fn(&self, sub: u8, new: &T) -> Result<(), AbortCode>` runs after the length and
@@ -80,8 +89,8 @@
 //! - `restore_defaults` (NMT-04 Reset Application): each entry gets its `default`, or its type's
 //!   `Default` when none is given; DOMAIN fields and fields without `#[od]` are left alone.
 //!
-//! Compile errors (pinned by the trybuild tests in `tests/ui/`): duplicate index/sub-index, a type that is
-//! not PDO-mappable marked mappable, an index in 0000h–1FFFh, a default outside its limits (or min > max,
+//! Compile errors (pinned by the trybuild tests in `tests/ui/`): duplicate index/sub-index, a string
+//! marked PDO-mappable whose capacity is more than 8 bytes, `eds_default` on anything but a DOMAIN, an index in 0000h–1FFFh, a default outside its limits (or min > max,
 //! or a limit outside the type), a text default given as a byte string that is not UTF-8, an unsupported
 //! field type, a malformed attribute.
 
@@ -118,7 +127,8 @@ enum Class {
 struct ScalarType {
     dt: &'static str,
     class: Class,
-    mappable: bool,
+    /// A fixed-size value (not a string or byte string): written inline, not streamed.
+    fixed: bool,
 }
 
 fn scalar_type(ty: &Type) -> Option<ScalarType> {
@@ -156,8 +166,21 @@ fn scalar_type(ty: &Type) -> Option<ScalarType> {
     if generic != matches!(class, Class::Text | Class::Bytes) {
         return None;
     }
-    let mappable = !matches!(class, Class::Text | Class::Bytes);
-    Some(ScalarType { dt, class, mappable })
+    let fixed = !matches!(class, Class::Text | Class::Bytes);
+    Some(ScalarType { dt, class, fixed })
+}
+
+/// The bytes a string type holds when its capacity is an integer literal: `N` of `VisibleString<N>` and
+/// `OctetString<N>`, `2·N` of `UnicodeString<N>` (UTF-16 units); `None` for a fixed-size type or a capacity
+/// given otherwise (a named constant).
+fn literal_capacity(ty: &Type, st: &ScalarType) -> Option<usize> {
+    let Type::Path(p) = ty else { return None };
+    let syn::PathArguments::AngleBracketed(args) = &p.path.segments.last()?.arguments else { return None };
+    let n: usize = match args.args.first()? {
+        syn::GenericArgument::Const(Expr::Lit(ExprLit { lit: Lit::Int(i), .. })) => i.base10_parse().ok()?,
+        _ => return None,
+    };
+    Some(if st.dt == "UnicodeString" { n.checked_mul(2)? } else { n })
 }
 
 /// A literal from an attribute.
@@ -224,6 +247,7 @@ struct FieldAttr {
     min: Option<(ConstLit, Expr)>,
     max: Option<(ConstLit, Expr)>,
     default: Option<(ConstLit, Expr)>,
+    eds_default: Option<(String, Span)>,
     domain: bool,
     check: Option<Ident>,
     on_write: Option<Ident>,
@@ -282,6 +306,7 @@ fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
             "access" => a.access = Some(str_lit(&meta)?),
             "pdo" => a.pdo = Some(str_lit(&meta)?),
             "count_access" => a.count_access = Some(str_lit(&meta)?),
+            "eds_default" => a.eds_default = Some(str_lit(&meta)?),
             "min" | "max" | "default" => {
                 let e: Expr = meta.value()?.parse()?;
                 let v = (ConstLit::parse(&e)?, e);
@@ -304,8 +329,8 @@ fn parse_field_attr(attr: &syn::Attribute) -> syn::Result<FieldAttr> {
             }
             _ => {
                 return Err(meta.error(
-                    "unknown `od` key: expected index, sub, name, record, access, pdo, min, max, default, domain, \
-                     check, on_write or count_access",
+                    "unknown `od` key: expected index, sub, name, record, access, pdo, min, max, default, \
+                     eds_default, domain, check, on_write or count_access",
                 ))
             }
         }
@@ -334,6 +359,8 @@ struct Row {
     dt: &'static str,
     access: Ts,
     pdo: Ts,
+    /// Mapped to PDOs in some direction (`pdo` other than `no`).
+    mapped: bool,
     max_size: Ts,
     default: Ts,
     low: Ts,
@@ -660,6 +687,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
     let mut abort_arms = Vec::new();
     let mut max_sizes = Vec::new();
     let mut restores = Vec::new();
+    let mut var_map_arms = Vec::new(); // the size a mapped string or DOMAIN moves in a PDO
+
     for (pos, r) in rows.iter().enumerate() {
         let sub = r.sub;
         match &r.target {
@@ -674,6 +703,9 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     quote!(#pos => ::core::result::Result::Ok(#core::od::OdValue::read_bytes(&self.#member, offset, buf)),),
                 );
                 max_sizes.push(quote!(<#ty as #core::od::OdValue>::MAX_SIZE));
+                if r.mapped && !st.fixed {
+                    var_map_arms.push(quote!(#pos => <#ty as #core::od::OdValue>::MAX_SIZE,));
+                }
                 let default = &r.default;
                 restores.push(quote! {
                     self.#member = (#default)
@@ -695,7 +727,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
                 let check_call = check.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub, &v)?;));
                 let on_write_call = on_write.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(#sub);));
-                let arms = if st.mappable { &mut write_arms } else { &mut stream_write_arms };
+                let arms = if st.fixed { &mut write_arms } else { &mut stream_write_arms };
                 arms.push(quote_spanned! {sp=>
                     #pos => {
                         let v = <#ty as #core::od::OdValue>::decode(data)?;
@@ -706,7 +738,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                         ::core::result::Result::Ok(())
                     }
                 });
-                if !st.mappable {
+                if !st.fixed {
                     begin_arms.push(quote!(#pos => #core::od::OdValue::begin_stream(&mut self.#member, size),));
                     chunk_arms.push(quote!(#pos => #core::od::OdValue::stream_chunk(&mut self.#member, offset, data),));
                     // The streamed bytes are staged in the value (`end_stream` returns the new one): it is
@@ -727,6 +759,9 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             Target::Domain { member } => {
                 size_arms.push(quote!(#pos => #core::od::Domain::size(&self.#member).unwrap_or(0),));
                 read_arms.push(quote!(#pos => #core::od::Domain::read(&self.#member, offset, buf),));
+                if r.mapped {
+                    var_map_arms.push(quote!(#pos => #core::od::Domain::size(&self.#member).unwrap_or(0),));
+                }
                 if !r.writable {
                     continue;
                 }
@@ -761,6 +796,37 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn __od_write_expedited_stream(&mut self, index: u16, sub: u8, data: &[u8; 4], len: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
                     let bytes = data.get(..len.unwrap_or(4)).unwrap_or(data);
                     #core::od::write_whole_stream(self, index, sub, bytes)
+                }
+            },
+        )
+    };
+    // PDO handles of strings and DOMAINs marked mappable (PDO-33, PDO-36): a string moves its capacity, a
+    // DOMAIN the size it has when the mapping is checked; either must be 1..=8 bytes, else 0604 0041h (the
+    // core then checks the mapped length against it, and the PDO's 64 bits: 0604 0041h / 0604 0042h).
+    // Only a dictionary with such an entry gets this branch.
+    let (var_map_branch, var_map_fn) = if var_map_arms.is_empty() {
+        (quote!(), quote!())
+    } else {
+        (
+            quote! {
+                if e.size == 0 {
+                    return self.__od_pdo_resolve_var(index, sub, pos, e, dir);
+                }
+            },
+            quote! {
+                #[inline(never)]
+                fn __od_pdo_resolve_var(&self, index: u16, sub: u8, pos: usize, e: &#core::od::SubInfo, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
+                    let size: usize = match pos { #(#var_map_arms)* _ => 0 };
+                    let ok = match dir {
+                        #core::od::PdoDir::Tpdo => e.pdo.tpdo() && e.access.readable(),
+                        #core::od::PdoDir::Rpdo => e.pdo.rpdo() && e.access.writable(),
+                    };
+                    match u8::try_from(size) {
+                        ::core::result::Result::Ok(size @ 1..=8) if ok => {
+                            ::core::result::Result::Ok(#core::od::PdoHandle { index, sub, size, slot: pos as u16 })
+                        }
+                        _ => ::core::result::Result::Err(__AbortCode::NotMappable),
+                    }
                 }
             },
         )
@@ -815,6 +881,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     match pos { #(#stream_write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
                 #stream_expedited_fn
+                #var_map_fn
                 /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
                 /// dictionary (not inlined), shared by every access.
                 fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
@@ -933,6 +1000,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
                 fn pdo_resolve(&self, index: u16, sub: u8, dir: #core::od::PdoDir) -> ::core::result::Result<#core::od::PdoHandle, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
+                    #var_map_branch
                     let info = #core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: 0 };
                     #core::od::PdoHandle::check(index, sub, &info, dir, pos as u16)
                 }
@@ -992,6 +1060,7 @@ fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str, access
         dt: "Unsigned8",
         access: access.unwrap_or_else(|| quote!(#core::od::Access::Const)),
         pdo: quote!(#core::od::PdoMapping::No),
+        mapped: false,
         max_size: quote!(1),
         default: quote!(::core::option::Option::Some(#core::od::Value::Uint(#highest as u64))),
         low: quote!(::core::option::Option::None),
@@ -1042,13 +1111,11 @@ fn field_rows(
         if let Some((_, sp)) = a.count_access {
             return Err(syn::Error::new(sp, "count_access applies to an array field or a record member"));
         }
-        if mapped {
-            return Err(syn::Error::new(a.pdo.map(|p| p.1).unwrap_or(span), "a DOMAIN cannot be mapped to a PDO"));
-        }
         if a.min.is_some() || a.max.is_some() || a.default.is_some() || a.check.is_some() || a.on_write.is_some() {
             return Err(syn::Error::new(
                 span,
-                "a DOMAIN has no limits, default or hooks: validate in its `Domain::end_write`",
+                "a DOMAIN has no limits, default or hooks: validate in its `Domain::end_write` (`eds_default` \
+                 gives the EDS a DefaultValue text)",
             ));
         }
         if let Some(SubSpec::One(s, sp) | SubSpec::Range(s, _, sp)) = a.sub {
@@ -1068,8 +1135,10 @@ fn field_rows(
             dt: "Domain",
             access,
             pdo,
+            mapped,
             max_size: quote!(usize::MAX),
-            default: quote!(::core::option::Option::None),
+            // The EDS text only (`eds_default`): the node neither applies nor checks it.
+            default: opt(a.eds_default.as_ref().map(|(text, _)| quote!(#core::od::Value::Str(#text)))),
             low: quote!(::core::option::Option::None),
             high: quote!(::core::option::Option::None),
             limited: false,
@@ -1107,15 +1176,37 @@ fn field_rows(
             ),
         )
     })?;
-    if mapped && !st.mappable {
+    if let Some((_, sp)) = a.eds_default {
         return Err(syn::Error::new(
-            a.pdo.as_ref().map(|p| p.1).unwrap_or(span),
-            format!(
-                "`{}` ({}) cannot be mapped to a PDO: only fixed-size types of at most 8 bytes are mappable",
-                elem_ty.to_token_stream().to_string().replace(' ', ""),
-                spec_name(st.dt)
-            ),
+            sp,
+            "eds_default is for a DOMAIN (whose content the node does not hold a default of): use `default`",
         ));
+    }
+    // A mapped string moves its whole capacity (PDO-31: the mapping gives a fixed length), which a PDO's 64
+    // bits must hold: a capacity written as a literal is checked here, any other at compile time below.
+    if mapped && !st.fixed {
+        let pdo_span = a.pdo.as_ref().map(|p| p.1).unwrap_or(span);
+        let too_big = |bytes: String| {
+            syn::Error::new(
+                pdo_span,
+                format!(
+                    "`{}` ({}) cannot be mapped to a PDO: it holds {bytes} bytes, a PDO 8 (a mapped string \
+                     moves its whole capacity)",
+                    elem_ty.to_token_stream().to_string().replace(' ', ""),
+                    spec_name(st.dt)
+                ),
+            )
+        };
+        match literal_capacity(&elem_ty, &st) {
+            Some(n) if n > 8 => return Err(too_big(n.to_string())),
+            Some(_) => {}
+            None => type_asserts.push(quote_spanned! {pdo_span=>
+                const _: () = assert!(
+                    <#elem_ty as #core::od::OdValue>::MAX_SIZE <= 8,
+                    "a string mapped to a PDO holds at most 8 bytes (a mapped string moves its whole capacity)"
+                );
+            }),
+        }
     }
     let dt_ident = Ident::new(st.dt, Span::call_site());
     type_asserts.push(quote_spanned! {elem_ty.span()=>
@@ -1193,6 +1284,7 @@ fn field_rows(
         dt: st.dt,
         access: access.clone(),
         pdo: pdo.clone(),
+        mapped,
         max_size: quote!(<#elem_ty as #core::od::OdValue>::MAX_SIZE),
         default: default.clone(),
         low: low.clone(),

@@ -65,3 +65,92 @@ fn count_access_sets_sub_index_0s_access() {
     assert_eq!(b, [2]);
     assert_eq!(od.write(0x2100, 0, &[1]), Err(AbortCode::WriteOfReadOnly));
 }
+
+/// A capacity given by a constant, not a literal: checked at compile time (tests/ui/not_mappable_const.rs).
+const TAG_LEN: usize = 8;
+
+#[derive(ObjectDictionary, Default)]
+struct Mapped {
+    #[od(index = 0x2009, name = "VISIBLE_STRING", pdo = "both")]
+    text: VisibleString<4>,
+    #[od(index = 0x200A, name = "Tag", access = "ro", pdo = "tpdo")]
+    tag: OctetString<TAG_LEN>,
+    #[od(index = 0x200B, name = "UNICODE_STRING", pdo = "rpdo")]
+    units: canopen_core::od::UnicodeString<4>,
+    #[od(index = 0x200F, name = "DOMAIN", domain, pdo = "both", eds_default = "@ABCD")]
+    blob: canopen_core::od::DomainBuf<16>,
+    #[od(index = 0x2010, name = "Unmapped")]
+    unmapped: VisibleString<4>,
+}
+
+/// Strings and a DOMAIN marked PDO-mappable (PDO-33; datatypes.eds 2009h-200Bh, 200Fh): the EDS says
+/// `PDOMapping=1`; a string's handle is its whole capacity (4 bytes; 8 for `UnicodeString<4>`), a DOMAIN's
+/// its size when resolved (1..=8 bytes); the direction and access still decide (0604 0041h), and so does
+/// a string without `pdo` or a DOMAIN that is empty or larger than a PDO. A TPDO reads the current content
+/// (the rest of the mapped bytes stays as it was: the core zeroes them), an RPDO writes all mapped bytes.
+#[test]
+fn strings_and_a_domain_map_to_pdos_with_their_size() {
+    use canopen_core::od::{AbortCode, PdoDir, PdoMapping};
+    let mut od = Mapped::default();
+    assert_eq!(od.entry(0x2009, 0).unwrap().pdo, PdoMapping::Both);
+    assert_eq!(od.entry(0x200F, 0).unwrap().pdo, PdoMapping::Both);
+    let h = od.pdo_resolve(0x2009, 0, PdoDir::Tpdo).unwrap();
+    assert_eq!(h.size, 4);
+    let r = od.pdo_resolve(0x2009, 0, PdoDir::Rpdo).unwrap();
+    od.pdo_write(&r, b"AB\0\0").unwrap();
+    assert_eq!(od.text.as_bytes(), b"AB\0\0");
+    assert_eq!(od.pdo_write(&r, &[0x07, 0, 0, 0]), Err(AbortCode::InvalidValue)); // not VISIBLE_CHAR
+    od.text = VisibleString::from_str("xy").unwrap();
+    let mut b = [0u8; 4];
+    assert_eq!(od.pdo_read(&h, &mut b), Ok(2));
+    assert_eq!(b, *b"xy\0\0");
+    assert_eq!(od.pdo_resolve(0x200A, 0, PdoDir::Tpdo).unwrap().size, 8);
+    assert_eq!(od.pdo_resolve(0x200A, 0, PdoDir::Rpdo), Err(AbortCode::NotMappable)); // ro, TPDO only
+    assert_eq!(od.pdo_resolve(0x200B, 0, PdoDir::Rpdo).unwrap().size, 8);
+    assert_eq!(od.pdo_resolve(0x200B, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable)); // RPDO only
+    assert_eq!(od.pdo_resolve(0x2010, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable)); // no `pdo`
+                                                                                      // A DOMAIN maps with the size it has: none while empty, 3 bytes after a 3-byte download, none at 9.
+    assert_eq!(od.pdo_resolve(0x200F, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable));
+    od.write(0x200F, 0, &[1, 2, 3]).unwrap();
+    let d = od.pdo_resolve(0x200F, 0, PdoDir::Rpdo).unwrap();
+    assert_eq!(d.size, 3);
+    od.pdo_write(&d, &[4, 5, 6]).unwrap();
+    assert_eq!(od.blob.as_bytes(), &[4, 5, 6]);
+    od.write(0x200F, 0, &[0; 9]).unwrap();
+    assert_eq!(od.pdo_resolve(0x200F, 0, PdoDir::Tpdo), Err(AbortCode::NotMappable));
+}
+
+/// `eds_default` of a DOMAIN (datatypes.eds 200Fh `DefaultValue=@ABCD`, which is no hex pairs): the EDS
+/// shows the text as it is; the node does not apply it (restore_defaults leaves a DOMAIN alone).
+#[test]
+fn a_domains_eds_default_is_the_eds_text_only() {
+    use canopen_core::od::Value;
+    let mut od = Mapped::default();
+    assert_eq!(od.entry(0x200F, 0).unwrap().default, Some(Value::Str("@ABCD")));
+    od.restore_defaults();
+    assert!(od.blob.as_bytes().is_empty());
+    let mut eds = String::new();
+    for o in (0..od.object_count()).filter_map(|n| od.object(n)) {
+        canopen_core::od::eds::write_object(&mut eds, &od, &o).unwrap();
+    }
+    assert!(
+        eds.contains("[200F]\nParameterName=DOMAIN\nObjectType=0x7\nDataType=0x000F\nAccessType=rw\nDefaultValue=@ABCD\nPDOMapping=1\n"),
+        "{eds}"
+    );
+    assert!(eds.contains("[2009]\nParameterName=VISIBLE_STRING\nObjectType=0x7\nDataType=0x0009\nAccessType=rw\nDefaultValue=\nPDOMapping=1\n"), "{eds}");
+}
+
+#[derive(ObjectDictionary, Default)]
+struct NoDefault {
+    #[od(index = 0x2000, domain)]
+    blob: canopen_core::od::DomainBuf<4>,
+}
+
+/// A DOMAIN without `eds_default` has no DefaultValue line, as before.
+#[test]
+fn a_domain_without_eds_default_has_no_default_value() {
+    let od = NoDefault::default();
+    let mut eds = String::new();
+    canopen_core::od::eds::write_object(&mut eds, &od, &od.object(0).unwrap()).unwrap();
+    assert_eq!(eds, "[2000]\nParameterName=blob\nObjectType=0x7\nDataType=0x000F\nAccessType=rw\nPDOMapping=0\n\n");
+}

@@ -17,7 +17,9 @@
 //!   are VAR objects (`ObjectType=0x7`) with `DataType=0x000F`.
 //! - `DefaultValue`: integers by `int(x, 0)` (unsigned in hex `0x…`, signed in decimal so negative values
 //!   parse), `$NODEID+0x…` for node-ID-relative values, REAL32/64 by `float(x)`, VISIBLE/UNICODE_STRING
-//!   verbatim, OCTET_STRING by `bytes.fromhex(x)` (hex pairs, no prefix). DOMAIN gets no DefaultValue.
+//!   verbatim, OCTET_STRING by `bytes.fromhex(x)` (hex pairs, no prefix). A DOMAIN gets a DefaultValue only
+//!   when its description has one (the derive's `eds_default`: text written as it is, which python keeps as
+//!   its raw text and re-exports unchanged even when it is no hex pairs).
 //! - `LowLimit`/`HighLimit`: signed limits of INTEGER8/16/32/64 go through `int(x, 0)` then a two's
 //!   complement fix-up, so decimal negatives are fine; python ignores limits of the other widths.
 //! - `AccessType` is lower-cased by python and compared with ro/wo/rw/rwr/rww/const.
@@ -74,7 +76,7 @@ fn write_entry_fields<W: Write>(w: &mut W, e: &EntryDesc) -> fmt::Result {
     writeln!(w, "DataType=0x{:04X}", e.data_type as u16)?;
     writeln!(w, "AccessType={}", access_str(e.access))?;
     match (&e.default, e.data_type) {
-        (_, DataType::Domain) => {}
+        (None, DataType::Domain) => {}
         (Some(v), dt) => {
             w.write_str("DefaultValue=")?;
             write_value(w, dt, v)?;

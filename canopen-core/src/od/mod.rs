@@ -406,7 +406,9 @@ pub trait ObjectDictionary {
     }
 
     /// Resolves a mapping target once: checks it exists (0602 0000h / 0609 0011h), is mappable in `dir`
-    /// (0604 0041h: PDO mapping attribute, readable for a TPDO, writable for an RPDO) and has a fixed size.
+    /// (0604 0041h: PDO mapping attribute, readable for a TPDO, writable for an RPDO) and has a fixed size
+    /// of at most 8 bytes. A derived dictionary also maps a string marked mappable with its capacity, and a
+    /// DOMAIN with its size at the time, when 1 to 8 bytes (PDO-33).
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
         let info = self.info(index, sub)?;
         PdoHandle::check(index, sub, &info, dir, PdoHandle::NO_SLOT)
