@@ -8,7 +8,7 @@
 //! - [`rpdo::Rpdo`] / [`tpdo::Tpdo`] are the run-time state machines the `Node` drives;
 //! - [`mapping`] resolves and packs mappings.
 //!
-//! Not implemented: MPDO (MPDO-01..05, optional). A mapping holds at most [`mapping::MAX_ENTRIES`] entries:
+//! MPDO (MPDO-01..05, optional) is the Cargo feature `mpdo` ([`mpdo`]). A mapping holds at most [`mapping::MAX_ENTRIES`] entries:
 //! 8, or the 64 of CiA 301 (PDO-30) with the Cargo feature `pdo-mapping-64` (off by default: RAM, see there).
 //!
 //! Remote requests of TPDOs (PDO-29: "the PDO read service is optional"; PDO-21/22: the RTR-only types FCh
@@ -18,6 +18,8 @@
 //! the build (about 140 B of Cortex-M flash).
 
 pub mod mapping;
+#[cfg(feature = "mpdo")]
+pub mod mpdo;
 pub mod rpdo;
 pub mod tpdo;
 
