@@ -95,10 +95,22 @@ impl PdoMapParams {
         PdoMapParams { count: i as u8, entries }
     }
 
-    /// Entries 1..=count.
+    /// Entries 1..=count; none for an MPDO (count FEh/FFh, whose entries are not used, MPDO-05).
     pub fn active(&self) -> &[u32] {
-        self.entries.get(..usize::from(self.count)).unwrap_or(&self.entries)
+        self.entries.get(..usize::from(self.count)).unwrap_or(&[])
     }
+}
+
+/// Whether mapping sub 00h value `count` makes the PDO an MPDO in this build (FEh SAM, FFh DAM; PDO-30,
+/// MPDO-05): always `false` without the feature `mpdo`.
+///
+/// ```
+/// use canopen_core::pdo::is_mpdo_count;
+/// assert_eq!(is_mpdo_count(0xFF), cfg!(feature = "mpdo"));
+/// assert!(!is_mpdo_count(8));
+/// ```
+pub const fn is_mpdo_count(count: u8) -> bool {
+    cfg!(feature = "mpdo") && count >= 0xFE
 }
 
 /// The defaults of one PDO in a [`NodeConfig`](crate::profile::NodeConfig).
@@ -130,6 +142,7 @@ pub struct PdoDefault {
     pub max_mapped: u8,
     /// The default entry count (sub-index 00h) when it is not all of `mapping`: `Some(0)` keeps the entries
     /// but maps none (an EDS whose count has no `DefaultValue`), at most `mapping.len()`. `None`: all.
+    /// With the feature `mpdo`, `Some(0xFE)` / `Some(0xFF)` make the PDO a SAM- / DAM-MPDO (MPDO-05).
     pub count: Option<u8>,
     /// (TPDO) Whether a remote request is served: `false` sets COB-ID bit 30 (PDO-15, PDO-29). An RPDO's
     /// bit 30 is reserved (PDO-07): leave it `true`.
@@ -197,7 +210,7 @@ impl PdoDefault {
     pub const fn map_params(&self) -> PdoMapParams {
         let mut m = PdoMapParams::from_slice(self.mapping);
         if let Some(c) = self.count {
-            if c < m.count {
+            if c < m.count || is_mpdo_count(c) {
                 m.count = c;
             }
         }

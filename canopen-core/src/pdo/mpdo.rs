@@ -22,7 +22,34 @@
 //! in the node's MPDO wiring; the checklist rows there: MPDO-02 (DAM consumer, EMCY 8230h EEC-18), MPDO-03
 //! (SAM producer and consumer), MPDO-04 (event-driven only, inhibit time).
 
+use crate::abort::AbortCode;
 use crate::wire::WireError;
+
+/// Why the node did not send an MPDO (`Node::send_dam_mpdo`, `Node::send_sam_mpdo`).
+///
+/// ```
+/// use canopen_core::pdo::mpdo::MpdoRefused;
+/// assert_ne!(MpdoRefused::Inhibited, MpdoRefused::NotMpdo);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum MpdoRefused {
+    /// The node is not Operational (PDO-04).
+    NotOperational,
+    /// No such TPDO, or it is not valid, not event-driven (FEh/FFh, MPDO-04) or not an MPDO of this kind.
+    NotMpdo,
+    /// Its inhibit time still runs (MPDO-04): nothing is held back, send again later.
+    Inhibited,
+    /// DAM: a destination node-ID above 127.
+    InvalidNode,
+    /// More than 4 data bytes (DAM), or an object larger than 4 bytes (SAM): an MPDO carries at most 4.
+    TooLong,
+    /// SAM: no entry of the object scanner list 1FA0h covers the object (MPDO-03).
+    NotScanned,
+    /// SAM: the object cannot be sent (it does not exist, 0602 0000h / 0609 0011h, or is not
+    /// TPDO-mappable, 0604 0041h).
+    Object(AbortCode),
+}
 
 /// Address type f of an MPDO (MPDO-01), and the kind of MPDO a PDO's mapping makes it (MPDO-05).
 ///
