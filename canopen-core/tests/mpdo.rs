@@ -309,12 +309,13 @@ fn mpdo_mapping_by_sdo_and_end_to_end_mpdo_05() {
     assert_eq!(consumer.app().get(0x2000, 2), 0x1234);
 }
 
-/// Two RAM slots, as the storage contract asks.
+/// Two RAM slots of 8 KiB, as the storage contract asks (with `pdo-mapping-64` the communication record is
+/// over 4 KiB).
 struct Ram(Vec<Vec<u8>>);
 
 impl canopen_core::storage::Storage for Ram {
     fn capacity(&self) -> usize {
-        4096
+        8192
     }
     fn erase(&mut self, slot: u8) -> Result<(), canopen_core::storage::StorageError> {
         self.0[usize::from(slot)].fill(0xFF);
@@ -337,7 +338,7 @@ impl canopen_core::storage::Storage for Ram {
 fn lists_over_sdo_and_storage_mpdo_03() {
     use canopen_core::node::NoApplication;
     let mut node: Node<NoApplication, canopen_core::Sizes, Ram> =
-        Node::with_storage(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication, Ram(vec![vec![0xFF; 4096]; 2]));
+        Node::with_storage(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication, Ram(vec![vec![0xFF; 8192]; 2]));
     node.handle_timeout(Instant::ZERO);
     let mut sdo = |req: [u8; 8]| {
         node.handle_frame(ms(1), &CanFrame::new(0x605, &req).unwrap());

@@ -97,7 +97,10 @@ impl PdoMapParams {
 
     /// Entries 1..=count; none for an MPDO (count FEh/FFh, whose entries are not used, MPDO-05).
     pub fn active(&self) -> &[u32] {
-        self.entries.get(..usize::from(self.count)).unwrap_or(&[])
+        if is_mpdo_count(self.count) {
+            return &[]; // a constant `false` without the feature: the build without MPDO is unchanged
+        }
+        self.entries.get(..usize::from(self.count)).unwrap_or(&self.entries)
     }
 }
 
