@@ -331,9 +331,9 @@ impl canopen_core::storage::Storage for Ram {
     }
 }
 
-/// MPDO-03: 1FA0h / 1FD0h over SDO (sub 00h const 10h; a 1FD0h entry is UNSIGNED64, so a segmented
-/// download, SDO-13..16), stored with the communication parameters (1010h sub 02h), back to 0 after a
-/// reset communication without a save.
+/// MPDO-03, MPDO-05: 1FA0h / 1FD0h over SDO (sub 00h const 10h; a 1FD0h entry is UNSIGNED64, so a
+/// segmented download, SDO-13..16) and a mapping count FFh, stored with the communication parameters
+/// (1010h sub 02h); the lists back to 0 after a restore and a reset communication.
 #[test]
 fn lists_over_sdo_and_storage_mpdo_03() {
     use canopen_core::node::NoApplication;
@@ -353,7 +353,9 @@ fn lists_over_sdo_and_storage_mpdo_03() {
     assert_eq!(sdo([0x21, 0xD0, 0x1F, 0x01, 0x08, 0, 0, 0]), [0x60, 0xD0, 0x1F, 0x01, 0, 0, 0, 0]);
     assert_eq!(sdo([0x00, 0x0A, 0x01, 0x00, 0x60, 0x0B, 0x00, 0x21]), [0x20, 0, 0, 0, 0, 0, 0, 0]);
     assert_eq!(sdo([0x1D, 0x09, 0, 0, 0, 0, 0, 0]), [0x30, 0, 0, 0, 0, 0, 0, 0]);
-    // Save the communication parameters ("save"), reset communication: both lists come back.
+    // RPDO 1 (not valid by default) made a DAM consumer: 1600h:00 = FFh (MPDO-05).
+    assert_eq!(sdo([0x2F, 0x00, 0x16, 0x00, 0xFF, 0, 0, 0])[0], 0x60);
+    // Save the communication parameters ("save"), reset communication: both lists and 1600h:00 come back.
     assert_eq!(sdo([0x23, 0x10, 0x10, 0x02, 0x73, 0x61, 0x76, 0x65])[0], 0x60);
     node.handle_frame(ms(2), &CanFrame::new(0x000, &[0x82, 0x05]).unwrap());
     let mut b = [0u8; 8];
@@ -361,6 +363,7 @@ fn lists_over_sdo_and_storage_mpdo_03() {
     assert_eq!(u64::from_le_bytes(b), 0x0921_000B_6000_010A);
     assert_eq!(node.dictionary().read(0x1FA0, 1, 0, &mut b), Ok(4));
     assert_eq!(b[..4], [0x01, 0x00, 0x20, 0x02]);
+    assert_eq!(node.comm_profile().params.rpdo_map[0].count, 0xFF);
     // Restore the communication defaults (1011h sub 02h "load"), reset communication: 0 again.
     node.handle_frame(ms(3), &CanFrame::new(0x605, &[0x23, 0x11, 0x10, 0x02, 0x6C, 0x6F, 0x61, 0x64]).unwrap());
     node.handle_frame(ms(4), &CanFrame::new(0x000, &[0x82, 0x05]).unwrap());

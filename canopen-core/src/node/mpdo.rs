@@ -13,6 +13,9 @@
 //! - **SAM consumer** (RPDO, FEh; MPDO-03): a SAM frame whose (producer node, index, sub-index) one entry of
 //!   the object dispatching list 1FD0h maps is written into the local object it maps to, as above; no
 //!   entry, or a refused write, drops it (8230h is DAM's).
+//! - A consumer processes each frame at reception whatever its transmission type (MPDOs are event-driven,
+//!   MPDO-04), and runs no event timer (deadline monitoring of a multiplexed stream has no one object
+//!   to watch).
 //! - Each write is reported as [`Event::MpdoWritten`]. A frame of the other address type, of another
 //!   length than 8, or a SAM frame from node-ID 0 is ignored (CAN-07). Only in Operational (PDO-04).
 //! - **DAM producer** (TPDO, FFh): [`Node::send_dam_mpdo`] sends the application's value for the object
