@@ -370,3 +370,19 @@ fn lists_over_sdo_and_storage_mpdo_03() {
     assert_eq!(node.dictionary().read(0x1FD0, 1, 0, &mut b), Ok(8));
     assert_eq!(b, [0; 8]);
 }
+
+/// MPDO-03: one SAM producer per device: FEh on a second TPDO's mapping is refused (0604 0043h) and the
+/// mapping stays as it was; FFh (DAM) on it is fine.
+#[test]
+fn one_sam_producer_per_device_mpdo_03() {
+    let mut node = operational(5, NodeConfig { tpdo: &[SAM], ..NodeConfig::DEFAULT });
+    // TPDO 2 is not valid by default: its mapping may change.
+    let r = sdo(&mut node, 5, [0x2F, 0x01, 0x1A, 0x00, 0xFE, 0, 0, 0]);
+    assert_eq!(r, [0x80, 0x01, 0x1A, 0x00, 0x43, 0x00, 0x04, 0x06]);
+    assert_eq!(sdo(&mut node, 5, [0x40, 0x01, 0x1A, 0x00, 0, 0, 0, 0]), [0x4F, 0x01, 0x1A, 0x00, 0, 0, 0, 0]);
+    assert_eq!(sdo(&mut node, 5, [0x2F, 0x01, 0x1A, 0x00, 0xFF, 0, 0, 0])[0], 0x60);
+    // TPDO 1 itself may be written FEh again (no conflict with itself).
+    assert_eq!(sdo(&mut node, 5, [0x23, 0x00, 0x18, 0x01, 0x85, 0x01, 0x00, 0x80])[0], 0x60);
+    assert_eq!(sdo(&mut node, 5, [0x2F, 0x00, 0x1A, 0x00, 0x00, 0, 0, 0])[0], 0x60);
+    assert_eq!(sdo(&mut node, 5, [0x2F, 0x00, 0x1A, 0x00, 0xFE, 0, 0, 0])[0], 0x60);
+}

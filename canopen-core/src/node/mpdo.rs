@@ -30,9 +30,12 @@
 //!   passed ([`MpdoRefused::Inhibited`]): an MPDO names one object, so there is no "latest value" to send
 //!   later as a plain TPDO does.
 //!
-//! Not done: the rule "one SAM producer per device" (MPDO-03) is not enforced (a second TPDO set to FEh is
-//! accepted); one scanner list (1FA0h) and one dispatching list (1FD0h) of 16 entries each, not the 48 of
-//! each CiA 301 allows.
+//! One SAM producer per device (MPDO-03): writing FEh to a second TPDO's mapping by SDO is refused with
+//! 0604 0043h (the seed names no code; general parameter incompatibility: it conflicts with the other
+//! TPDO); defaults (`PdoDefault::count`) are the integrator's and are not checked.
+//!
+//! Not done: one scanner list (1FA0h) and one dispatching list (1FD0h) of 16 entries each, not the 48 of
+//! each kind CiA 301 allows.
 
 use super::{Node, NodeSizes};
 use crate::emcy::codes;
