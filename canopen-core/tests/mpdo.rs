@@ -386,3 +386,61 @@ fn one_sam_producer_per_device_mpdo_03() {
     assert_eq!(sdo(&mut node, 5, [0x2F, 0x00, 0x1A, 0x00, 0x00, 0, 0, 0])[0], 0x60);
     assert_eq!(sdo(&mut node, 5, [0x2F, 0x00, 0x1A, 0x00, 0xFE, 0, 0, 0])[0], 0x60);
 }
+
+/// Payloads of 0–8 bytes: mostly MPDO-shaped (byte 0 for this node, all, another node or a SAM producer;
+/// an index of the test dictionary or a missing one; a low sub-index), some entirely random.
+fn frames() -> impl proptest::strategy::Strategy<Value = Vec<u8>> {
+    use proptest::prelude::*;
+    let shaped = (
+        prop::sample::select(vec![0x85u8, 0x80, 0x86, 0x05, 0x0A, 0x00, 0x8A, 0x7F]),
+        prop::sample::select(vec![0x2000u16, 0x2001, 0x2002, 0x2003, 0x2100, 0x3000]),
+        0u8..=0x14,
+        any::<[u8; 4]>(),
+        0usize..=12,
+    )
+        .prop_map(|(f, index, sub, d, len)| {
+            let [lo, hi] = index.to_le_bytes();
+            let mut v = vec![f, lo, hi, sub, d[0], d[1], d[2], d[3]];
+            v.truncate(len.min(8));
+            v
+        });
+    prop_oneof![4 => shaped, 1 => proptest::collection::vec(any::<u8>(), 0..=8)]
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 512, ..Default::default() })]
+
+    /// MPDO-02/03, CAN-07: any payload of 0–8 bytes on a DAM and a SAM consumer never panics; every write
+    /// it makes is reported, names an object of the dictionary that is RPDO-mappable and at most 4 bytes,
+    /// and holds the frame's leading data bytes; a frame that is not 8 bytes writes nothing.
+    #[test]
+    fn any_frame_on_the_consumers(data in frames(), sam in proptest::prelude::any::<bool>()) {
+        const CONSUMERS: [PdoDefault; 2] = [DAM, PdoDefault { can_id: Some(0x18A), ..SAM }];
+        let mut node = operational(5, NodeConfig { rpdo: &CONSUMERS, ..NodeConfig::DEFAULT });
+        // Every producer's 2000h..2003h / 2100h sub 00h..FFh (block FFh) dispatched to the same local object.
+        for (i, idx) in [0x2000u64, 0x2001, 0x2002, 0x2003, 0x2100].iter().enumerate() {
+            let raw = 0xFF00_0000_0000_0000 | idx << 40 | idx << 16 | u64::from(data.first().copied().unwrap_or(0) & 0x7F);
+            node.dictionary().write(0x1FD0, i as u8 + 1, &raw.to_le_bytes()).unwrap();
+        }
+        let (cob, pdo) = if sam { (0x18A, 1) } else { (0x205, 0) };
+        let before = node.app().vars.clone();
+        let (_, events) = rx(&mut node, ms(1), cob, &data);
+        let writes: Vec<_> = events.iter().filter(|e| matches!(e, Event::MpdoWritten { .. })).collect();
+        proptest::prop_assert!(writes.len() <= 1);
+        if data.len() != 8 {
+            proptest::prop_assert!(writes.is_empty());
+        }
+        for e in writes {
+            let Event::MpdoWritten { pdo: p, index, sub } = *e else { unreachable!() };
+            proptest::prop_assert_eq!(p, pdo);
+            let info = node.app().info(index, sub).unwrap();
+            proptest::prop_assert!(info.pdo.rpdo() && info.size <= 4);
+            let mut v = [0u8; 8];
+            v[..info.size].copy_from_slice(&data[4..4 + info.size]);
+            proptest::prop_assert_eq!(node.app().get(index, sub), u64::from_le_bytes(v));
+        }
+        // Nothing else changed.
+        let changed = before.iter().zip(&node.app().vars).filter(|(a, b)| a != b).count();
+        proptest::prop_assert!(changed <= 1);
+    }
+}
