@@ -21,8 +21,9 @@
 #   --breakdown  also print where the node and minimal binaries' flash goes, by crate/module (DWARF line
 #                table)
 #   --optional   also build node with each optional object of canopen-core (features manufacturer-status
-#                1002h, high-res-time 1013h, verify-config 1020h, emcy-consumer 1028h; the reference set
-#                leaves them out) and print the flash and RAM each adds to node
+#                1002h, high-res-time 1013h, verify-config 1020h, emcy-consumer 1028h, mpdo 1FA0h/1FD0h
+#                and the MPDO paths; the reference set leaves them out) and print the flash and RAM each
+#                adds to node
 # Needs: rustup target add thumbv7em-none-eabihf; binutils `size` and `nm` (they read ARM ELF files).
 set -euo pipefail
 SCRIPTS=$(cd "$(dirname "$0")" && pwd)
@@ -96,7 +97,7 @@ fi
 if [ "$optional" = 1 ]; then
   echo
   echo "optional objects, each built into node (canopen-core feature; bytes added to node):"
-  for f in manufacturer-status high-res-time verify-config emcy-consumer; do
+  for f in manufacturer-status high-res-time verify-config emcy-consumer mpdo; do
     cargo build --release --no-default-features --features "full,canopen-core/$f" --bin node --quiet
     read -r text data bss < <(berkeley "$T/node")
     printf '  %-20s flash %+6d  RAM %+6d\n' "$f" $((text + data - F[node])) $((data + bss - R[node]))

@@ -306,7 +306,7 @@ fn merged_with_the_comm_profile() {
     let mut b = [0u8; 1];
     assert_eq!(od.pdo_read(&h, &mut b), Ok(1));
     assert_eq!(b, [0x11]);
-    assert_eq!(od.object_count(), 22 + 16 + 31 + od.comm.optional.object_count()); // + 1002h/1013h/1020h/1028h
+    assert_eq!(od.object_count(), 22 + 16 + 31 + od.comm.optional.object_count()); // + 1002h/1013h/1020h/1028h/1FA0h/1FD0h
     let indices: Vec<u16> = (0..od.object_count()).map(|n| od.object(n).unwrap().index).collect();
     assert!(indices.windows(2).all(|w| w[0] < w[1]));
     // Through references too.

@@ -43,6 +43,8 @@ pub mod codes {
     pub const PDO_LENGTH: u16 = 0x8210;
     /// 8220h PDO length exceeded (EEC-17).
     pub const PDO_LENGTH_EXCEEDED: u16 = 0x8220;
+    /// 8230h DAM-MPDO not processed, destination object not available (EEC-18, MPDO-02).
+    pub const MPDO_NOT_PROCESSED: u16 = 0x8230;
     /// 8240h unexpected SYNC data length (EEC-19).
     pub const SYNC_LENGTH: u16 = 0x8240;
     /// 8250h RPDO time-out (EEC-20).

@@ -82,6 +82,17 @@ pub enum Event {
         /// The message.
         emcy: Emergency,
     },
+    /// An MPDO consumer (feature `mpdo`) wrote a received value into the dictionary (MPDO-02 DAM: the
+    /// object the frame names; MPDO-03 SAM: the local object the dispatching list 1FD0h maps it to).
+    #[cfg(feature = "mpdo")]
+    MpdoWritten {
+        /// RPDO number, 0-based.
+        pdo: u16,
+        /// The local object's index.
+        index: u16,
+        /// The local object's sub-index.
+        sub: u8,
+    },
     /// An RPDO's event timer expired without reception (PDO-12; EMCY 8250h was raised).
     RpdoTimeout {
         /// RPDO number, 0-based.

@@ -53,6 +53,8 @@ macro_rules! sdo_dict {
 
 mod dict;
 mod errors;
+#[cfg(feature = "mpdo")]
+mod mpdo;
 mod optional;
 mod pdo;
 mod rx_filter;

@@ -164,8 +164,15 @@ fn mapping_limits_at_64_entries_pdo_37() {
     entries[0] = 0x2001_0008;
     assert_eq!(remap(&mut node, 0x1800, 0x1A00, 0x4000_0185, &entries), aborted(0x0604_0042));
     assert_eq!(download(&mut node, 0x1A00, 0, 0x41, 1), aborted(0x0604_0042));
-    assert_eq!(download(&mut node, 0x1A00, 0, 0xFE, 1), aborted(0x0604_0042)); // SAM-MPDO: no MPDO here
-                                                                               // PDO-34/36 at sub 40h: a missing object, a missing sub-index, 65 bits, a dummy in a TPDO.
+    if cfg!(feature = "mpdo") {
+        // MPDO-05: FEh makes the TPDO a SAM-MPDO (feature `mpdo`); back to 0 for the entry checks below.
+        assert_eq!(download(&mut node, 0x1A00, 0, 0xFE, 1), OK);
+        assert_eq!(download(&mut node, 0x1A00, 0, 0, 1), OK);
+    } else {
+        assert_eq!(download(&mut node, 0x1A00, 0, 0xFE, 1), aborted(0x0604_0042));
+        // no MPDO in this build
+    }
+    // PDO-34/36 at sub 40h: a missing object, a missing sub-index, 65 bits, a dummy in a TPDO.
     assert_eq!(download(&mut node, 0x1A00, 0x40, 0x5000_0001, 4), aborted(0x0602_0000));
     assert_eq!(download(&mut node, 0x1A00, 0x40, 0x2000_4101, 4), aborted(0x0609_0011));
     assert_eq!(download(&mut node, 0x1A00, 0x40, 0x2000_0141, 4), aborted(0x0604_0041));

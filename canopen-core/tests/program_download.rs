@@ -256,7 +256,10 @@ fn merged_eds_lists_the_program_objects_in_order() {
     let m = Merged { comm: CommProfile::<Z>::new(NodeConfig::DEFAULT), app };
     let all: Vec<u16> = (0..m.object_count()).map(|n| m.object(n).unwrap().index).collect();
     assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
-    assert_eq!(all[all.len() - 5..], [0x1F50, 0x1F51, 0x1F56, 0x1F57, 0x1F80]);
+    // The MPDO lists 1FA0h/1FD0h (feature `mpdo`) come after 1F80h.
+    let mpdo: &[u16] = if cfg!(feature = "mpdo") { &[0x1FA0, 0x1FD0] } else { &[] };
+    let tail = [&[0x1F50, 0x1F51, 0x1F56, 0x1F57, 0x1F80][..], mpdo].concat();
+    assert_eq!(all[all.len() - tail.len()..], tail[..]);
     assert_eq!(m.object(all.len()), None);
     let mut text = String::new();
     eds::write_eds(&mut text, &eds::EdsInfo::DEFAULT, &m).unwrap();

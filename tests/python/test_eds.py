@@ -91,6 +91,13 @@ COMPOUND = {
     0x1028: (ODArray, "Emergency consumer object", {
         s: (f"Emergency consumer {s}", dt.UNSIGNED32, "rw", 0x80 + s, False, None, None) for s in range(1, 128)
     }, 127),
+    # The MPDO lists of canopen-core's default feature `mpdo` (profile::optional, MPDO-03).
+    0x1FA0: (ODArray, "Object scanner list", {
+        s: (f"Scanned object {s}", dt.UNSIGNED32, "rw", 0, False, None, None) for s in range(1, 17)
+    }, 16),
+    0x1FD0: (ODArray, "Object dispatching list", {
+        s: (f"Dispatched object {s}", dt.UNSIGNED64, "rw", 0, False, None, None) for s in range(1, 17)
+    }, 16),
     0x1029: (ODArray, "Error behaviour", {1: ("Communication error", dt.UNSIGNED8, "rw", 0, False, None, None)}, 1),
     **{0x1400 + k: (ODRecord, "RPDO communication parameter", {
         1: ("COB-ID used by RPDO", dt.UNSIGNED32, "rw", (0x200 + 0x100 * k + 5) | (0 if k == 0 else 0x80000000), False, None, None),

@@ -4,6 +4,8 @@
 //!   merged dictionary (PDO-36: 0602 0000h / 0609 0011h / 0604 0041h), and enabling a mapping (sub 00h)
 //!   resolves every entry again (PDO-37: 0602 0000h, 0604 0042h above 64 bits); a refused write is rolled
 //!   back, so nothing changes;
+//! - (feature `mpdo`) a TPDO mapping count FEh while another TPDO is the SAM producer already: 0604 0043h
+//!   (MPDO-03, one SAM producer per device);
 //! - 1010h "save" stores the groups of its sub-index before the SDO response goes out (STORE-04);
 //! - 1011h "load" removes the groups from the stored record (STORE-08..10).
 //!
@@ -52,6 +54,13 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         let p = &self.od.comm.params;
         let map = if dir == PdoDir::Rpdo { p.rpdo_map.as_ref().get(k) } else { p.tpdo_map.as_ref().get(k) };
         let Some(map) = map else { return Ok(()) };
+        #[cfg(feature = "mpdo")]
+        if sub == 0 && dir == PdoDir::Tpdo && map.count == 0xFE {
+            // MPDO-03: one SAM producer per device; a second SAM TPDO conflicts with the first (0604 0043h).
+            if p.tpdo_map.as_ref().iter().enumerate().any(|(i, m)| i != k && m.count == 0xFE) {
+                return Err(AbortCode::ParameterIncompatibility);
+            }
+        }
         if sub == 0 {
             ResolvedMap::resolve(&self.od, map.active(), dir).map(|_| ())
         } else {

@@ -11,6 +11,8 @@ use crate::nmt::{NmtState, Service};
 use crate::od::TimeOfDay;
 use crate::od::{Merged, ObjectDictionary, PdoDir};
 use crate::pdo::mapping::ResolvedMap;
+#[cfg(feature = "mpdo")]
+use crate::pdo::mpdo::AddressMode;
 use crate::pdo::rpdo::{Rpdo, RxOutcome};
 use crate::pdo::tpdo::{SyncAction, Tpdo};
 use crate::profile::CommProfile;
@@ -43,7 +45,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         });
         if tx {
             if let Some(t) = self.tpdos.as_mut().get_mut(k) {
-                *t = Tpdo::new(&comm, resolved);
+                let new = Tpdo::new(&comm, resolved);
+                #[cfg(feature = "mpdo")]
+                let new = new.with_mpdo(crate::pdo::mpdo::AddressMode::of_mapping(map.count)); // MPDO-05
+                *t = new;
             }
             self.rtr_table.clear();
             for (i, t) in self.tpdos.as_ref().iter().enumerate() {
@@ -122,6 +127,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         let Some(&(_, k)) = self.rx_table.get(i) else { return };
         let k = usize::from(k);
+        // An MPDO consumer (MPDO-02/03/05): its mapping sub 00h, FEh/FFh, says so (the RPDO itself maps
+        // nothing); each frame is decoded and written at once.
+        #[cfg(feature = "mpdo")]
+        if let Some(mode) = self.comm.params.rpdo_map.as_ref().get(k).and_then(|m| AddressMode::of_mapping(m.count)) {
+            self.handle_mpdo(k, mode, frame);
+            return;
+        }
         let in_window = self.sync.in_window(now);
         let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
         let outcome = r.receive(now, frame.data());

@@ -8,7 +8,7 @@
 //! - [`rpdo::Rpdo`] / [`tpdo::Tpdo`] are the run-time state machines the `Node` drives;
 //! - [`mapping`] resolves and packs mappings.
 //!
-//! Not implemented: MPDO (MPDO-01..05, optional). A mapping holds at most [`mapping::MAX_ENTRIES`] entries:
+//! MPDO (MPDO-01..05, optional) is the Cargo feature `mpdo` ([`mpdo`]). A mapping holds at most [`mapping::MAX_ENTRIES`] entries:
 //! 8, or the 64 of CiA 301 (PDO-30) with the Cargo feature `pdo-mapping-64` (off by default: RAM, see there).
 //!
 //! Remote requests of TPDOs (PDO-29: "the PDO read service is optional"; PDO-21/22: the RTR-only types FCh
@@ -18,6 +18,8 @@
 //! the build (about 140 B of Cortex-M flash).
 
 pub mod mapping;
+#[cfg(feature = "mpdo")]
+pub mod mpdo;
 pub mod rpdo;
 pub mod tpdo;
 
@@ -93,10 +95,25 @@ impl PdoMapParams {
         PdoMapParams { count: i as u8, entries }
     }
 
-    /// Entries 1..=count.
+    /// Entries 1..=count; none for an MPDO (count FEh/FFh, whose entries are not used, MPDO-05).
     pub fn active(&self) -> &[u32] {
+        if is_mpdo_count(self.count) {
+            return &[]; // a constant `false` without the feature: the build without MPDO is unchanged
+        }
         self.entries.get(..usize::from(self.count)).unwrap_or(&self.entries)
     }
+}
+
+/// Whether mapping sub 00h value `count` makes the PDO an MPDO in this build (FEh SAM, FFh DAM; PDO-30,
+/// MPDO-05): always `false` without the feature `mpdo`.
+///
+/// ```
+/// use canopen_core::pdo::is_mpdo_count;
+/// assert_eq!(is_mpdo_count(0xFF), cfg!(feature = "mpdo"));
+/// assert!(!is_mpdo_count(8));
+/// ```
+pub const fn is_mpdo_count(count: u8) -> bool {
+    cfg!(feature = "mpdo") && count >= 0xFE
 }
 
 /// The defaults of one PDO in a [`NodeConfig`](crate::profile::NodeConfig).
@@ -128,6 +145,7 @@ pub struct PdoDefault {
     pub max_mapped: u8,
     /// The default entry count (sub-index 00h) when it is not all of `mapping`: `Some(0)` keeps the entries
     /// but maps none (an EDS whose count has no `DefaultValue`), at most `mapping.len()`. `None`: all.
+    /// With the feature `mpdo`, `Some(0xFE)` / `Some(0xFF)` make the PDO a SAM- / DAM-MPDO (MPDO-05).
     pub count: Option<u8>,
     /// (TPDO) Whether a remote request is served: `false` sets COB-ID bit 30 (PDO-15, PDO-29). An RPDO's
     /// bit 30 is reserved (PDO-07): leave it `true`.
@@ -195,7 +213,7 @@ impl PdoDefault {
     pub const fn map_params(&self) -> PdoMapParams {
         let mut m = PdoMapParams::from_slice(self.mapping);
         if let Some(c) = self.count {
-            if c < m.count {
+            if c < m.count || is_mpdo_count(c) {
                 m.count = c;
             }
         }

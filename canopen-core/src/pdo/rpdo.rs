@@ -6,6 +6,8 @@
 //! - Length (PDO-38/39): shorter than the mapping → not applied, EMCY 8210h; longer → the leading bytes are
 //!   applied, EMCY 8220h.
 //! - Event timer (PDO-12): deadline monitoring armed by each received frame; expiry → EMCY 8250h.
+//! - An MPDO consumer (feature `mpdo`, mapping sub 00h FEh/FFh) maps nothing and never reaches
+//!   [`Rpdo::receive`]: the node decodes each frame and writes the object it addresses (MPDO-02/03).
 
 use super::mapping::ResolvedMap;
 use super::PdoComm;

@@ -11,6 +11,10 @@
 //!   not say), so "no data change" gives one TPDO per event-timer period (type FEh, event timer 1000 ms:
 //!   one TPDO per second).
 //! - RTR (PDO-29): any valid TPDO with COB-ID bit 30 = 0 answers a remote frame.
+//! - An MPDO (feature `mpdo`, mapping sub 00h FEh/FFh, MPDO-04) is event-driven only: no SYNC, RTR, event
+//!   timer or send on entering Operational, and [`Tpdo::trigger`] does nothing; the application sends each
+//!   one (`Node::send_dam_mpdo` / `Node::send_sam_mpdo`) through [`Tpdo::mpdo_ready`] and
+//!   [`Tpdo::mpdo_sent`], which keep the inhibit time.
 //!
 //! The state machine decides *when*; the `Node` samples the mapped objects and queues the frame.
 
@@ -64,6 +68,9 @@ pub struct Tpdo {
     /// The payload sampled at the last SYNC for type FCh (sent on RTR, PDO-21), or the payload last sent for
     /// FEh/FFh (change-of-value detection, PDO-23): one buffer, since a TPDO has one type.
     last: Option<([u8; 8], u8)>,
+    /// The MPDO kind (mapping sub 00h FEh/FFh), `None` for a plain TPDO.
+    #[cfg(feature = "mpdo")]
+    mpdo: Option<super::mpdo::AddressMode>,
 }
 
 impl Tpdo {
@@ -82,6 +89,69 @@ impl Tpdo {
             inhibit: Deadline::NONE,
             timer: Deadline::NONE,
             last: None,
+            #[cfg(feature = "mpdo")]
+            mpdo: None,
+        }
+    }
+
+    /// This TPDO as an MPDO producer of kind `mode` (`None`: a plain TPDO).
+    ///
+    /// ```
+    /// use canopen_core::{pdo::{tpdo::Tpdo, mpdo::AddressMode, PdoComm, mapping::ResolvedMap}, Instant};
+    /// let t = Tpdo::new(&PdoComm { cob_id: 0x181, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY)
+    ///     .with_mpdo(Some(AddressMode::Destination));
+    /// assert_eq!(t.mpdo(), Some(AddressMode::Destination));
+    /// ```
+    #[cfg(feature = "mpdo")]
+    pub const fn with_mpdo(mut self, mode: Option<super::mpdo::AddressMode>) -> Self {
+        self.mpdo = mode;
+        self
+    }
+
+    /// The MPDO kind, `None` for a plain TPDO.
+    #[cfg(feature = "mpdo")]
+    pub const fn mpdo(&self) -> Option<super::mpdo::AddressMode> {
+        self.mpdo
+    }
+
+    /// Whether this TPDO is an MPDO (always `false` without the feature `mpdo`).
+    const fn is_mpdo(&self) -> bool {
+        #[cfg(feature = "mpdo")]
+        return self.mpdo.is_some();
+        #[cfg(not(feature = "mpdo"))]
+        false
+    }
+
+    /// Whether MPDO `mode` may go out at `now` (MPDO-04): the TPDO is valid, event-driven (FEh/FFh), an MPDO
+    /// of that kind, and its inhibit time has passed.
+    ///
+    /// ```
+    /// use canopen_core::{pdo::{tpdo::Tpdo, mpdo::{AddressMode, MpdoRefused}, PdoComm, mapping::ResolvedMap}, Instant};
+    /// let comm = PdoComm { cob_id: 0x181, transmission_type: 254, inhibit_100us: 10, ..PdoComm::default() };
+    /// let mut t = Tpdo::new(&comm, ResolvedMap::EMPTY).with_mpdo(Some(AddressMode::Destination));
+    /// assert_eq!(t.mpdo_ready(Instant::ZERO, AddressMode::Source), Err(MpdoRefused::NotMpdo));
+    /// assert_eq!(t.mpdo_ready(Instant::ZERO, AddressMode::Destination), Ok(()));
+    /// t.mpdo_sent(Instant::ZERO);
+    /// assert_eq!(t.mpdo_ready(Instant::from_micros(999), AddressMode::Destination), Err(MpdoRefused::Inhibited));
+    /// assert_eq!(t.mpdo_ready(Instant::from_millis(1), AddressMode::Destination), Ok(()));
+    /// ```
+    #[cfg(feature = "mpdo")]
+    pub fn mpdo_ready(&self, now: Instant, mode: super::mpdo::AddressMode) -> Result<(), super::mpdo::MpdoRefused> {
+        use super::mpdo::MpdoRefused;
+        if !self.is_valid() || !self.event_driven() || self.mpdo != Some(mode) {
+            return Err(MpdoRefused::NotMpdo);
+        }
+        if self.inhibited(now) {
+            return Err(MpdoRefused::Inhibited);
+        }
+        Ok(())
+    }
+
+    /// An MPDO was sent at `now`: its inhibit time starts (MPDO-04); no event timer.
+    #[cfg(feature = "mpdo")]
+    pub fn mpdo_sent(&mut self, now: Instant) {
+        if self.inhibit_100us != 0 {
+            self.inhibit = Deadline::at(now + Duration::from_100us(self.inhibit_100us.into()));
         }
     }
 
@@ -97,7 +167,7 @@ impl Tpdo {
 
     /// Whether a remote request is served (bit 30 = 0, PDO-29; never without the feature `pdo-rtr`).
     pub const fn rtr_allowed(&self) -> bool {
-        super::RTR && self.is_valid() && !self.cob.bit30()
+        super::RTR && self.is_valid() && !self.cob.bit30() && !self.is_mpdo()
     }
 
     /// The transmission type.
@@ -118,7 +188,7 @@ impl Tpdo {
         self.inhibit = Deadline::NONE;
         self.last = None;
         self.timer = Deadline::NONE;
-        self.is_valid() && self.event_driven()
+        self.is_valid() && self.event_driven() && !self.is_mpdo()
     }
 
     /// Leaving Operational: no timers.
@@ -130,7 +200,7 @@ impl Tpdo {
 
     /// A SYNC with `counter` (`None` when the SYNC counter is off).
     pub fn on_sync(&mut self, counter: Option<u8>) -> SyncAction {
-        if !self.is_valid() {
+        if !self.is_valid() || self.is_mpdo() {
             return SyncAction::None;
         }
         match self.ttype {
@@ -168,7 +238,7 @@ impl Tpdo {
     /// An application event at `now` (PDO-19, PDO-23): returns whether to send now. Type 00h sends at the
     /// next SYNC; FEh/FFh now unless the inhibit time runs (then when it ends); RTR-only types ignore it.
     pub fn trigger(&mut self, now: Instant) -> bool {
-        if !self.is_valid() {
+        if !self.is_valid() || self.is_mpdo() {
             return false;
         }
         match self.ttype {
@@ -249,7 +319,7 @@ impl Tpdo {
     /// Time passed: returns whether to send now (a held-back event at the end of the inhibit time, or the
     /// event timer, which itself waits for the inhibit time).
     pub fn handle_timeout(&mut self, now: Instant) -> bool {
-        if !self.is_valid() || !self.event_driven() {
+        if !self.is_valid() || !self.event_driven() || self.is_mpdo() {
             return false;
         }
         if self.timer.passed(now) {

@@ -611,6 +611,10 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
     }
     match usize::from(sub) {
         0 => {
+            if crate::pdo::is_mpdo_count(v as u8) && v <= 0xFF {
+                map.count = v as u8; // MPDO-05: FEh SAM-MPDO, FFh DAM-MPDO; the entries are not used
+                return Ok(());
+            }
             if v as usize > MAX_ENTRIES {
                 return Err(AbortCode::PdoLengthExceeded);
             }
@@ -924,10 +928,14 @@ mod tests {
     fn describes_itself() {
         extern crate std;
         let od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
-        // The optional objects (1002h, 1013h, 1020h, 1028h: those this build has) merge into the order.
+        // The optional objects (1002h, 1013h, 1020h, 1028h, 1FA0h, 1FD0h: those this build has) merge into
+        // the order.
         let opt = od.optional.object_count();
-        let before_1016 =
-            opt - usize::from(cfg!(feature = "verify-config")) - usize::from(cfg!(feature = "emcy-consumer"));
+        let after_1f80 = 2 * usize::from(cfg!(feature = "mpdo"));
+        let before_1016 = opt
+            - usize::from(cfg!(feature = "verify-config"))
+            - usize::from(cfg!(feature = "emcy-consumer"))
+            - after_1f80;
         assert_eq!(od.object_count(), 22 + opt);
         let hb = od.object(16 + before_1016).unwrap();
         assert_eq!((hb.index, hb.code, hb.subs), (0x1016, ObjectCode::Array, 3));
@@ -940,8 +948,8 @@ mod tests {
         let all: std::vec::Vec<u16> = (0..pdos.object_count()).map(|n| pdos.object(n).unwrap().index).collect();
         assert!(all.windows(2).all(|w| w[0] < w[1]), "{all:X?}");
         let pdo_objects = [0x1400, 0x1401, 0x1600, 0x1601, 0x1800, 0x1801, 0x1802, 0x1A00, 0x1A01, 0x1A02, 0x1F80];
-        assert_eq!(all[20 + opt..], pdo_objects);
-        for index in [0x1002, 0x1013, 0x1020, 0x1028] {
+        assert_eq!(all[20 + opt - after_1f80..all.len() - after_1f80], pdo_objects);
+        for index in [0x1002, 0x1013, 0x1020, 0x1028, 0x1FA0, 0x1FD0] {
             assert_eq!(all.contains(&index), optional::serves(index), "{index:04X}h");
         }
     }

@@ -322,7 +322,7 @@ fn pdo_defaults(comm: &mut [PdoComm], map: &mut [PdoMapParams], defaults: &[PdoD
             dst.copy_from_slice(raw);
         }
         m.count = match d.count {
-            Some(c) if usize::from(c) < raw.len() => c,
+            Some(c) if usize::from(c) < raw.len() || crate::pdo::is_mpdo_count(c) => c,
             _ => raw.len() as u8,
         };
     }

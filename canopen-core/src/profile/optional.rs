@@ -1,7 +1,7 @@
 //! The optional communication objects 1002h manufacturer status register, 1013h high-resolution time
 //! stamp, 1020h verify configuration and 1028h emergency consumer, each behind its own Cargo feature
 //! (`manufacturer-status`, `high-res-time`, `verify-config`, `emcy-consumer`; on by default, off in the
-//! firmware's reference builds).
+//! firmware's reference builds), and the MPDO lists 1FA0h / 1FD0h (feature `mpdo`).
 //!
 //! [`OptionalObjects`] is a small dictionary part the [`CommProfile`](super::CommProfile) owns and asks
 //! first for these four indices ([`serves`], a constant per build: a build without the features has an
@@ -38,11 +38,19 @@
 //!   valid on 80h + n, the pre-defined connection set (the same EMCYs a node without 1028h reports).
 //!   Reception is one bit test per frame that reaches the EMCY stage (a 2048-bit map of the valid
 //!   CAN-IDs); a hit finds its sub-index at 80h + n first, else by a scan of the 127 entries.
+//! - **1FA0h** object scanner list (MPDO-03, §7.5.2.39): ARRAY UNSIGNED32, sub 00h const
+//!   [`MPDO_SCANNER_ENTRIES`], sub n rw, default 0 (not configured); what the SAM producer may send
+//!   ([`crate::pdo::mpdo::ScannerEntry`]). One list: CiA 301 allows 1FA0h–1FCFh, this build has the first.
+//! - **1FD0h** object dispatching list (MPDO-03, §7.5.2.40): ARRAY UNSIGNED64, sub 00h const
+//!   [`MPDO_DISPATCH_ENTRIES`], sub n rw, default 0; where the SAM consumer writes a producer's object
+//!   ([`crate::pdo::mpdo::DispatchEntry`]). One list of 1FD0h–1FFFh. Both are communication parameters:
+//!   stored with 1010h, set back to 0 by reset communication. Entries are not checked when written (an
+//!   entry naming a missing object is a frame ignored at reception, as lely does).
 
 #[cfg(feature = "emcy-consumer")]
 use crate::cob::CobIdEntry;
 use crate::od::{check_len, copy_at, AbortCode, DataType, EntryDesc, ObjectDesc, SubInfo};
-#[cfg(any(feature = "verify-config", feature = "emcy-consumer"))]
+#[cfg(any(feature = "verify-config", feature = "emcy-consumer", feature = "mpdo"))]
 use crate::od::{count_entry, ObjectCode};
 #[cfg(feature = "high-res-time")]
 use crate::time::Instant;
@@ -57,10 +65,20 @@ const INDICES: &[u16] = &[
     0x1020,
     #[cfg(feature = "emcy-consumer")]
     0x1028,
+    #[cfg(feature = "mpdo")]
+    0x1FA0,
+    #[cfg(feature = "mpdo")]
+    0x1FD0,
 ];
 
 /// 1028h sub 00h: one entry per node-ID.
 pub const EMCY_CONSUMERS: usize = 127;
+
+/// 1FA0h sub 00h: the object scanner list's entries (MPDO-03; CiA 301 allows up to FEh).
+pub const MPDO_SCANNER_ENTRIES: usize = 16;
+
+/// 1FD0h sub 00h: the object dispatching list's entries (MPDO-03; CiA 301 allows up to FEh).
+pub const MPDO_DISPATCH_ENTRIES: usize = 16;
 
 /// Whether `index` is one of the optional objects this build has (a constant `false` without the features).
 ///
@@ -75,6 +93,27 @@ pub const fn serves(index: u16) -> bool {
         || (cfg!(feature = "high-res-time") && index == 0x1013)
         || (cfg!(feature = "verify-config") && index == 0x1020)
         || (cfg!(feature = "emcy-consumer") && index == 0x1028)
+        || (cfg!(feature = "mpdo") && (index == 0x1FA0 || index == 0x1FD0))
+}
+
+/// The entries of 1FA0h (UNSIGNED32 scanner entries) and 1FD0h (UNSIGNED64 dispatcher entries): sub 00h
+/// const, the entries rw with default 0 (MPDO-03).
+#[cfg(feature = "mpdo")]
+fn mpdo_list_entry(index: u16, sub: u8) -> Result<EntryDesc, AbortCode> {
+    use crate::od::{Access::Rw, DataType::*, Value};
+    let (n, name, data_type) = if index == 0x1FA0 {
+        (MPDO_SCANNER_ENTRIES, "Scanned object", Unsigned32)
+    } else {
+        (MPDO_DISPATCH_ENTRIES, "Dispatched object", Unsigned64)
+    };
+    match usize::from(sub) {
+        0 => Ok(count_entry(index, n as u8)),
+        s if s <= n => Ok(EntryDesc {
+            numbered: true,
+            ..EntryDesc::var(index, sub, name, data_type, Rw).with_default(Value::Uint(0))
+        }),
+        _ => Err(AbortCode::SubIndexDoesNotExist),
+    }
 }
 
 /// 1013h as a running µs clock: `base` at the instant `at`.
@@ -199,6 +238,12 @@ pub struct OptionalObjects {
     pub verify_configuration: [u32; 2],
     #[cfg(feature = "emcy-consumer")]
     emcy: EmcyConsumer,
+    /// 1FA0h sub 01h.. object scanner list.
+    #[cfg(feature = "mpdo")]
+    mpdo_scanner: [u32; MPDO_SCANNER_ENTRIES],
+    /// 1FD0h sub 01h.. object dispatching list.
+    #[cfg(feature = "mpdo")]
+    mpdo_dispatch: [u64; MPDO_DISPATCH_ENTRIES],
 }
 
 impl Default for OptionalObjects {
@@ -219,6 +264,10 @@ impl OptionalObjects {
             verify_configuration: [0; 2],
             #[cfg(feature = "emcy-consumer")]
             emcy: EmcyConsumer::new(),
+            #[cfg(feature = "mpdo")]
+            mpdo_scanner: [0; MPDO_SCANNER_ENTRIES],
+            #[cfg(feature = "mpdo")]
+            mpdo_dispatch: [0; MPDO_DISPATCH_ENTRIES],
         }
     }
 
@@ -231,6 +280,40 @@ impl OptionalObjects {
         }
         #[cfg(feature = "emcy-consumer")]
         self.emcy.set_defaults();
+        #[cfg(feature = "mpdo")]
+        {
+            self.mpdo_scanner = [0; MPDO_SCANNER_ENTRIES];
+            self.mpdo_dispatch = [0; MPDO_DISPATCH_ENTRIES];
+        }
+    }
+
+    /// Whether an entry of the object scanner list 1FA0h covers (`index`, `sub`): the SAM producer may send
+    /// it (MPDO-03).
+    ///
+    /// ```
+    /// # use canopen_core::profile::optional::OptionalObjects;
+    /// let mut o = OptionalObjects::new();
+    /// assert!(!o.mpdo_scanned(0x2000, 1)); // no entry configured
+    /// o.write(0x1FA0, 1, &0x0220_0001u32.to_le_bytes()).unwrap(); // 2000h sub 01h..02h
+    /// assert!(o.mpdo_scanned(0x2000, 2));
+    /// ```
+    #[cfg(feature = "mpdo")]
+    pub fn mpdo_scanned(&self, index: u16, sub: u8) -> bool {
+        crate::pdo::mpdo::scanned(&self.mpdo_scanner, index, sub)
+    }
+
+    /// The local object the object dispatching list 1FD0h maps producer `node`'s (`index`, `sub`) to
+    /// (MPDO-03).
+    ///
+    /// ```
+    /// # use canopen_core::profile::optional::OptionalObjects;
+    /// let mut o = OptionalObjects::new();
+    /// o.write(0x1FD0, 1, &0x0120_0100_6000_0103u64.to_le_bytes()).unwrap(); // node 3's 6000h:01 → 2001h:00
+    /// assert_eq!(o.mpdo_dispatch(3, 0x6000, 1), Some((0x2001, 0)));
+    /// ```
+    #[cfg(feature = "mpdo")]
+    pub fn mpdo_dispatch(&self, node: u8, index: u16, sub: u8) -> Option<(u16, u8)> {
+        crate::pdo::mpdo::dispatch(&self.mpdo_dispatch, node, index, sub)
     }
 
     /// The node's clock moved to `now` (1013h reads relative to it).
@@ -319,14 +402,29 @@ impl OptionalObjects {
             #[cfg(feature = "verify-config")]
             0x1020 => ObjectDesc { index, name: "Verify configuration", code: ObjectCode::Array, first: 0, subs: 3 },
             #[cfg(feature = "emcy-consumer")]
-            _ => ObjectDesc {
+            0x1028 => ObjectDesc {
                 index,
                 name: "Emergency consumer object",
                 code: ObjectCode::Array,
                 first: 0,
                 subs: EMCY_CONSUMERS as u16 + 1,
             },
-            #[cfg(not(feature = "emcy-consumer"))]
+            #[cfg(feature = "mpdo")]
+            0x1FA0 => ObjectDesc {
+                index,
+                name: "Object scanner list",
+                code: ObjectCode::Array,
+                first: 0,
+                subs: MPDO_SCANNER_ENTRIES as u16 + 1,
+            },
+            #[cfg(feature = "mpdo")]
+            0x1FD0 => ObjectDesc {
+                index,
+                name: "Object dispatching list",
+                code: ObjectCode::Array,
+                first: 0,
+                subs: MPDO_DISPATCH_ENTRIES as u16 + 1,
+            },
             _ => return None,
         })
     }
@@ -356,6 +454,8 @@ impl OptionalObjects {
                 ..EntryDesc::var(index, sub, "Emergency consumer", Unsigned32, Rw)
                     .with_default(Value::Uint(0x80 + u64::from(sub)))
             },
+            #[cfg(feature = "mpdo")]
+            (0x1FA0 | 0x1FD0, _) => return mpdo_list_entry(index, sub),
             _ => return Err(AbortCode::SubIndexDoesNotExist),
         })
     }
@@ -366,24 +466,28 @@ impl OptionalObjects {
         Ok(SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: e.max_size })
     }
 
-    /// The current value of a sub-entry (every one is numeric, at most 4 bytes).
-    fn value(&self, index: u16, sub: u8) -> Result<u32, AbortCode> {
+    /// The current value of a sub-entry (every one is numeric, at most 8 bytes).
+    fn value(&self, index: u16, sub: u8) -> Result<u64, AbortCode> {
         let e = self.entry(index, sub)?;
         if e.sub == 0 && e.data_type == DataType::Unsigned8 {
             return Ok(match e.default {
-                Some(crate::od::Value::Uint(n)) => n as u32,
+                Some(crate::od::Value::Uint(n)) => n,
                 _ => 0,
             });
         }
         match index {
             #[cfg(feature = "manufacturer-status")]
-            0x1002 => Ok(self.manufacturer_status),
+            0x1002 => Ok(self.manufacturer_status.into()),
             #[cfg(feature = "high-res-time")]
-            0x1013 => Ok(self.high_res.value()),
+            0x1013 => Ok(self.high_res.value().into()),
             #[cfg(feature = "verify-config")]
-            0x1020 => Ok(self.verify_configuration[usize::from(sub) - 1]),
+            0x1020 => Ok(self.verify_configuration[usize::from(sub) - 1].into()),
             #[cfg(feature = "emcy-consumer")]
-            0x1028 => self.emcy.get(sub),
+            0x1028 => self.emcy.get(sub).map(u64::from),
+            #[cfg(feature = "mpdo")]
+            0x1FA0 => Ok(self.mpdo_scanner[usize::from(sub) - 1].into()),
+            #[cfg(feature = "mpdo")]
+            0x1FD0 => Ok(self.mpdo_dispatch[usize::from(sub) - 1]),
             _ => Err(AbortCode::ObjectDoesNotExist),
         }
     }
@@ -395,10 +499,14 @@ impl OptionalObjects {
         Ok(copy_at(v.get(..size).unwrap_or(&v), offset, buf))
     }
 
-    /// An expedited upload: (size, bytes copied).
+    /// An expedited upload: (size, bytes copied); an 8-byte entry (1FD0h) copies none (segmented upload).
     pub fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
         let size = self.info(index, sub)?.size;
-        *buf = self.value(index, sub)?.to_le_bytes();
+        let v = self.value(index, sub)?;
+        if size > 4 {
+            return Ok((size, 0));
+        }
+        *buf = (v as u32).to_le_bytes(); // zero-extended: the value fits its `size` bytes
         Ok((size, size))
     }
 
@@ -418,8 +526,10 @@ impl OptionalObjects {
             return Err(AbortCode::WriteOfReadOnly);
         }
         check_len(data, e.max_size)?;
-        let v = data.iter().rev().fold(0u32, |v, &b| v << 8 | u32::from(b));
-        let _ = (v, rules);
+        let wide = data.iter().rev().fold(0u64, |v, &b| v << 8 | u64::from(b));
+        // Every entry but 1FD0h's is at most 4 bytes (checked above): the truncation keeps it whole.
+        let v = wide as u32;
+        let _ = (v, rules, wide);
         match index {
             #[cfg(feature = "high-res-time")]
             0x1013 => {
@@ -433,6 +543,16 @@ impl OptionalObjects {
             }
             #[cfg(feature = "emcy-consumer")]
             0x1028 => self.emcy.set(sub, v, rules),
+            #[cfg(feature = "mpdo")]
+            0x1FA0 => {
+                self.mpdo_scanner[usize::from(sub) - 1] = v;
+                Ok(())
+            }
+            #[cfg(feature = "mpdo")]
+            0x1FD0 => {
+                self.mpdo_dispatch[usize::from(sub) - 1] = wide;
+                Ok(())
+            }
             _ => Err(AbortCode::WriteOfReadOnly),
         }
     }
