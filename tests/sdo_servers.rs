@@ -298,3 +298,50 @@ fn invalidating_a_busy_server_drops_its_transfer() {
     assert!(exchange(&mut n, 16, "6C6 [8] 40 02 12 01 00 00 00 00").is_empty());
     assert!(!n.set_sdo_server_params(2, on), "two additional servers only");
 }
+
+/// The records in the node's EDS (OD-11, SDO-53, SDO-54, SDO-56; CiA 306 layout): 1200h–1202h and the
+/// client records 1280h/1281h as RECORDs listed among the optional objects, each sub-entry with the type,
+/// access and power-on value SDO reads (`records_read_as_the_spec_defines_them`); a node without
+/// additional servers lists no 1200h (it does not serve it) and a node of plain `Sizes` no record at all.
+#[test]
+fn the_records_are_in_the_eds() {
+    use canopen::core::profile::eds::{write_eds, EdsInfo};
+    fn eds<Z: canopen::core::node::NodeSizes>() -> String {
+        let n: Node<App, Z> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, App::default());
+        let mut s = String::new();
+        write_eds(&mut s, &EdsInfo::DEFAULT, &n.describe()).unwrap();
+        s
+    }
+    let s = eds::<WithSdoServers<Sizes<4, 16, 32>, 2, 2>>();
+    let listed: Vec<&str> = s.lines().skip_while(|l| *l != "[OptionalObjects]").take_while(|l| !l.is_empty()).collect();
+    for index in ["0x1200", "0x1201", "0x1202", "0x1280", "0x1281"] {
+        assert!(listed.iter().any(|l| l.ends_with(&format!("={index}"))), "{index} not in {listed:?}");
+    }
+    assert!(!s.contains("[1203]") && !s.contains("[1282]"));
+    let want = [
+        "[1200]\nParameterName=SDO server parameter\nObjectType=0x9\nSubNumber=0x3\n\n",
+        "[1200sub0]\nParameterName=Highest sub-index supported\nObjectType=0x7\nDataType=0x0005\nAccessType=const\nDefaultValue=0x2\nPDOMapping=0\n\n",
+        "[1200sub1]\nParameterName=COB-ID client to server (rx)\nObjectType=0x7\nDataType=0x0007\nAccessType=const\nDefaultValue=$NODEID+0x600\nPDOMapping=0\n\n",
+        "[1200sub2]\nParameterName=COB-ID server to client (tx)\nObjectType=0x7\nDataType=0x0007\nAccessType=ro\nDefaultValue=$NODEID+0x580\nPDOMapping=0\n\n",
+        "[1202]\nParameterName=SDO server parameter\nObjectType=0x9\nSubNumber=0x4\n\n",
+        "[1202sub0]\nParameterName=Highest sub-index supported\nObjectType=0x7\nDataType=0x0005\nAccessType=const\nDefaultValue=0x3\nPDOMapping=0\n\n",
+        "[1202sub1]\nParameterName=COB-ID client to server (rx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1202sub2]\nParameterName=COB-ID server to client (tx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1202sub3]\nParameterName=Node-ID of the SDO client\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=0x0\nPDOMapping=0\n\n",
+        "[1281]\nParameterName=SDO client parameter\nObjectType=0x9\nSubNumber=0x4\n\n",
+        "[1281sub1]\nParameterName=COB-ID client to server (tx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1281sub2]\nParameterName=COB-ID server to client (rx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1281sub3]\nParameterName=Node-ID of the SDO server\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=0x0\nPDOMapping=0\n\n",
+    ];
+    for section in want {
+        assert!(s.contains(section), "missing:\n{section}");
+    }
+    // The records come in index order: after 1029h, before the PDO parameters 1400h.
+    let at = |x: &str| s.find(x).unwrap_or_else(|| panic!("{x}"));
+    assert!(at("[1029]") < at("[1200]") && at("[1202sub3]") < at("[1280]") && at("[1281sub3]") < at("[1400]"));
+
+    let clients_only = eds::<WithSdoServers<Sizes<4, 16, 32>, 0, 1>>();
+    assert!(clients_only.contains("[1280]\n") && !clients_only.contains("[1200]") && !clients_only.contains("[1281]"));
+    let plain = eds::<Sizes<4, 16, 32>>();
+    assert!(!plain.contains("[12"), "no SDO record without WithSdoServers");
+}
