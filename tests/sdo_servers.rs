@@ -345,3 +345,44 @@ fn the_records_are_in_the_eds() {
     let plain = eds::<Sizes<4, 16, 32>>();
     assert!(!plain.contains("[12"), "no SDO record without WithSdoServers");
 }
+
+/// SDO-56, CAN-02: the application's SDO client on a 1280h record hears its server. While the record is
+/// valid its server → client COB-ID is in the node's receive filters (a runner that installs them on the
+/// socket passes the responses); invalid (power-on, sub 02h bit 31 set, reset communication), it is not.
+/// Every change moves the filters' generation, the SDO write and the local setter alike.
+#[test]
+fn client_responses_pass_the_receive_filters() {
+    type C = Node<App, WithSdoServers<Sizes<4, 16, 32>, 0, 1>>;
+    let mut n: C = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, App::default());
+    n.handle_timeout(Instant::ZERO);
+    while n.poll_transmit().is_some() {}
+    let accepts = |n: &C, id: u16| n.rx_filters().iter().any(|f| id & f.mask == f.id & f.mask);
+    let ex = |n: &mut C, req: &str| {
+        n.handle_frame(ms(1), &frame(req));
+        core::iter::from_fn(|| n.poll_transmit()).collect::<Vec<_>>()
+    };
+    assert!(!accepts(&n, 0x583), "power-on: 1280h invalid");
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 01 03 06 00 00"), vec![frame("585 [8] 60 80 12 01 00 00 00 00")]);
+    assert!(!accepts(&n, 0x583), "sub 02h still invalid");
+    let g = n.rx_filters_generation();
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 02 83 05 00 00"), vec![frame("585 [8] 60 80 12 02 00 00 00 00")]);
+    assert_ne!(n.rx_filters_generation(), g);
+    assert!(accepts(&n, 0x583));
+    assert!(!accepts(&n, 0x603), "the client sends on sub 01h, it does not receive it");
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 02 83 05 00 80"), vec![frame("585 [8] 60 80 12 02 00 00 00 00")]);
+    assert!(!accepts(&n, 0x583), "invalidated");
+
+    // Locally, on 6E0h/6F0h: the generation moves, the filter follows.
+    let record = canopen::core::node::SdoClientRecord {
+        cob_tx: CobIdEntry::from_raw(0x6E0),
+        cob_rx: CobIdEntry::from_raw(0x6F0),
+        server_node: 0x10,
+    };
+    let g = n.rx_filters_generation();
+    assert!(n.set_sdo_client_record(0, record));
+    assert_ne!(n.rx_filters_generation(), g);
+    assert!(accepts(&n, 0x6F0));
+    n.handle_frame(ms(2), &frame("000 [2] 82 05")); // reset communication
+    n.handle_timeout(ms(2));
+    assert!(!accepts(&n, 0x6F0));
+}

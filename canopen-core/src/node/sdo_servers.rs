@@ -558,7 +558,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// Sets SDO client record 1280h + `k` locally (the application's own configuration, without the SDO
-    /// change rules); `false` when the node has no such record.
+    /// change rules); `false` when the node has no such record. The receive filters follow (a valid record's
+    /// server → client COB-ID is in [`Node::rx_filters`]).
     ///
     /// ```
     /// use canopen_core::{node::{NoApplication, Node, SdoClientRecord, WithSdoServers}, profile::NodeConfig, NodeId, Sizes};
@@ -574,6 +575,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         match self.sdo_clients.as_mut().get_mut(k) {
             Some(c) => {
                 *c = record;
+                self.cob_ids_may_change();
                 true
             }
             None => false,
