@@ -47,7 +47,7 @@ echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, L
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
 echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
-    python3 -m pytest -q -rs tests/python/test_interop.py
+    python3 -m pytest -q -rs -o faulthandler_timeout=300 tests/python/test_interop.py
 echo "== canopen-master against python canopen's LocalNode (ten nodes, typed values, aborts, block fallback)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q --test vcan_master_python -- --include-ignored
 INNER
