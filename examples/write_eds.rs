@@ -1,10 +1,13 @@
-//! Writes the EDS of the all-types test dictionary (comm profile + application) to stdout or to the file
-//! given as the first argument: `cargo run --example write_eds -- out.eds`.
+//! Writes the EDS of the all-types test dictionary (comm profile + application, and the SDO records of two
+//! additional servers 1201h/1202h and one client record 1280h) to stdout or to the file given as the first
+//! argument: `cargo run --example write_eds -- out.eds`.
 
 #[path = "../tests/common/all_types.rs"]
 mod all_types;
 
+use canopen_core::node::{SdoRecordsDesc, WithSdoServers};
 use canopen_core::profile::eds::{write_eds, EdsInfo};
+use canopen_core::Sizes;
 
 const HELP: &str = "write_eds: writes the EDS (CiA 306 electronic data sheet) of the all-types test device, \
 the file a CANopen master or configuration tool loads to know the device's objects.
@@ -17,7 +20,8 @@ fn main() {
         println!("{HELP}");
         return;
     }
-    let od = all_types::node_od();
+    // The records a node of these sizes serves: 1200h, 1201h, 1202h and 1280h (tests/python/test_eds.py).
+    let od = SdoRecordsDesc::of::<WithSdoServers<Sizes, 2, 1>>(all_types::node_od());
     let info = EdsInfo {
         file_name: "all_types.eds",
         description: "canopen-rs test device with every data type",

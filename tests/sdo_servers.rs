@@ -298,3 +298,91 @@ fn invalidating_a_busy_server_drops_its_transfer() {
     assert!(exchange(&mut n, 16, "6C6 [8] 40 02 12 01 00 00 00 00").is_empty());
     assert!(!n.set_sdo_server_params(2, on), "two additional servers only");
 }
+
+/// The records in the node's EDS (OD-11, SDO-53, SDO-54, SDO-56; CiA 306 layout): 1200h–1202h and the
+/// client records 1280h/1281h as RECORDs listed among the optional objects, each sub-entry with the type,
+/// access and power-on value SDO reads (`records_read_as_the_spec_defines_them`); a node without
+/// additional servers lists no 1200h (it does not serve it) and a node of plain `Sizes` no record at all.
+#[test]
+fn the_records_are_in_the_eds() {
+    use canopen::core::profile::eds::{write_eds, EdsInfo};
+    fn eds<Z: canopen::core::node::NodeSizes>() -> String {
+        let n: Node<App, Z> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, App::default());
+        let mut s = String::new();
+        write_eds(&mut s, &EdsInfo::DEFAULT, &n.describe()).unwrap();
+        s
+    }
+    let s = eds::<WithSdoServers<Sizes<4, 16, 32>, 2, 2>>();
+    let listed: Vec<&str> = s.lines().skip_while(|l| *l != "[OptionalObjects]").take_while(|l| !l.is_empty()).collect();
+    for index in ["0x1200", "0x1201", "0x1202", "0x1280", "0x1281"] {
+        assert!(listed.iter().any(|l| l.ends_with(&format!("={index}"))), "{index} not in {listed:?}");
+    }
+    assert!(!s.contains("[1203]") && !s.contains("[1282]"));
+    let want = [
+        "[1200]\nParameterName=SDO server parameter\nObjectType=0x9\nSubNumber=0x3\n\n",
+        "[1200sub0]\nParameterName=Highest sub-index supported\nObjectType=0x7\nDataType=0x0005\nAccessType=const\nDefaultValue=0x2\nPDOMapping=0\n\n",
+        "[1200sub1]\nParameterName=COB-ID client to server (rx)\nObjectType=0x7\nDataType=0x0007\nAccessType=const\nDefaultValue=$NODEID+0x600\nPDOMapping=0\n\n",
+        "[1200sub2]\nParameterName=COB-ID server to client (tx)\nObjectType=0x7\nDataType=0x0007\nAccessType=ro\nDefaultValue=$NODEID+0x580\nPDOMapping=0\n\n",
+        "[1202]\nParameterName=SDO server parameter\nObjectType=0x9\nSubNumber=0x4\n\n",
+        "[1202sub0]\nParameterName=Highest sub-index supported\nObjectType=0x7\nDataType=0x0005\nAccessType=const\nDefaultValue=0x3\nPDOMapping=0\n\n",
+        "[1202sub1]\nParameterName=COB-ID client to server (rx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1202sub2]\nParameterName=COB-ID server to client (tx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1202sub3]\nParameterName=Node-ID of the SDO client\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=0x0\nPDOMapping=0\n\n",
+        "[1281]\nParameterName=SDO client parameter\nObjectType=0x9\nSubNumber=0x4\n\n",
+        "[1281sub1]\nParameterName=COB-ID client to server (tx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1281sub2]\nParameterName=COB-ID server to client (rx)\nObjectType=0x7\nDataType=0x0007\nAccessType=rw\nDefaultValue=0x80000000\nPDOMapping=0\n\n",
+        "[1281sub3]\nParameterName=Node-ID of the SDO server\nObjectType=0x7\nDataType=0x0005\nAccessType=rw\nDefaultValue=0x0\nPDOMapping=0\n\n",
+    ];
+    for section in want {
+        assert!(s.contains(section), "missing:\n{section}");
+    }
+    // The records come in index order: after 1029h, before the PDO parameters 1400h.
+    let at = |x: &str| s.find(x).unwrap_or_else(|| panic!("{x}"));
+    assert!(at("[1029]") < at("[1200]") && at("[1202sub3]") < at("[1280]") && at("[1281sub3]") < at("[1400]"));
+
+    let clients_only = eds::<WithSdoServers<Sizes<4, 16, 32>, 0, 1>>();
+    assert!(clients_only.contains("[1280]\n") && !clients_only.contains("[1200]") && !clients_only.contains("[1281]"));
+    let plain = eds::<Sizes<4, 16, 32>>();
+    assert!(!plain.contains("[12"), "no SDO record without WithSdoServers");
+}
+
+/// SDO-56, CAN-02: the application's SDO client on a 1280h record hears its server. While the record is
+/// valid its server → client COB-ID is in the node's receive filters (a runner that installs them on the
+/// socket passes the responses); invalid (power-on, sub 02h bit 31 set, reset communication), it is not.
+/// Every change moves the filters' generation, the SDO write and the local setter alike.
+#[test]
+fn client_responses_pass_the_receive_filters() {
+    type C = Node<App, WithSdoServers<Sizes<4, 16, 32>, 0, 1>>;
+    let mut n: C = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, App::default());
+    n.handle_timeout(Instant::ZERO);
+    while n.poll_transmit().is_some() {}
+    let accepts = |n: &C, id: u16| n.rx_filters().iter().any(|f| id & f.mask == f.id & f.mask);
+    let ex = |n: &mut C, req: &str| {
+        n.handle_frame(ms(1), &frame(req));
+        core::iter::from_fn(|| n.poll_transmit()).collect::<Vec<_>>()
+    };
+    assert!(!accepts(&n, 0x583), "power-on: 1280h invalid");
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 01 03 06 00 00"), vec![frame("585 [8] 60 80 12 01 00 00 00 00")]);
+    assert!(!accepts(&n, 0x583), "sub 02h still invalid");
+    let g = n.rx_filters_generation();
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 02 83 05 00 00"), vec![frame("585 [8] 60 80 12 02 00 00 00 00")]);
+    assert_ne!(n.rx_filters_generation(), g);
+    assert!(accepts(&n, 0x583));
+    assert!(!accepts(&n, 0x603), "the client sends on sub 01h, it does not receive it");
+    assert_eq!(ex(&mut n, "605 [8] 23 80 12 02 83 05 00 80"), vec![frame("585 [8] 60 80 12 02 00 00 00 00")]);
+    assert!(!accepts(&n, 0x583), "invalidated");
+
+    // Locally, on 6E0h/6F0h: the generation moves, the filter follows.
+    let record = canopen::core::node::SdoClientRecord {
+        cob_tx: CobIdEntry::from_raw(0x6E0),
+        cob_rx: CobIdEntry::from_raw(0x6F0),
+        server_node: 0x10,
+    };
+    let g = n.rx_filters_generation();
+    assert!(n.set_sdo_client_record(0, record));
+    assert_ne!(n.rx_filters_generation(), g);
+    assert!(accepts(&n, 0x6F0));
+    n.handle_frame(ms(2), &frame("000 [2] 82 05")); // reset communication
+    n.handle_timeout(ms(2));
+    assert!(!accepts(&n, 0x6F0));
+}

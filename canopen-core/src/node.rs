@@ -61,7 +61,7 @@ mod rx_filter;
 mod sdo_servers;
 
 pub use rx_filter::{RxFilter, RxFilters, RX_FILTER_CAPACITY};
-pub use sdo_servers::{SdoClientRecord, WithSdoServers};
+pub use sdo_servers::{SdoClientRecord, SdoRecordsDesc, WithSdoServers};
 
 use heapless::deque::DequeInner;
 use heapless::vec::{OwnedVecStorage, VecInner, VecStorage};

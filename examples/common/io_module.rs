@@ -4,7 +4,7 @@
 //!
 //! Objects (besides the communication profile the core provides: 1000h, 1001h, 1008h–100Ah, 100Ch, 100Dh,
 //! 1003h, 1010h/1011h (with a store), 1014h/1015h, 1016h with 4 consumer entries, 1017h = 1000 ms, 1018h, 1200h,
-//! RPDO/TPDO 1..4 at 1400h–1403h/1600h–1603h and 1800h–1803h/1A00h–1A03h):
+//! an additional SDO server 1201h, RPDO/TPDO 1..4 at 1400h–1403h/1600h–1603h and 1800h–1803h/1A00h–1A03h):
 //!
 //! | index | type | access | what |
 //! |---|---|---|---|
@@ -24,6 +24,10 @@
 //! Default PDOs (CiA 401 style, pre-defined COB-IDs, event-driven type 255 with a 10 ms inhibit time on the
 //! TPDOs): TPDO1 ← 6000h:01..08, TPDO2 ← 6401h:01..04, RPDO1 → 6200h:01..08, RPDO2 → 6411h:01..04.
 //!
+//! The additional SDO server 1201h starts invalid (COB-IDs 8000_0000h, as after every reset communication):
+//! a master configures its COB-IDs through the default server 1200h (sub 02h, then sub 01h), then talks to
+//! both servers at once (SDO-54, SDO-55; `tests/python/test_interop.py`).
+//!
 //! Parameters are stored (1010h/1011h) in a [`Store`]: a [`FileStorage`] with `--store FILE`, else none.
 //!
 //! Program download (CiA 302-3, `canopen_core::program`): the node's application is the [`IoModule`]
@@ -32,6 +36,7 @@
 //! control, 1F56h = the CRC-32 of the last complete image, 1F57h flash status.
 #![allow(dead_code)]
 
+use canopen_core::node::{SdoRecordsDesc, WithSdoServers};
 use canopen_core::od::{AbortCode, Domain, VisibleString};
 use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::eds::EdsInfo;
@@ -187,9 +192,12 @@ pub const EDS_INFO: EdsInfo = EdsInfo {
     ..EdsInfo::DEFAULT
 };
 
-/// The example node type: 4 heartbeat consumers, transmit queue 32, event queue 32, 4 RPDOs, 4 TPDOs,
-/// parameters in a [`Store`].
-pub type IoNode = canopen_core::Node<IoApp, Sizes<4, 32, 32, 4, 4>, Store>;
+/// The example node's capacities: 4 heartbeat consumers, transmit queue 32, event queue 32, 4 RPDOs, 4
+/// TPDOs, and one additional SDO server 1201h.
+pub type IoSizes = WithSdoServers<Sizes<4, 32, 32, 4, 4>, 1>;
+
+/// The example node type: [`IoSizes`], parameters in a [`Store`].
+pub type IoNode = canopen_core::Node<IoApp, IoSizes, Store>;
 
 /// The node's application dictionary: the [`IoModule`] with the program download objects in front
 /// (`node.app().setpoint` reaches the module through `Deref`).
@@ -357,12 +365,13 @@ pub fn error_injection_after_reset(node: &mut IoNode) -> (u16, u16) {
 }
 
 /// The EDS text of the node (`storage`: whether 1010h/1011h announce that saving is supported): the
-/// dictionary the node serves, program download (1F50h–1F57h) included, every object in index order.
+/// dictionary the node serves, program download (1F50h–1F57h) and the SDO records 1200h/1201h included,
+/// every object in index order.
 pub fn eds_text(config: NodeConfig, storage: bool) -> String {
-    let mut comm = canopen_core::profile::CommProfile::<Sizes>::new(config);
+    let mut comm = canopen_core::profile::CommProfile::<IoSizes>::new(config);
     comm.storage_supported = storage;
     let app: IoApp = ProgramDownload::new(ImageFile::new(None), IoModule::with_defaults());
-    let od = canopen_core::od::Merged { comm, app };
+    let od = SdoRecordsDesc::of::<IoSizes>(canopen_core::od::Merged { comm, app });
     let mut text = String::new();
     canopen_core::profile::eds::write_eds(&mut text, &EDS_INFO, &od).expect("formatting into a String cannot fail");
     text

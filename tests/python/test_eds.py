@@ -112,6 +112,23 @@ COMPOUND = {
         5: ("Event timer", dt.UNSIGNED16, "rw", 0, False, None, None),
         6: ("SYNC start value", dt.UNSIGNED8, "rw", 0, False, None, None),
     }, 6) for k in range(4)},
+    # The SDO parameter records of a node with two additional servers and one client record (CiA 301
+    # §7.5.2.33/§7.5.2.34, SDO-53, SDO-54, SDO-56): 1200h as the default server answers, 1201h+ and 1280h
+    # invalid (8000_0000h) at power-on, sub 03h the peer's node-ID (0 until written).
+    0x1200: (ODRecord, "SDO server parameter", {
+        1: ("COB-ID client to server (rx)", dt.UNSIGNED32, "const", 0x605, False, None, None),  # $NODEID+0x600
+        2: ("COB-ID server to client (tx)", dt.UNSIGNED32, "ro", 0x585, False, None, None),
+    }, 2),
+    **{0x1201 + k: (ODRecord, "SDO server parameter", {
+        1: ("COB-ID client to server (rx)", dt.UNSIGNED32, "rw", 0x80000000, False, None, None),
+        2: ("COB-ID server to client (tx)", dt.UNSIGNED32, "rw", 0x80000000, False, None, None),
+        3: ("Node-ID of the SDO client", dt.UNSIGNED8, "rw", 0, False, None, None),
+    }, 3) for k in range(2)},
+    0x1280: (ODRecord, "SDO client parameter", {
+        1: ("COB-ID client to server (tx)", dt.UNSIGNED32, "rw", 0x80000000, False, None, None),
+        2: ("COB-ID server to client (rx)", dt.UNSIGNED32, "rw", 0x80000000, False, None, None),
+        3: ("Node-ID of the SDO server", dt.UNSIGNED8, "rw", 0, False, None, None),
+    }, 3),
     0x2100: (ODRecord, "PID controller", {
         1: ("Kp", dt.REAL32, "rw", 1.0, True, None, None),
         2: ("Ki", dt.REAL32, "rw", 0, False, 0, 10),  # limits written "0" and "10": python reads them

@@ -648,6 +648,117 @@ def test_save_with_a_wrong_signature_is_refused(node):
     assert abort_code(e) == 0x08000020
 
 
+# ---- a second SDO server, 1201h ----------------------------------------------------------------------------
+
+def test_second_sdo_server_1201h_configured_and_busy_beside_1200h(node, network):
+    """SDO-54, SDO-55, SDO-57, COB-13, COB-15, COB-16 (issue 17 item 1): the node's additional server 1201h is
+    invalid after power-on (8000_0000h in sub 01h/02h, SDO-54); the master refuses bad COB-IDs with the
+    spec's aborts, then configures it through the default server 1200h (6C5h client -> server, 6D5h server
+    -> client, client node-ID 7Fh) and talks to it through a second python canopen `SdoClient` on that pair,
+    subscribed on the network beside the node's own 605h/585h client: expedited, segmented and block; a
+    segmented download on 1200h and a segmented upload on 1201h open at once, their segments interleaved;
+    a block upload on 1201h in one thread while 1200h downloads and uploads in another; invalidated again
+    (bit 31 of sub 01h, SDO-55), 1201h answers nothing."""
+    from canopen.sdo import SdoClient
+    from canopen.sdo.exceptions import SdoCommunicationError
+
+    rx, tx = 0x6C5, 0x6D5
+
+    def u32(v):
+        return v.to_bytes(4, "little")
+
+    def refused(index, sub, data, code):
+        with pytest.raises(SdoAbortedError) as e:
+            node.sdo.download(index, sub, data)
+        assert abort_code(e) == code, f"{index:04X}h:{sub:02X} <- {data.hex()}"
+
+    assert node.sdo.upload(0x1201, 0) == b"\x03"
+    assert node.sdo.upload(0x1201, 1) == u32(0x80000000)  # invalid since power-on (SDO-54)
+    assert node.sdo.upload(0x1201, 2) == u32(0x80000000)
+    refused(0x1200, 1, u32(rx), 0x06010002)  # SDO-53: the default server's COB-IDs are not writable
+    refused(0x1202, 1, u32(rx), 0x06020000)  # SDO-57: the node has one additional server, no 1202h
+    refused(0x1201, 1, u32(0x2000_0000 | rx), 0x06090030)  # COB-15: 29-bit frames not supported
+    refused(0x1201, 1, u32(0x5C5), 0x06090030)  # COB-13: a restricted CAN-ID (581h-5FFh)
+    refused(0x1201, 1, b"\xc5\x06", 0x06070013)  # an UNSIGNED32 of 2 bytes: length too low
+    refused(0x1201, 3, b"\x00", 0x06090032)  # SDO-54: client node-ID 01h..7Fh
+    refused(0x1201, 3, b"\x80", 0x06090031)
+    assert node.sdo.upload(0x1201, 1) == u32(0x80000000)  # nothing refused was kept
+    node.sdo.download(0x1201, 2, u32(tx))
+    node.sdo.download(0x1201, 1, u32(rx))
+    node.sdo.download(0x1201, 3, b"\x7f")
+    refused(0x1201, 1, u32(0x6C6), 0x06090030)  # COB-16: no ID change while valid
+    refused(0x1201, 2, u32(0x6D6), 0x06090030)
+    assert node.sdo.upload(0x1201, 1) == u32(rx)
+    assert node.sdo.upload(0x1201, 2) == u32(tx)
+
+    # A second client of its own, on 1201h's pair (what RemoteNode.add_sdo builds), on the same network.
+    second = SdoClient(rx, tx, node.object_dictionary)
+    second.network = network
+    second.RESPONSE_TIMEOUT = 3.0
+    network.subscribe(tx, second.on_response)
+    try:
+        assert second.upload(0x1201, 1) == u32(rx)
+        assert second.upload(0x1201, 3) == b"\x7f"
+        assert second.upload(0x1008, 0) == b"canopen example node"  # segmented upload on 1201h
+        second.download(0x2002, 0, u32(0x0BAD_CAFE))
+        assert node.sdo.upload(0x2002, 0) == u32(0x0BAD_CAFE)  # one dictionary behind both servers
+        with pytest.raises(SdoAbortedError) as e:
+            second.download(0x1201, 1, u32(0x6C6))  # 1201h's own record, through 1201h: COB-16 too
+        assert abort_code(e) == 0x06090030
+        data = pattern(300, 17)
+        second.download(0x2005, 0, data)  # segmented download on 1201h
+        with second.open(0x2005, 0, "rb", block_transfer=True) as f:
+            assert same(f.read(), data)  # block upload on 1201h
+
+        # Both servers busy: each transfer is open while the other moves, segment by segment.
+        label = b"written through 1200h meanwhile"
+        up = second.open(0x2005, 0, "rb", buffering=0)
+        down = node.sdo.open(0x2004, 0, "wb", buffering=0, size=len(label))
+        got, sent = b"", 0
+        while sent < len(label) or len(got) < len(data):
+            if sent < len(label):
+                sent += down.write(label[sent:sent + 7])
+            if len(got) < len(data):
+                got += up.read(7)
+        down.close()
+        up.close()
+        assert same(got, data)
+        assert node.sdo.upload(0x2004, 0) == label
+
+        # And in two threads: block uploads on 1201h while 1200h downloads and reads back labels.
+        failures = []
+
+        def block_uploads():
+            try:
+                for _ in range(3):
+                    with second.open(0x2005, 0, "rb", block_transfer=True) as f:
+                        same(f.read(), data)
+            except Exception as exc:  # reported by the main thread
+                failures.append(exc)
+
+        worker = threading.Thread(target=block_uploads)
+        worker.start()
+        for i in range(5):
+            text = f"label {i} via 1200h".encode()
+            node.sdo.download(0x2004, 0, text)
+            assert node.sdo.upload(0x2004, 0) == text
+        worker.join(timeout=60)
+        assert not worker.is_alive() and not failures, failures
+
+        # Invalid again (bit 31 of sub 01h): the server no longer exists and answers nothing (SDO-55).
+        node.sdo.download(0x1201, 1, u32(0x8000_0000 | rx))
+        second.RESPONSE_TIMEOUT = 0.5
+        with pytest.raises(SdoCommunicationError):
+            second.upload(0x1000, 0)
+        assert len(node.sdo.upload(0x1000, 0)) == 4  # 1200h still answers
+    finally:
+        network.unsubscribe(tx, second.on_response)
+        node.sdo.download(0x1201, 1, u32(0x8000_0000))
+        node.sdo.download(0x1201, 2, u32(0x8000_0000))
+        node.sdo.download(0x2002, 0, u32(0x12345678))
+        node.sdo.download(0x2004, 0, b"io module")
+
+
 # ---- the README's python snippet ---------------------------------------------------------------------------
 def test_the_readme_python_snippet_talks_to_the_node(node_process, eds_path):
     """The README's five lines of python canopen, run as they are written (issue 16 item 3), against the node

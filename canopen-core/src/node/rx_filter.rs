@@ -3,7 +3,8 @@
 //! installs them pays nothing for the other nodes' traffic (CAN-02: a node receives what its COB-IDs say).
 //!
 //! The list is a pure function of the node's current parameters (NMT, SYNC 1005h, TIME 1012h, the valid
-//! RPDOs 1400h+, the TPDOs that answer a remote request, the SDO server 1200h, the heartbeat consumers 1016h,
+//! RPDOs 1400h+, the TPDOs that answer a remote request, the SDO servers 1200h+, the server → client COB-IDs
+//! of the valid SDO client records 1280h+, the heartbeat consumers 1016h,
 //! the EMCY consumer, LSS, the node guarding request). Computing it is not free, so the node counts the
 //! changes that may move it ([`Node::rx_filters_generation`]: a communication object written by SDO or the
 //! local API, the dictionary handed out for writing, an NMT reset communication or reset node, which is
@@ -60,8 +61,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// The acceptance filters covering every frame the node handles now: NMT, SYNC (1005h), TIME (1012h,
-    /// when consumed), the valid RPDOs, the TPDOs that answer a remote request, the SDO server (1200h), the
-    /// heartbeat consumers (1016h), the EMCY consumer (081h–0FFh), LSS (7E5h) and the node guarding request.
+    /// when consumed), the valid RPDOs, the TPDOs that answer a remote request, the SDO servers (1200h and
+    /// the valid 1201h+), the server → client COB-ID of each valid SDO client record (1280h+: what the
+    /// application's client receives), the heartbeat consumers (1016h), the EMCY consumer (081h–0FFh), LSS (7E5h) and the node guarding request.
     /// A pure function of the node's parameters: a runner recomputes it when
     /// [`rx_filters_generation`](Self::rx_filters_generation) moved and re-installs it when it differs from
     /// the filters it installed (a COB-ID written by SDO, a reset communication).
@@ -107,6 +109,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             }
             for sdo in self.sdo_extra.as_ref().iter().filter_map(|s| s.rx_cob_id()) {
                 ok &= push(exact(sdo)); // the valid additional servers 1201h+
+            }
+            for c in self.sdo_clients.as_ref().iter().filter(|c| c.is_valid()) {
+                ok &= push(exact(c.cob_rx.can_id())); // SDO-56: the server's responses to a 1280h+ client
             }
             for &(id, _) in self.rx_table.iter().chain(self.rtr_table.iter()) {
                 ok &= push(exact(id));

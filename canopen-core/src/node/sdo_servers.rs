@@ -19,7 +19,13 @@
 //! - With `N > 0` the default server's record 1200h is readable too (SDO-53): sub 00h = 2, sub 01h = 600h +
 //!   node-ID, sub 02h = 580h + node-ID, all read-only.
 //!
-//! Not built: storing the records (1010h; STORE-13 holds: never stored) and the records in the EDS.
+//! - The EDS lists the records the node serves ([`SdoRecordsDesc`], [`Node::describe`]): 1200h and
+//!   1201h+ (when `N > 0`) and 1280h+ as CiA 306 RECORDs (`ObjectType=0x9`), each sub-entry with the data
+//!   type, access and power-on value SDO answers with.
+//! - The valid client records' server → client COB-IDs are in the receive filters ([`Node::rx_filters`]), so
+//!   a runner that installs them lets the application's [`SdoClient`](crate::sdo::SdoClient) hear its server.
+//!
+//! Not built: storing the records (1010h; STORE-13 holds: never stored).
 
 use super::{Node, NodeSizes, PdoTable};
 use crate::cob::{is_restricted, CobIdEntry, NodeId};
@@ -27,7 +33,9 @@ use crate::event::Event;
 use crate::frame::CanFrame;
 use crate::heartbeat::ConsumerSizes;
 use crate::nmt::Service;
+use crate::od::{count_entry, EntryDesc, Merged, ObjectCode, ObjectDesc, OdDescribe, Value};
 use crate::od::{AbortCode, Access, DataType, ObjectDictionary, OdValue, PdoDir, PdoHandle, PdoMapping, SubInfo};
+use crate::profile::CommProfile;
 use crate::profile::ProfileSizes;
 use crate::sdo::{SdoServer, SdoServerParams};
 use crate::sizes::Slots;
@@ -550,7 +558,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// Sets SDO client record 1280h + `k` locally (the application's own configuration, without the SDO
-    /// change rules); `false` when the node has no such record.
+    /// change rules); `false` when the node has no such record. The receive filters follow (a valid record's
+    /// server → client COB-ID is in [`Node::rx_filters`]).
     ///
     /// ```
     /// use canopen_core::{node::{NoApplication, Node, SdoClientRecord, WithSdoServers}, profile::NodeConfig, NodeId, Sizes};
@@ -566,6 +575,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         match self.sdo_clients.as_mut().get_mut(k) {
             Some(c) => {
                 *c = record;
+                self.cob_ids_may_change();
                 true
             }
             None => false,
@@ -590,5 +600,202 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             sdo_dict!(self, |od| self.sdo_extra[i].cancel(od));
             self.sdo_extra[i].set_params(p);
         }
+    }
+}
+
+/// A description `od` plus the SDO parameter records of a node with [`WithSdoServers`]`<Z, N, M>`, in index
+/// order: 1200h and 1201h..=1200h + `N` (only when `N` > 0: without additional servers the node does not
+/// serve 1200h, SDO-53), 1280h..1280h + `M` (SDO-56). What the EDS of such a node lists (OD-11), each record a
+/// CiA 306 RECORD described as SDO answers it: sub 00h the highest sub-index (const; 2 for 1200h, 3
+/// otherwise), sub 01h/02h the COB-IDs (UNSIGNED32; 1200h const $NODEID+0x600 and ro $NODEID+0x580, SDO-53;
+/// the others rw 8000_0000h, SDO-54/SDO-55), sub 03h the peer's node-ID (UNSIGNED8 rw, 0 until written).
+///
+/// ```
+/// use canopen_core::node::{NoApplication, Node, SdoRecordsDesc, WithSdoServers};
+/// use canopen_core::od::{Access, Merged, OdDescribe, Value};
+/// use canopen_core::profile::{eds::{write_eds, EdsInfo}, CommProfile, NodeConfig};
+/// use canopen_core::{NodeId, Sizes};
+/// type Z = WithSdoServers<Sizes, 1, 1>;
+/// // Without a node: the profile and the application, as a device maker writes its EDS file.
+/// let od = Merged { comm: CommProfile::<Z>::new(NodeConfig::DEFAULT), app: NoApplication };
+/// let desc = SdoRecordsDesc::of::<Z>(od);
+/// assert_eq!(desc.entry(0x1201, 1).map(|e| (e.access, e.default)), Some((Access::Rw, Some(Value::Uint(0x8000_0000)))));
+/// let mut eds = String::new();
+/// write_eds(&mut eds, &EdsInfo::DEFAULT, &desc).unwrap();
+/// assert!(eds.contains("[1200sub1]\nParameterName=COB-ID client to server (rx)\nObjectType=0x7\nDataType=0x0007\nAccessType=const\nDefaultValue=$NODEID+0x600\n"));
+/// assert!(eds.contains("[1280]\nParameterName=SDO client parameter\nObjectType=0x9\nSubNumber=0x4\n"));
+/// // The same from a node.
+/// let node: Node<NoApplication, Z> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+/// assert_eq!(node.describe().object_count(), desc.object_count());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SdoRecordsDesc<D> {
+    /// The rest of the dictionary (the profile and the application, [`Merged`]).
+    pub od: D,
+    /// Additional servers 1201h+ (`N`).
+    servers: u8,
+    /// Client records 1280h+ (`M`).
+    clients: u8,
+}
+
+impl<D> SdoRecordsDesc<D> {
+    /// `od` with the records of a node of sizes `Z` (none for [`Sizes`](crate::Sizes): then this is `od`).
+    ///
+    /// ```
+    /// use canopen_core::node::{NoApplication, SdoRecordsDesc};
+    /// use canopen_core::od::OdDescribe;
+    /// assert_eq!(SdoRecordsDesc::of::<canopen_core::Sizes>(NoApplication).object_count(), 0);
+    /// ```
+    pub fn of<Z: NodeSizes>(od: D) -> Self {
+        // SDO-57: at most 127 additional servers and 128 client records (a `WithSdoServers` with more
+        // describes what the node serves: the dictionary answers 1200h–127Fh and 1280h–12FFh only).
+        let servers = <Z::ExtraSdo as Slots<SdoServer>>::LEN.min(0x7F) as u8;
+        let clients = <Z::SdoClients as Slots<SdoClientRecord>>::LEN.min(0x80) as u8;
+        SdoRecordsDesc { od, servers, clients }
+    }
+
+    /// The number of record objects: 1200h..=1200h + N (when N > 0), then 1280h+.
+    fn own_count(&self) -> usize {
+        let servers = if self.servers > 0 { usize::from(self.servers) + 1 } else { 0 };
+        servers + usize::from(self.clients)
+    }
+
+    /// The index of the `i`-th record object.
+    fn own_index(&self, i: usize) -> u16 {
+        let servers = self.own_count() - usize::from(self.clients);
+        match i.checked_sub(servers) {
+            None => 0x1200 + i as u16,
+            Some(k) => 0x1280 + k as u16,
+        }
+    }
+
+    /// Whether `index` is one of the records described here.
+    fn has(&self, index: u16) -> bool {
+        match index {
+            0x1200..=0x127F => self.servers > 0 && index - 0x1200 <= u16::from(self.servers),
+            0x1280..=0x12FF => index - 0x1280 < u16::from(self.clients),
+            _ => false,
+        }
+    }
+}
+
+/// COB-ID 8000_0000h: the power-on value of every record 1201h+ and 1280h+ (SDO-54, SDO-55).
+const INVALID_COB_ID: Value = Value::Uint(CobIdEntry::BIT31 as u64);
+
+/// Sub-entry `sub` of record `index` (which exists), as [`SdoRecords`] answers it.
+fn record_entry(index: u16, sub: u8) -> Option<EntryDesc> {
+    let cob =
+        |name, access, default| EntryDesc::var(index, sub, name, DataType::Unsigned32, access).with_default(default);
+    let node = |name| EntryDesc::var(index, sub, name, DataType::Unsigned8, Access::Rw).with_default(Value::Uint(0));
+    Some(match (index, sub) {
+        (0x1200, 0) => count_entry(index, 2),
+        (0x1200, 1) => cob("COB-ID client to server (rx)", Access::Const, Value::NodeIdPlus(0x600)),
+        (0x1200, 2) => cob("COB-ID server to client (tx)", Access::Ro, Value::NodeIdPlus(0x580)),
+        (0x1200, _) => return None,
+        (_, 0) => count_entry(index, 3),
+        (0x1201..=0x127F, 1) => cob("COB-ID client to server (rx)", Access::Rw, INVALID_COB_ID),
+        (0x1201..=0x127F, 2) => cob("COB-ID server to client (tx)", Access::Rw, INVALID_COB_ID),
+        (0x1201..=0x127F, 3) => node("Node-ID of the SDO client"),
+        (_, 1) => cob("COB-ID client to server (tx)", Access::Rw, INVALID_COB_ID),
+        (_, 2) => cob("COB-ID server to client (rx)", Access::Rw, INVALID_COB_ID),
+        (_, 3) => node("Node-ID of the SDO server"),
+        _ => return None,
+    })
+}
+
+impl<D: OdDescribe> OdDescribe for SdoRecordsDesc<D> {
+    fn object_count(&self) -> usize {
+        self.od.object_count() + self.own_count()
+    }
+
+    fn object(&self, n: usize) -> Option<ObjectDesc> {
+        let other = |j| self.od.object(j).map_or(u16::MAX, |o| o.index);
+        match crate::od::merge_nth(n, self.own_count(), |i| self.own_index(i), self.od.object_count(), other)? {
+            (true, i) => {
+                let index = self.own_index(i);
+                let (name, subs) = match index {
+                    0x1200 => ("SDO server parameter", 3),
+                    ..=0x127F => ("SDO server parameter", 4),
+                    _ => ("SDO client parameter", 4),
+                };
+                Some(ObjectDesc { index, name, code: ObjectCode::Record, first: 0, subs })
+            }
+            (false, j) => self.od.object(j),
+        }
+    }
+
+    fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
+        if is_sdo_record(index) {
+            return if self.has(index) { record_entry(index, sub) } else { None };
+        }
+        self.od.entry(index, sub)
+    }
+}
+
+impl<A: ObjectDictionary + OdDescribe, Z: NodeSizes, S: Storage> Node<A, Z, S> {
+    /// The node's dictionary as its EDS describes it ([`write_eds`](crate::profile::eds::write_eds)): the
+    /// communication profile, the application and the SDO records of [`WithSdoServers`] ([`SdoRecordsDesc`]).
+    ///
+    /// ```
+    /// use canopen_core::node::{NoApplication, Node, WithSdoServers};
+    /// use canopen_core::profile::{eds::{write_eds, EdsInfo}, NodeConfig};
+    /// use canopen_core::NodeId;
+    /// let node: Node<NoApplication, WithSdoServers> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// let mut eds = String::new();
+    /// write_eds(&mut eds, &EdsInfo::DEFAULT, &node.describe()).unwrap();
+    /// assert!(eds.contains("[1201sub3]\nParameterName=Node-ID of the SDO client\n"));
+    /// ```
+    pub fn describe(&self) -> SdoRecordsDesc<Merged<&CommProfile<Z>, &A>> {
+        SdoRecordsDesc::of::<Z>(Merged { comm: &self.comm, app: &self.app })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// OD-11, SDO-53, SDO-54, SDO-56: the EDS description of the records (what a tool reads) and the
+    /// dictionary SDO serves (what the node answers) agree on every index 1200h–12FFh and sub-index:
+    /// the same entries exist, with the same data type, access and PDO mapping, and a default equal to the
+    /// value read after power-on.
+    #[test]
+    fn description_agrees_with_the_records() {
+        let node_id = NodeId::new(5).unwrap();
+        let mut records = [SdoServerParams::DISABLED; 3];
+        let mut clients = [SdoClientRecord::DISABLED; 2];
+        let sdo = SdoRecords { records: &mut records, clients: &mut clients, node_id };
+        let desc = SdoRecordsDesc { od: crate::od::NoApplication, servers: 3, clients: 2 };
+        let mut checked = 0;
+        for index in 0x1200..=0x12FFu16 {
+            for sub in 0..=255u8 {
+                let info = sdo.info(index, sub);
+                let entry = desc.entry(index, sub);
+                assert_eq!(info.is_ok(), entry.is_some(), "{index:04X}h sub {sub}");
+                let (Ok(info), Some(e)) = (info, entry) else { continue };
+                assert_eq!(
+                    (info.data_type, info.access, info.pdo),
+                    (e.data_type, e.access, e.pdo),
+                    "{index:04X}h:{sub}"
+                );
+                let mut buf = [0u8; 4];
+                let n = sdo.read(index, sub, 0, &mut buf).unwrap();
+                let read = u32::from_le_bytes(buf) as u64;
+                let default = match e.default {
+                    Some(Value::Uint(v)) => v,
+                    Some(Value::NodeIdPlus(v)) => u64::from(v) + 5,
+                    other => panic!("{index:04X}h:{sub} default {other:?}"),
+                };
+                assert_eq!((n, read), (info.size, default), "{index:04X}h:{sub}");
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 3 + 3 * 4 + 2 * 4);
+        let listed: heapless::Vec<u16, 8> =
+            (0..desc.object_count()).filter_map(|n| desc.object(n)).map(|o| o.index).collect();
+        assert_eq!(listed, [0x1200, 0x1201, 0x1202, 0x1203, 0x1280, 0x1281]);
+        // No additional server: no 1200h either (the node does not serve it then), the clients alone.
+        let clients_only = SdoRecordsDesc { od: crate::od::NoApplication, servers: 0, clients: 1 };
+        assert_eq!((clients_only.object_count(), clients_only.object(0).map(|o| o.index)), (1, Some(0x1280)));
+        assert!(clients_only.entry(0x1200, 0).is_none() && clients_only.entry(0x1281, 0).is_none());
     }
 }
