@@ -47,7 +47,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             if let Some(t) = self.tpdos.as_mut().get_mut(k) {
                 let new = Tpdo::new(&comm, resolved);
                 #[cfg(feature = "mpdo")]
-                let new = new.with_mpdo(crate::pdo::mpdo::AddressMode::of_mapping(map.count)); // MPDO-05
+                let new = new.with_mpdo(AddressMode::of_mapping(map.count)); // MPDO-05
                 *t = new;
             }
             self.rtr_table.clear();
@@ -58,7 +58,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             }
         } else {
             if let Some(r) = self.rpdos.as_mut().get_mut(k) {
-                *r = Rpdo::new(&comm, resolved);
+                let new = Rpdo::new(&comm, resolved);
+                #[cfg(feature = "mpdo")]
+                let new = new.with_mpdo(AddressMode::of_mapping(map.count)); // MPDO-05
+                *r = new;
             }
             self.rx_table.clear();
             for (i, r) in self.rpdos.as_ref().iter().enumerate() {
@@ -127,15 +130,15 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         let Some(&(_, k)) = self.rx_table.get(i) else { return };
         let k = usize::from(k);
-        // An MPDO consumer (MPDO-02/03/05): its mapping sub 00h, FEh/FFh, says so (the RPDO itself maps
-        // nothing); each frame is decoded and written at once.
+        let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
+        // An MPDO consumer (MPDO-02/03/05): its mapping sub 00h, FEh/FFh, made it one when it was configured
+        // (the RPDO itself maps nothing); each frame is decoded and written at once.
         #[cfg(feature = "mpdo")]
-        if let Some(mode) = self.comm.params.rpdo_map.as_ref().get(k).and_then(|m| AddressMode::of_mapping(m.count)) {
+        if let Some(mode) = r.mpdo() {
             self.handle_mpdo(k, mode, frame);
             return;
         }
         let in_window = self.sync.in_window(now);
-        let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
         let outcome = r.receive(now, frame.data());
         let timed_out = core::mem::take(&mut r.timed_out);
         let exceeded = match outcome {

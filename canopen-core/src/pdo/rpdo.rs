@@ -58,6 +58,11 @@ pub struct Rpdo {
     pub length_error: bool,
     /// The event timer expired (cleared by the next frame).
     pub timed_out: bool,
+    /// The MPDO consumer kind (feature `mpdo`, mapping sub 00h FEh/FFh, MPDO-05), `None` for a plain RPDO:
+    /// kept here, set when the RPDO is configured, so that a frame tests one byte of the RPDO it already
+    /// holds instead of looking the mapping up.
+    #[cfg(feature = "mpdo")]
+    mpdo: Option<super::mpdo::AddressMode>,
 }
 
 impl Rpdo {
@@ -72,7 +77,29 @@ impl Rpdo {
             deadline: Deadline::NONE,
             length_error: false,
             timed_out: false,
+            #[cfg(feature = "mpdo")]
+            mpdo: None,
         }
+    }
+
+    /// This RPDO as an MPDO consumer of kind `mode` (`None`: a plain RPDO).
+    ///
+    /// ```
+    /// use canopen_core::pdo::{mapping::ResolvedMap, mpdo::AddressMode, rpdo::Rpdo, PdoComm};
+    /// let r = Rpdo::new(&PdoComm { cob_id: 0x201, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY)
+    ///     .with_mpdo(Some(AddressMode::Source));
+    /// assert_eq!(r.mpdo(), Some(AddressMode::Source));
+    /// ```
+    #[cfg(feature = "mpdo")]
+    pub const fn with_mpdo(mut self, mode: Option<super::mpdo::AddressMode>) -> Self {
+        self.mpdo = mode;
+        self
+    }
+
+    /// The MPDO consumer kind, `None` for a plain RPDO.
+    #[cfg(feature = "mpdo")]
+    pub const fn mpdo(&self) -> Option<super::mpdo::AddressMode> {
+        self.mpdo
     }
 
     /// Whether the RPDO exists (bit 31 = 0).
