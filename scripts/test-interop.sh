@@ -43,7 +43,7 @@ echo "== our SDO client + load test on the example node"
 cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test-threads 1
 echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed, vcan1 down/up"
 cargo test --release -q --test vcan_master -- --include-ignored --nocapture --test-threads 1
-echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, LSS)"
+echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, program download, LSS)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
 echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
