@@ -191,9 +191,10 @@ pub enum Observed<'a> {
 ///
 /// ```
 /// let c = canopen_socketcan::Clock::new();
-/// assert!(c.now() <= c.now());
+/// let before = c.now();
+/// assert!(before <= c.now());
 /// let later = canopen_socketcan::Clock::new(); // a restarted runner's clock
-/// assert!(later.now() >= c.now());
+/// assert!(later.now() >= before); // read after `before`, on the same timeline
 /// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Clock {
