@@ -163,8 +163,17 @@ fn read_fixed<const N: usize>(b: [u8; N], offset: usize, buf: &mut [u8]) -> usiz
             dst.copy_from_slice(&b);
             N
         }
-        _ => copy_at(&b, offset, buf),
+        _ => copy_at_outlined(&b, offset, buf),
     }
+}
+
+/// [`copy_at`] out of line, for [`read_fixed`]'s rare case (a part of the value, or a short buffer): inline
+/// in every fixed-size read it was a bounds check, a minimum and a `memcpy` call set up per value type and
+/// per dictionary entry.
+#[cold]
+#[inline(never)]
+fn copy_at_outlined(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
+    copy_at(src, offset, buf)
 }
 
 /// Checks that `data` has exactly `size` bytes (0607 0012h / 0607 0013h otherwise).
