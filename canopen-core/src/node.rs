@@ -550,7 +550,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         #[cfg(feature = "lss")]
         self.lss_timeout(now);
         let response = sdo_dict!(self, |od| self.sdo.handle_timeout(now, od)); // nothing unless its deadline passed
-        self.sdo_response(now, response, self.sdo.tx_cob_id());
+        if response.frame.is_some() || response.event.is_some() {
+            self.sdo_response_out_of_line(now, response, self.sdo.tx_cob_id());
+        }
         self.extra_sdo_timeout(now);
         if self.producer.due(now) {
             self.transmit(self.error_control_frame(Heartbeat(self.nmt.state().state_code()).emit()));
@@ -664,6 +666,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
+    /// [`sdo_response`](Self::sdo_response) for the paths that are not one request frame (a time-out, the
+    /// block-upload segments): one copy of it beside the inline one of `handle_sdo`.
+    #[inline(never)]
+    fn sdo_response_out_of_line(&mut self, now: Instant, response: Response, cob: Option<u16>) {
+        self.sdo_response(now, response, cob);
+    }
+
     #[inline(never)]
     fn sdo_event(&mut self, now: Instant, event: SdoEvent) {
         match event {
@@ -708,7 +717,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             let Some(response) = sdo_dict!(self, |od| self.sdo.poll_transmit(now, od)) else {
                 break;
             };
-            self.sdo_response(self.now, response, self.sdo.tx_cob_id());
+            self.sdo_response_out_of_line(self.now, response, self.sdo.tx_cob_id());
         }
     }
 

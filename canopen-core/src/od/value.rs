@@ -124,15 +124,25 @@ pub trait OdValue: Sized {
 
 /// Copies `src[offset..]` into `buf`; returns the number of bytes copied (0 past the end).
 ///
+/// A buffer filled whole (every segment of an SDO upload but the last) takes the short path, one bounds
+/// check and one copy; a value's tail or an offset past its end takes the general one.
+///
 /// ```
 /// use canopen_core::od::copy_at;
 /// let mut buf = [0u8; 2];
 /// assert_eq!(copy_at(&[1, 2, 3], 1, &mut buf), 2);
 /// assert_eq!(buf, [2, 3]);
+/// assert_eq!(copy_at(&[1, 2, 3], 2, &mut buf), 1); // the tail: one byte
+/// assert_eq!(buf, [3, 3]);
 /// assert_eq!(copy_at(&[1, 2, 3], 9, &mut buf), 0);
+/// assert_eq!(copy_at(&[1, 2, 3], usize::MAX, &mut buf), 0);
 /// ```
 #[inline]
 pub fn copy_at(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
+    if let Some(whole) = offset.checked_add(buf.len()).and_then(|end| src.get(offset..end)) {
+        buf.copy_from_slice(whole);
+        return buf.len();
+    }
     let src = src.get(offset..).unwrap_or(&[]);
     let n = src.len().min(buf.len());
     buf[..n].copy_from_slice(&src[..n]);
@@ -163,8 +173,17 @@ fn read_fixed<const N: usize>(b: [u8; N], offset: usize, buf: &mut [u8]) -> usiz
             dst.copy_from_slice(&b);
             N
         }
-        _ => copy_at(&b, offset, buf),
+        _ => copy_at_outlined(&b, offset, buf),
     }
+}
+
+/// [`copy_at`] out of line, for [`read_fixed`]'s rare case (a part of the value, or a short buffer): inline
+/// in every fixed-size read it was a bounds check, a minimum and a `memcpy` call set up per value type and
+/// per dictionary entry.
+#[cold]
+#[inline(never)]
+fn copy_at_outlined(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
+    copy_at(src, offset, buf)
 }
 
 /// Checks that `data` has exactly `size` bytes (0607 0012h / 0607 0013h otherwise).
