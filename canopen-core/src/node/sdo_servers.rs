@@ -654,16 +654,23 @@ impl<D> SdoRecordsDesc<D> {
         SdoRecordsDesc { od, servers, clients }
     }
 
-    /// The number of record objects: 1200h..=1200h + N (when N > 0), then 1280h+.
+    /// The number of server record objects: 1200h..=1200h + N when N > 0, else none (SDO-53).
+    fn server_count(&self) -> usize {
+        if self.servers > 0 {
+            usize::from(self.servers) + 1
+        } else {
+            0
+        }
+    }
+
+    /// The number of record objects: the servers', then 1280h+.
     fn own_count(&self) -> usize {
-        let servers = if self.servers > 0 { usize::from(self.servers) + 1 } else { 0 };
-        servers + usize::from(self.clients)
+        self.server_count() + usize::from(self.clients)
     }
 
     /// The index of the `i`-th record object.
     fn own_index(&self, i: usize) -> u16 {
-        let servers = self.own_count() - usize::from(self.clients);
-        match i.checked_sub(servers) {
+        match i.checked_sub(self.server_count()) {
             None => 0x1200 + i as u16,
             Some(k) => 0x1280 + k as u16,
         }

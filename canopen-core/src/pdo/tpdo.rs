@@ -150,9 +150,7 @@ impl Tpdo {
     /// An MPDO was sent at `now`: its inhibit time starts (MPDO-04); no event timer.
     #[cfg(feature = "mpdo")]
     pub fn mpdo_sent(&mut self, now: Instant) {
-        if self.inhibit_100us != 0 {
-            self.inhibit = Deadline::at(now + Duration::from_100us(self.inhibit_100us.into()));
-        }
+        self.start_inhibit(now);
     }
 
     /// Whether the TPDO exists (COB-ID bit 31 = 0).
@@ -258,6 +256,16 @@ impl Tpdo {
         }
     }
 
+    /// A transmission at `now` starts the inhibit time (sub 03h). Without one its deadline is never set, so
+    /// there is nothing to clear.
+    #[inline]
+    fn start_inhibit(&mut self, now: Instant) {
+        let inhibit = self.inhibit_100us;
+        if inhibit != 0 {
+            self.inhibit = Deadline::at(now + Duration::from_100us(inhibit.into()));
+        }
+    }
+
     /// Whether the inhibit time of the last transmission still runs at `now` (PDO-24).
     fn inhibited(&self, now: Instant) -> bool {
         self.inhibit != Deadline::NONE && !self.inhibit.passed(now)
@@ -266,11 +274,7 @@ impl Tpdo {
     /// The TPDO was sent at `now` with `payload`: the inhibit time and the event timer start; an
     /// event-driven TPDO keeps the payload for [`last`](Self::last).
     pub fn sent(&mut self, now: Instant, payload: ([u8; 8], u8)) {
-        // Without an inhibit time (an event timer) its deadline is never set, so there is nothing to clear.
-        let inhibit = self.inhibit_100us;
-        if inhibit != 0 {
-            self.inhibit = Deadline::at(now + Duration::from_100us(inhibit.into()));
-        }
+        self.start_inhibit(now);
         if self.event_driven() {
             // Only FEh/FFh hold an event back (type 00h keeps its event for the next SYNC, the other types
             // never have one), and only they run the event timer (start/stop clear it for the others).
