@@ -76,7 +76,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             }
             Err(AbortCode::ObjectDoesNotExist | AbortCode::SubIndexDoesNotExist) if dam => {
                 let [lo, hi] = index.to_le_bytes();
-                self.raise_error(codes::MPDO_NOT_PROCESSED, [k as u8 + 1, lo, hi, sub, 0]);
+                self.raise_error(codes::MPDO_NOT_PROCESSED, [super::pdo::rpdo_number(k), lo, hi, sub, 0]);
                 // MPDO-02, EEC-18
             }
             Err(_) => {}

@@ -108,7 +108,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         for k in 0..Z::RPDO {
             if self.rpdos[k].handle_timeout(now) {
                 self.push_event(Event::RpdoTimeout { pdo: k as u16 });
-                self.raise_error(codes::RPDO_TIMEOUT, [k as u8 + 1, 0, 0, 0, 0]);
+                self.raise_error(codes::RPDO_TIMEOUT, [rpdo_number(k), 0, 0, 0, 0]);
                 // PDO-12, EEC-20
             }
         }
@@ -144,7 +144,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let exceeded = match outcome {
             RxOutcome::TooShort => {
                 r.length_error = true;
-                self.raise_error(codes::PDO_LENGTH, [k as u8 + 1, 0, 0, 0, 0]);
+                self.raise_error(codes::PDO_LENGTH, [rpdo_number(k), 0, 0, 0, 0]);
                 return;
             }
             RxOutcome::Apply { exceeded } => {
@@ -175,7 +175,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
         if exceeded {
             r.length_error = true;
-            self.raise_error(codes::PDO_LENGTH_EXCEEDED, [k as u8 + 1, 0, 0, 0, 0]);
+            self.raise_error(codes::PDO_LENGTH_EXCEEDED, [rpdo_number(k), 0, 0, 0, 0]);
         } else if core::mem::take(&mut r.length_error) && !self.rpdos.as_ref().iter().any(|r| r.length_error) {
             // The cause is gone when no RPDO's last frame had a wrong length (one code for every RPDO).
             self.clear_error(codes::PDO_LENGTH);
@@ -363,6 +363,12 @@ fn sample<A: ObjectDictionary, Z: NodeSizes>(
     let mut data = [0u8; 8];
     let len = if map.direct() { map.pack_bytes(app, &mut data) } else { map.pack(&Merged { comm, app }, &mut data) };
     (data, len as u8)
+}
+
+/// RPDO `k` (0-based) as the 1-based number the RPDO EMCYs carry in their first manufacturer byte (8210h,
+/// 8220h, 8230h, 8250h): 255 for RPDO 255 and every one above (CiA 301 allows 512; a byte holds no more).
+pub(super) fn rpdo_number(k: usize) -> u8 {
+    u8::try_from(k + 1).unwrap_or(u8::MAX)
 }
 
 /// Inserts `e` after every entry whose CAN-ID is not greater, so the table stays sorted by CAN-ID with equal
