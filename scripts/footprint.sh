@@ -4,7 +4,8 @@
 # panic = "abort", codegen-units = 1) in two builds, since a Cargo feature holds for a whole build:
 #   node      every canopen-core feature but the optional objects (see --optional): the full reference set;
 #   minimal   canopen-core without its optional features (issue 13's minimal device: NMT, heartbeat, SDO
-#             expedited + segmented, 4 RPDO + 4 TPDO, SYNC, EMCY), `--no-default-features --features minimal`;
+#             expedited + segmented, 4 RPDO + 4 TPDO, SYNC, EMCY; none of the optional objects 1003h, 1007h,
+#             1008h-100Ah, 1015h, 1019h, 1029h), `--no-default-features --features minimal`;
 # and the CAN-echo baseline. It prints text/data/bss of each and each device's difference to the baseline,
 # which is the stack's own cost:
 #   flash = Δ(text + data)     (Berkeley `size`: text = .vector_table + .text + .rodata)

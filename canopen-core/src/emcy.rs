@@ -16,6 +16,10 @@
 //! object that would select producers (EMCY-10, optional) is not implemented. 8120h/8140h (error passive,
 //! bus-off) need the CAN controller's state, which the core does not see: the driver or application raises
 //! them with `Node::raise_error`.
+//!
+//! Two of these objects are optional in CiA 301 and are Cargo features (on by default): `error-history`
+//! (1003h; without it [`HISTORY`] is 0 and nothing is recorded) and `emcy-inhibit` (1015h; without it
+//! [`INHIBIT`] is false and EMCYs are not spaced). Without one its object does not exist (0602 0000h).
 
 use heapless::Vec;
 
@@ -292,13 +296,15 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
 /// leave Stopped.
 pub type NodeErrors = ErrorState<8, HISTORY, 8>;
 
-/// Depth of the 1003h error history of a node (ERR-04).
-pub const HISTORY: usize = 8;
+/// Depth of the 1003h error history of a node (ERR-04): 8, or 0 in a build without the Cargo feature
+/// `error-history` (no 1003h, nothing recorded).
+pub const HISTORY: usize = if cfg!(feature = "error-history") { 8 } else { 0 };
 
 /// Spaces EMCY frames by the 1015h inhibit time (EMCY-09).
 ///
 /// ```
-/// use canopen_core::{emcy::EmcyProducer, Instant};
+/// use canopen_core::{emcy::{self, EmcyProducer}, Instant};
+/// # if !emcy::INHIBIT { return; }
 /// let mut p = EmcyProducer::new();
 /// p.set_inhibit_100us(10); // 1 ms
 /// assert!(p.may_send(Instant::from_micros(0)));
@@ -318,9 +324,9 @@ impl EmcyProducer {
         EmcyProducer { inhibit: Duration::ZERO, next_allowed: Deadline::NONE }
     }
 
-    /// Sets 1015h, in 100 µs units (0 = off).
+    /// Sets 1015h, in 100 µs units (0 = off; always off in a build without it, see [`INHIBIT`]).
     pub fn set_inhibit_100us(&mut self, n: u16) {
-        self.inhibit = Duration::from_100us(u64::from(n));
+        self.inhibit = Duration::from_100us(if INHIBIT { u64::from(n) } else { 0 });
         if self.inhibit.is_zero() {
             self.next_allowed = Deadline::NONE;
         }
@@ -328,11 +334,14 @@ impl EmcyProducer {
 
     /// Whether an EMCY may go out at `now`.
     pub fn may_send(&self, now: Instant) -> bool {
-        self.next_allowed == Deadline::NONE || self.next_allowed.passed(now)
+        !INHIBIT || self.next_allowed == Deadline::NONE || self.next_allowed.passed(now)
     }
 
     /// An EMCY went out at `now`.
     pub fn sent(&mut self, now: Instant) {
+        if !INHIBIT {
+            return;
+        }
         self.next_allowed = if self.inhibit.is_zero() { Deadline::NONE } else { Deadline::at(now + self.inhibit) };
     }
 
@@ -343,9 +352,18 @@ impl EmcyProducer {
 
     /// [`next_allowed`](Self::next_allowed) as a [`Deadline`], for the node's minimum over its services.
     pub(crate) const fn deadline(&self) -> Deadline {
-        self.next_allowed
+        if INHIBIT {
+            self.next_allowed
+        } else {
+            Deadline::NONE
+        }
     }
 }
+
+/// Whether this build has 1015h, the EMCY inhibit time (EMCY-09; the Cargo feature `emcy-inhibit`, on by
+/// default). Without it the object does not exist and EMCYs go out as soon as they are raised, as with
+/// 1015h = 0.
+pub const INHIBIT: bool = cfg!(feature = "emcy-inhibit");
 
 #[cfg(test)]
 mod tests {

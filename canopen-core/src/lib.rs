@@ -28,6 +28,12 @@
 //! [`pdo::mapping`]), `sync-producer` (the SYNC producer; without it a SYNC consumer only, see [`sync`]),
 //! and `pdo-rtr` (TPDOs answering remote requests, types FCh/FDh; see [`pdo`]).
 //!
+//! Objects CiA 301 makes optional for the services every node has, one feature each (all on by default;
+//! without one its object does not exist and the service behaves as with the object at its default):
+//! `error-history` (1003h, see [`emcy`]), `error-behaviour` (1029h; a communication error in Operational
+//! then always leads to Pre-operational), `sync-window` (1007h) and `sync-counter` (1019h, see [`sync`]),
+//! `emcy-inhibit` (1015h) and `manufacturer-strings` (1008h–100Ah).
+//!
 //! A capacity, off by default: `pdo-mapping-64` (64 mapping entries per PDO instead of 8, PDO-30; it costs
 //! about 670 B of RAM in every PDO whether the device uses it or not, see [`pdo::mapping::MAX_ENTRIES`]).
 //!

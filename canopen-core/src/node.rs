@@ -934,10 +934,12 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// HB-13, GUARD-11, NMT-26, ERR-10..13: a communication error; 1029h sub 01h says what happens: 0 (the
     /// default) Operational → Pre-operational, 1 no change, 2 Stopped, 80h–FFh (manufacturer) as 1. Out of
-    /// line: reached from the bus-off report and every error-control time-out, all rare.
+    /// line: reached from the bus-off report and every error-control time-out, all rare. A build without
+    /// 1029h (the Cargo feature `error-behaviour`) always does 0.
     #[inline(never)]
     fn communication_error(&mut self, _now: Instant) {
-        match self.comm.params.error_behaviour {
+        let behaviour = if cfg!(feature = "error-behaviour") { self.comm.params.error_behaviour } else { 0 };
+        match behaviour {
             0 if self.nmt.state() == NmtState::Operational => self.enter_state(NmtState::PreOperational),
             2 => self.enter_state(NmtState::Stopped),
             _ => {}

@@ -12,6 +12,12 @@
 //! a configuration or stored value that sets it is taken without it ([`SyncParams::supported`]), and no SYNC
 //! is ever produced (the producer's code is not in the build: about 240 B of Cortex-M flash). 1006h, 1007h
 //! and 1019h stay: the window and the counter are the consumer's too.
+//!
+//! The window and the counter are Cargo features too (`sync-window` for 1007h, `sync-counter` for 1019h,
+//! on by default, both optional in CiA 301): without one its object does not exist and the SYNC behaves as
+//! with the object at 0 (no window; no counter, so a SYNC has DLC 0 and a TPDO's SYNC start value is not
+//! evaluated, PDO-26). [`SyncParams::supported`] clears the value, and the node's paths read it through
+//! constants, so the checks are not in the build.
 
 use crate::abort::AbortCode;
 use crate::cob::CobIdEntry;
@@ -19,6 +25,12 @@ use crate::time::{Deadline, Duration, Instant};
 
 /// Whether this build can produce SYNC (the feature `sync-producer`, see the module docs).
 pub const PRODUCER: bool = cfg!(feature = "sync-producer");
+
+/// Whether this build has 1007h, the synchronous window (the feature `sync-window`, see the module docs).
+pub const WINDOW: bool = cfg!(feature = "sync-window");
+
+/// Whether this build has 1019h, the SYNC counter (the feature `sync-counter`, see the module docs).
+pub const COUNTER: bool = cfg!(feature = "sync-counter");
 
 /// The SYNC parameters (1005h, 1006h, 1007h, 1019h).
 ///
@@ -47,16 +59,20 @@ impl SyncParams {
         SyncParams { cob_id: CobIdEntry::from_raw(0x80), period_us: 0, window_us: 0, counter_overflow: 0 };
 
     /// These parameters as this build can have them: without the feature `sync-producer` the gen bit of
-    /// 1005h (bit 30) is cleared, the node being a consumer only (SYNC-03).
+    /// 1005h (bit 30) is cleared, the node being a consumer only (SYNC-03); without `sync-window` the
+    /// window is 0, without `sync-counter` the counter overflow value is 0.
     ///
     /// ```
     /// use canopen_core::{cob::CobIdEntry, sync::{self, SyncParams}};
-    /// let p = SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), ..SyncParams::DEFAULT };
+    /// let p = SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), window_us: 500, ..SyncParams::DEFAULT };
     /// assert_eq!(p.supported().cob_id.raw(), if sync::PRODUCER { 0x4000_0080 } else { 0x80 });
+    /// assert_eq!(p.supported().window_us, if sync::WINDOW { 500 } else { 0 });
     /// ```
     pub const fn supported(self) -> SyncParams {
         let cob_id = if PRODUCER { self.cob_id } else { CobIdEntry::from_raw(self.cob_id.raw() & !CobIdEntry::BIT30) };
-        SyncParams { cob_id, ..self }
+        let window_us = if WINDOW { self.window_us } else { 0 };
+        let counter_overflow = if COUNTER { self.counter_overflow } else { 0 };
+        SyncParams { cob_id, window_us, counter_overflow, ..self }
     }
 }
 
@@ -195,15 +211,17 @@ impl Sync {
         self.schedule(now);
     }
 
-    /// Writes 1007h.
+    /// Writes 1007h (ignored in a build without it, see [`WINDOW`]).
     pub fn set_window(&mut self, window_us: u32) {
-        self.params.window_us = window_us;
+        self.params.window_us = if WINDOW { window_us } else { 0 };
     }
 
     /// Writes 1019h: only while 1006h = 0 (SYNC-12: 0800 0022h); 1 and 241–255 are reserved (0609 0030h).
+    /// In a build without it (see [`COUNTER`]) 0 is taken and any other value is 0609 0030h.
     ///
     /// ```
-    /// use canopen_core::{sync::{Sync, SyncParams}, od::AbortCode, Instant};
+    /// use canopen_core::{sync::{self, Sync, SyncParams}, od::AbortCode, Instant};
+    /// # if !sync::COUNTER { return; }
     /// let mut s = Sync::new(SyncParams::DEFAULT);
     /// assert_eq!(s.set_counter_overflow(1), Err(AbortCode::InvalidValue));
     /// assert_eq!(s.set_counter_overflow(240), Ok(()));
@@ -214,7 +232,7 @@ impl Sync {
         if self.params.period_us != 0 {
             return Err(AbortCode::CannotStoreDeviceState);
         }
-        if value == 1 || value > 240 {
+        if value == 1 || value > 240 || (!COUNTER && value != 0) {
             return Err(AbortCode::InvalidValue);
         }
         self.params.counter_overflow = value;
@@ -260,18 +278,27 @@ impl Sync {
         Some(crate::CanFrame::from_parts(self.can_id(), data, len))
     }
 
+    /// 1019h as this build has it: a constant 0 without the counter, so its paths are not built.
+    const fn counter_overflow(&self) -> u8 {
+        if COUNTER {
+            self.params.counter_overflow
+        } else {
+            0
+        }
+    }
+
     fn advance_counter(&mut self) -> Option<u8> {
-        if self.params.counter_overflow < 2 {
+        if self.counter_overflow() < 2 {
             return None;
         }
         let c = self.counter;
-        self.counter = if c >= self.params.counter_overflow { 1 } else { c + 1 };
+        self.counter = if c >= self.counter_overflow() { 1 } else { c + 1 };
         Some(c)
     }
 
     /// Interprets a frame received on the SYNC CAN-ID at `now` (SYNC-04, SYNC-14).
     pub fn consume(&mut self, now: Instant, data: &[u8]) -> SyncInput {
-        let expect_counter = self.params.counter_overflow >= 2;
+        let expect_counter = self.counter_overflow() >= 2;
         match (expect_counter, data) {
             (false, []) => {
                 self.last_sync.set(Some(now));
@@ -289,14 +316,16 @@ impl Sync {
     /// when 1007h = 0.
     ///
     /// ```
-    /// use canopen_core::{sync::{Sync, SyncParams}, Instant};
+    /// use canopen_core::{sync::{self, Sync, SyncParams}, Instant};
+    /// # if !sync::WINDOW { return; }
     /// let mut s = Sync::new(SyncParams { window_us: 500, ..SyncParams::DEFAULT });
     /// s.consume(Instant::from_micros(1000), &[]);
     /// assert!(s.in_window(Instant::from_micros(1400)));
     /// assert!(!s.in_window(Instant::from_micros(1600)));
     /// ```
     pub fn in_window(&self, now: Instant) -> bool {
-        match (self.params.window_us, self.last_sync.get()) {
+        let window_us = if WINDOW { self.params.window_us } else { 0 };
+        match (window_us, self.last_sync.get()) {
             (0, _) => true,
             (_, None) => false,
             (w, Some(t)) => now <= t + Duration::from_micros(u64::from(w)),
@@ -311,7 +340,7 @@ mod tests {
 
     /// SYNC-07, SYNC-10, SYNC-11: counter 1..=overflow, then 1 again; restart on reset.
     #[test]
-    #[cfg(feature = "sync-producer")]
+    #[cfg(all(feature = "sync-producer", feature = "sync-counter"))]
     fn producer_counter_wraps() {
         let mut s = Sync::new(SyncParams {
             cob_id: CobIdEntry::from_raw(0x4000_0080),
@@ -348,9 +377,36 @@ mod tests {
         assert_eq!(c.consume(ms(1), &[]), SyncInput::Sync { counter: None });
         assert_eq!(c.consume(ms(1), &[5]), SyncInput::WrongLength); // SYNC-14
         c.set_period(ms(1), 0);
-        c.set_counter_overflow(4).unwrap();
-        assert_eq!(c.consume(ms(1), &[]), SyncInput::WrongLength);
-        assert_eq!(c.consume(ms(1), &[2]), SyncInput::Sync { counter: Some(2) });
+        if COUNTER {
+            c.set_counter_overflow(4).unwrap();
+            assert_eq!(c.consume(ms(1), &[]), SyncInput::WrongLength);
+            assert_eq!(c.consume(ms(1), &[2]), SyncInput::Sync { counter: Some(2) });
+        } else {
+            // No 1019h in this build: only 0 is taken, and a SYNC with a counter is the wrong length.
+            assert_eq!(c.set_counter_overflow(4), Err(AbortCode::InvalidValue));
+            assert_eq!(c.set_counter_overflow(0), Ok(()));
+            assert_eq!(c.consume(ms(1), &[2]), SyncInput::WrongLength);
+            let stored = SyncParams { counter_overflow: 4, ..SyncParams::DEFAULT };
+            c.reconfigure(ms(1), stored);
+            assert_eq!((c.params().counter_overflow, c.consume(ms(2), &[])), (0, SyncInput::Sync { counter: None }));
+        }
+    }
+
+    /// SYNC-08/09: with 1007h the window closes; a build without it (`sync-window` off) has no window, whatever
+    /// the parameters asked.
+    #[test]
+    fn window_per_build() {
+        let mut s = Sync::new(SyncParams { window_us: 500, ..SyncParams::DEFAULT });
+        s.consume(ms(1), &[]);
+        assert!(s.in_window(Instant::from_micros(1400)));
+        assert_eq!(s.in_window(Instant::from_micros(1600)), !WINDOW);
+        s.set_window(0);
+        assert!(s.in_window(Instant::from_micros(1600)));
+        s.set_window(100);
+        assert_eq!(
+            (s.params().window_us, s.in_window(Instant::from_micros(1200))),
+            if WINDOW { (100, false) } else { (0, true) }
+        );
     }
 
     /// SYNC-03 without the feature `sync-producer`: the gen bit is refused with 0609 0030h, parameters asking

@@ -13,7 +13,11 @@ type N = Node<NoApplication>;
 
 /// Node 5, booted, guarding and TIME consumption configured in its defaults, queues drained.
 fn booted() -> N {
-    let cfg = NodeConfig { guard_time_ms: 100, life_time_factor: 3, ..NodeConfig::DEFAULT };
+    booted_with(NodeConfig { guard_time_ms: 100, life_time_factor: 3, ..NodeConfig::DEFAULT })
+}
+
+/// Node 5 with `cfg`, booted, queues drained.
+fn booted_with(cfg: NodeConfig) -> N {
     let mut node: N = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
     node.handle_timeout(Instant::ZERO);
     drain(&mut node);
@@ -111,9 +115,7 @@ fn without_block_transfer() {
 fn without_sync_producer() {
     use canopen_core::{cob::CobIdEntry, sync::SyncParams};
     let sync = SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 1000, ..SyncParams::DEFAULT };
-    let mut node: N = Node::new(NodeId::new(5).unwrap(), NodeConfig { sync, ..NodeConfig::DEFAULT }, NoApplication);
-    node.handle_timeout(Instant::ZERO);
-    drain(&mut node);
+    let mut node = booted_with(NodeConfig { sync, ..NodeConfig::DEFAULT });
     for t in 1..=10 {
         node.handle_timeout(Instant::from_millis(t));
     }
@@ -160,4 +162,102 @@ fn without_pdo_rtr() {
     for ttype in [0xFC, 0xFD] {
         assert_eq!(sdo(&mut node, [0x2F, 0x00, 0x18, 0x02, ttype, 0, 0, 0]), [refused(2)]);
     }
+}
+
+/// An optional object this build leaves out: SDO upload and download get 0602 0000h (OD-16) and the EDS
+/// does not list it.
+fn absent(node: &mut N, index: u16) {
+    let [i0, i1] = u16::to_le_bytes(index);
+    assert_eq!(sdo(node, [0x40, i0, i1, 0, 0, 0, 0, 0]), [abort(index, 0x0602_0000)], "{index:04X}h");
+    assert_eq!(sdo(node, [0x2F, i0, i1, 0, 0, 0, 0, 0]), [abort(index, 0x0602_0000)], "{index:04X}h");
+    let eds = eds();
+    let section = format!("[{index:04X}]");
+    let listed = format!("=0x{index:04X}\n");
+    assert!(!eds.contains(&section) && !eds.contains(&listed), "{index:04X}h in {eds}");
+}
+
+/// ERR-04 without `error-history` (1003h is optional): no 1003h; an error still gives its EMCY (EMCY-07)
+/// and sets 1001h (ERR-02).
+#[test]
+#[cfg(not(feature = "error-history"))]
+fn without_error_history() {
+    let mut node = booted();
+    absent(&mut node, 0x1003);
+    assert!(node.raise_error(0x5000, [0; 5]));
+    let (frames, _) = drain(&mut node);
+    assert_eq!(frames, [CanFrame::new(0x85, &[0x00, 0x50, 0x01, 0, 0, 0, 0, 0]).unwrap()]); // generic error
+    let register = sdo(&mut node, [0x40, 0x01, 0x10, 0, 0, 0, 0, 0]);
+    assert_eq!(register, [CanFrame::new(0x585, &[0x4F, 0x01, 0x10, 0, 0x01, 0, 0, 0]).unwrap()]);
+}
+
+/// DEV-04 without `manufacturer-strings` (1008h–100Ah are optional): the objects do not exist, whatever
+/// the configuration names.
+#[test]
+#[cfg(not(feature = "manufacturer-strings"))]
+fn without_manufacturer_strings() {
+    let cfg = NodeConfig { device_name: "dev", hardware_version: "hw", software_version: "sw", ..NodeConfig::DEFAULT };
+    let mut node = booted_with(cfg);
+    for index in [0x1008, 0x1009, 0x100A] {
+        absent(&mut node, index);
+    }
+}
+
+/// EMCY-09 without `emcy-inhibit` (1015h is optional): the configured inhibit time is not applied, so two
+/// errors raised together give two EMCYs at once.
+#[test]
+#[cfg(not(feature = "emcy-inhibit"))]
+fn without_emcy_inhibit() {
+    let cfg = NodeConfig { emcy_inhibit_100us: 100, ..NodeConfig::DEFAULT };
+    let mut node = booted_with(cfg);
+    absent(&mut node, 0x1015);
+    node.raise_error(0x5000, [0; 5]);
+    node.raise_error(0x6000, [0; 5]);
+    node.handle_timeout(Instant::from_millis(1));
+    let (frames, _) = drain(&mut node);
+    assert_eq!(frames.iter().map(|f| f.cob_id()).collect::<Vec<_>>(), [0x85, 0x85]);
+}
+
+/// SYNC-10 without `sync-counter` (1019h is conditional on a counter): a configured overflow value is not
+/// applied, a SYNC of DLC 0 is a SYNC and one carrying a counter is the wrong length (SYNC-14, EMCY 8240h).
+#[test]
+#[cfg(not(feature = "sync-counter"))]
+fn without_sync_counter() {
+    use canopen_core::sync::SyncParams;
+    let sync = SyncParams { counter_overflow: 5, ..SyncParams::DEFAULT };
+    let mut node = booted_with(NodeConfig { sync, ..NodeConfig::DEFAULT });
+    absent(&mut node, 0x1019);
+    node.handle_frame(Instant::from_millis(2), &CanFrame::new(0x80, &[]).unwrap());
+    assert_eq!(drain(&mut node), (vec![], vec![Event::Sync { counter: None }]));
+    node.handle_frame(Instant::from_millis(3), &CanFrame::new(0x80, &[1]).unwrap());
+    let (frames, _) = drain(&mut node);
+    // 8240h, register generic + communication, the received DLC (1) in the manufacturer field.
+    assert_eq!(frames, [CanFrame::new(0x85, &[0x40, 0x82, 0x11, 1, 0, 0, 0, 0]).unwrap()]);
+}
+
+/// SYNC-08 without `sync-window` (1007h is optional): no 1007h, and a configured window is not applied.
+#[test]
+#[cfg(not(feature = "sync-window"))]
+fn without_sync_window() {
+    use canopen_core::sync::SyncParams;
+    let sync = SyncParams { window_us: 100, ..SyncParams::DEFAULT };
+    let mut node = booted_with(NodeConfig { sync, ..NodeConfig::DEFAULT });
+    absent(&mut node, 0x1007);
+    let window = node.comm_profile().params.sync.window_us;
+    assert_eq!(window, 0);
+}
+
+/// ERR-10/NMT-26 without `error-behaviour` (1029h is optional): a communication error (bus-off) in
+/// Operational leads to Pre-operational, 1029h's default, whatever the configuration asked (2, Stopped).
+#[test]
+#[cfg(not(feature = "error-behaviour"))]
+fn without_error_behaviour() {
+    use canopen_core::{bus::BusState, NmtState};
+    let cfg = NodeConfig { error_behaviour: 2, ..NodeConfig::DEFAULT };
+    let mut node: N = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
+    node.handle_timeout(Instant::ZERO);
+    node.enter_state(NmtState::Operational);
+    drain(&mut node);
+    absent(&mut node, 0x1029);
+    node.set_bus_state(Instant::from_millis(1), BusState::BusOff);
+    assert_eq!(node.state(), NmtState::PreOperational);
 }

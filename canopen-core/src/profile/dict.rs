@@ -113,12 +113,17 @@ pub struct CommProfile<Z: ProfileSizes = Sizes> {
 const OBJECTS: &[u16] = &[
     0x1000,
     0x1001,
+    #[cfg(feature = "error-history")]
     0x1003,
     0x1005,
     0x1006,
+    #[cfg(feature = "sync-window")]
     0x1007,
+    #[cfg(feature = "manufacturer-strings")]
     0x1008,
+    #[cfg(feature = "manufacturer-strings")]
     0x1009,
+    #[cfg(feature = "manufacturer-strings")]
     0x100A,
     #[cfg(feature = "guarding")]
     0x100C,
@@ -129,19 +134,43 @@ const OBJECTS: &[u16] = &[
     #[cfg(feature = "time")]
     0x1012,
     0x1014,
+    #[cfg(feature = "emcy-inhibit")]
     0x1015,
     0x1016,
     0x1017,
     0x1018,
+    #[cfg(feature = "sync-counter")]
     0x1019,
+    #[cfg(feature = "error-behaviour")]
     0x1029,
 ];
 
-/// The objects of a service this build leaves out (Cargo features `guarding`: 100Ch/100Dh, `time`: 1012h)
-/// do not exist: 0602 0000h (OD-16), and they are not in the EDS. A constant per build: no cost with the
-/// features on.
+/// The objects of a service or an optional object this build leaves out do not exist: 0602 0000h (OD-16),
+/// and they are not in the EDS. (first, last index, whether this build has them) per Cargo feature:
+/// `guarding` 100Ch/100Dh, `time` 1012h, and the optional objects of `lib.rs`. A constant per build: no
+/// cost with the features on.
+const BUILT: [(u16, u16, bool); 8] = [
+    (0x100C, 0x100D, cfg!(feature = "guarding")),
+    (0x1012, 0x1012, cfg!(feature = "time")),
+    (0x1003, 0x1003, cfg!(feature = "error-history")),
+    (0x1007, 0x1007, cfg!(feature = "sync-window")),
+    (0x1008, 0x100A, cfg!(feature = "manufacturer-strings")),
+    (0x1015, 0x1015, cfg!(feature = "emcy-inhibit")),
+    (0x1019, 0x1019, cfg!(feature = "sync-counter")),
+    (0x1029, 0x1029, cfg!(feature = "error-behaviour")),
+];
+
+/// Whether `index` is one of [`BUILT`]'s objects this build leaves out.
 const fn compiled_out(index: u16) -> bool {
-    (!cfg!(feature = "guarding") && matches!(index, 0x100C | 0x100D)) || (!cfg!(feature = "time") && index == 0x1012)
+    let mut i = 0;
+    while i < BUILT.len() {
+        let (first, last, built) = BUILT[i];
+        if index >= first && index <= last {
+            return !built;
+        }
+        i += 1;
+    }
+    false
 }
 
 const STORE_NAMES: [&str; 3] = ["Save all parameters", "Save communication parameters", "Save application parameters"];
@@ -282,6 +311,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         match index {
             0x1000 => var("Device type", Unsigned32, Ro, uint(c.device_type)),
             0x1001 => var("Error register", Unsigned8, Ro, uint(0)).map(|e| e.with_pdo(PdoMapping::Tpdo)),
+            #[cfg(feature = "error-history")]
             0x1003 => match sub {
                 0 => Ok(EntryDesc::var(index, 0, "Number of errors", Unsigned8, Rw).with_default(uint(0))),
                 s if usize::from(s) <= HISTORY => Ok(EntryDesc {
@@ -397,10 +427,14 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     /// The text of a VISIBLE_STRING slot (1008h–100Ah, DEV-04); `None` for the numeric ones.
     fn text(&self, slot: Slot) -> Option<&'static str> {
+        #[cfg(feature = "manufacturer-strings")]
         let c = &self.config;
         match slot {
+            #[cfg(feature = "manufacturer-strings")]
             Slot::DeviceName => Some(c.device_name),
+            #[cfg(feature = "manufacturer-strings")]
             Slot::HardwareVersion => Some(c.hardware_version),
+            #[cfg(feature = "manufacturer-strings")]
             Slot::SoftwareVersion => Some(c.software_version),
             _ => None,
         }
@@ -425,10 +459,13 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::Count => f.n.into(),
             Slot::DeviceType => c.device_type,
             Slot::ErrorRegister => (self.errors.register() | p.error_register).into(),
+            #[cfg(feature = "error-history")]
             Slot::History => self.errors.read_history(sub)?,
             Slot::SyncCob => p.sync.cob_id.raw(),
             Slot::SyncPeriod => p.sync.period_us,
+            #[cfg(feature = "sync-window")]
             Slot::SyncWindow => p.sync.window_us,
+            #[cfg(feature = "manufacturer-strings")]
             Slot::DeviceName | Slot::HardwareVersion | Slot::SoftwareVersion => 0,
             #[cfg(feature = "guarding")]
             Slot::GuardTime => p.guard_time_ms.into(),
@@ -438,6 +475,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             #[cfg(feature = "time")]
             Slot::TimeCob => p.time_cob_id,
             Slot::EmcyCob => p.emcy_cob_id,
+            #[cfg(feature = "emcy-inhibit")]
             Slot::EmcyInhibit => p.emcy_inhibit_100us.into(),
             Slot::Consumer => p.consumer(sub).map_or(0, |e| e.raw()),
             Slot::HeartbeatTime => p.heartbeat_time_ms.into(),
@@ -447,7 +485,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                 3 => id.revision,
                 _ => id.serial,
             },
+            #[cfg(feature = "sync-counter")]
             Slot::SyncOverflow => p.sync.counter_overflow.into(),
+            #[cfg(feature = "error-behaviour")]
             Slot::ErrorBehaviour => p.error_behaviour.into(),
             Slot::NmtStartup => p.nmt_startup,
             Slot::PdoCob | Slot::PdoType | Slot::PdoInhibit | Slot::PdoEventTimer | Slot::PdoSyncStart => {
@@ -469,12 +509,14 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             }
         };
         match f.slot {
+            #[cfg(feature = "error-history")]
             Slot::History => self.errors.write_history_count(v as u8)?,
             Slot::SyncCob => {
                 crate::sync::check_producible(v)?; // SYNC-03: also a stored value, the build cannot produce
                 p.sync.cob_id = CobIdEntry::from_raw(cob(p.sync.cob_id.raw(), |e| e.bit30())?);
             }
             Slot::SyncPeriod => p.sync.period_us = v,
+            #[cfg(feature = "sync-window")]
             Slot::SyncWindow => p.sync.window_us = v,
             #[cfg(feature = "guarding")]
             Slot::GuardTime => p.guard_time_ms = v as u16,
@@ -489,9 +531,11 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             #[cfg(feature = "time")]
             Slot::TimeCob => p.time_cob_id = cob(p.time_cob_id, |e| e.bit31() || e.bit30())?,
             Slot::EmcyCob => p.emcy_cob_id = cob(p.emcy_cob_id, |e| !e.bit31())?,
+            #[cfg(feature = "emcy-inhibit")]
             Slot::EmcyInhibit => p.emcy_inhibit_100us = v as u16,
             Slot::Consumer => p.set_consumer(sub, v)?,
             Slot::HeartbeatTime => p.heartbeat_time_ms = v as u16,
+            #[cfg(feature = "sync-counter")]
             Slot::SyncOverflow => {
                 if rules && p.sync.period_us != 0 {
                     return Err(AbortCode::CannotStoreDeviceState); // SYNC-12
@@ -501,6 +545,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                 }
                 p.sync.counter_overflow = v as u8;
             }
+            #[cfg(feature = "error-behaviour")]
             Slot::ErrorBehaviour => {
                 if (3..=0x7F).contains(&v) {
                     return Err(AbortCode::InvalidValue); // ERR-11: reserved
@@ -836,8 +881,12 @@ mod tests {
         let od: CommProfile<Sizes<3, 16, 16, 0, 0>> = CommProfile::new(CFG);
         assert_eq!(read(&od, 0x1000, 0).unwrap()[..], [0x91, 0x01, 0x04, 0x00]);
         assert_eq!(read(&od, 0x1001, 0).unwrap()[..], [0]);
-        assert_eq!(read(&od, 0x1008, 0).unwrap()[..], *b"rust node");
-        assert_eq!(read(&od, 0x1009, 0).unwrap()[..], []);
+        if cfg!(feature = "manufacturer-strings") {
+            assert_eq!(read(&od, 0x1008, 0).unwrap()[..], *b"rust node");
+            assert_eq!(read(&od, 0x1009, 0).unwrap()[..], []);
+        } else {
+            assert_eq!(read(&od, 0x1008, 0), Err(AbortCode::ObjectDoesNotExist));
+        }
         assert_eq!(read(&od, 0x1017, 0).unwrap()[..], [0xFA, 0]);
         assert_eq!(read(&od, 0x1016, 0).unwrap()[..], [3]);
         assert_eq!(read(&od, 0x1018, 0).unwrap()[..], [4]);
@@ -847,8 +896,10 @@ mod tests {
         assert_eq!(read(&od, 0x1016, 4), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1000, 1), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1004, 0), Err(AbortCode::ObjectDoesNotExist));
-        assert_eq!(od.info(0x1008, 0).unwrap().size, 9);
-        assert_eq!(od.info(0x1008, 0).unwrap().access, Access::Const);
+        if cfg!(feature = "manufacturer-strings") {
+            assert_eq!(od.info(0x1008, 0).unwrap().size, 9);
+            assert_eq!(od.info(0x1008, 0).unwrap().access, Access::Const);
+        }
     }
 
     /// A configuration's own PDO limits (what an EDS says, eds-to-rust carries): a mapping of at most 4
@@ -888,6 +939,7 @@ mod tests {
         od.write(0x1016, 1, &[0, 0, 0, 0]).unwrap();
         assert_eq!(read(&od, 0x1016, 2).unwrap()[..], [0x90, 1, 3, 0]);
         assert_eq!(od.write(0x1018, 1, &[0; 4]), Err(AbortCode::WriteOfReadOnly));
+        #[cfg(feature = "manufacturer-strings")]
         assert_eq!(od.write(0x1008, 0, b"x"), Err(AbortCode::WriteOfReadOnly));
         #[cfg(feature = "guarding")]
         {
@@ -954,21 +1006,26 @@ mod tests {
         }
     }
 
-    /// A build without guarding or TIME has no 100Ch/100Dh or 1012h: SDO gets 0602 0000h (OD-16), the EDS
-    /// does not list them, and the other objects keep their order.
+    /// The objects of a feature this build leaves out (guarding: 100Ch/100Dh, TIME: 1012h, and the optional
+    /// objects 1003h, 1007h, 1008h–100Ah, 1015h, 1019h, 1029h) do not exist: SDO gets 0602 0000h (OD-16), the
+    /// EDS does not list them, and the other objects keep their order. With every feature on, nothing is gone.
     #[test]
-    #[cfg(not(all(feature = "guarding", feature = "time")))]
     fn compiled_out_objects_do_not_exist() {
         extern crate std;
         let mut od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
-        let gone: &[u16] = if cfg!(feature = "guarding") {
-            &[0x1012]
-        } else if cfg!(feature = "time") {
-            &[0x100C, 0x100D]
-        } else {
-            &[0x100C, 0x100D, 0x1012]
-        };
-        for &index in gone {
+        let per_feature: [(&[u16], bool); 8] = [
+            (&[0x100C, 0x100D], cfg!(feature = "guarding")),
+            (&[0x1012], cfg!(feature = "time")),
+            (&[0x1003], cfg!(feature = "error-history")),
+            (&[0x1007], cfg!(feature = "sync-window")),
+            (&[0x1008, 0x1009, 0x100A], cfg!(feature = "manufacturer-strings")),
+            (&[0x1015], cfg!(feature = "emcy-inhibit")),
+            (&[0x1019], cfg!(feature = "sync-counter")),
+            (&[0x1029], cfg!(feature = "error-behaviour")),
+        ];
+        let gone: std::vec::Vec<u16> =
+            per_feature.iter().filter(|(_, built)| !built).flat_map(|(indices, _)| indices.iter().copied()).collect();
+        for &index in &gone {
             assert_eq!(od.info(index, 0), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");
             assert_eq!(read(&od, index, 0), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");
             assert_eq!(od.read_expedited(index, 0, &mut [0; 4]), Err(AbortCode::ObjectDoesNotExist), "{index:04X}h");

@@ -15,6 +15,7 @@
 //! array directly (a VAR there is found without a walk: [`FIXED_VAR`]), the PDO ranges 1400h–1BFFh are computed from the index (PDO-02: PDO `k` at base + k),
 //! 1029h and 1F80h are compared; the object's runs of sub-indices are then scanned (at most 6).
 
+#[cfg(feature = "error-history")]
 use crate::emcy::HISTORY;
 use crate::od::{AbortCode, Access, DataType, PdoMapping};
 use crate::pdo::mapping::MAX_ENTRIES;
@@ -26,12 +27,17 @@ pub(super) enum Slot {
     Count,
     DeviceType,
     ErrorRegister,
+    #[cfg(feature = "error-history")]
     History,
     SyncCob,
     SyncPeriod,
+    #[cfg(feature = "sync-window")]
     SyncWindow,
+    #[cfg(feature = "manufacturer-strings")]
     DeviceName,
+    #[cfg(feature = "manufacturer-strings")]
     HardwareVersion,
+    #[cfg(feature = "manufacturer-strings")]
     SoftwareVersion,
     #[cfg(feature = "guarding")]
     GuardTime,
@@ -42,11 +48,14 @@ pub(super) enum Slot {
     #[cfg(feature = "time")]
     TimeCob,
     EmcyCob,
+    #[cfg(feature = "emcy-inhibit")]
     EmcyInhibit,
     Consumer,
     HeartbeatTime,
     Identity,
+    #[cfg(feature = "sync-counter")]
     SyncOverflow,
+    #[cfg(feature = "error-behaviour")]
     ErrorBehaviour,
     NmtStartup,
     PdoCob,
@@ -67,6 +76,7 @@ pub(super) enum Ty {
     U16Rw,
     U32Ro,
     U32Rw,
+    #[cfg(feature = "manufacturer-strings")]
     StrConst,
 }
 
@@ -80,6 +90,7 @@ impl Ty {
             Ty::U16Rw => (DataType::Unsigned16, Access::Rw),
             Ty::U32Ro => (DataType::Unsigned32, Access::Ro),
             Ty::U32Rw => (DataType::Unsigned32, Access::Rw),
+            #[cfg(feature = "manufacturer-strings")]
             Ty::StrConst => (DataType::VisibleString, Access::Const),
         }
     }
@@ -95,6 +106,7 @@ impl Ty {
             Ty::U8Const | Ty::U8Ro | Ty::U8Rw => 1,
             Ty::U16Rw => 2,
             Ty::U32Ro | Ty::U32Rw => 4,
+            #[cfg(feature = "manufacturer-strings")]
             Ty::StrConst => 0,
         }
     }
@@ -130,45 +142,55 @@ const fn count() -> Run {
 /// first). The PDO records are templates: 1400h holds the communication record of every PDO (an RPDO has
 /// subs 00h–05h), 1800h adds the TPDO's sub 06h right after it, 1600h is the mapping record of both.
 const ROWS: &[(u16, Run)] = &[
-    (0x1000, var(Ty::U32Ro, Slot::DeviceType)),                // DEV-01
-    (0x1001, var(Ty::U8Ro, Slot::ErrorRegister)),              // ERR-01
-    (0x1003, var(Ty::U8Rw, Slot::History)),                    // ERR-04..09
-    (0x1003, run(1, HISTORY as u8, Ty::U32Ro, Slot::History)), //
-    (0x1005, var(Ty::U32Rw, Slot::SyncCob)),                   // SYNC-01..08
-    (0x1006, var(Ty::U32Rw, Slot::SyncPeriod)),                //
-    (0x1007, var(Ty::U32Rw, Slot::SyncWindow)),                //
-    (0x1008, var(Ty::StrConst, Slot::DeviceName)),             // DEV-04
-    (0x1009, var(Ty::StrConst, Slot::HardwareVersion)),        //
-    (0x100A, var(Ty::StrConst, Slot::SoftwareVersion)),        //
+    (0x1000, var(Ty::U32Ro, Slot::DeviceType)),   // DEV-01
+    (0x1001, var(Ty::U8Ro, Slot::ErrorRegister)), // ERR-01
+    #[cfg(feature = "error-history")]
+    (0x1003, var(Ty::U8Rw, Slot::History)), // ERR-04..09
+    #[cfg(feature = "error-history")]
+    (0x1003, run(1, HISTORY as u8, Ty::U32Ro, Slot::History)),
+    (0x1005, var(Ty::U32Rw, Slot::SyncCob)),    // SYNC-01..08
+    (0x1006, var(Ty::U32Rw, Slot::SyncPeriod)), //
+    #[cfg(feature = "sync-window")]
+    (0x1007, var(Ty::U32Rw, Slot::SyncWindow)), // SYNC-08/09
+    #[cfg(feature = "manufacturer-strings")]
+    (0x1008, var(Ty::StrConst, Slot::DeviceName)), // DEV-04
+    #[cfg(feature = "manufacturer-strings")]
+    (0x1009, var(Ty::StrConst, Slot::HardwareVersion)),
+    #[cfg(feature = "manufacturer-strings")]
+    (0x100A, var(Ty::StrConst, Slot::SoftwareVersion)),
     #[cfg(feature = "guarding")]
     (0x100C, var(Ty::U16Rw, Slot::GuardTime)), // GUARD-02
     #[cfg(feature = "guarding")]
     (0x100D, var(Ty::U8Rw, Slot::LifeTimeFactor)), // GUARD-03
-    (0x1010, count()),                                         // STORE-01..05
-    (0x1010, run(1, 3, Ty::U32Rw, Slot::Store)),               //
-    (0x1011, count()),                                         // STORE-08..11
-    (0x1011, run(1, 3, Ty::U32Rw, Slot::Restore)),             //
+    (0x1010, count()),                             // STORE-01..05
+    (0x1010, run(1, 3, Ty::U32Rw, Slot::Store)),   //
+    (0x1011, count()),                             // STORE-08..11
+    (0x1011, run(1, 3, Ty::U32Rw, Slot::Restore)), //
     #[cfg(feature = "time")]
     (0x1012, var(Ty::U32Rw, Slot::TimeCob)), // TIME-01..03
-    (0x1014, var(Ty::U32Rw, Slot::EmcyCob)),                   // EMCY-02/03
-    (0x1015, var(Ty::U16Rw, Slot::EmcyInhibit)),               // EMCY-09
-    (0x1016, count()),                                         // HB-06..09
-    (0x1016, run(1, HB, Ty::U32Rw, Slot::Consumer)),           //
-    (0x1017, var(Ty::U16Rw, Slot::HeartbeatTime)),             // HB-01
-    (0x1018, count()),                                         // DEV-03
-    (0x1018, run(1, 4, Ty::U32Ro, Slot::Identity)),            //
-    (0x1019, var(Ty::U8Rw, Slot::SyncOverflow)),               // SYNC-10/12
-    (0x1029, count()),                                         // ERR-10/11
-    (0x1029, run(1, 1, Ty::U8Rw, Slot::ErrorBehaviour)),       //
-    (0x1400, count()),                                         // PDO-06..18
-    (0x1400, run(1, 1, Ty::U32Rw, Slot::PdoCob)),              //
-    (0x1400, run(2, 2, Ty::U8Rw, Slot::PdoType)),              //
-    (0x1400, run(3, 3, Ty::U16Rw, Slot::PdoInhibit)),          //
-    (0x1400, run(5, 5, Ty::U16Rw, Slot::PdoEventTimer)),       //
-    (0x1800, run(6, 6, Ty::U8Rw, Slot::PdoSyncStart)),         // PDO-26
-    (0x1600, var(Ty::U8Rw, Slot::MapCount)),                   // PDO-30..37
+    (0x1014, var(Ty::U32Rw, Slot::EmcyCob)),       // EMCY-02/03
+    #[cfg(feature = "emcy-inhibit")]
+    (0x1015, var(Ty::U16Rw, Slot::EmcyInhibit)), // EMCY-09
+    (0x1016, count()),                             // HB-06..09
+    (0x1016, run(1, HB, Ty::U32Rw, Slot::Consumer)), //
+    (0x1017, var(Ty::U16Rw, Slot::HeartbeatTime)), // HB-01
+    (0x1018, count()),                             // DEV-03
+    (0x1018, run(1, 4, Ty::U32Ro, Slot::Identity)), //
+    #[cfg(feature = "sync-counter")]
+    (0x1019, var(Ty::U8Rw, Slot::SyncOverflow)), // SYNC-10/12
+    #[cfg(feature = "error-behaviour")]
+    (0x1029, count()), // ERR-10/11
+    #[cfg(feature = "error-behaviour")]
+    (0x1029, run(1, 1, Ty::U8Rw, Slot::ErrorBehaviour)),
+    (0x1400, count()),                                              // PDO-06..18
+    (0x1400, run(1, 1, Ty::U32Rw, Slot::PdoCob)),                   //
+    (0x1400, run(2, 2, Ty::U8Rw, Slot::PdoType)),                   //
+    (0x1400, run(3, 3, Ty::U16Rw, Slot::PdoInhibit)),               //
+    (0x1400, run(5, 5, Ty::U16Rw, Slot::PdoEventTimer)),            //
+    (0x1800, run(6, 6, Ty::U8Rw, Slot::PdoSyncStart)),              // PDO-26
+    (0x1600, var(Ty::U8Rw, Slot::MapCount)),                        // PDO-30..37
     (0x1600, run(1, MAX_ENTRIES as u8, Ty::U32Rw, Slot::MapEntry)), //
-    (0x1F80, var(Ty::U32Rw, Slot::NmtStartup)),                // NMT-27
+    (0x1F80, var(Ty::U32Rw, Slot::NmtStartup)),                     // NMT-27
 ];
 
 /// The runs of [`ROWS`] without their tags: the table `find` walks.

@@ -1,11 +1,13 @@
 //! The minimal device of issue 13 on the same board as `node.rs`: NMT, heartbeat producer (1017h, 1000 ms),
 //! the SDO server with expedited and segmented transfer (no block transfer), 4 RPDOs and 4 TPDOs with
-//! dynamic mapping, the SYNC consumer and EMCY with the 1003h history. No heartbeat consumer (1016h has no
-//! entries), no SYNC producer, no TPDO remote requests, no LSS, TIME, node guarding, SDO client or SDO block
-//! transfer, and PDO mapping of whole objects of whole bytes only (the EDS's Granularity=8, no bit-granular
-//! entries): canopen-core is built without its optional features (`cargo build --release
-//! --no-default-features --features minimal --bin minimal`, which `scripts/footprint.sh` runs), so none of
-//! them is in the image.
+//! dynamic mapping, the SYNC consumer, and EMCY (1014h) with the error register 1001h. No heartbeat consumer
+//! (1016h has no entries), no SYNC producer, no TPDO remote requests, no LSS, TIME, node guarding, SDO client
+//! or SDO block transfer, PDO mapping of whole objects of whole bytes only (the EDS's Granularity=8, no
+//! bit-granular entries), and none of the objects CiA 301 makes optional for these services: no 1003h error
+//! history, 1007h SYNC window, 1008h–100Ah strings, 1015h EMCY inhibit time, 1019h SYNC counter or 1029h
+//! error behaviour (a communication error in Operational leads to Pre-operational, 1029h's default).
+//! canopen-core is built without its optional features (`cargo build --release --no-default-features
+//! --features minimal --bin minimal`, which `scripts/footprint.sh` runs), so none of them is in the image.
 //!
 //! The application is `node.rs`'s without the TIME object: the same tasks, glue and process values.
 #![no_std]
@@ -88,6 +90,7 @@ const TPDO3: PdoDefault =
 /// TPDO 4: uptime, every 10th SYNC.
 const TPDO4: PdoDefault = PdoDefault { transmission_type: 10, mapping: &[0x2100_0020], ..PdoDefault::EVENT };
 
+/// The strings feed 1008h–100Ah, which this build leaves out: they are not in the image.
 const CONFIG: NodeConfig = NodeConfig {
     device_type: 0x0003_0191, // CiA 401, digital inputs and outputs
     identity: Identity { vendor_id: 0, product_code: 0x446, revision: 0x0001_0000, serial: 1 },
