@@ -210,6 +210,7 @@ fn without_emcy_inhibit() {
     let cfg = NodeConfig { emcy_inhibit_100us: 100, ..NodeConfig::DEFAULT };
     let mut node = booted_with(cfg);
     absent(&mut node, 0x1015);
+    assert_eq!(node.comm_profile().params.emcy_inhibit_100us, 0);
     node.raise_error(0x5000, [0; 5]);
     node.raise_error(0x6000, [0; 5]);
     node.handle_timeout(Instant::from_millis(1));
@@ -258,6 +259,7 @@ fn without_error_behaviour() {
     node.enter_state(NmtState::Operational);
     drain(&mut node);
     absent(&mut node, 0x1029);
+    assert_eq!(node.comm_profile().params.error_behaviour, 0);
     node.set_bus_state(Instant::from_millis(1), BusState::BusOff);
     assert_eq!(node.state(), NmtState::PreOperational);
 }

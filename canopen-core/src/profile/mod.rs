@@ -261,8 +261,9 @@ impl<Z: ProfileSizes> CommParams<Z> {
         self.sync = config.sync.supported();
         self.time_cob_id = config.time_cob_id;
         self.emcy_cob_id = 0x80 + node_id as u32;
-        self.emcy_inhibit_100us = config.emcy_inhibit_100us;
-        self.error_behaviour = config.error_behaviour;
+        // Without their objects (features `emcy-inhibit`, `error-behaviour`) these stay at the default, 0.
+        self.emcy_inhibit_100us = if crate::emcy::INHIBIT { config.emcy_inhibit_100us } else { 0 };
+        self.error_behaviour = if cfg!(feature = "error-behaviour") { config.error_behaviour } else { 0 };
         self.nmt_startup = config.nmt_startup;
         pdo_defaults(self.rpdo_comm.as_mut(), self.rpdo_map.as_mut(), config.rpdo, 0x200, node_id);
         pdo_defaults(self.tpdo_comm.as_mut(), self.tpdo_map.as_mut(), config.tpdo, 0x180, node_id);
