@@ -48,7 +48,8 @@ pub struct Mapped {
 }
 
 impl Mapped {
-    const NONE: Mapped = Mapped { handle: PdoHandle { index: 0, sub: 0, size: 0, slot: PdoHandle::NO_SLOT }, bits: 0 };
+    /// An unused entry (past the count): all zero, so that an empty map is zeroed memory, not a copy.
+    const NONE: Mapped = Mapped { handle: PdoHandle { index: 0, sub: 0, size: 0, slot: 0 }, bits: 0 };
 
     /// Whether this is a dummy entry (no object behind it).
     pub const fn is_dummy(&self) -> bool {
@@ -116,14 +117,17 @@ pub struct ResolvedMap {
     entries: [Mapped; MAX_ENTRIES],
     count: u8,
     bits: u8,
-    aligned: bool,
-    direct: bool,
+    /// Not every entry whole bytes of a whole object (the negations, so that [`Self::EMPTY`] is all zero:
+    /// building the node's PDOs clears memory instead of copying a 68-byte constant into each).
+    unaligned: bool,
+    /// Not [`direct`](Self::direct).
+    indirect: bool,
 }
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
     pub const EMPTY: ResolvedMap =
-        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, aligned: true, direct: true };
+        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, unaligned: false, indirect: false };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
@@ -148,11 +152,11 @@ impl ResolvedMap {
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
             }
-            m.aligned &= e.bits % 8 == 0 && (e.is_dummy() || u16::from(e.handle.size) * 8 == u16::from(e.bits));
-            m.direct &= e.is_dummy() || !(0x1000..=0x1FFF).contains(&e.handle.index);
+            m.unaligned |= e.bits % 8 != 0 || (!e.is_dummy() && u16::from(e.handle.size) * 8 != u16::from(e.bits));
+            m.indirect |= !e.is_dummy() && (0x1000..=0x1FFF).contains(&e.handle.index);
             *slot = e;
         }
-        m.direct &= m.aligned;
+        m.indirect |= m.unaligned;
         m.count = raw.len() as u8;
         m.bits = total as u8;
         Ok(m)
@@ -180,7 +184,7 @@ impl ResolvedMap {
     /// assert!(!ResolvedMap::resolve(&od, &[0x1001_0008], PdoDir::Tpdo).unwrap().direct()); // 1001h: profile
     /// ```
     pub const fn direct(&self) -> bool {
-        self.direct
+        !self.indirect
     }
 
     /// Total mapped bits.
@@ -201,7 +205,7 @@ impl ResolvedMap {
     /// read leaves zeros. For a TPDO mapping: those have no dummy entries (PDO-34, [`resolve`] refuses them),
     /// so the byte-aligned path does not test for one.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
-        if BIT_MAPPING && !self.aligned {
+        if BIT_MAPPING && self.unaligned {
             *out = self.pack_bits(od).to_le_bytes();
             return self.bytes();
         }
@@ -239,7 +243,7 @@ impl ResolvedMap {
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
     /// how many writes the dictionary refused (limits, hooks).
     pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
-        if !BIT_MAPPING || self.aligned {
+        if !BIT_MAPPING || !self.unaligned {
             return self.unpack_bytes(od, data);
         }
         let mut refused = 0;
