@@ -115,7 +115,7 @@ fn run<A: canopen::core::od::ObjectDictionary + canopen::core::od::OdDescribe>(
     for _ in 0..iterations {
         for f in script {
             node.handle_frame(Instant::ZERO, black_box(f));
-            // As `driver::service`: events first, then each frame is peeked, sent and only then taken
+            // As `driver::run`'s service loop: events first, then each frame is peeked, sent and only then taken
             // (`transmitted`), so a cancelled send loses nothing.
             loop {
                 if let Some(e) = node.poll_event() {

@@ -235,11 +235,40 @@ where
     W: Wake,
 {
     loop {
-        let deadline = service(shared, tx, timer.now(), &mut on_event).await.map_err(|e| {
-            crate::trace::driver_error(false);
-            DriverError::Transmit(e)
-        })?;
-        match wait(rx, timer, wake, deadline).await {
+        // Service: the node acts on the time, then hands out its events and sends its frames. Cancel-safe: a
+        // frame leaves the node's queue only once `transmit` returned it sent ([`SansIo::peek_transmit`], then
+        // [`SansIo::transmitted`] under the next lock), and events are handed out in the same poll that takes
+        // them, with no `.await` between; a frame whose `transmit` failed stays first in the queue. Inline
+        // here rather than an `async fn` of its own, as is the wait below: each nested future is a state
+        // machine of its own in the task (footprint.sh: see the commit).
+        let (mut timeout, mut sent) = (Some(timer.now()), None);
+        let deadline = loop {
+            match shared.lock(|n| next_work(n, timeout.take(), sent.take())) {
+                Work::Event(e) => {
+                    crate::trace::event(&e);
+                    on_event(e);
+                }
+                Work::Frame(f) => {
+                    #[cfg(any(feature = "defmt", feature = "log"))]
+                    crate::trace::frame("tx", &f);
+                    if let Err(e) = tx.transmit(&f).await {
+                        crate::trace::driver_error(false);
+                        return Err(DriverError::Transmit(e));
+                    }
+                    sent = Some(f);
+                }
+                Work::Idle(deadline) => break deadline,
+            }
+        };
+        // Wait for the first of a frame, the deadline and an application wake-up. No deadline, no sleep (an
+        // Option, not an async block around `pending()`: one state machine less).
+        let woken = {
+            let mut frame = pin!(rx.receive_event());
+            let mut sleep = pin!(deadline.map(|t| timer.sleep_until(t)));
+            let mut app = pin!(wake.wait());
+            poll_fn(|cx| poll_woken(cx, frame.as_mut(), sleep.as_mut(), app.as_mut())).await
+        };
+        match woken {
             Woken::Frame(Ok(Received::Frame(frame))) => {
                 #[cfg(any(feature = "defmt", feature = "log"))]
                 crate::trace::frame("rx", &frame);
@@ -259,75 +288,52 @@ where
     }
 }
 
-/// Lets the node act on the time, then hands out its events and sends its frames. Cancel-safe: a frame
-/// leaves the node's queue only once `transmit` returned it sent ([`SansIo::peek_transmit`], then
-/// [`SansIo::transmitted`] under the next lock), and events are handed out in the same poll that takes
-/// them, with no `.await` between; a frame whose `transmit` failed stays first in the queue.
-async fn service<N: SansIo, S: Shared<N>, T: CanTx>(
-    shared: &S,
-    tx: &mut T,
-    now: Instant,
-    on_event: &mut impl FnMut(Event),
-) -> Result<Option<Instant>, T::Error> {
-    let mut first = true;
-    let mut sent: Option<CanFrame> = None;
-    loop {
-        // One event or one frame per lock: nothing is batched in the future, so its state stays small (a
-        // batch of 8 events was 192 B of task storage on a Cortex-M), and events come before frames.
-        let (event, next, deadline) = shared.lock(|n| {
-            if core::mem::take(&mut first) {
-                n.handle_timeout(now);
-            }
-            if let Some(f) = sent.take() {
-                n.transmitted(&f);
-            }
-            // The deadline only once nothing is left to send: it is what `run` sleeps until, and computing
-            // it per frame sent was the minimum over every service each time (about 70 instructions).
-            match n.poll_event() {
-                Some(e) => (Some(e), None, None),
-                None => {
-                    let next = n.peek_transmit();
-                    (None, next, if next.is_none() { n.poll_timeout() } else { None })
-                }
-            }
-        });
-        if let Some(e) = event {
-            crate::trace::event(&e);
-            on_event(e);
-            continue;
-        }
-        let Some(f) = next else { return Ok(deadline) };
-        #[cfg(any(feature = "defmt", feature = "log"))]
-        crate::trace::frame("tx", &f);
-        tx.transmit(&f).await?;
-        sent = Some(f);
+/// What the node has for the driver, one item per lock: nothing is batched in the future, so its state
+/// stays small (a batch of 8 events was 192 B of task storage on a Cortex-M), and events come before frames.
+enum Work {
+    Event(Event),
+    Frame(CanFrame),
+    /// Nothing to hand out or send: the node's next deadline, what the driver sleeps until.
+    Idle(Option<Instant>),
+}
+
+/// One step of the service, under the lock: the time passes in first (`timeout`, once per service), the
+/// frame `sent` last is taken out of the queue, then the next event or frame. The deadline only once
+/// nothing is left to send: computing it per frame sent was the minimum over every service each time
+/// (about 70 instructions).
+fn next_work<N: SansIo>(n: &mut N, timeout: Option<Instant>, sent: Option<CanFrame>) -> Work {
+    if let Some(now) = timeout {
+        n.handle_timeout(now);
+    }
+    if let Some(f) = sent {
+        n.transmitted(&f);
+    }
+    // Both asked every time (the peek reads the queue head, no side effect): one branch less than asking
+    // for the frame only when there is no event (footprint.sh, node: 72 B).
+    match (n.poll_event(), n.peek_transmit()) {
+        (Some(e), _) => Work::Event(e),
+        (None, Some(f)) => Work::Frame(f),
+        (None, None) => Work::Idle(n.poll_timeout()),
     }
 }
 
-/// Waits for the first of: a frame, the deadline, an application wake-up (polled in that order).
-async fn wait<R: CanRx, C: Timer, W: Wake>(
-    rx: &mut R,
-    timer: &mut C,
-    wake: &W,
-    deadline: Option<Instant>,
-) -> Woken<Result<Received, R::Error>> {
-    let mut frame = pin!(rx.receive_event());
-    // No deadline, no sleep (an Option, not an async block around `pending()`: one state machine less).
-    let mut sleep = pin!(deadline.map(|t| timer.sleep_until(t)));
-    let mut app = pin!(wake.wait());
-    poll_fn(|cx| {
-        if let Poll::Ready(r) = frame.as_mut().poll(cx) {
-            return Poll::Ready(Woken::Frame(r));
-        }
-        if sleep.as_mut().as_pin_mut().is_some_and(|s| s.poll(cx).is_ready()) {
-            return Poll::Ready(Woken::Deadline);
-        }
-        if app.as_mut().poll(cx).is_ready() {
-            return Poll::Ready(Woken::Application);
-        }
-        Poll::Pending
-    })
-    .await
+/// Polls a frame, the deadline and an application wake-up, in that order.
+fn poll_woken<F: Future, D: Future, A: Future>(
+    cx: &mut core::task::Context<'_>,
+    frame: core::pin::Pin<&mut F>,
+    sleep: core::pin::Pin<&mut Option<D>>,
+    app: core::pin::Pin<&mut A>,
+) -> Poll<Woken<F::Output>> {
+    if let Poll::Ready(r) = frame.poll(cx) {
+        return Poll::Ready(Woken::Frame(r));
+    }
+    if sleep.as_pin_mut().is_some_and(|s| s.poll(cx).is_ready()) {
+        return Poll::Ready(Woken::Deadline);
+    }
+    if app.poll(cx).is_ready() {
+        return Poll::Ready(Woken::Application);
+    }
+    Poll::Pending
 }
 
 #[cfg(test)]
