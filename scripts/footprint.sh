@@ -2,7 +2,8 @@
 # Flash and RAM of the stack on a Cortex-M4F (DESIGN.md "Performance", footprint): builds the firmware
 # example (examples/firmware, STM32F446RE, embassy) with the footprint profile (opt-level "s", LTO,
 # panic = "abort", codegen-units = 1) in two builds, since a Cargo feature holds for a whole build:
-#   node      every canopen-core feature but the optional objects (see --optional): the full reference set;
+#   node      every canopen-core feature but the optional objects and `crc-table` (see --optional): the full
+#             reference set, with the block CRC from the 32-byte nibble table;
 #   minimal   canopen-core without its optional features (issue 13's minimal device: NMT, heartbeat, SDO
 #             expedited + segmented, 4 RPDO + 4 TPDO, SYNC, EMCY; none of the optional objects 1003h, 1007h,
 #             1008h-100Ah, 1015h, 1019h, 1029h), `--no-default-features --features minimal`;
@@ -23,8 +24,9 @@
 #                table)
 #   --optional   also build node with each optional object of canopen-core (features manufacturer-status
 #                1002h, high-res-time 1013h, verify-config 1020h, emcy-consumer 1028h, mpdo 1FA0h/1FD0h
-#                and the MPDO paths; the reference set leaves them out) and print the flash and RAM each
-#                adds to node
+#                and the MPDO paths; the reference set leaves them out) and with crc-table (the block CRC
+#                from a 512-byte table instead of the nibble table), and print the flash and RAM each adds
+#                to node
 # Needs: rustup target add thumbv7em-none-eabihf; binutils `size` and `nm` (they read ARM ELF files).
 set -euo pipefail
 SCRIPTS=$(cd "$(dirname "$0")" && pwd)
@@ -97,8 +99,8 @@ fi
 
 if [ "$optional" = 1 ]; then
   echo
-  echo "optional objects, each built into node (canopen-core feature; bytes added to node):"
-  for f in manufacturer-status high-res-time verify-config emcy-consumer mpdo; do
+  echo "optional objects and the 512-byte CRC table, each built into node (canopen-core feature; bytes added to node):"
+  for f in manufacturer-status high-res-time verify-config emcy-consumer mpdo crc-table; do
     cargo build --release --no-default-features --features "full,canopen-core/$f" --bin node --quiet
     read -r text data bss < <(berkeley "$T/node")
     printf '  %-20s flash %+6d  RAM %+6d\n' "$f" $((text + data - F[node])) $((data + bss - R[node]))
