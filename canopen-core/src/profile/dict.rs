@@ -108,42 +108,36 @@ pub struct CommProfile<Z: ProfileSizes = Sizes> {
     pub optional: super::optional::OptionalObjects,
 }
 
-/// Indices of the fixed objects, in increasing order (the PDO ranges and 1F80h follow); without those of
-/// the services this build leaves out.
-const OBJECTS: &[u16] = &[
-    0x1000,
-    0x1001,
-    #[cfg(feature = "error-history")]
-    0x1003,
-    0x1005,
-    0x1006,
-    #[cfg(feature = "sync-window")]
-    0x1007,
-    #[cfg(feature = "manufacturer-strings")]
-    0x1008,
-    #[cfg(feature = "manufacturer-strings")]
-    0x1009,
-    #[cfg(feature = "manufacturer-strings")]
-    0x100A,
-    #[cfg(feature = "guarding")]
-    0x100C,
-    #[cfg(feature = "guarding")]
-    0x100D,
-    0x1010,
-    0x1011,
-    #[cfg(feature = "time")]
-    0x1012,
-    0x1014,
-    #[cfg(feature = "emcy-inhibit")]
-    0x1015,
-    0x1016,
-    0x1017,
-    0x1018,
-    #[cfg(feature = "sync-counter")]
-    0x1019,
-    #[cfg(feature = "error-behaviour")]
-    0x1029,
+/// Indices of every fixed object a build can have, in increasing order (the PDO ranges and 1F80h follow).
+const ALL_OBJECTS: [u16; 21] = [
+    0x1000, 0x1001, 0x1003, 0x1005, 0x1006, 0x1007, 0x1008, 0x1009, 0x100A, 0x100C, 0x100D, 0x1010, 0x1011, 0x1012,
+    0x1014, 0x1015, 0x1016, 0x1017, 0x1018, 0x1019, 0x1029,
 ];
+
+/// How many of [`ALL_OBJECTS`] this build has.
+const OBJECT_COUNT: usize = {
+    let (mut n, mut i) = (0, 0);
+    while i < ALL_OBJECTS.len() {
+        n += !compiled_out(ALL_OBJECTS[i]) as usize;
+        i += 1;
+    }
+    n
+};
+
+/// The fixed objects of this build in increasing order: [`ALL_OBJECTS`] without those [`compiled_out`]
+/// names.
+const OBJECTS: [u16; OBJECT_COUNT] = {
+    let mut t = [0u16; OBJECT_COUNT];
+    let (mut n, mut i) = (0, 0);
+    while i < ALL_OBJECTS.len() {
+        if !compiled_out(ALL_OBJECTS[i]) {
+            t[n] = ALL_OBJECTS[i];
+            n += 1;
+        }
+        i += 1;
+    }
+    t
+};
 
 /// The objects of a service or an optional object this build leaves out do not exist: 0602 0000h (OD-16),
 /// and they are not in the EDS. (first, last index, whether this build has them) per Cargo feature:
