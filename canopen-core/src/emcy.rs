@@ -326,6 +326,8 @@ impl EmcyProducer {
 
     /// Sets 1015h, in 100 µs units (0 = off; always off in a build without it, see [`INHIBIT`]).
     pub fn set_inhibit_100us(&mut self, n: u16) {
+        // `sent` starts no inhibit time without 1015h anyway; the 0 here also lets that build drop the
+        // conversion (footprint.sh minimal: 24 B).
         self.inhibit = Duration::from_100us(if INHIBIT { u64::from(n) } else { 0 });
         if self.inhibit.is_zero() {
             self.next_allowed = Deadline::NONE;
