@@ -5,8 +5,9 @@
 #   node      every canopen-core feature but the optional objects and `crc-table` (see --optional): the full
 #             reference set, with the block CRC from the 32-byte nibble table;
 #   minimal   canopen-core without its optional features (issue 13's minimal device: NMT, heartbeat, SDO
-#             expedited + segmented, 4 RPDO + 4 TPDO, SYNC, EMCY; none of the optional objects 1003h, 1007h,
-#             1008h-100Ah, 1015h, 1019h, 1029h), `--no-default-features --features minimal`;
+#             expedited + segmented, 4 RPDO + 4 TPDO with a fixed mapping, SYNC, EMCY; none of the optional
+#             objects 1003h, 1007h, 1008h-100Ah, 1010h/1011h, 1015h, 1019h, 1029h),
+#             `--no-default-features --features minimal`;
 # and the CAN-echo baseline. It prints text/data/bss of each and each device's difference to the baseline,
 # which is the stack's own cost:
 #   flash = Δ(text + data)     (Berkeley `size`: text = .vector_table + .text + .rodata)

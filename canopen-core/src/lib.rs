@@ -26,13 +26,16 @@
 //! CiA 302-3 1F50h/1F51h/1F56h/1F57h, a dictionary part the application composes with its own),
 //! `pdo-bit-mapping` (PDO mapping entries of any bit length; without it whole objects of whole bytes, see
 //! [`pdo::mapping`]), `sync-producer` (the SYNC producer; without it a SYNC consumer only, see [`sync`]),
-//! and `pdo-rtr` (TPDOs answering remote requests, types FCh/FDh; see [`pdo`]).
+//! `pdo-rtr` (TPDOs answering remote requests, types FCh/FDh; see [`pdo`]), and `pdo-dynamic-mapping` (PDO
+//! mapping written by SDO, PDO-35..37; without it each PDO keeps its configured mapping and 1600h+/1A00h+
+//! are const, PDO-30).
 //!
 //! Objects CiA 301 makes optional for the services every node has, one feature each (all on by default;
 //! without one its object does not exist and the service behaves as with the object at its default):
 //! `error-history` (1003h, see [`emcy`]), `error-behaviour` (1029h; a communication error in Operational
 //! then always leads to Pre-operational), `sync-window` (1007h) and `sync-counter` (1019h, see [`sync`]),
-//! `emcy-inhibit` (1015h) and `manufacturer-strings` (1008h–100Ah).
+//! `emcy-inhibit` (1015h), `manufacturer-strings` (1008h–100Ah) and `store-restore` (1010h/1011h; a node
+//! with a [`storage::Storage`] loads it at each reset either way).
 //!
 //! A capacity, off by default: `pdo-mapping-64` (64 mapping entries per PDO instead of 8, PDO-30; it costs
 //! about 670 B of RAM in every PDO whether the device uses it or not, see [`pdo::mapping::MAX_ENTRIES`]).

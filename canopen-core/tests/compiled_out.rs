@@ -129,15 +129,27 @@ fn without_sync_producer() {
 }
 
 /// PDO-36 without `pdo-bit-mapping`: a mapping entry that is not a whole object of whole bytes (4 bits of
-/// 1001h) is refused with 0604 0041h; the whole object (8 bits) is accepted.
+/// 1001h) does not resolve, the whole object (8 bits) does. A configured mapping of such an entry leaves
+/// its TPDO silent on entering Operational (PDO-28: an event-driven TPDO goes out at once when it is
+/// valid); with `pdo-dynamic-mapping` an SDO write of the entry is refused with 0604 0041h.
 #[test]
 #[cfg(not(feature = "pdo-bit-mapping"))]
 fn without_pdo_bit_mapping() {
-    let mut node = booted();
-    let part = sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x04, 0x00, 0x01, 0x10]);
-    assert_eq!(part, [CanFrame::new(0x585, &[0x80, 0x00, 0x1A, 0x01, 0x41, 0x00, 0x04, 0x06]).unwrap()]);
-    let whole = sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x08, 0x00, 0x01, 0x10]);
-    assert_eq!(whole, [CanFrame::new(0x585, &[0x60, 0x00, 0x1A, 0x01, 0, 0, 0, 0]).unwrap()]);
+    use canopen_core::{pdo::PdoDefault, NmtState};
+    const PART: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1001_0004], ..PdoDefault::EVENT }];
+    const WHOLE: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1001_0008], ..PdoDefault::EVENT }];
+    for (tpdo, sent) in [(&PART, vec![]), (&WHOLE, vec![CanFrame::new(0x185, &[0]).unwrap()])] {
+        let mut node = booted_with(NodeConfig { tpdo, ..NodeConfig::DEFAULT });
+        node.enter_state(NmtState::Operational);
+        assert_eq!(drain(&mut node).0, sent);
+    }
+    if cfg!(feature = "pdo-dynamic-mapping") {
+        let mut node = booted();
+        let part = sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x04, 0x00, 0x01, 0x10]);
+        assert_eq!(part, [CanFrame::new(0x585, &[0x80, 0x00, 0x1A, 0x01, 0x41, 0x00, 0x04, 0x06]).unwrap()]);
+        let whole = sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x08, 0x00, 0x01, 0x10]);
+        assert_eq!(whole, [CanFrame::new(0x585, &[0x60, 0x00, 0x1A, 0x01, 0, 0, 0, 0]).unwrap()]);
+    }
 }
 
 /// PDO-29 without `pdo-rtr` (the PDO read service is optional): TPDO 1's default COB-ID has bit 30 set (no
@@ -262,4 +274,47 @@ fn without_error_behaviour() {
     assert_eq!(node.comm_profile().params.error_behaviour, 0);
     node.set_bus_state(Instant::from_millis(1), BusState::BusOff);
     assert_eq!(node.state(), NmtState::PreOperational);
+}
+
+/// PDO-30 without `pdo-dynamic-mapping` (the mapping is fixed): the mapping records are const. Writing the
+/// count or an entry is refused with 0601 0002h whatever the PDO's state, the configured mapping stays and
+/// its TPDO still works, and the EDS says AccessType=const.
+#[test]
+#[cfg(not(feature = "pdo-dynamic-mapping"))]
+fn without_pdo_dynamic_mapping() {
+    use canopen_core::{pdo::PdoDefault, NmtState};
+    const TPDO: [PdoDefault; 1] = [PdoDefault { mapping: &[0x1001_0008], ..PdoDefault::EVENT }];
+    let mut node = booted_with(NodeConfig { tpdo: &TPDO, ..NodeConfig::DEFAULT });
+    let read_only = |sub: u8| CanFrame::new(0x585, &[0x80, 0x00, 0x1A, sub, 0x02, 0x00, 0x01, 0x06]).unwrap();
+    let disable = sdo(&mut node, [0x23, 0x00, 0x18, 0x01, 0x85, 0x01, 0x00, 0xC0]); // PDO-35 step 1
+    assert_eq!(disable, [CanFrame::new(0x585, &[0x60, 0x00, 0x18, 0x01, 0, 0, 0, 0]).unwrap()]);
+    assert_eq!(sdo(&mut node, [0x2F, 0x00, 0x1A, 0x00, 0, 0, 0, 0]), [read_only(0)]);
+    assert_eq!(sdo(&mut node, [0x23, 0x00, 0x1A, 0x01, 0x10, 0x00, 0x17, 0x10]), [read_only(1)]);
+    let entry = sdo(&mut node, [0x40, 0x00, 0x1A, 0x01, 0, 0, 0, 0]);
+    assert_eq!(entry, [CanFrame::new(0x585, &[0x43, 0x00, 0x1A, 0x01, 0x08, 0x00, 0x01, 0x10]).unwrap()]);
+    let enable = sdo(&mut node, [0x23, 0x00, 0x18, 0x01, 0x85, 0x01, 0x00, 0x40]);
+    assert_eq!(enable, [CanFrame::new(0x585, &[0x60, 0x00, 0x18, 0x01, 0, 0, 0, 0]).unwrap()]);
+    node.enter_state(NmtState::Operational);
+    assert_eq!(drain(&mut node).0, [CanFrame::new(0x185, &[0]).unwrap()]); // PDO-28: 1001h, the mapping kept
+    let eds = eds();
+    for sub in ["[1A00sub0]", "[1A00sub1]", "[1600sub0]", "[1600sub8]"] {
+        let section = &eds[eds.find(sub).unwrap_or_else(|| panic!("{sub} in {eds}"))..];
+        let section = &section[..section.find("\n\n").unwrap_or(section.len())];
+        assert!(section.contains("AccessType=const"), "{section}");
+    }
+}
+
+/// STORE-01 without `store-restore` (1010h and 1011h are optional): neither object exists, so "save" and
+/// "load" are refused with 0602 0000h and the EDS does not list them.
+#[test]
+#[cfg(not(feature = "store-restore"))]
+fn without_store_restore() {
+    let mut node = booted();
+    for index in [0x1010, 0x1011] {
+        absent(&mut node, index);
+        let [i0, i1] = u16::to_le_bytes(index);
+        let command = sdo(&mut node, [0x23, i0, i1, 0x01, b's', b'a', b'v', b'e']);
+        let refused = CanFrame::new(0x585, &[0x80, i0, i1, 0x01, 0x00, 0x00, 0x02, 0x06]).unwrap();
+        assert_eq!(command, [refused], "{index:04X}h");
+    }
 }

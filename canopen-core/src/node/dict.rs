@@ -1,27 +1,36 @@
 //! The dictionary SDO sees on a node: the one router of the communication profile and the application
 //! ([`Merged`]), plus the three things that need both halves or the storage:
-//! - a mapping entry (1600h–17FFh / 1A00h–1BFFh sub 01h–08h) must name an existing, mappable object of the
+//! - (feature `pdo-dynamic-mapping`) a mapping entry (1600h–17FFh / 1A00h–1BFFh sub 01h–08h) must name an existing, mappable object of the
 //!   merged dictionary (PDO-36: 0602 0000h / 0609 0011h / 0604 0041h), and enabling a mapping (sub 00h)
 //!   resolves every entry again (PDO-37: 0602 0000h, 0604 0042h above 64 bits); a refused write is rolled
 //!   back, so nothing changes;
 //! - (feature `mpdo`) a TPDO mapping count FEh while another TPDO is the SAM producer already: 0604 0043h
 //!   (MPDO-03, one SAM producer per device);
-//! - 1010h "save" stores the groups of its sub-index before the SDO response goes out (STORE-04);
-//! - 1011h "load" removes the groups from the stored record (STORE-08..10).
+//! - (feature `store-restore`) 1010h "save" stores the groups of its sub-index before the SDO response goes
+//!   out (STORE-04); 1011h "load" removes the groups from the stored record (STORE-08..10).
 //!
 //! Everything else goes to [`Merged`] unchanged.
 
-use crate::od::{AbortCode, Merged, ObjectDictionary, OdValue, PdoDir, PdoHandle, SubInfo};
+use crate::od::{AbortCode, Merged, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
+#[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::mapping::ResolvedMap;
 use crate::profile::{CommProfile, ProfileSizes};
-use crate::storage::{self, abort_of, Groups, Storage, StorageError, LOAD_SIGNATURE, SAVE_SIGNATURE};
+use crate::storage::{Groups, Storage, StorageError};
+#[cfg(feature = "store-restore")]
+use crate::{
+    od::OdValue,
+    storage::{self, abort_of, LOAD_SIGNATURE, SAVE_SIGNATURE},
+};
 
 /// Saves the groups of a record: `storage::save` with the application's description where the node has it.
 pub(crate) type SaveFn<S, C, A> = fn(&mut S, Groups, &C, &A) -> Result<(), StorageError>;
 
 pub(crate) struct NodeDict<'a, Z: ProfileSizes, A, S> {
     od: Merged<&'a mut CommProfile<Z>, &'a mut A>,
+    /// For 1010h/1011h only (feature `store-restore`).
+    #[cfg_attr(not(feature = "store-restore"), allow(dead_code))]
     storage: &'a mut S,
+    #[cfg_attr(not(feature = "store-restore"), allow(dead_code))]
     save: SaveFn<S, CommProfile<Z>, A>,
 }
 
@@ -36,6 +45,7 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         NodeDict { od: Merged { comm, app }, storage, save }
     }
 
+    #[cfg(feature = "pdo-dynamic-mapping")]
     fn write_mapping(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         let comm = &mut *self.od.comm;
         let mut old = [0u8; 4];
@@ -49,6 +59,7 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         checked
     }
 
+    #[cfg(feature = "pdo-dynamic-mapping")]
     fn check_mapping(&self, index: u16, sub: u8, dir: PdoDir) -> Result<(), AbortCode> {
         let k = usize::from(index & 0x1FF);
         let p = &self.od.comm.params;
@@ -81,14 +92,14 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         data: &[u8; 4],
         len: Option<usize>,
     ) -> Result<(), AbortCode> {
-        match index {
-            0x1010 | 0x1011 | 0x1600..=0x17FF | 0x1A00..=0x1BFF => {
-                crate::od::expedited_download(self, index, sub, data, len)
-            }
-            _ => self.od.comm.write_expedited(index, sub, data, len),
+        if intercepted(index) {
+            crate::od::expedited_download(self, index, sub, data, len)
+        } else {
+            self.od.comm.write_expedited(index, sub, data, len)
         }
     }
 
+    #[cfg(feature = "store-restore")]
     fn store_command(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         if !self.od.comm.info(index, sub)?.access.writable() {
             return Err(AbortCode::WriteOfReadOnly);
@@ -105,6 +116,13 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
             storage::restore_defaults(self.storage, groups).map_err(abort_of)
         }
     }
+}
+
+/// Whether this view's `write` handles `index` itself rather than passing it on: 1010h/1011h (feature
+/// `store-restore`) and the PDO mapping records (feature `pdo-dynamic-mapping`).
+const fn intercepted(index: u16) -> bool {
+    let store = cfg!(feature = "store-restore") && matches!(index, 0x1010 | 0x1011);
+    store || cfg!(feature = "pdo-dynamic-mapping") && matches!(index, 0x1600..=0x17FF | 0x1A00..=0x1BFF)
 }
 
 impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for NodeDict<'_, Z, A, S> {
@@ -135,7 +153,9 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     }
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         match index {
+            #[cfg(feature = "store-restore")]
             0x1010 | 0x1011 => self.store_command(index, sub, data),
+            #[cfg(feature = "pdo-dynamic-mapping")]
             0x1600..=0x17FF | 0x1A00..=0x1BFF => self.write_mapping(index, sub, data),
             _ => self.od.write(index, sub, data),
         }

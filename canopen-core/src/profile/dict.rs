@@ -33,6 +33,7 @@ use crate::od::{
 };
 use crate::pdo::{mapping::MAX_ENTRIES, rpdo_type_ok, tpdo_type_ok, PdoComm, PdoMapParams};
 use crate::sizes::Sizes;
+#[cfg(feature = "store-restore")]
 use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 
 /// `Self::find(index, sub)?`, except that an index the table has not and [`optional`] serves returns
@@ -143,7 +144,7 @@ const OBJECTS: [u16; OBJECT_COUNT] = {
 /// and they are not in the EDS. (first, last index, whether this build has them) per Cargo feature:
 /// `guarding` 100Ch/100Dh, `time` 1012h, and the optional objects of `lib.rs`. A constant per build: no
 /// cost with the features on.
-const BUILT: [(u16, u16, bool); 8] = [
+const BUILT: [(u16, u16, bool); 9] = [
     (0x100C, 0x100D, cfg!(feature = "guarding")),
     (0x1012, 0x1012, cfg!(feature = "time")),
     (0x1003, 0x1003, cfg!(feature = "error-history")),
@@ -152,6 +153,7 @@ const BUILT: [(u16, u16, bool); 8] = [
     (0x1015, 0x1015, cfg!(feature = "emcy-inhibit")),
     (0x1019, 0x1019, cfg!(feature = "sync-counter")),
     (0x1029, 0x1029, cfg!(feature = "error-behaviour")),
+    (0x1010, 0x1011, cfg!(feature = "store-restore")),
 ];
 
 /// Whether `index` is one of [`BUILT`]'s objects this build leaves out.
@@ -167,7 +169,9 @@ const fn compiled_out(index: u16) -> bool {
     false
 }
 
+#[cfg(feature = "store-restore")]
 const STORE_NAMES: [&str; 3] = ["Save all parameters", "Save communication parameters", "Save application parameters"];
+#[cfg(feature = "store-restore")]
 const RESTORE_NAMES: [&str; 3] = [
     "Restore all default parameters",
     "Restore communication default parameters",
@@ -322,6 +326,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             0x100A => var("Manufacturer software version", VisibleString, Const, Value::Str(c.software_version)),
             0x100C => var("Guard time", Unsigned16, Rw, uint(c.guard_time_ms.into())),
             0x100D => var("Life time factor", Unsigned8, Rw, uint(c.life_time_factor.into())),
+            #[cfg(feature = "store-restore")]
             0x1010 | 0x1011 => {
                 let names = if index == 0x1010 { &STORE_NAMES } else { &RESTORE_NAMES };
                 match sub {
@@ -391,10 +396,13 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                 let tx = matches!(obj, PdoObj::TpdoMap(_));
                 let d = if tx { self.config.tpdo_default(k) } else { self.config.rpdo_default(k) };
                 let m = d.map_params();
+                // PDO-30: rw with dynamic mapping, const when the mapping is fixed.
+                let access = if cfg!(feature = "pdo-dynamic-mapping") { Rw } else { Const };
                 match usize::from(sub) {
                     0 => {
-                        let e = EntryDesc::var(index, 0, "Number of mapped application objects in PDO", Unsigned8, Rw)
-                            .with_default(uint(m.count.into()));
+                        let e =
+                            EntryDesc::var(index, 0, "Number of mapped application objects in PDO", Unsigned8, access)
+                                .with_default(uint(m.count.into()));
                         // A limit below MAX_ENTRIES is the configuration's own: the EDS says it.
                         Ok(if usize::from(d.max_mapped) < MAX_ENTRIES {
                             e.with_limits(Some(uint(0)), Some(uint(d.max_mapped.into())))
@@ -404,7 +412,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                     }
                     s if s <= MAX_ENTRIES => Ok(EntryDesc {
                         numbered: true,
-                        ..EntryDesc::var(index, sub, "Application object", Unsigned32, Rw)
+                        ..EntryDesc::var(index, sub, "Application object", Unsigned32, access)
                             .with_default(uint(m.entries[s - 1]))
                     }),
                     _ => Err(AbortCode::SubIndexDoesNotExist),
@@ -465,6 +473,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::GuardTime => p.guard_time_ms.into(),
             #[cfg(feature = "guarding")]
             Slot::LifeTimeFactor => p.life_time_factor.into(),
+            #[cfg(feature = "store-restore")]
             Slot::Store | Slot::Restore => u32::from(self.storage_supported),
             #[cfg(feature = "time")]
             Slot::TimeCob => p.time_cob_id,
@@ -516,11 +525,13 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::GuardTime => p.guard_time_ms = v as u16,
             #[cfg(feature = "guarding")]
             Slot::LifeTimeFactor => p.life_time_factor = v as u8,
+            #[cfg(feature = "store-restore")]
             Slot::Store | Slot::Restore if rules => {
                 let sig = if f.slot == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
                 // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
                 return Err(if v != sig { AbortCode::CannotStore } else { AbortCode::HardwareError });
             }
+            #[cfg(feature = "store-restore")]
             Slot::Store | Slot::Restore => {}
             #[cfg(feature = "time")]
             Slot::TimeCob => p.time_cob_id = cob(p.time_cob_id, |e| e.bit31() || e.bit30())?,
@@ -559,6 +570,8 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         Ok(())
     }
 
+    /// Sub 01h–06h of a PDO communication record.
+    /// A PDO communication record's entry, or (feature `pdo-dynamic-mapping`) a mapping record's.
     fn set_pdo(&mut self, f: &Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let d = if f.tx() { self.config.tpdo_default(f.k()) } else { self.config.rpdo_default(f.k()) };
         let p = &mut self.params;
@@ -571,7 +584,10 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             return Err(AbortCode::ObjectDoesNotExist);
         };
         let valid = comm.is_valid();
+        #[cfg(not(feature = "pdo-dynamic-mapping"))]
+        let _ = (map, d, sub); // a fixed mapping is const: `write_found` refuses it before this
         match f.slot {
+            #[cfg(feature = "pdo-dynamic-mapping")]
             Slot::MapCount | Slot::MapEntry => return set_map(comm, map, sub, v, rules, d.max_mapped),
             Slot::PdoCob => {
                 if f.tx() {
@@ -641,6 +657,7 @@ fn pdo_map_value(m: &PdoMapParams, sub: u8) -> u32 {
     }
 }
 
+#[cfg(feature = "pdo-dynamic-mapping")]
 /// PDO-30/35/37: the mapping changes only while the PDO is not valid, entries only while sub 00h = 0.
 /// `max` is the configuration's highest count (`PdoDefault::max_mapped`), above which a count is refused
 /// with 0609 0031h (its `HighLimit`).
@@ -704,10 +721,9 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// # use canopen_core::Sizes;
     /// # use canopen_core::profile::{CommProfile, NodeConfig};
     /// let mut od: CommProfile<Sizes<0, 16, 16, 1, 0>> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
-    /// od.load_value(0x1600, 1, &[8, 0, 1, 0x10]).unwrap(); // entry while sub 00h = 0 is fine anyway
-    /// od.load_value(0x1400, 1, &[0x01, 0x02, 0, 0]).unwrap();
-    /// od.load_value(0x1600, 0, &[1]).unwrap(); // count while the PDO is valid: only without rules
-    /// assert_eq!(od.params.rpdo_map[0].count, 1);
+    /// od.load_value(0x1400, 1, &[0x01, 0x02, 0, 0]).unwrap(); // RPDO 1 valid
+    /// od.load_value(0x1400, 3, &[10, 0]).unwrap(); // inhibit time while the PDO is valid: only without rules
+    /// assert_eq!(od.params.rpdo_comm[0].inhibit_100us, 10);
     /// ```
     pub fn load_value(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         self.write_checked(index, sub, data, false)
@@ -910,6 +926,13 @@ mod tests {
         assert_eq!(od.entry(0x1800, 1).unwrap().default, Some(Value::NodeIdPlus(0x4000_0180)));
         assert_eq!(read(&od, 0x1800, 1).unwrap()[..], [0x85, 0x01, 0, 0x40]);
         od.write(0x1800, 1, &[0x85, 0x01, 0, 0xC0]).unwrap(); // not valid: the mapping may change
+        if !cfg!(feature = "pdo-dynamic-mapping") {
+            // PDO-30: a fixed mapping is const, whatever the PDO's state.
+            assert_eq!(od.write(0x1A00, 0, &[0]), Err(AbortCode::WriteOfReadOnly));
+            assert_eq!(od.write(0x1A00, 1, &[0x08, 0x01, 0x00, 0x60]), Err(AbortCode::WriteOfReadOnly));
+            assert_eq!(od.info(0x1A00, 1).unwrap().access, Access::Const);
+            return;
+        }
         for (index, sub) in (1..=5).flat_map(|sub| [(0x1A00, sub), (0x1A01, sub)]) {
             od.write(index, sub, &[0x08, 0x01, 0x00, 0x60]).unwrap();
         }
@@ -1001,13 +1024,13 @@ mod tests {
     }
 
     /// The objects of a feature this build leaves out (guarding: 100Ch/100Dh, TIME: 1012h, and the optional
-    /// objects 1003h, 1007h, 1008h–100Ah, 1015h, 1019h, 1029h) do not exist: SDO gets 0602 0000h (OD-16), the
+    /// objects 1003h, 1007h, 1008h–100Ah, 1015h, 1019h, 1029h, and 1010h/1011h) do not exist: SDO gets 0602 0000h (OD-16), the
     /// EDS does not list them, and the other objects keep their order. With every feature on, nothing is gone.
     #[test]
     fn compiled_out_objects_do_not_exist() {
         extern crate std;
         let mut od: CommProfile<Sizes<2, 16, 16, 0, 0>> = CommProfile::new(CFG);
-        let per_feature: [(&[u16], bool); 8] = [
+        let per_feature: [(&[u16], bool); 9] = [
             (&[0x100C, 0x100D], cfg!(feature = "guarding")),
             (&[0x1012], cfg!(feature = "time")),
             (&[0x1003], cfg!(feature = "error-history")),
@@ -1016,6 +1039,7 @@ mod tests {
             (&[0x1015], cfg!(feature = "emcy-inhibit")),
             (&[0x1019], cfg!(feature = "sync-counter")),
             (&[0x1029], cfg!(feature = "error-behaviour")),
+            (&[0x1010, 0x1011], cfg!(feature = "store-restore")),
         ];
         let gone: std::vec::Vec<u16> =
             per_feature.iter().filter(|(_, built)| !built).flat_map(|(indices, _)| indices.iter().copied()).collect();

@@ -43,7 +43,9 @@ pub(super) enum Slot {
     GuardTime,
     #[cfg(feature = "guarding")]
     LifeTimeFactor,
+    #[cfg(feature = "store-restore")]
     Store,
+    #[cfg(feature = "store-restore")]
     Restore,
     #[cfg(feature = "time")]
     TimeCob,
@@ -67,7 +69,7 @@ pub(super) enum Slot {
     MapEntry,
 }
 
-/// Data type and access of a run of sub-entries (the profile uses these seven).
+/// Data type and access of a run of sub-entries (the profile uses these eight at most).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Ty {
     U8Const,
@@ -76,6 +78,8 @@ pub(super) enum Ty {
     U16Rw,
     U32Ro,
     U32Rw,
+    #[cfg(not(feature = "pdo-dynamic-mapping"))]
+    U32Const,
     #[cfg(feature = "manufacturer-strings")]
     StrConst,
 }
@@ -90,6 +94,8 @@ impl Ty {
             Ty::U16Rw => (DataType::Unsigned16, Access::Rw),
             Ty::U32Ro => (DataType::Unsigned32, Access::Ro),
             Ty::U32Rw => (DataType::Unsigned32, Access::Rw),
+            #[cfg(not(feature = "pdo-dynamic-mapping"))]
+            Ty::U32Const => (DataType::Unsigned32, Access::Const),
             #[cfg(feature = "manufacturer-strings")]
             Ty::StrConst => (DataType::VisibleString, Access::Const),
         }
@@ -106,11 +112,21 @@ impl Ty {
             Ty::U8Const | Ty::U8Ro | Ty::U8Rw => 1,
             Ty::U16Rw => 2,
             Ty::U32Ro | Ty::U32Rw => 4,
+            #[cfg(not(feature = "pdo-dynamic-mapping"))]
+            Ty::U32Const => 4,
             #[cfg(feature = "manufacturer-strings")]
             Ty::StrConst => 0,
         }
     }
 }
+
+/// PDO-30: the mapping records are rw with dynamic mapping (feature `pdo-dynamic-mapping`), const when the
+/// mapping is fixed.
+const MAP_COUNT: Ty = if cfg!(feature = "pdo-dynamic-mapping") { Ty::U8Rw } else { Ty::U8Const };
+#[cfg(feature = "pdo-dynamic-mapping")]
+const MAP_ENTRY: Ty = Ty::U32Rw;
+#[cfg(not(feature = "pdo-dynamic-mapping"))]
+const MAP_ENTRY: Ty = Ty::U32Const;
 
 /// Sub-indices `first..=last` of one object: type, access and value slot. `last == HB` stands for the
 /// node's number of heartbeat consumers (1016h). An object's count run (sub 00h) comes first, its highest
@@ -162,19 +178,23 @@ const ROWS: &[(u16, Run)] = &[
     (0x100C, var(Ty::U16Rw, Slot::GuardTime)), // GUARD-02
     #[cfg(feature = "guarding")]
     (0x100D, var(Ty::U8Rw, Slot::LifeTimeFactor)), // GUARD-03
-    (0x1010, count()),                             // STORE-01..05
-    (0x1010, run(1, 3, Ty::U32Rw, Slot::Store)),   //
-    (0x1011, count()),                             // STORE-08..11
-    (0x1011, run(1, 3, Ty::U32Rw, Slot::Restore)), //
+    #[cfg(feature = "store-restore")]
+    (0x1010, count()), // STORE-01..05
+    #[cfg(feature = "store-restore")]
+    (0x1010, run(1, 3, Ty::U32Rw, Slot::Store)),
+    #[cfg(feature = "store-restore")]
+    (0x1011, count()), // STORE-08..11
+    #[cfg(feature = "store-restore")]
+    (0x1011, run(1, 3, Ty::U32Rw, Slot::Restore)),
     #[cfg(feature = "time")]
     (0x1012, var(Ty::U32Rw, Slot::TimeCob)), // TIME-01..03
-    (0x1014, var(Ty::U32Rw, Slot::EmcyCob)),       // EMCY-02/03
+    (0x1014, var(Ty::U32Rw, Slot::EmcyCob)), // EMCY-02/03
     #[cfg(feature = "emcy-inhibit")]
     (0x1015, var(Ty::U16Rw, Slot::EmcyInhibit)), // EMCY-09
-    (0x1016, count()),                             // HB-06..09
+    (0x1016, count()),                       // HB-06..09
     (0x1016, run(1, HB, Ty::U32Rw, Slot::Consumer)), //
     (0x1017, var(Ty::U16Rw, Slot::HeartbeatTime)), // HB-01
-    (0x1018, count()),                             // DEV-03
+    (0x1018, count()),                       // DEV-03
     (0x1018, run(1, 4, Ty::U32Ro, Slot::Identity)), //
     #[cfg(feature = "sync-counter")]
     (0x1019, var(Ty::U8Rw, Slot::SyncOverflow)), // SYNC-10/12
@@ -188,8 +208,8 @@ const ROWS: &[(u16, Run)] = &[
     (0x1400, run(3, 3, Ty::U16Rw, Slot::PdoInhibit)),               //
     (0x1400, run(5, 5, Ty::U16Rw, Slot::PdoEventTimer)),            //
     (0x1800, run(6, 6, Ty::U8Rw, Slot::PdoSyncStart)),              // PDO-26
-    (0x1600, var(Ty::U8Rw, Slot::MapCount)),                        // PDO-30..37
-    (0x1600, run(1, MAX_ENTRIES as u8, Ty::U32Rw, Slot::MapEntry)), //
+    (0x1600, var(MAP_COUNT, Slot::MapCount)),                       // PDO-30..37
+    (0x1600, run(1, MAX_ENTRIES as u8, MAP_ENTRY, Slot::MapEntry)), //
     (0x1F80, var(Ty::U32Rw, Slot::NmtStartup)),                     // NMT-27
 ];
 

@@ -1,11 +1,13 @@
 //! The minimal device of issue 13 on the same board as `node.rs`: NMT, heartbeat producer (1017h, 1000 ms),
-//! the SDO server with expedited and segmented transfer (no block transfer), 4 RPDOs and 4 TPDOs with
-//! dynamic mapping, the SYNC consumer, and EMCY (1014h) with the error register 1001h. No heartbeat consumer
+//! the SDO server with expedited and segmented transfer (no block transfer), 4 RPDOs and 4 TPDOs with the
+//! fixed mapping configured below (1600h+/1A00h+ are const, PDO-30), the SYNC consumer, and EMCY (1014h) with
+//! the error register 1001h. No heartbeat consumer
 //! (1016h has no entries), no SYNC producer, no TPDO remote requests, no LSS, TIME, node guarding, SDO client
 //! or SDO block transfer, PDO mapping of whole objects of whole bytes only (the EDS's Granularity=8, no
 //! bit-granular entries), and none of the objects CiA 301 makes optional for these services: no 1003h error
 //! history, 1007h SYNC window, 1008h–100Ah strings, 1015h EMCY inhibit time, 1019h SYNC counter or 1029h
-//! error behaviour (a communication error in Operational leads to Pre-operational, 1029h's default).
+//! error behaviour (a communication error in Operational leads to Pre-operational, 1029h's default), and no
+//! 1010h/1011h store/restore (the device has no parameter storage).
 //! canopen-core is built without its optional features (`cargo build --release --no-default-features
 //! --features minimal --bin minimal`, which `scripts/footprint.sh` runs), so none of them is in the image.
 //!
