@@ -1,9 +1,9 @@
 //! The dictionary SDO sees on a node: the one router of the communication profile and the application
 //! ([`Merged`]), plus the three things that need both halves or the storage:
-//! - (feature `pdo-dynamic-mapping`) a mapping entry (1600h–17FFh / 1A00h–1BFFh sub 01h–08h) must name an existing, mappable object of the
-//!   merged dictionary (PDO-36: 0602 0000h / 0609 0011h / 0604 0041h), and enabling a mapping (sub 00h)
-//!   resolves every entry again (PDO-37: 0602 0000h, 0604 0042h above 64 bits); a refused write is rolled
-//!   back, so nothing changes;
+//! - (feature `pdo-dynamic-mapping`) a mapping entry (1600h–17FFh / 1A00h–1BFFh sub 01h–08h) must name an
+//!   existing, mappable object of the merged dictionary (PDO-36: 0602 0000h / 0609 0011h / 0604 0041h), and
+//!   enabling a mapping (sub 00h) resolves every entry again (PDO-37: 0602 0000h, 0604 0042h above 64 bits);
+//!   a refused write is rolled back, so nothing changes;
 //! - (feature `mpdo`) a TPDO mapping count FEh while another TPDO is the SAM producer already: 0604 0043h
 //!   (MPDO-03, one SAM producer per device);
 //! - (feature `store-restore`) 1010h "save" stores the groups of its sub-index before the SDO response goes

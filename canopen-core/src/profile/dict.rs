@@ -570,7 +570,6 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         Ok(())
     }
 
-    /// Sub 01h–06h of a PDO communication record.
     /// A PDO communication record's entry, or (feature `pdo-dynamic-mapping`) a mapping record's.
     fn set_pdo(&mut self, f: &Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let d = if f.tx() { self.config.tpdo_default(f.k()) } else { self.config.rpdo_default(f.k()) };
@@ -657,10 +656,10 @@ fn pdo_map_value(m: &PdoMapParams, sub: u8) -> u32 {
     }
 }
 
-#[cfg(feature = "pdo-dynamic-mapping")]
 /// PDO-30/35/37: the mapping changes only while the PDO is not valid, entries only while sub 00h = 0.
 /// `max` is the configuration's highest count (`PdoDefault::max_mapped`), above which a count is refused
 /// with 0609 0031h (its `HighLimit`).
+#[cfg(feature = "pdo-dynamic-mapping")]
 fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool, max: u8) -> Result<(), AbortCode> {
     if rules && comm.is_valid() {
         return Err(AbortCode::UnsupportedAccess);

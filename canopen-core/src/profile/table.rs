@@ -122,9 +122,12 @@ impl Ty {
 
 /// PDO-30: the mapping records are rw with dynamic mapping (feature `pdo-dynamic-mapping`), const when the
 /// mapping is fixed.
-const MAP_COUNT: Ty = if cfg!(feature = "pdo-dynamic-mapping") { Ty::U8Rw } else { Ty::U8Const };
+#[cfg(feature = "pdo-dynamic-mapping")]
+const MAP_COUNT: Ty = Ty::U8Rw;
 #[cfg(feature = "pdo-dynamic-mapping")]
 const MAP_ENTRY: Ty = Ty::U32Rw;
+#[cfg(not(feature = "pdo-dynamic-mapping"))]
+const MAP_COUNT: Ty = Ty::U8Const;
 #[cfg(not(feature = "pdo-dynamic-mapping"))]
 const MAP_ENTRY: Ty = Ty::U32Const;
 
