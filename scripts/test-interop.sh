@@ -10,7 +10,8 @@
 #      master surviving vcan1 going down and up (transfers in flight fail at once, later ones work);
 #   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS);
 #   5. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
-#      node, on the EDS the node wrote with --eds;
+#      node, on the EDS the node wrote with --eds; tests/python/test_fixed_mapping.py: the same master and the
+#      example node built without pdo-dynamic-mapping (const mapping records, PDO-30);
 #   6. tests/vcan_master_python.rs: canopen-master as the master of python canopen's LocalNode (ten at once).
 # Usage: scripts/test-interop.sh   (SKIP_PIP=1 skips the pip install). Fails (non-zero) if neither the
 # interfaces nor the VM are there.
@@ -24,6 +25,12 @@ source scripts/python-env.sh
 source scripts/vcan-run.sh
 
 echo "== build on the host (the VM compiles ~14x slower)"
+# The example node with a fixed PDO mapping (the facade's default features but pdo-dynamic-mapping) for
+# tests/python/test_fixed_mapping.py, built first and copied aside: the full build below relinks the same path.
+fixed=$(python3 -c 'import tomllib; d = tomllib.load(open("Cargo.toml", "rb"))["features"]["default"]
+print(",".join(f for f in d if f != "pdo-dynamic-mapping"))')
+cargo build --example node --no-default-features --features "$fixed"
+cp target/debug/examples/node target/debug/examples/node-fixed-mapping
 cargo build --examples
 cargo test --no-run -p canopen-socketcan --test vcan
 # The load test measures the node as it is deployed: optimised (a debug build cannot keep up with a flood plus
@@ -48,6 +55,9 @@ NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli 
 echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
     python3 -m pytest -q -rs -o faulthandler_timeout=300 tests/python/test_interop.py
+echo "== python canopen as the master of the node with a fixed PDO mapping (PDO-30)"
+NODE_BIN_FIXED=target/debug/examples/node-fixed-mapping python3 -m pytest -q -rs -o faulthandler_timeout=300 \
+    tests/python/test_fixed_mapping.py
 echo "== canopen-master against python canopen's LocalNode (ten nodes, typed values, aborts, block fallback)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q --test vcan_master_python -- --include-ignored
 INNER
