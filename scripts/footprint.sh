@@ -16,7 +16,7 @@
 # in embassy-executor 0.10): it is reported apart. The node itself is a `static` (StaticCell) in .bss, so it
 # is counted in RAM.
 #
-# Usage: scripts/footprint.sh [--check] [--ratchet] [--breakdown] [--optional]
+# Usage: scripts/footprint.sh [--check] [--ratchet] [--breakdown] [--optional] [--services]
 #   --check      exit 1 when a device's share is over its target (node: flash 12,000 B, RAM 2,500 B;
 #                minimal: flash 8,000 B, RAM 2,500 B)
 #   --ratchet    exit 1 when a figure grew more than 2 % over its line in scripts/footprint.baseline; a
@@ -28,19 +28,23 @@
 #                and the MPDO paths; the reference set leaves them out) and with crc-table (the block CRC
 #                from a 512-byte table instead of the nibble table), and print the flash and RAM each adds
 #                to node
+#   --services   also build the minimal device's application with the full reference set minus one of its
+#                canopen-core features at a time, and print what each feature costs in the full set (a
+#                feature linked only when the application uses it, e.g. the SDO client, shows about 0)
 # Needs: rustup target add thumbv7em-none-eabihf; binutils `size` and `nm` (they read ARM ELF files).
 set -euo pipefail
 SCRIPTS=$(cd "$(dirname "$0")" && pwd)
 cd "$SCRIPTS/../examples/firmware"
 declare -A FLASH_TARGET=([node]=12000 [minimal]=8000) RAM_TARGET=([node]=2500 [minimal]=2500)
-check=0 ratchet=0 breakdown=0 optional=0
+check=0 ratchet=0 breakdown=0 optional=0 services=0
 for a in "$@"; do
   case $a in
     --check) check=1 ;;
     --ratchet) ratchet=1 ;;
     --breakdown) breakdown=1 ;;
     --optional) optional=1 ;;
-    *) echo "usage: $0 [--check] [--ratchet] [--breakdown] [--optional]" >&2; exit 2 ;;
+    --services) services=1 ;;
+    *) echo "usage: $0 [--check] [--ratchet] [--breakdown] [--optional] [--services]" >&2; exit 2 ;;
   esac
 done
 
@@ -107,6 +111,23 @@ if [ "$optional" = 1 ]; then
     printf '  %-20s flash %+6d  RAM %+6d\n' "$f" $((text + data - F[node])) $((data + bss - R[node]))
   done
   cargo build --release --no-default-features --features full --bin node --quiet # leave node as measured
+fi
+
+if [ "$services" = 1 ]; then
+  echo
+  echo "what each canopen-core feature of the full set costs there (minimal's application; bytes of flash and of RAM, task storage included):"
+  full=$(python3 -c 'import tomllib; print(" ".join(tomllib.load(open("Cargo.toml", "rb"))["features"]["full"]))')
+  cargo build --release --no-default-features --features "minimal $full" --bin minimal --quiet
+  read -r text data bss < <(berkeley "$T/minimal")
+  all_flash=$((text + data)) all_ram=$((data + bss))
+  echo "  minimal's application with the full set: flash $((all_flash - F[baseline])), RAM $((all_ram - R[baseline]))"
+  for f in $full; do
+    others=$(for g in $full; do [ "$g" = "$f" ] || printf '%s ' "$g"; done)
+    cargo build --release --no-default-features --features "minimal $others" --bin minimal --quiet
+    read -r text data bss < <(berkeley "$T/minimal")
+    printf '  %-36s flash %6d  RAM %6d\n' "$f" $((all_flash - text - data)) $((all_ram - data - bss))
+  done | sort -k3 -rn
+  cargo build --release --no-default-features --features minimal --bin minimal --quiet # leave minimal as measured
 fi
 
 status=0
