@@ -940,6 +940,20 @@ mod tests {
         od.write(0x1A01, 0, &[5]).unwrap(); // TPDO 2 (no default): up to MAX_ENTRIES
     }
 
+    /// A stored mapping is loaded without the SDO change rules (PDO-35): an entry, then the count while the
+    /// PDO is valid, which SDO refuses with 0601 0000h. (It was the `load_value` doctest's example until a
+    /// build without `pdo-dynamic-mapping` ran the doctests too.)
+    #[test]
+    #[cfg(feature = "pdo-dynamic-mapping")]
+    fn load_value_skips_the_mapping_rules() {
+        let mut od: CommProfile<Sizes<0, 16, 16, 1, 0>> = CommProfile::for_node(NodeConfig::DEFAULT, 1);
+        od.load_value(0x1600, 1, &[8, 0, 1, 0x10]).unwrap(); // entry while sub 00h = 0 is fine anyway
+        od.load_value(0x1400, 1, &[0x01, 0x02, 0, 0]).unwrap();
+        assert_eq!(od.write(0x1600, 0, &[1]), Err(AbortCode::UnsupportedAccess)); // valid: not by SDO
+        od.load_value(0x1600, 0, &[1]).unwrap(); // count while the PDO is valid: only without rules
+        assert_eq!(od.params.rpdo_map[0].count, 1);
+    }
+
     /// Heartbeat consumer entries 1016h:01..04 through the dictionary (0002 0064h, 0003 0190h, 0007 0FA0h;
     /// node 2 twice refused, an entry disabled by 0), and wrong writes a tutorial prints (sub 00h, short values).
     #[test]
