@@ -18,16 +18,13 @@ import threading
 import time
 
 import pytest
+from vcan_required import require_vcan
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 IFACE = os.environ.get("CANOPEN_IFACE", "vcan0")
 NODE_ID = 5
 
-if not pathlib.Path(f"/sys/class/net/{IFACE}").exists():
-    if os.environ.get("CANOPEN_REQUIRE_VCAN") == "1":  # CI: a skip would hide that nothing ran
-        raise RuntimeError(f"no SocketCAN interface {IFACE} but CANOPEN_REQUIRE_VCAN=1")
-    pytest.skip(f"no SocketCAN interface {IFACE}: run through scripts/vcan-run.sh (scripts/test-interop.sh)",
-                allow_module_level=True)
+require_vcan(IFACE)
 
 import canopen  # noqa: E402
 from canopen.objectdictionary import ODVariable  # noqa: E402
