@@ -3,6 +3,11 @@
 //! The caller passes a monotonic [`Instant`] (integer microseconds since any origin) into every call
 //! that depends on time. Deadlines come back out of `Node::poll_timeout`, so a runner sleeps exactly until
 //! the next one and no fixed tick is needed. Integer microseconds keep floating point out of the core.
+//!
+//! The three types hold a `u64` at 4-byte alignment (`repr(C, packed(4))`, read and written by value only), so
+//! that the services that keep them, and with them the node, are 4-aligned on a 32-bit target: building or
+//! resetting a node then copies and clears with `__aeabi_memcpy4`/`memclr4`, which a firmware links anyway,
+//! and not also with their 8-byte variants (392 B of the firmware example's flash, 48 B of its RAM).
 
 use core::ops::{Add, AddAssign, Sub};
 
@@ -20,7 +25,7 @@ use core::ops::{Add, AddAssign, Sub};
 /// assert_eq!(t.as_micros(), 5_250);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(C, packed(4))] // 4-byte aligned: see the module docs
 pub struct Instant(u64);
 
 impl Instant {
@@ -79,7 +84,7 @@ impl Instant {
 /// assert_eq!(Duration::from_100us(15).as_micros(), 1_500);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(C, packed(4))] // 4-byte aligned: see the module docs
 pub struct Duration(u64);
 
 impl Duration {
@@ -180,7 +185,7 @@ impl Add for Duration {
     }
 }
 
-/// An optional deadline in 8 bytes, where `Option<Instant>` takes 16 (a flag padded to the `u64`'s
+/// An optional deadline in 8 bytes, where `Option<Instant>` takes 12 (a flag padded to the
 /// alignment): what the services keep their timers in. The instant `u64::MAX` µs (some 585,000 years after
 /// the runner's epoch) stands for "no deadline"; an instant plus a duration never reaches it (see [`Instant`]).
 ///
@@ -192,7 +197,24 @@ impl Add for Duration {
 /// assert!(!d.passed(Instant::from_millis(4)) && d.passed(Instant::from_millis(5)));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(C, packed(4))] // 4-byte aligned: see the module docs
 pub struct Deadline(u64);
+
+/// `Instant(5000)`, as the derive would print it (a derive cannot: it borrows the packed field).
+#[cfg(feature = "defmt")]
+impl defmt::Format for Instant {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "Instant({=u64})", self.as_micros())
+    }
+}
+
+/// `Duration(5000)`, as the derive would print it (a derive cannot: it borrows the packed field).
+#[cfg(feature = "defmt")]
+impl defmt::Format for Duration {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "Duration({=u64})", self.as_micros())
+    }
+}
 
 impl Default for Deadline {
     fn default() -> Self {
@@ -291,6 +313,17 @@ pub(crate) const fn ms(v: u64) -> Instant {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use core::mem::{align_of, size_of};
+
+    /// The layout the module docs promise: 8 bytes at 4-byte alignment, on a 64-bit host as on a Cortex-M,
+    /// and so a struct of them with `u32`s is 4-aligned ([`crate::sdo::server::SdoServer`] too).
+    #[test]
+    fn time_values_are_8_bytes_4_aligned() {
+        assert_eq!((size_of::<Instant>(), align_of::<Instant>()), (8, 4));
+        assert_eq!((size_of::<Duration>(), align_of::<Duration>()), (8, 4));
+        assert_eq!((size_of::<Deadline>(), align_of::<Deadline>()), (8, 4));
+        assert_eq!(align_of::<crate::sdo::server::SdoServer>(), 4);
+    }
 
     /// The bound of [`Instant`]: below 2⁶³ µs, adding any duration (clamped to [`Duration::MAX`]) neither
     /// wraps nor reaches [`Deadline::NONE`]; every constructor and the sums clamp to the maximum.

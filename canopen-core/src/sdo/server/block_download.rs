@@ -118,7 +118,7 @@ impl SdoServer {
     pub(super) const fn block_download_deadline(&self, timeout_at: Instant) -> Instant {
         match &self.state {
             State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => {
-                let t = self.timeout;
+                let t = self.timeout.0;
                 Instant::from_micros(timeout_at.as_micros().saturating_sub(t - t / 4))
             }
             _ => timeout_at,

@@ -3,7 +3,7 @@
 //! [`SdoServer::poll_transmit`] (SDO-37, SDO-46), the client's acknowledge with go-back-n and a new block
 //! size (SDO-45), end with the CRC (SDO-47..SDO-49).
 
-use super::{Response, SdoEvent, SdoServer, State};
+use super::{Micros, Response, SdoEvent, SdoServer, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::{last_segment_len, Crc16};
 use crate::time::Instant;
@@ -89,7 +89,7 @@ impl SdoServer {
             b.phase = UploadPhase::WaitAck;
         }
         segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
-        self.since = now.as_micros(); // SDO-31: the time-out runs from the last frame sent
+        self.since = Micros(now.as_micros()); // SDO-31: the time-out runs from the last frame sent
         Some(Response::send(segment))
     }
 
