@@ -7,7 +7,7 @@
 //! [`DomainBuf`] is a small in-memory implementation for tests and short generated data.
 
 use super::value::{chunk_end, fits};
-use super::{copy_at, AbortCode};
+use super::{value::copy_streamed, AbortCode};
 
 /// A streamed DOMAIN value.
 ///
@@ -94,7 +94,7 @@ impl<const N: usize> Domain for DomainBuf<N> {
     }
 
     fn read(&self, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        Ok(copy_at(self.as_bytes(), offset, buf))
+        Ok(copy_streamed(self.as_bytes(), offset, buf))
     }
 
     fn begin_write(&mut self, size: Option<usize>) -> Result<(), AbortCode> {
