@@ -233,15 +233,15 @@ impl SdoServerParams {
     }
 }
 
-/// The time-out as [`SdoServer`] keeps it, µs: zero (disabled) becomes `u64::MAX`, so that a deadline
-/// `since + timeout` saturates to `u64::MAX`, which is [`Deadline::NONE`].
 /// A time in µs kept at 4-byte alignment, so that the node (and the SDO server in it) is 4-aligned on a
 /// 32-bit target: copying or clearing it then takes `__aeabi_memcpy4`/`memclr4`, which the firmware links
-/// anyway, and not also their 8-byte variants (330 B of flash on Cortex-M).
+/// anyway, and not also their 8-byte variants (330 B of flash on Cortex-M). See [`crate::time`].
 #[derive(Debug, Clone, Copy)]
 #[repr(C, packed(4))]
 struct Micros(u64);
 
+/// The time-out as [`SdoServer`] keeps it, µs: zero (disabled) becomes `u64::MAX`, so that a deadline
+/// `since + timeout` saturates to `u64::MAX`, which is [`Deadline::NONE`].
 const fn stored_timeout(timeout: Duration) -> u64 {
     if timeout.is_zero() {
         u64::MAX
