@@ -104,6 +104,10 @@ impl DataType {
     /// assert_eq!(DataType::Integer24.size(), Some(3));
     /// assert_eq!(DataType::Domain.size(), None);
     /// ```
+    ///
+    /// Out of line at run time (a `const` use still folds): inlined, each caller carried the match and its
+    /// jump table (the example firmware: 140 B of minimal's flash, 68 B of node's).
+    #[inline(never)]
     pub const fn size(self) -> Option<usize> {
         use DataType::*;
         Some(match self {
