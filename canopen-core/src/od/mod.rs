@@ -105,24 +105,54 @@ impl DataType {
     /// assert_eq!(DataType::Domain.size(), None);
     /// ```
     ///
-    /// Out of line at run time (a `const` use still folds): inlined, each caller carried the match and its
-    /// jump table (the example firmware: 140 B of minimal's flash, 68 B of node's).
+    /// A load from a 32-byte table indexed by the type code (0 for no fixed size): smaller than the match's
+    /// jump table.
     #[inline(never)]
     pub const fn size(self) -> Option<usize> {
-        use DataType::*;
-        Some(match self {
-            Boolean | Integer8 | Unsigned8 => 1,
-            Integer16 | Unsigned16 => 2,
-            Integer24 | Unsigned24 => 3,
-            Integer32 | Unsigned32 | Real32 => 4,
-            Integer40 | Unsigned40 => 5,
-            Integer48 | Unsigned48 | TimeOfDay | TimeDifference => 6,
-            Integer56 | Unsigned56 => 7,
-            Integer64 | Unsigned64 | Real64 => 8,
-            VisibleString | OctetString | UnicodeString | Domain => return None,
-        })
+        match SIZES[self as usize & 0x1F] {
+            0 => None,
+            n => Some(n as usize),
+        }
     }
 }
+
+/// [`DataType::size`] by type code (DT-17): 0 for the strings, DOMAIN and the codes that name no type.
+const SIZES: [u8; 32] = {
+    use DataType::*;
+    let mut t = [0u8; 32];
+    let fixed: [(DataType, u8); 24] = [
+        (Boolean, 1),
+        (Integer8, 1),
+        (Unsigned8, 1),
+        (Integer16, 2),
+        (Unsigned16, 2),
+        (Integer24, 3),
+        (Unsigned24, 3),
+        (Integer32, 4),
+        (Unsigned32, 4),
+        (Real32, 4),
+        (Integer40, 5),
+        (Unsigned40, 5),
+        (Integer48, 6),
+        (Unsigned48, 6),
+        (TimeOfDay, 6),
+        (TimeDifference, 6),
+        (Integer56, 7),
+        (Unsigned56, 7),
+        (Integer64, 8),
+        (Unsigned64, 8),
+        (Real64, 8),
+        (VisibleString, 0),
+        (OctetString, 0),
+        (Domain, 0),
+    ];
+    let mut i = 0;
+    while i < fixed.len() {
+        t[fixed[i].0 as usize] = fixed[i].1;
+        i += 1;
+    }
+    t
+};
 
 /// Access type of a sub-entry (OD-08, OD-09).
 ///
@@ -649,5 +679,45 @@ impl<T: OdDescribe + ?Sized> OdDescribe for &mut T {
     }
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
         (**self).entry(index, sub)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DataType::{self, *};
+
+    /// DT-05..08, DT-13, DT-14, DT-17: every static data type's encoded size, from the `SIZES` table, and none
+    /// for the strings and DOMAIN.
+    #[test]
+    fn data_type_sizes() {
+        let sized: [(DataType, usize); 21] = [
+            (Boolean, 1),
+            (Integer8, 1),
+            (Unsigned8, 1),
+            (Integer16, 2),
+            (Unsigned16, 2),
+            (Integer24, 3),
+            (Unsigned24, 3),
+            (Integer32, 4),
+            (Unsigned32, 4),
+            (Real32, 4),
+            (Integer40, 5),
+            (Unsigned40, 5),
+            (Integer48, 6),
+            (Unsigned48, 6),
+            (TimeOfDay, 6),
+            (TimeDifference, 6),
+            (Integer56, 7),
+            (Unsigned56, 7),
+            (Integer64, 8),
+            (Unsigned64, 8),
+            (Real64, 8),
+        ];
+        for (t, n) in sized {
+            assert_eq!(t.size(), Some(n), "{t:?}");
+        }
+        for t in [VisibleString, OctetString, UnicodeString, Domain] {
+            assert_eq!(t.size(), None, "{t:?}");
+        }
     }
 }
