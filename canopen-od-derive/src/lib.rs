@@ -365,7 +365,8 @@ struct Row {
     default: Ts,
     low: Ts,
     high: Ts,
-    limited: bool,
+    /// The statement that checks a decoded value `v` against `min`/`max` (empty without limits).
+    limits: Ts,
     /// SDO and RPDOs may write it (`rw`, `wo`, `rwr`, `rww`): only then is a write arm generated.
     writable: bool,
     /// The access of its ARRAY's or RECORD's sub-index 00h (`count_access`), when not const.
@@ -469,6 +470,34 @@ fn value_tokens(core: &Ts, lit: &ConstLit, st: &ScalarType) -> Ts {
             quote!(#core::od::Value::Str(#s))
         }
         _ => quote!(#core::od::Value::Uint(0)),
+    }
+}
+
+/// The write arms' check of a decoded value `v` against `min`/`max` (0609 0032h below, 0609 0031h above).
+/// A Rust integer field with integer limits is compared in its own type (`check_range`, limits typed
+/// literals that `check_value` proved in range: a compare and a branch each); any other type through the
+/// `Value`s of the entry table (`check_limits`, which also refuses what does not compare, like a NaN).
+fn limit_check(core: &Ts, st: &ScalarType, min: Option<&ConstLit>, max: Option<&ConstLit>, low: &Ts, high: &Ts) -> Ts {
+    if min.is_none() && max.is_none() {
+        return quote!();
+    }
+    let suffix = match st.class {
+        Class::Signed(bits @ (8 | 16 | 32 | 64)) => format!("i{bits}"),
+        Class::Unsigned(bits @ (8 | 16 | 32 | 64)) => format!("u{bits}"),
+        _ => String::new(),
+    };
+    let typed = |l: Option<&ConstLit>| match l {
+        None => Some(quote!(::core::option::Option::None)),
+        Some(ConstLit::Int(i)) if !suffix.is_empty() => {
+            let lit = syn::LitInt::new(&format!("{}{suffix}", i.unsigned_abs()), Span::call_site());
+            let neg = (*i < 0).then(|| quote!(-));
+            Some(quote!(::core::option::Option::Some(#neg #lit)))
+        }
+        Some(_) => None,
+    };
+    match (typed(min), typed(max)) {
+        (Some(lo), Some(hi)) => quote!(#core::od::check_range(v, #lo, #hi)?;),
+        _ => quote!(#core::od::check_limits(&v, (#low).as_ref(), (#high).as_ref())?;),
     }
 }
 
@@ -721,12 +750,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                         .and_then(<#ty as #core::od::OdValue>::from_value)
                         .unwrap_or_default();
                 });
-                let limits = if !r.limited {
-                    quote!()
-                } else {
-                    let (low, high) = (&r.low, &r.high);
-                    quote!(#core::od::check_limits(&v, (#low).as_ref(), (#high).as_ref())?;)
-                };
+                let limits = &r.limits;
                 // A read-only entry gets no write code: `write`, the expedited download and the streamed
                 // write refuse it first (0601 0002h) and an RPDO cannot map it (0604 0041h). Its hooks, if
                 // any, keep their arm so that they stay used.
@@ -1073,7 +1097,7 @@ fn count_row(core: &Ts, index: u16, highest: u8, span: Span, field: &str, access
         default: quote!(::core::option::Option::Some(#core::od::Value::Uint(#highest as u64))),
         low: quote!(::core::option::Option::None),
         high: quote!(::core::option::Option::None),
-        limited: false,
+        limits: quote!(),
         writable: false,
         count_access: None,
         target: Target::Count(highest),
@@ -1149,7 +1173,7 @@ fn field_rows(
             default: opt(a.eds_default.as_ref().map(|(text, _)| quote!(#core::od::Value::Str(#text)))),
             low: quote!(::core::option::Option::None),
             high: quote!(::core::option::Option::None),
-            limited: false,
+            limits: quote!(),
             writable,
             count_access: None,
             target: Target::Domain { member: quote!(#fident) },
@@ -1267,6 +1291,7 @@ fn field_rows(
     let default = opt(a.default.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let low = opt(a.min.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
     let high = opt(a.max.as_ref().map(|(l, _)| value_tokens(core, l, &st)));
+    let limits = limit_check(core, &st, a.min.as_ref().map(|m| &m.0), a.max.as_ref().map(|m| &m.0), &low, &high);
     let _ = readable;
     // Sub-index 00h of an ARRAY or RECORD holds its fixed count: `const` (the default) or `ro`.
     let count_access = match &a.count_access {
@@ -1297,7 +1322,7 @@ fn field_rows(
         default: default.clone(),
         low: low.clone(),
         high: high.clone(),
-        limited: a.min.is_some() || a.max.is_some(),
+        limits: limits.clone(),
         writable,
         count_access: count_access.clone(),
         target: Target::Field {

@@ -28,8 +28,8 @@ pub(crate) use merged::is_program;
 pub use merged::{merge_nth, Merged};
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
-    check_len, check_limits, copy_at, OctetString, OdValue, TimeDifference, TimeOfDay, UnicodeString, VisibleString,
-    I24, I40, I48, I56, U24, U40, U48, U56,
+    check_len, check_limits, check_range, copy_at, OctetString, OdValue, TimeDifference, TimeOfDay, UnicodeString,
+    VisibleString, I24, I40, I48, I56, U24, U40, U48, U56,
 };
 
 /// CiA 301 basic data types with their static type index (DT-17, 000 §7.4.7.1 Table 44).

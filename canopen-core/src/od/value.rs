@@ -254,6 +254,27 @@ pub fn check_limits<T: OdValue>(value: &T, low: Option<&Value>, high: Option<&Va
     Ok(())
 }
 
+/// Checks a value against low/high limits of its own type: 0609 0032h below, 0609 0031h above. The
+/// derive's check for a Rust integer field with integer limits (one compare each, no [`Value`] in between);
+/// [`check_limits`] serves every other type.
+///
+/// ```
+/// use canopen_core::od::{check_range, AbortCode};
+/// assert_eq!(check_range(5i16, Some(-1000), Some(1000)), Ok(()));
+/// assert_eq!(check_range(1001i16, Some(-1000), Some(1000)), Err(AbortCode::ValueTooHigh));
+/// assert_eq!(check_range(-1001i16, Some(-1000), None), Err(AbortCode::ValueTooLow));
+/// ```
+#[inline(never)]
+pub fn check_range<T: PartialOrd>(value: T, low: Option<T>, high: Option<T>) -> Result<(), AbortCode> {
+    if low.is_some_and(|l| value < l) {
+        return Err(AbortCode::ValueTooLow);
+    }
+    if high.is_some_and(|h| value > h) {
+        return Err(AbortCode::ValueTooHigh);
+    }
+    Ok(())
+}
+
 fn cmp_signed(v: i64, limit: &Value) -> Option<Ordering> {
     match *limit {
         Value::Int(l) => Some(v.cmp(&l)),
