@@ -69,20 +69,26 @@ pub(super) enum Slot {
     MapEntry,
 }
 
-/// Data type and access of a run of sub-entries (the profile uses these eight at most).
+/// Data type and access of a run of sub-entries (the profile uses these eight at most). The discriminant
+/// holds the encoded size (bits 0–2: 1, 2 or 4; 0 for a string) and whether SDO may write it ([`WRITABLE`]),
+/// so [`Ty::size`] and [`Ty::writable`] are a mask each, not a match at every caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
 pub(super) enum Ty {
-    U8Const,
-    U8Ro,
-    U8Rw,
-    U16Rw,
-    U32Ro,
-    U32Rw,
+    U8Const = 0x01,
+    U8Ro = 0x11,
+    U8Rw = 0x21 | WRITABLE,
+    U16Rw = 0x02 | WRITABLE,
+    U32Ro = 0x04,
+    U32Rw = 0x14 | WRITABLE,
     #[cfg(not(feature = "pdo-dynamic-mapping"))]
-    U32Const,
+    U32Const = 0x24,
     #[cfg(feature = "manufacturer-strings")]
-    StrConst,
+    StrConst = 0x00,
 }
+
+/// The bit of a [`Ty`] discriminant that marks a type SDO may write.
+const WRITABLE: u8 = 0x80;
 
 impl Ty {
     /// The data type and access it stands for.
@@ -103,20 +109,12 @@ impl Ty {
 
     /// Whether SDO may write it.
     pub(super) const fn writable(self) -> bool {
-        matches!(self, Ty::U8Rw | Ty::U16Rw | Ty::U32Rw)
+        self as u8 & WRITABLE != 0
     }
 
     /// The encoded size of a numeric entry (1, 2 or 4), 0 for a string.
     pub(super) const fn size(self) -> usize {
-        match self {
-            Ty::U8Const | Ty::U8Ro | Ty::U8Rw => 1,
-            Ty::U16Rw => 2,
-            Ty::U32Ro | Ty::U32Rw => 4,
-            #[cfg(not(feature = "pdo-dynamic-mapping"))]
-            Ty::U32Const => 4,
-            #[cfg(feature = "manufacturer-strings")]
-            Ty::StrConst => 0,
-        }
+        (self as u8 & 0x07) as usize
     }
 }
 
@@ -392,4 +390,32 @@ fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
         }
     }
     Err(AbortCode::SubIndexDoesNotExist)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Ty;
+
+    /// The size and writability packed into each [`Ty`] discriminant agree with the data type and access it
+    /// stands for (OD-08: only rw entries are written by SDO; DT-05: UNSIGNEDn is n/8 bytes).
+    #[test]
+    fn ty_bits_agree_with_parts() {
+        let all = [
+            Ty::U8Const,
+            Ty::U8Ro,
+            Ty::U8Rw,
+            Ty::U16Rw,
+            Ty::U32Ro,
+            Ty::U32Rw,
+            #[cfg(not(feature = "pdo-dynamic-mapping"))]
+            Ty::U32Const,
+            #[cfg(feature = "manufacturer-strings")]
+            Ty::StrConst,
+        ];
+        for ty in all {
+            let (dt, access) = ty.parts();
+            assert_eq!(ty.size(), dt.size().unwrap_or(0), "{ty:?}");
+            assert_eq!(ty.writable(), access.writable(), "{ty:?}");
+        }
+    }
 }
