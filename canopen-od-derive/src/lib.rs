@@ -722,7 +722,6 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         let sub = r.sub;
         match &r.target {
             Target::Count(n) => {
-                size_arms.push(quote!(#pos => 1,));
                 // `copy_at(&[n], offset, buf)` as one byte store: with the constant source LLVM turned the copy
                 // into a call to `memset` (220 B of compiler_builtins in a firmware that needs it nowhere else).
                 read_arms.push(quote!(#pos => ::core::result::Result::Ok(match (offset, buf.first_mut()) {
@@ -735,7 +734,10 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             }
             Target::Field { member, ty, st, check, on_write } => {
                 let sp = r.span;
-                size_arms.push(quote!(#pos => #core::od::OdValue::size(&self.#member),));
+                // A fixed-size value's size is its row's in the info table: an arm only for the others.
+                if !st.fixed {
+                    size_arms.push(quote!(#pos => #core::od::OdValue::size(&self.#member),));
+                }
                 read_arms.push(
                     quote!(#pos => ::core::result::Result::Ok(#core::od::OdValue::read_bytes(&self.#member, offset, buf)),),
                 );
@@ -893,9 +895,11 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     m
                 };
 
+                /// The current size of the entry at `pos` whose info row is `e`: the row's fixed size, or
+                /// for a string or DOMAIN its current length.
                 #[inline]
-                fn __od_size(&self, pos: usize) -> usize {
-                    match pos { #(#size_arms)* _ => 0 }
+                fn __od_size(&self, pos: usize, e: &#core::od::SubInfo) -> usize {
+                    match pos { #(#size_arms)* _ => e.size }
                 }
                 #[inline]
                 fn __od_read(&self, pos: usize, offset: usize, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
@@ -948,7 +952,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             impl #core::od::ObjectDictionary for #ident {
                 fn info(&self, index: u16, sub: u8) -> ::core::result::Result<#core::od::SubInfo, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
-                    ::core::result::Result::Ok(#core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: self.__od_size(pos) })
+                    ::core::result::Result::Ok(#core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: self.__od_size(pos, e) })
                 }
                 fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> ::core::result::Result<usize, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
@@ -997,7 +1001,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     if !e.access.readable() {
                         return ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly);
                     }
-                    let size = self.__od_size(pos);
+                    let size = self.__od_size(pos, e);
                     match buf.get_mut(..size) {
                         ::core::option::Option::Some(dst) if size > 0 => ::core::result::Result::Ok((size, self.__od_read(pos, 0, dst)?)),
                         _ => ::core::result::Result::Ok((size, 0)),
