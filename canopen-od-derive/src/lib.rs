@@ -834,6 +834,53 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             },
         )
     };
+    // The streamed write of a string or DOMAIN (segmented and block downloads of an entry without a fixed
+    // size). A dictionary without a writable one refuses every stream the same way, through one out-of-line
+    // check: an unknown entry or a read-only one gets its own code, any other 0601 0000h.
+    let stream_write_fns = if begin_arms.is_empty() {
+        quote! {
+            #[allow(unused_variables)]
+            fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                self.__od_refuse_stream(index, sub)
+            }
+            #[allow(unused_variables)]
+            fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                self.__od_refuse_stream(index, sub)
+            }
+            #[allow(unused_variables)]
+            fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
+                self.__od_refuse_stream(index, sub)
+            }
+        }
+    } else {
+        quote! {            #[allow(unused_variables)]
+            fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                let pos = self.__od_writable(index, sub)?;
+                match pos { #(#begin_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+            }
+            #[allow(unused_variables)]
+            fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                let pos = self.__od_writable(index, sub)?;
+                match pos { #(#chunk_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+            }
+            #[allow(unused_variables)]
+            fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
+                let pos = self.__od_writable(index, sub)?;
+                match pos { #(#end_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+            }
+        }
+    };
+    let refuse_stream_fn = if begin_arms.is_empty() {
+        quote! {
+            #[inline(never)]
+            fn __od_refuse_stream(&self, index: u16, sub: u8) -> ::core::result::Result<(), __AbortCode> {
+                self.__od_writable(index, sub)?;
+                ::core::result::Result::Err(__AbortCode::UnsupportedAccess)
+            }
+        }
+    } else {
+        quote!()
+    };
     // PDO handles of strings and DOMAINs marked mappable (PDO-33, PDO-36): a string moves its capacity, a
     // DOMAIN the size it has when the mapping is checked; either must be 1..=8 bytes, else 0604 0041h (the
     // core then checks the mapped length against it, and the PDO's 64 bits: 0604 0041h / 0604 0042h).
@@ -917,6 +964,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     match pos { #(#stream_write_arms)* _ => ::core::result::Result::Err(__AbortCode::WriteOfReadOnly) }
                 }
                 #stream_expedited_fn
+                #refuse_stream_fn
                 #var_map_fn
                 /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
                 /// dictionary (not inlined), shared by every access.
@@ -965,21 +1013,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     let pos = self.__od_writable(index, sub)?;
                     self.__od_write(pos, data)
                 }
-                #[allow(unused_variables)]
-                fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
-                    let pos = self.__od_writable(index, sub)?;
-                    match pos { #(#begin_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
-                }
-                #[allow(unused_variables)]
-                fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
-                    let pos = self.__od_writable(index, sub)?;
-                    match pos { #(#chunk_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
-                }
-                #[allow(unused_variables)]
-                fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
-                    let pos = self.__od_writable(index, sub)?;
-                    match pos { #(#end_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
-                }
+                #stream_write_fns
                 /// NMT-04 Reset Application: every entry gets its `default` (or the type's default when none
                 /// is given); DOMAIN fields and fields without `#[od]` are left alone.
                 fn restore_defaults(&mut self) {

@@ -154,3 +154,34 @@ fn a_domain_without_eds_default_has_no_default_value() {
     canopen_core::od::eds::write_object(&mut eds, &od, &od.object(0).unwrap()).unwrap();
     assert_eq!(eds, "[2000]\nParameterName=blob\nObjectType=0x7\nDataType=0x000F\nAccessType=rw\nPDOMapping=0\n\n");
 }
+
+#[derive(ObjectDictionary, Default)]
+struct FixedOnly {
+    #[od(index = 0x2000, access = "rw")]
+    setpoint: i16,
+    #[od(index = 0x2001, access = "ro")]
+    status: u8,
+}
+
+/// A dictionary with no string or DOMAIN refuses every streamed write through one shared check, with the
+/// codes of OD-16 in the same order as one with streams: unknown index 0602 0000h, unknown sub-index
+/// 0609 0011h, read-only 0601 0002h, and a fixed-size entry (written whole, never streamed) 0601 0000h.
+#[test]
+fn a_dictionary_without_streams_refuses_streamed_writes() {
+    use canopen_core::od::AbortCode;
+    let mut od = FixedOnly::default();
+    for (index, sub, code) in [
+        (0x2100, 0, AbortCode::ObjectDoesNotExist),
+        (0x2000, 1, AbortCode::SubIndexDoesNotExist),
+        (0x2001, 0, AbortCode::WriteOfReadOnly),
+        (0x2000, 0, AbortCode::UnsupportedAccess),
+    ] {
+        assert_eq!(od.begin_write(index, sub, Some(2)), Err(code), "{index:04X}h:{sub}");
+        assert_eq!(od.write_chunk(index, sub, 0, &[1, 2]), Err(code), "{index:04X}h:{sub}");
+        assert_eq!(od.end_write(index, sub, 2), Err(code), "{index:04X}h:{sub}");
+    }
+    // The whole write still works, and nothing above changed the values.
+    assert_eq!(od.setpoint, 0);
+    assert_eq!(od.write(0x2000, 0, &(-5i16).to_le_bytes()), Ok(()));
+    assert_eq!(od.setpoint, -5);
+}
