@@ -684,39 +684,22 @@ impl<T: OdDescribe + ?Sized> OdDescribe for &mut T {
 
 #[cfg(test)]
 mod tests {
-    use super::DataType::{self, *};
+    use super::value::*;
+    use super::DataType;
 
-    /// DT-05..08, DT-13, DT-14, DT-17: every static data type's encoded size, from the `SIZES` table, and none
-    /// for the strings and DOMAIN.
+    /// DT-05..08, DT-13, DT-14, DT-17: the `SIZES` table agrees with the value type of every static data
+    /// type (its `DATA_TYPE` and encoded `MAX_SIZE`), and has no size for the strings and DOMAIN.
     #[test]
-    fn data_type_sizes() {
-        let sized: [(DataType, usize); 21] = [
-            (Boolean, 1),
-            (Integer8, 1),
-            (Unsigned8, 1),
-            (Integer16, 2),
-            (Unsigned16, 2),
-            (Integer24, 3),
-            (Unsigned24, 3),
-            (Integer32, 4),
-            (Unsigned32, 4),
-            (Real32, 4),
-            (Integer40, 5),
-            (Unsigned40, 5),
-            (Integer48, 6),
-            (Unsigned48, 6),
-            (TimeOfDay, 6),
-            (TimeDifference, 6),
-            (Integer56, 7),
-            (Unsigned56, 7),
-            (Integer64, 8),
-            (Unsigned64, 8),
-            (Real64, 8),
-        ];
-        for (t, n) in sized {
-            assert_eq!(t.size(), Some(n), "{t:?}");
+    fn data_type_sizes_agree_with_the_value_types() {
+        fn agrees<T: OdValue>() {
+            assert_eq!(T::DATA_TYPE.size(), Some(T::MAX_SIZE), "{:?}", T::DATA_TYPE);
         }
-        for t in [VisibleString, OctetString, UnicodeString, Domain] {
+        agrees::<bool>();
+        (agrees::<i8>(), agrees::<i16>(), agrees::<I24>(), agrees::<i32>(), agrees::<I40>(), agrees::<I48>());
+        (agrees::<I56>(), agrees::<i64>(), agrees::<u8>(), agrees::<u16>(), agrees::<U24>(), agrees::<u32>());
+        (agrees::<U40>(), agrees::<U48>(), agrees::<U56>(), agrees::<u64>(), agrees::<f32>(), agrees::<f64>());
+        (agrees::<TimeOfDay>(), agrees::<TimeDifference>());
+        for t in [DataType::VisibleString, DataType::OctetString, DataType::UnicodeString, DataType::Domain] {
             assert_eq!(t.size(), None, "{t:?}");
         }
     }
