@@ -694,11 +694,30 @@ mod tests {
         fn agrees<T: OdValue>() {
             assert_eq!(T::DATA_TYPE.size(), Some(T::MAX_SIZE), "{:?}", T::DATA_TYPE);
         }
-        agrees::<bool>();
-        (agrees::<i8>(), agrees::<i16>(), agrees::<I24>(), agrees::<i32>(), agrees::<I40>(), agrees::<I48>());
-        (agrees::<I56>(), agrees::<i64>(), agrees::<u8>(), agrees::<u16>(), agrees::<U24>(), agrees::<u32>());
-        (agrees::<U40>(), agrees::<U48>(), agrees::<U56>(), agrees::<u64>(), agrees::<f32>(), agrees::<f64>());
-        (agrees::<TimeOfDay>(), agrees::<TimeDifference>());
+        let checks: [fn(); 21] = [
+            agrees::<bool>,
+            agrees::<i8>,
+            agrees::<i16>,
+            agrees::<I24>,
+            agrees::<i32>,
+            agrees::<I40>,
+            agrees::<I48>,
+            agrees::<I56>,
+            agrees::<i64>,
+            agrees::<u8>,
+            agrees::<u16>,
+            agrees::<U24>,
+            agrees::<u32>,
+            agrees::<U40>,
+            agrees::<U48>,
+            agrees::<U56>,
+            agrees::<u64>,
+            agrees::<f32>,
+            agrees::<f64>,
+            agrees::<TimeOfDay>,
+            agrees::<TimeDifference>,
+        ];
+        checks.iter().for_each(|check| check());
         for t in [DataType::VisibleString, DataType::OctetString, DataType::UnicodeString, DataType::Domain] {
             assert_eq!(t.size(), None, "{t:?}");
         }
