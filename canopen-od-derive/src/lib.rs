@@ -1011,7 +1011,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
                 fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
                     let pos = self.__od_writable(index, sub)?;
-                    self.__od_write(pos, data)
+                    let handle = #core::od::PdoHandle { index, sub, size: 0, slot: pos as u16 };
+                    #core::od::ObjectDictionary::pdo_write(self, &handle, data)
                 }
                 #stream_write_fns
                 /// NMT-04 Reset Application: every entry gets its `default` (or the type's default when none
