@@ -120,7 +120,7 @@ impl DataType {
 const SIZES: [u8; 32] = {
     use DataType::*;
     let mut t = [0u8; 32];
-    let fixed: [(DataType, u8); 24] = [
+    let fixed: [(DataType, u8); 21] = [
         (Boolean, 1),
         (Integer8, 1),
         (Unsigned8, 1),
@@ -142,9 +142,6 @@ const SIZES: [u8; 32] = {
         (Integer64, 8),
         (Unsigned64, 8),
         (Real64, 8),
-        (VisibleString, 0),
-        (OctetString, 0),
-        (Domain, 0),
     ];
     let mut i = 0;
     while i < fixed.len() {
