@@ -837,49 +837,51 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
     // The streamed write of a string or DOMAIN (segmented and block downloads of an entry without a fixed
     // size). A dictionary without a writable one refuses every stream the same way, through one out-of-line
     // check: an unknown entry or a read-only one gets its own code, any other 0601 0000h.
-    let stream_write_fns = if begin_arms.is_empty() {
-        quote! {
-            #[allow(unused_variables)]
-            fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
-                self.__od_refuse_stream(index, sub)
-            }
-            #[allow(unused_variables)]
-            fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
-                self.__od_refuse_stream(index, sub)
-            }
-            #[allow(unused_variables)]
-            fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
-                self.__od_refuse_stream(index, sub)
-            }
-        }
+    let (stream_write_fns, refuse_stream_fn) = if begin_arms.is_empty() {
+        (
+            quote! {
+                #[allow(unused_variables)]
+                fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                    self.__od_refuse_stream(index, sub)
+                }
+                #[allow(unused_variables)]
+                fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                    self.__od_refuse_stream(index, sub)
+                }
+                #[allow(unused_variables)]
+                fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
+                    self.__od_refuse_stream(index, sub)
+                }
+            },
+            quote! {
+                #[inline(never)]
+                fn __od_refuse_stream(&self, index: u16, sub: u8) -> ::core::result::Result<(), __AbortCode> {
+                    self.__od_writable(index, sub)?;
+                    ::core::result::Result::Err(__AbortCode::UnsupportedAccess)
+                }
+            },
+        )
     } else {
-        quote! {            #[allow(unused_variables)]
-            fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
-                let pos = self.__od_writable(index, sub)?;
-                match pos { #(#begin_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
-            }
-            #[allow(unused_variables)]
-            fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
-                let pos = self.__od_writable(index, sub)?;
-                match pos { #(#chunk_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
-            }
-            #[allow(unused_variables)]
-            fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
-                let pos = self.__od_writable(index, sub)?;
-                match pos { #(#end_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
-            }
-        }
-    };
-    let refuse_stream_fn = if begin_arms.is_empty() {
-        quote! {
-            #[inline(never)]
-            fn __od_refuse_stream(&self, index: u16, sub: u8) -> ::core::result::Result<(), __AbortCode> {
-                self.__od_writable(index, sub)?;
-                ::core::result::Result::Err(__AbortCode::UnsupportedAccess)
-            }
-        }
-    } else {
-        quote!()
+        (
+            quote! {
+                #[allow(unused_variables)]
+                fn begin_write(&mut self, index: u16, sub: u8, size: ::core::option::Option<usize>) -> ::core::result::Result<(), __AbortCode> {
+                    let pos = self.__od_writable(index, sub)?;
+                    match pos { #(#begin_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+                }
+                #[allow(unused_variables)]
+                fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
+                    let pos = self.__od_writable(index, sub)?;
+                    match pos { #(#chunk_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+                }
+                #[allow(unused_variables)]
+                fn end_write(&mut self, index: u16, sub: u8, total: usize) -> ::core::result::Result<(), __AbortCode> {
+                    let pos = self.__od_writable(index, sub)?;
+                    match pos { #(#end_arms)* _ => ::core::result::Result::Err(__AbortCode::UnsupportedAccess) }
+                }
+            },
+            quote!(),
+        )
     };
     // PDO handles of strings and DOMAINs marked mappable (PDO-33, PDO-36): a string moves its capacity, a
     // DOMAIN the size it has when the mapping is checked; either must be 1..=8 bytes, else 0604 0041h (the
@@ -913,6 +915,14 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         )
     };
     let n_entries = rows.len();
+    // A position travels as a u16 slot (`slot`, `read_slot`, the PDO handles, `write` through `pdo_write`), with
+    // u16::MAX meaning none: every position must fit below it, or a slot would name another entry.
+    if n_entries >= usize::from(u16::MAX) {
+        return Err(syn::Error::new(
+            Span::call_site(),
+            format!("{n_entries} dictionary entries: at most 65,534 (a position is a u16 slot)"),
+        ));
+    }
     let keys = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub));
     Ok(quote! {
         const _: () = {
