@@ -185,3 +185,29 @@ fn a_dictionary_without_streams_refuses_streamed_writes() {
     assert_eq!(od.write(0x2000, 0, &(-5i16).to_le_bytes()), Ok(()));
     assert_eq!(od.setpoint, -5);
 }
+
+#[derive(ObjectDictionary, Default)]
+struct Extremes {
+    #[od(index = 0x2000, access = "rw", min = -9223372036854775808, max = 9223372036854775807)]
+    whole_i64: i64,
+    #[od(index = 0x2001, access = "rw", max = 18446744073709551614)]
+    below_max_u64: u64,
+    #[od(index = 0x2002, access = "rw", min = -128, max = -1)]
+    negative_i8: i8,
+}
+
+/// Integer limits are compared in the field's own type (`od::check_range`): limits at the type's ends are
+/// literals of that type (i64::MIN included), a one-sided limit checks its side only, and the codes are
+/// 0609 0031h above and 0609 0032h below (OD-16).
+#[test]
+fn integer_limits_at_the_types_ends() {
+    use canopen_core::od::AbortCode;
+    let mut od = Extremes::default();
+    assert_eq!(od.write(0x2000, 0, &i64::MIN.to_le_bytes()), Ok(()));
+    assert_eq!(od.write(0x2000, 0, &i64::MAX.to_le_bytes()), Ok(()));
+    assert_eq!(od.write(0x2001, 0, &(u64::MAX - 1).to_le_bytes()), Ok(()));
+    assert_eq!(od.write(0x2001, 0, &u64::MAX.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(od.write(0x2002, 0, &[0x80]), Ok(())); // -128
+    assert_eq!(od.write(0x2002, 0, &[0]), Err(AbortCode::ValueTooHigh));
+    assert_eq!((od.whole_i64, od.below_max_u64, od.negative_i8), (i64::MAX, u64::MAX - 1, -128));
+}
