@@ -301,6 +301,28 @@ fn configured_node_can_be_made_unconfigured() {
     assert_eq!(drive(&mut bus, &mut m, &mut flash), MasterEvent::NonConfigured(true));
 }
 
+/// The async driver's path, `peek_transmit`, holds frames like `poll_transmit` from the bit-rate switch to the
+/// end of the second switch delay (LSS-08: the node sends nothing meanwhile), and hands them out after it.
+#[test]
+fn peek_transmit_holds_frames_during_the_switch_delay_lss_08() {
+    let mut node: TestNode = Node::new(NodeId::new(5).unwrap(), config(42, 10), NoApplication);
+    node.handle_timeout(ms(0));
+    while node.poll_transmit().is_some() {}
+    // Switch state global to configuration (04h 01h), then activate bit timing with a 100 ms delay (15h).
+    node.handle_frame(ms(0), &frame("7E5 [8] 04 01 00 00 00 00 00 00"));
+    node.handle_frame(ms(0), &frame("7E5 [8] 15 64 00 00 00 00 00 00"));
+    while node.poll_transmit().is_some() {}
+    node.handle_timeout(ms(100)); // the switch: heartbeats fall due from here on
+    node.handle_timeout(ms(150));
+    assert!(node.lss().holds_transmit(ms(150)));
+    assert_eq!(node.peek_transmit(), None, "a frame was handed out during the switch delay");
+    assert_eq!(node.poll_transmit(), None);
+    node.handle_timeout(ms(200)); // the end of the second delay
+    let heartbeat = frame("705 [1] 7F");
+    assert_eq!(node.peek_transmit(), Some(heartbeat));
+    node.transmitted(&heartbeat);
+}
+
 /// Configure bit timing is answered 13h with 00h or 01h; activate bit timing is not answered, and is
 /// reported with both instants; the node is silent from the switch to the end of the second delay.
 /// LSS-07, LSS-08; LSS-01 (answers on 7E4h, 8 bytes); LSS-04.

@@ -463,11 +463,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// assert_eq!(node.peek_transmit(), None);
     /// ```
     pub fn peek_transmit(&self) -> Option<CanFrame> {
+        // The queue first: empty is the common answer, and the hold is then not computed.
+        let frame = self.tx.front()?;
         #[cfg(feature = "lss")]
         if self.lss.holds_transmit(self.now) {
             return None;
         }
-        self.tx.front().copied()
+        Some(*frame)
     }
 
     /// `frame`, got from [`peek_transmit`](Self::peek_transmit), is on the bus: removes it from the front of
