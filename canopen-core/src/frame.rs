@@ -19,12 +19,33 @@ pub const MAX_STANDARD_ID: u16 = 0x7FF;
 /// assert_eq!(f.data(), &[0x7F]);
 /// assert!(!f.is_rtr());
 /// ```
-#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Eq)]
 pub struct CanFrame {
     id: u16,
     len: Len,
     rtr: bool,
     data: [u8; 8],
+}
+
+/// Every field, as the derived comparison, but without its early exits: the header as one word and the
+/// eight data bytes as another (the driver compares the sent frame with the queue's front once per frame:
+/// `Node::transmitted`).
+impl PartialEq for CanFrame {
+    #[inline]
+    fn eq(&self, other: &Self) -> bool {
+        let header = |f: &CanFrame| u32::from(f.id) | u32::from(f.len as u8) << 16 | u32::from(f.rtr) << 24;
+        (header(self) == header(other)) & (u64::from_ne_bytes(self.data) == u64::from_ne_bytes(other.data))
+    }
+}
+
+/// The fields [`PartialEq`] compares, in declaration order (what `derive(Hash)` hashed).
+impl core::hash::Hash for CanFrame {
+    fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
+        self.id.hash(state);
+        self.len.hash(state);
+        self.rtr.hash(state);
+        self.data.hash(state);
+    }
 }
 
 /// A data length 0–8 as a type whose values the compiler knows: reading `len` then needs no range check, so
@@ -279,7 +300,46 @@ impl core::fmt::Display for CanFrame {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
+
+    /// Frames are equal exactly when every field is: the identifier (all 11 bits), the length, the RTR bit
+    /// and each of the eight data bytes (also those beyond the length), as the derived comparison was.
+    #[test]
+    fn equal_exactly_when_every_field_is() {
+        let base = CanFrame::from_parts(0x7FF, [1, 2, 3, 4, 5, 6, 7, 8], 8);
+        assert_eq!(base, CanFrame::from_parts(0x7FF, [1, 2, 3, 4, 5, 6, 7, 8], 8));
+        let mut others = std::vec![
+            CanFrame::from_parts(0x3FF, base.data, 8),
+            CanFrame::from_parts(0x7FE, base.data, 8),
+            CanFrame::from_parts(0x7FF, base.data, 7),
+            CanFrame { rtr: true, ..base },
+        ];
+        for i in 0..8 {
+            let mut data = base.data;
+            data[i] ^= 0x80;
+            others.push(CanFrame::from_parts(0x7FF, data, 8));
+        }
+        // Bytes beyond the length count too.
+        let short = CanFrame::from_parts(0x100, [9, 0, 0, 0, 0, 0, 0, 0], 1);
+        assert_ne!(short, CanFrame::from_parts(0x100, [9, 0, 0, 0, 0, 0, 0, 1], 1));
+        for other in others {
+            assert_ne!(base, other, "{other:?}");
+            assert_ne!(other, base);
+        }
+        // Identifier, length and RTR bit never stand in for one another: every pair of distinct headers (an
+        // identifier with each single bit, and 0; every length; both RTR values) compares unequal.
+        let ids = core::iter::once(0).chain((0..11).map(|b| 1u16 << b));
+        let headers: std::vec::Vec<_> =
+            ids.flat_map(|id| (0..=8u8).flat_map(move |len| [false, true].map(|rtr| (id, len, rtr)))).collect();
+        for &(id, len, rtr) in &headers {
+            for &(id2, len2, rtr2) in &headers {
+                let a = CanFrame { rtr, ..CanFrame::from_parts(id, [0; 8], len) };
+                let b = CanFrame { rtr: rtr2, ..CanFrame::from_parts(id2, [0; 8], len2) };
+                assert_eq!(a == b, (id, len, rtr) == (id2, len2, rtr2), "{a:?} {b:?}");
+            }
+        }
+    }
 
     #[test]
     fn rejects_out_of_range() {
