@@ -915,7 +915,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         )
     };
     let n_entries = rows.len();
-    // A position travels as a u16 slot (`slot`, `read_slot`, the PDO handles, `write` through `pdo_write`), with
+    // A position travels as a u16 slot (`slot`, `read_slot`, the PDO handles), with
     // u16::MAX meaning none: every position must fit below it, or a slot would name another entry.
     if n_entries >= usize::from(u16::MAX) {
         return Err(syn::Error::new(
@@ -1024,8 +1024,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
                 fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> ::core::result::Result<(), __AbortCode> {
                     let pos = self.__od_writable(index, sub)?;
-                    let handle = #core::od::PdoHandle { index, sub, size: 0, slot: pos as u16 };
-                    #core::od::ObjectDictionary::pdo_write(self, &handle, data)
+                    self.__od_write(pos, data)
                 }
                 #stream_write_fns
                 /// NMT-04 Reset Application: every entry gets its `default` (or the type's default when none
