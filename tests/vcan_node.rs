@@ -219,7 +219,7 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     let node = RunningNode::start_with(32, config);
     node.shared.with(|n| n.enter_state(NmtState::Operational)); // PDOs only in Operational (PDO-04)
 
-    // The node's SDO time-out (SDO-31) as long as the master's (3 s, below), not the default 1 s. This test
+    // The node's SDO protocol time-out as long as the master's (3 s, below), not the default 1 s. This test
     // saturates the VM's one CPU (four 1 ms TPDOs, the flood, a thread reading every frame), and there the
     // master, reading a sub-block one frame per system call, once acknowledged 127 segments 0.82 s after
     // the last one (as a third socket saw the frames: the SDO frame log below), while the server's 1 s had
