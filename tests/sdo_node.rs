@@ -268,3 +268,33 @@ fn write_events_off_for_the_application() {
     bus.inject(frame("609 [8] 2B 17 10 00 64 00 00 00"));
     assert!(events(&mut bus.stations[0]).contains(&Event::ObjectWritten { index: 0x1017, sub: 0 }));
 }
+
+/// SDO-31 in a block upload: the server's time-out runs from the last frame it sent, so a client that
+/// acknowledges a sub-block within the time-out after its last segment arrived is in time. A runner that
+/// takes a whole sub-block from the node at once and then needs long to send it (canopen-socketcan's pass
+/// runners: one clock reading per pass, then every frame the node has; 127 segments take 1.3 s at
+/// 10 kbit/s, and as long on a congested bus) tells the node the time only in its next pass, after the
+/// last segment went out: the time-out starts there. Before, it ran from the instant the segments were taken
+/// and such a pass aborted with 0504 0000h (a block upload in the vcan load test, CI9).
+#[test]
+fn block_upload_time_out_runs_from_the_pass_after_the_sub_block_went_out() {
+    let mut n = node(5);
+    n.app_mut().blob = DomainBuf::from_bytes(&[0x55; 1000]).unwrap(); // 143 segments: a full sub-block first
+    n.handle_timeout(ms(0));
+    while n.poll_transmit().is_some() {} // boot-up
+    let take_all = |n: &mut Node<App, Sizes<4, 4, 32>>| std::iter::from_fn(|| n.poll_transmit()).collect::<Vec<_>>();
+    n.handle_frame(ms(10), &frame("605 [8] A0 05 20 00 7F 00 00 00")); // initiate block upload, blksize 127
+    assert_eq!(take_all(&mut n)[0].data()[0] & 0xE0, 0xC0);
+    n.handle_frame(ms(20), &frame("605 [8] A3 00 00 00 00 00 00 00")); // start
+    let sub_block = take_all(&mut n);
+    assert_eq!(sub_block.len(), 127);
+    assert_eq!(sub_block[126].data()[0], 0x7F);
+    // 1.3 s later the runner has sent the last segment and runs its next pass; the client has not answered
+    // yet (it acknowledges within the time-out after the last segment arrived).
+    n.handle_timeout(ms(1_320));
+    let after = take_all(&mut n);
+    assert!(after.iter().all(|f| f.data()[0] != 0x80), "aborted in time: {after:?}");
+    n.handle_frame(ms(1_400), &frame("605 [8] A2 7F 7F 00 00 00 00 00")); // acknowledge of all 127
+    let next = take_all(&mut n);
+    assert_eq!(next.first().map(|f| f.data()[0]), Some(0x01), "the next sub-block: {next:?}");
+}

@@ -132,6 +132,9 @@ struct Model {
     toggle: bool,
     /// The SDO timeout's deadline: one `TIMEOUT` after the last frame (SDO-31).
     deadline: Option<Instant>,
+    /// A block upload's sub-block was handed out and the time has not been checked since: the deadline is
+    /// due, and the first check starts the time-out from there (the sub-block has gone out by then).
+    sent: bool,
 }
 
 /// A quarter of the SDO timeout: after that long without a frame, a sub-block with in-order segments is
@@ -254,6 +257,7 @@ impl Model {
     fn on_timeout(&self, now: Instant) -> Vec<(Reply, S)> {
         let sub_block = self.state == S::BlockDownloadSubBlock;
         match self.deadline {
+            Some(d) if now >= d && self.sent => vec![(Reply::None, self.state)],
             Some(d) if now >= d && sub_block => {
                 vec![(abort(AbortCode::SdoTimeout), S::Idle), (Reply::BlockDownloadAck, S::BlockDownloadSubBlock)]
             }
@@ -273,7 +277,7 @@ impl Model {
         }
     }
 
-    fn advance(&mut self, before: S, reply: Reply, next: S, now: Instant, touched: bool) {
+    fn advance(&mut self, before: S, reply: Reply, next: S, now: Instant, touched: bool, waited: bool) {
         if matches!(reply, Reply::DownloadSegment | Reply::UploadSegment { .. }) {
             self.toggle = !self.toggle;
         }
@@ -286,8 +290,13 @@ impl Model {
         self.state = next;
         if next == S::Idle {
             self.deadline = None;
-        } else if touched {
+            self.sent = false;
+        } else if matches!(reply, Reply::SubBlockSegment { .. }) && next == S::BlockUploadAck {
+            self.deadline = Some(now); // the sub-block's last segment: the time-out starts at the next check
+            self.sent = true;
+        } else if touched || waited && self.sent && self.deadline.is_some_and(|d| now >= d) {
             self.deadline = Some(now + TIMEOUT);
+            self.sent = false;
         }
     }
 }
@@ -307,7 +316,7 @@ proptest! {
         let mut server = SdoServer::new(SdoServerParams::default_server(NodeId::new(3).unwrap()))
             .with_timeout(TIMEOUT)
             .with_block_size(BLKSIZE);
-        let mut model = Model { state: S::Idle, toggle: false, deadline: None };
+        let mut model = Model { state: S::Idle, toggle: false, deadline: None, sent: false };
         let mut now = Instant::from_millis(1);
         for a in actions {
             let before = model.state;
@@ -332,7 +341,7 @@ proptest! {
             let got = classify(r.frame, pulled);
             let next = server.state();
             prop_assert!(allowed(&set, got, next), "{:?} in {:?}: got {:?} → {:?}, allowed {:?}", a, before, got, next, set);
-            model.advance(before, got, next, now, touched);
+            model.advance(before, got, next, now, touched, matches!(a, Action::Wait(_)));
         }
         // every frame of a stream write was either committed or abandoned
         prop_assert!(server.state() != S::Idle || od.stream.is_none());

@@ -31,7 +31,11 @@
 //! - [`SdoServer::poll_transmit`] while [`SdoServer::wants_transmit`]: during a block upload the server
 //!   produces a whole sub-block, one frame per call, so the node pulls frames only when its bounded TX queue
 //!   has room.
-//! - [`SdoServer::poll_timeout`] / [`SdoServer::handle_timeout`]: the protocol time-out (SDO-31, 0504 0000h).
+//! - [`SdoServer::poll_timeout`] / [`SdoServer::handle_timeout`]: the protocol time-out (SDO-31, 0504 0000h),
+//!   from the last frame received or sent. Once a block-upload sub-block has been handed out, `poll_timeout`
+//!   is due at once and the next `handle_timeout` starts the time-out: a runner that takes a whole sub-block
+//!   and then needs long to send it (a slow or busy bus) tells the time next when it went out, so the
+//!   client gets its full time to acknowledge.
 //!
 //! # Per-frame cost
 //!
@@ -633,7 +637,7 @@ impl SdoServer {
             State::BlockUpload(b) => match b.phase {
                 UploadPhase::Start => ServerState::BlockUploadStart,
                 UploadPhase::Sending => ServerState::BlockUploadSending,
-                UploadPhase::WaitAck => ServerState::BlockUploadAck,
+                UploadPhase::Sent | UploadPhase::WaitAck => ServerState::BlockUploadAck,
                 UploadPhase::WaitEnd => ServerState::BlockUploadEnd,
             },
         }
@@ -659,7 +663,7 @@ impl SdoServer {
         let at = self.since.0.saturating_add(self.timeout.0);
         #[cfg(feature = "sdo-block")]
         if at != u64::MAX {
-            return Deadline::new(Some(self.block_download_deadline(Instant::from_micros(at))));
+            return Deadline::new(Some(self.block_deadline(Instant::from_micros(at))));
         }
         Deadline::new(Some(Instant::from_micros(at)))
     }
@@ -685,6 +689,10 @@ impl SdoServer {
         #[cfg(feature = "sdo-block")]
         if let Some(ack) = self.block_download_stalled() {
             return ack;
+        }
+        #[cfg(feature = "sdo-block")]
+        if self.block_upload_sent(now) {
+            return Response::NONE;
         }
         let mux = self.mux().unwrap_or_default();
         self.abort(od, mux, AbortCode::SdoTimeout)

@@ -11,6 +11,7 @@
 //! up to them, so a lost last segment costs a quarter of the timeout instead of the whole transfer (see the
 //! server's module docs for why once, and why not without in-order segments).
 
+use super::block_upload::UploadPhase;
 use super::{Response, SdoEvent, SdoServer, Sink, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::Crc16;
@@ -112,15 +113,18 @@ impl SdoServer {
         Response::NONE
     }
 
-    /// The deadline to report for the SDO timeout's `timeout_at`: a quarter of the SDO timeout after the last
-    /// frame while a sub-block has in-order segments but has not ended (then
-    /// [`block_download_stalled`](Self::block_download_stalled) acknowledges them), `timeout_at` otherwise.
-    pub(super) const fn block_download_deadline(&self, timeout_at: Instant) -> Instant {
+    /// The deadline to report for the SDO timeout's `timeout_at` in a block transfer: a quarter of the SDO
+    /// timeout after the last frame while a download sub-block has in-order segments but has not ended (then
+    /// [`block_download_stalled`](Self::block_download_stalled) acknowledges them); at once when an upload
+    /// sub-block was handed out (then [`block_upload_sent`](Self::block_upload_sent) starts the time-out);
+    /// `timeout_at` otherwise.
+    pub(super) const fn block_deadline(&self, timeout_at: Instant) -> Instant {
         match &self.state {
             State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => {
                 let t = self.timeout.0;
                 Instant::from_micros(timeout_at.as_micros().saturating_sub(t - t / 4))
             }
+            State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => Instant::from_micros(self.since.0),
             _ => timeout_at,
         }
     }

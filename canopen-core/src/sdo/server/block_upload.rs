@@ -14,6 +14,11 @@ use crate::wire::sdo::{frame, Multiplexer, MAX_BLKSIZE};
 pub(super) enum UploadPhase {
     Start,
     Sending,
+    /// The sub-block's last segment was handed out, and may not be on the bus yet: a runner that takes a
+    /// whole sub-block at once needs as long as the bus does to send it. The time-out (SDO-31: from the
+    /// last frame sent) starts at the next [`SdoServer::handle_timeout`], the first time the runner tells
+    /// the time after that.
+    Sent,
     WaitAck,
     WaitEnd,
 }
@@ -85,10 +90,10 @@ impl SdoServer {
         b.crc_len = b.crc_len.max(end);
         let last = end >= b.size;
         b.sent = seqno;
-        if last || b.sent >= b.blksize {
-            b.phase = UploadPhase::WaitAck;
-        }
         segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
+        if last || b.sent >= b.blksize {
+            b.phase = UploadPhase::Sent; // the deadline is due at once (block_deadline)
+        }
         self.since = Micros(now.as_micros()); // SDO-31: the time-out runs from the last frame sent
         Some(Response::send(segment))
     }
@@ -131,7 +136,7 @@ impl SdoServer {
     ) -> Response {
         let mux = self.mux;
         let State::BlockUpload(bu) = &mut self.state else { return self.invalid(od) };
-        if !matches!(bu.phase, UploadPhase::Sending | UploadPhase::WaitAck) {
+        if !matches!(bu.phase, UploadPhase::Sending | UploadPhase::Sent | UploadPhase::WaitAck) {
             return self.invalid(od);
         }
         if ackseq > bu.sent {
@@ -152,6 +157,19 @@ impl SdoServer {
         }
         bu.phase = UploadPhase::Sending;
         Response::NONE
+    }
+
+    /// At the first time-out check after a sub-block was handed out ([`UploadPhase::Sent`]): its last
+    /// segment has gone out by now, so the time-out starts from `now` (SDO-31). Whether it was that case.
+    pub(super) fn block_upload_sent(&mut self, now: Instant) -> bool {
+        match &mut self.state {
+            State::BlockUpload(bu) if bu.phase == UploadPhase::Sent => {
+                bu.phase = UploadPhase::WaitAck;
+                self.since = Micros(now.as_micros());
+                true
+            }
+            _ => false,
+        }
     }
 
     /// "Start upload" (A3h, SDO-37): the first sub-block may go out.
