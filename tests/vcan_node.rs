@@ -222,10 +222,11 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     // The node's SDO protocol time-out as long as the master's (3 s, below), not the default 1 s. This test
     // saturates the VM's one CPU (four 1 ms TPDOs, the flood, a thread reading every frame), and there the
     // master, reading a sub-block one frame per system call, once acknowledged 127 segments 0.82 s after
-    // the last one (as a third socket saw the frames: the SDO frame log below), while the server's 1 s had
-    // started when the runner took the sub-block from the node, 0.33 s before that segment went out: an
-    // upload aborted with 0504 0000h although no frame was lost. What is measured here is that the flood
-    // loses nothing; a lost frame still fails the transfer, on the master's 3 s time-out instead.
+    // the last one (as a third socket saw the frames: the SDO frame log below). That upload was aborted
+    // with 0504 0000h although no frame was lost: the server's 1 s had started when the runner took the
+    // sub-block from the node, 0.33 s before that segment went out (fixed since: the time-out starts at the
+    // runner's next pass, tests/sdo_node.rs), and 0.82 s leaves little of 1 s. What is measured here is
+    // that the flood loses nothing; a lost frame still fails the transfer, on the master's 3 s time-out.
     node.shared.with(|n| n.set_sdo_timeout(canopen_core::Duration::from_millis(3_000)));
     let stop = Arc::new(AtomicBool::new(false));
     // Counts the node's TPDO frames (180h/280h/380h/480h + 32) from another socket.
