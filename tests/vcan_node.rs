@@ -168,6 +168,31 @@ impl Drop for StopOnDrop {
     }
 }
 
+/// Reads the bus on a thread and a socket of its own until `stop`: every 11-bit frame that passes `filters`
+/// ((id, mask) pairs; none: every frame) goes to `seen` as (COB-ID, data).
+fn spawn_reader(
+    stop: Arc<AtomicBool>,
+    filters: &[(u32, u32)],
+    mut seen: impl FnMut(u16, &[u8]) + Send + 'static,
+) -> std::thread::JoinHandle<()> {
+    use socketcan::{CanFilter, EmbeddedFrame, Socket, SocketOptions};
+    let filters: Vec<CanFilter> = filters.iter().map(|&(id, mask)| CanFilter::new(id, mask)).collect();
+    std::thread::spawn(move || {
+        let raw = socketcan::CanSocket::open(IFACE).unwrap();
+        if !filters.is_empty() {
+            raw.set_filters(&filters).unwrap();
+        }
+        raw.set_read_timeout(Duration::from_millis(50)).unwrap();
+        while !stop.load(Ordering::Relaxed) {
+            if let Ok(f) = raw.read_frame() {
+                if let socketcan::Id::Standard(id) = f.id() {
+                    seen(id.as_raw(), f.data());
+                }
+            }
+        }
+    })
+}
+
 /// An SDO frame as a monitoring socket saw it: when (since the monitor started), COB-ID, data.
 type SdoSeen = (Duration, u16, [u8; 8]);
 
@@ -232,20 +257,10 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     // Counts the node's TPDO frames (180h/280h/380h/480h + 32) from another socket.
     let tpdo_frames = Arc::new([(); 4].map(|_| AtomicU64::new(0)));
     let tpdo_counter = {
-        let (stop, counts) = (stop.clone(), tpdo_frames.clone());
-        std::thread::spawn(move || {
-            use socketcan::{EmbeddedFrame, Socket};
-            let raw = socketcan::CanSocket::open(IFACE).unwrap();
-            raw.set_read_timeout(Duration::from_millis(50)).unwrap();
-            while !stop.load(Ordering::Relaxed) {
-                if let Ok(f) = raw.read_frame() {
-                    if let socketcan::Id::Standard(id) = f.id() {
-                        let id = id.as_raw();
-                        if id & 0x7F == 32 && (0x180..0x500).contains(&(id & 0x780)) && f.data().len() <= 8 {
-                            counts[usize::from((id - 0x180) >> 8)].fetch_add(1, Ordering::Relaxed);
-                        }
-                    }
-                }
+        let counts = tpdo_frames.clone();
+        spawn_reader(stop.clone(), &[], move |id, data| {
+            if id & 0x7F == 32 && (0x180..0x500).contains(&(id & 0x780)) && data.len() <= 8 {
+                counts[usize::from((id - 0x180) >> 8)].fetch_add(1, Ordering::Relaxed);
             }
         })
     };
@@ -305,23 +320,12 @@ fn load_block_transfers_under_a_flood_of_unknown_cob_ids() {
     // failed transfer, they say which side stopped.
     let sdo_log: Arc<std::sync::Mutex<Vec<SdoSeen>>> = Arc::default();
     let sdo_monitor = {
-        let (stop, log) = (stop.clone(), sdo_log.clone());
-        let t0 = StdInstant::now();
-        std::thread::spawn(move || {
-            use socketcan::{CanFilter, EmbeddedFrame, Socket, SocketOptions};
-            let raw = socketcan::CanSocket::open(IFACE).unwrap();
-            raw.set_filters(&[CanFilter::new(0x5A0, 0x7FF), CanFilter::new(0x620, 0x7FF)]).unwrap();
-            raw.set_read_timeout(Duration::from_millis(50)).unwrap();
-            while !stop.load(Ordering::Relaxed) {
-                if let Ok(f) = raw.read_frame() {
-                    if let socketcan::Id::Standard(id) = f.id() {
-                        let mut d = [0u8; 8];
-                        let n = f.data().len().min(8);
-                        d[..n].copy_from_slice(&f.data()[..n]);
-                        log.lock().unwrap().push((t0.elapsed(), id.as_raw(), d));
-                    }
-                }
-            }
+        let (log, t0) = (sdo_log.clone(), StdInstant::now());
+        spawn_reader(stop.clone(), &[(0x5A0, 0x7FF), (0x620, 0x7FF)], move |id, data| {
+            let mut d = [0u8; 8];
+            let n = data.len().min(8);
+            d[..n].copy_from_slice(&data[..n]);
+            log.lock().unwrap().push((t0.elapsed(), id, d));
         })
     };
     let dump_sdo = |what: &str| {
