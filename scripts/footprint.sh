@@ -85,9 +85,10 @@ for d in node minimal; do
   echo "$d: RAM including the task storage (issue 13's measure): $all bytes ($(verdict "$all" "${RAM_TARGET[$d]}"))"
   if [ "${FIG[$d.flash]}" -gt "${FLASH_TARGET[$d]}" ] || [ "$all" -gt "${RAM_TARGET[$d]}" ]; then over=1; fi
 done
+FIG[store.flash]=$((F[node+store] - F[node])) # what the firmware's default feature `store` adds (ratcheted too)
 echo
 echo "node+store: 1010h/1011h and the LSS configuration in flash (canopen-embassy FlashStorage, the firmware's" \
-  "default feature store) add $((F[node+store] - F[node])) bytes of flash and" \
+  "default feature store) add ${FIG[store.flash]} bytes of flash and" \
   "$(((R[node+store] - P[node+store]) - (R[node] - P[node]))) bytes of RAM to node"
 echo
 echo "node binary, RAM by static (bytes):"

@@ -315,6 +315,61 @@ fn merged_with_the_comm_profile() {
     assert_eq!(od.app.uint8, 1);
 }
 
+/// `object_index` (what store/restore walks) is `object(n)`'s index for every `n`, in the derived
+/// dictionary, the communication profile and the two merged.
+#[test]
+fn object_index_agrees_with_object() {
+    fn agree(od: &impl OdDescribe) {
+        for n in 0..=od.object_count() {
+            assert_eq!(od.object_index(n), od.object(n).map(|o| o.index), "object {n}");
+        }
+    }
+    let od = node_od();
+    agree(&od.app);
+    agree(&od.comm);
+    agree(&od);
+}
+
+/// STORE-02: a save (1010h sub 01h) holds every storable entry and nothing else: the readable and
+/// writable, non-DOMAIN entries of the EDS description (`object`/`entry`), except 1010h/1011h and the
+/// error history, each with its current value, in increasing (index, sub) order (1028h entries only when
+/// not at their default). The walk reads only the
+/// indices and `info`; this checks it against the full description.
+#[test]
+fn a_save_holds_every_storable_entry_of_the_description() {
+    use canopen_core::storage::{save, Groups, RamStorage, HEADER_LEN};
+    let od = node_od();
+    let mut expected = Vec::new();
+    for o in (0..od.object_count()).filter_map(|n| od.object(n)) {
+        if matches!(o.index, 0x1003 | 0x1010 | 0x1011 | 0x1013) {
+            continue; // the history, the commands and a clock are never stored
+        }
+        for sub in 0..=255u8 {
+            let Some(e) = od.entry(o.index, sub) else { continue };
+            if e.access.writable() && e.access.readable() && e.data_type != DataType::Domain {
+                let Ok(v) = read(&od, o.index, sub) else { continue };
+                let le = v.iter().rev().fold(0u64, |n, &b| n << 8 | u64::from(b));
+                if o.index == 0x1028 && e.default == Some(Value::Uint(le)) {
+                    continue; // 1028h entries at their default are left out (a load sets them anyway)
+                }
+                expected.push((o.index, sub, v));
+            }
+        }
+    }
+    let mut ram = RamStorage::<8192>::new();
+    save(&mut ram, Groups::ALL, &od.comm, &od.app).unwrap();
+    let slot = ram.slot(0);
+    let len = u32::from_le_bytes(slot[12..16].try_into().unwrap()) as usize;
+    let (mut items, mut at) = (Vec::new(), HEADER_LEN);
+    while at < HEADER_LEN + len {
+        let (index, sub, n) = (u16::from_le_bytes([slot[at], slot[at + 1]]), slot[at + 2], usize::from(slot[at + 3]));
+        items.push((index, sub, slot[at + 4..at + 4 + n].to_vec()));
+        at += 4 + n;
+    }
+    assert!(expected.iter().any(|e| e.0 == 0x1017) && expected.iter().any(|e| e.0 >= 0x2000));
+    assert_eq!(items, expected);
+}
+
 /// NMT-04: Reset Application gives every entry its `default =` value (or its type's default), leaving
 /// DOMAINs alone; the result equals the struct built with the documented defaults.
 #[test]

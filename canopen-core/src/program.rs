@@ -410,6 +410,12 @@ impl<P, A: OdDescribe> OdDescribe for ProgramDownload<P, A> {
             None => self.app.object(n - OBJECTS.len()),
         }
     }
+    fn object_index(&self, n: usize) -> Option<u16> {
+        match OBJECTS.get(n) {
+            Some(&(index, ..)) => Some(index),
+            None => self.app.object_index(n - OBJECTS.len()),
+        }
+    }
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
         if !is_program(index) {
             return self.app.entry(index, sub);

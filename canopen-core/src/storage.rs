@@ -491,22 +491,24 @@ fn for_each_storable<D: ObjectDictionary + OdDescribe + ?Sized>(
 ) -> Result<(), StorageError> {
     let mut buf = [0u8; 255];
     for n in 0..od.object_count() {
-        let Some(o) = od.object(n) else { continue };
-        let clock = cfg!(feature = "high-res-time") && o.index == 0x1013;
-        if !range.contains(&o.index) || matches!(o.index, 0x1003 | 0x1010 | 0x1011) || clock {
+        // The index alone and the SDO path's `info`: the names and defaults of `entry` stay out of a
+        // firmware that stores (footprint.sh: node+store).
+        let Some(index) = od.object_index(n) else { continue };
+        let clock = cfg!(feature = "high-res-time") && index == 0x1013;
+        if !range.contains(&index) || matches!(index, 0x1003 | 0x1010 | 0x1011) || clock {
             continue;
         }
         for sub in 0..=255u8 {
-            let Some(e) = od.entry(o.index, sub) else { continue };
+            let Ok(e) = od.info(index, sub) else { continue };
             if !(e.access.writable() && e.access.readable()) || e.data_type == crate::od::DataType::Domain {
                 continue;
             }
-            if let Ok(len) = od.read(o.index, sub, 0, &mut buf) {
+            if let Ok(len) = od.read(index, sub, 0, &mut buf) {
                 #[cfg(feature = "emcy-consumer")]
-                if o.index == 0x1028 && holds_default(&e, &buf[..len]) {
+                if index == 0x1028 && od.entry(index, sub).is_some_and(|e| holds_default(&e, &buf[..len])) {
                     continue; // a load leaves it at its default anyway
                 }
-                f(o.index, sub, &buf[..len])?;
+                f(index, sub, &buf[..len])?;
             }
             if sub == 255 {
                 break;

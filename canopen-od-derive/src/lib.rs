@@ -924,6 +924,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         ));
     }
     let keys = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub));
+    let object_indices = objects.iter().map(|o| o.index);
     Ok(quote! {
         const _: () = {
             use #core::od::AbortCode as __AbortCode;
@@ -938,6 +939,9 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 const __OD_INFO: &'static [#core::od::SubInfo] = &[#(#infos),*];
                 /// The objects of this struct, sorted by index.
                 pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
+                /// The index of each object of `OD_OBJECTS`: what store/restore walks, so that a firmware
+                /// which stores its parameters does not link the names and defaults.
+                const __OD_INDICES: &'static [u16] = &[#(#object_indices),*];
                 /// The keys `index << 8 | sub` of `OD_ENTRIES`, for a cache-friendly binary search.
                 pub const OD_KEYS: &'static [u32] = &[#(#keys),*];
                 /// The largest encoded size of a non-DOMAIN value (to size an SDO buffer for atomic writes).
@@ -1113,6 +1117,9 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 fn entry(&self, index: u16, sub: u8) -> ::core::option::Option<#core::od::EntryDesc> {
                     let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub).ok()?;
                     Self::OD_ENTRIES.get(pos).copied()
+                }
+                fn object_index(&self, n: usize) -> ::core::option::Option<u16> {
+                    Self::__OD_INDICES.get(n).copied()
                 }
             }
         };

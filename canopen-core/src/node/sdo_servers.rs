@@ -716,7 +716,7 @@ impl<D: OdDescribe> OdDescribe for SdoRecordsDesc<D> {
     }
 
     fn object(&self, n: usize) -> Option<ObjectDesc> {
-        let other = |j| self.od.object(j).map_or(u16::MAX, |o| o.index);
+        let other = |j| self.od.object_index(j).unwrap_or(u16::MAX);
         match crate::od::merge_nth(n, self.own_count(), |i| self.own_index(i), self.od.object_count(), other)? {
             (true, i) => {
                 let index = self.own_index(i);
@@ -728,6 +728,14 @@ impl<D: OdDescribe> OdDescribe for SdoRecordsDesc<D> {
                 Some(ObjectDesc { index, name, code: ObjectCode::Record, first: 0, subs })
             }
             (false, j) => self.od.object(j),
+        }
+    }
+
+    fn object_index(&self, n: usize) -> Option<u16> {
+        let other = |j| self.od.object_index(j).unwrap_or(u16::MAX);
+        match crate::od::merge_nth(n, self.own_count(), |i| self.own_index(i), self.od.object_count(), other)? {
+            (true, i) => Some(self.own_index(i)),
+            (false, j) => self.od.object_index(j),
         }
     }
 

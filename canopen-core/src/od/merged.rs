@@ -165,7 +165,7 @@ pub fn merge_nth(
 
 /// The index of an object a description lists at `n` (`u16::MAX` for a hole, so it sorts last).
 fn index_of<D: OdDescribe + ?Sized>(od: &D, n: usize) -> u16 {
-    od.object(n).map_or(u16::MAX, |o| o.index)
+    od.object_index(n).unwrap_or(u16::MAX)
 }
 
 impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
@@ -177,6 +177,13 @@ impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
         match merge_nth(n, c.object_count(), |i| index_of(c, i), a.object_count(), |j| index_of(a, j))? {
             (true, i) => c.object(i),
             (false, j) => a.object(j),
+        }
+    }
+    fn object_index(&self, n: usize) -> Option<u16> {
+        let (c, a) = (&self.comm, &self.app);
+        match merge_nth(n, c.object_count(), |i| index_of(c, i), a.object_count(), |j| index_of(a, j))? {
+            (true, i) => c.object_index(i),
+            (false, j) => a.object_index(j),
         }
     }
     /// 1F50h–1F57h: the communication profile's entry, else the application's (which serves them when it

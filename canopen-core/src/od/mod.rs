@@ -665,6 +665,9 @@ impl<T: OdDescribe + ?Sized> OdDescribe for &T {
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
         (**self).entry(index, sub)
     }
+    fn object_index(&self, n: usize) -> Option<u16> {
+        (**self).object_index(n)
+    }
 }
 
 impl<T: OdDescribe + ?Sized> OdDescribe for &mut T {
@@ -676,6 +679,9 @@ impl<T: OdDescribe + ?Sized> OdDescribe for &mut T {
     }
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {
         (**self).entry(index, sub)
+    }
+    fn object_index(&self, n: usize) -> Option<u16> {
+        (**self).object_index(n)
     }
 }
 

@@ -177,6 +177,19 @@ pub trait OdDescribe {
     fn object(&self, n: usize) -> Option<ObjectDesc>;
     /// The description of one sub-entry.
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc>;
+    /// The index of the `n`-th object, without the rest of its description: what store/restore walks
+    /// (with [`ObjectDictionary::info`](crate::od::ObjectDictionary::info) for the sub-entries), so that a
+    /// firmware which stores its parameters does not link the names and defaults the EDS writer reads.
+    /// The default takes it from [`object`](Self::object); a dictionary with a table of its indices
+    /// answers from that.
+    ///
+    /// ```
+    /// use canopen_core::od::{NoApplication, OdDescribe};
+    /// assert_eq!(NoApplication.object_index(0), None);
+    /// ```
+    fn object_index(&self, n: usize) -> Option<u16> {
+        self.object(n).map(|o| o.index)
+    }
 }
 
 /// Binary search of `(index, sub)` in a table sorted by [`EntryDesc::key`]: the position, or 0602 0000h

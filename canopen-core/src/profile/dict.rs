@@ -850,10 +850,21 @@ impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
     /// The profile's own objects and [`optional`]'s, merged in increasing index order.
     fn object(&self, n: usize) -> Option<ObjectDesc> {
         let own = |i| Self::index_at(i).unwrap_or(u16::MAX);
-        let opt = |j| self.optional.object(j).map_or(u16::MAX, |o| o.index);
+        let opt = |j| self.optional.object_index(j).unwrap_or(u16::MAX);
         match crate::od::merge_nth(n, Self::own_object_count(), own, self.optional.object_count(), opt)? {
             (true, i) => self.own_object(i),
             (false, j) => self.optional.object(j),
+        }
+    }
+
+    /// [`object`](Self::object)'s index alone, from the profile's table of indices: a firmware that stores
+    /// its parameters does not link the object and entry names.
+    fn object_index(&self, n: usize) -> Option<u16> {
+        let own = |i| Self::index_at(i).unwrap_or(u16::MAX);
+        let opt = |j| self.optional.object_index(j).unwrap_or(u16::MAX);
+        match crate::od::merge_nth(n, Self::own_object_count(), own, self.optional.object_count(), opt)? {
+            (true, i) => Self::index_at(i),
+            (false, j) => self.optional.object_index(j),
         }
     }
 

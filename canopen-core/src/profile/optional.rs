@@ -392,6 +392,17 @@ impl OptionalObjects {
         INDICES.len()
     }
 
+    /// The index of the `n`-th object (increasing index).
+    ///
+    /// ```
+    /// # use canopen_core::profile::optional::OptionalObjects;
+    /// let o = OptionalObjects::default();
+    /// assert_eq!(o.object_index(o.object_count()), None);
+    /// ```
+    pub fn object_index(&self, n: usize) -> Option<u16> {
+        INDICES.get(n).copied()
+    }
+
     /// The `n`-th object (increasing index).
     pub fn object(&self, n: usize) -> Option<ObjectDesc> {
         let index = *INDICES.get(n)?;
