@@ -85,7 +85,8 @@
 //!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
 //!   one copy of the search per dictionary, and no write code for a read-only entry (`ro`/`const`: every
 //!   write path, PDO handles included, answers 0601 0002h);
-//! - `impl OdDescribe for App` (for the EDS writer);
+//! - `impl OdDescribe for App` (for the EDS writer; its `object_index`, what store/restore walks, answers
+//!   from a table of the indices alone, so a firmware that stores links neither names nor defaults);
 //! - `restore_defaults` (NMT-04 Reset Application): each entry gets its `default`, or its type's
 //!   `Default` when none is given; DOMAIN fields and fields without `#[od]` are left alone.
 //!
@@ -685,7 +686,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
     });
     // What the SDO/PDO paths need of an entry (data type, access, mapping), in a table of its own: the full
     // OD_ENTRIES (names, defaults, limits; 72 B per entry on a 32-bit target) is then only kept alive by
-    // OdDescribe (EDS writer, store/restore), and a firmware without those links 8 B per entry instead.
+    // OdDescribe's `object`/`entry` (the EDS writer), and a firmware, storing or not, links 8 B per entry
+    // instead (store/restore walks `object_index` and `info`).
     let infos = rows.iter().map(|r| {
         let dt = Ident::new(r.dt, Span::call_site());
         let (access, pdo) = (&r.access, &r.pdo);
