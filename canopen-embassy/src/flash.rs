@@ -71,8 +71,17 @@ struct Word {
     at: u32,
     /// Address of the next byte expected.
     next: u32,
+    /// Bit `i`: `bytes[i]` was pushed. The others are programmed as erased bytes (FFh) by `flush`, so the
+    /// buffer is never filled with FFh: a fill is a `memset` call, and `memset` is 404 B of flash that
+    /// nothing else of a firmware links (footprint.sh: node+store).
+    written: u32,
     bytes: [u8; MAX_WORD],
 }
+
+const _: () = assert!(MAX_WORD <= 32, "one bit of `Word::written` per byte");
+
+/// The value of an erased NOR flash byte.
+const ERASED: u8 = 0xFF;
 
 /// The core's [`Storage`] (and the LSS [`LssStore`]) on a [`NorFlash`]; see the [module docs](self).
 ///
@@ -118,6 +127,9 @@ const LSS_CRC: crc::Crc<u32, crc::NoTable> = crc::Crc::<u32, crc::NoTable>::new(
 const LSS_MAGIC: [u8; 4] = *b"LSS\x01";
 /// magic, node-ID, bit-rate index, two reserved bytes (FFh), CRC-32 over the first 8 bytes.
 const LSS_RECORD: usize = 12;
+/// The word collector's slot number for the LSS record (the parameter record's slots are 0 and 1).
+#[cfg(feature = "lss")]
+const LSS_SLOT: u8 = 2;
 
 const fn align_up(n: usize, word: usize) -> usize {
     n.div_ceil(word) * word
@@ -163,7 +175,7 @@ impl<F: NorFlash> FlashStorage<F> {
         if overlap(&slot_a, &slot_b) {
             return Err(LayoutError::Overlap);
         }
-        let word = Word { slot: None, at: 0, next: 0, bytes: [0xFF; MAX_WORD] };
+        let word = Word { slot: None, at: 0, next: 0, written: 0, bytes: [0; MAX_WORD] };
         Ok(FlashStorage { flash, slots: [slot_a, slot_b], lss: None, word })
     }
 
@@ -234,8 +246,13 @@ impl<F: NorFlash> FlashStorage<F> {
     /// Programs the word being collected, padded with erased bytes.
     fn flush(&mut self) -> Result<(), StorageError> {
         if self.word.slot.take().is_some() {
-            let bytes = &self.word.bytes[..F::WRITE_SIZE];
-            self.flash.write(self.word.at, bytes).map_err(|_| StorageError::Io)?;
+            let written = self.word.written;
+            for (i, b) in self.word.bytes[..F::WRITE_SIZE].iter_mut().enumerate() {
+                if written & 1 << i == 0 {
+                    *b = ERASED;
+                }
+            }
+            self.flash.write(self.word.at, &self.word.bytes[..F::WRITE_SIZE]).map_err(|_| StorageError::Io)?;
         }
         Ok(())
     }
@@ -248,13 +265,16 @@ impl<F: NorFlash> FlashStorage<F> {
             self.flush()?;
         }
         if self.word.slot.is_none() {
-            self.word = Word { slot: Some(slot), at: start, next: start, bytes: [0xFF; MAX_WORD] };
+            let bytes = self.word.bytes; // left as they are: only the `written` ones are programmed
+            self.word = Word { slot: Some(slot), at: start, next: start, written: 0, bytes };
         }
         if at < self.word.next {
             // A byte programmed twice between erases: NOR flash cannot do it (the core never asks for it).
             return Err(StorageError::Io);
         }
-        self.word.bytes[(at - start) as usize] = byte;
+        let i = (at - start) as usize;
+        self.word.bytes[i] = byte;
+        self.word.written |= 1 << i;
         self.word.next = at + 1;
         if self.word.next == start + word {
             self.flush()?;
@@ -277,10 +297,11 @@ impl<F: NorFlash> FlashStorage<F> {
             done += n;
         }
         if self.word.slot.is_some() {
+            // The bytes pushed into the word being collected; the others still read as flash has them.
             for (i, b) in buf.iter_mut().enumerate() {
-                let a = at + i as u32;
-                if (self.word.at..self.word.next).contains(&a) {
-                    *b = self.word.bytes[(a - self.word.at) as usize];
+                let k = (at + i as u32).wrapping_sub(self.word.at) as usize;
+                if k < MAX_WORD && self.word.written & 1 << k != 0 {
+                    *b = self.word.bytes[k];
                 }
             }
         }
@@ -343,14 +364,21 @@ impl<F: NorFlash> LssStore for FlashStorage<F> {
     /// [`LssStoreError::MediaAccess`] when the flash fails.
     fn store(&mut self, node_id: u8, bit_rate: BitRate) -> Result<(), LssStoreError> {
         let r = self.lss.clone().ok_or(LssStoreError::NotSupported)?;
-        let mut rec = [0xFFu8; MAX_WORD];
+        let mut rec = [ERASED; LSS_RECORD];
         rec[..4].copy_from_slice(&LSS_MAGIC);
         rec[4] = node_id;
         rec[5] = bit_rate.index();
         let crc = LSS_CRC.checksum(&rec[..8]);
-        rec[8..LSS_RECORD].copy_from_slice(&crc.to_le_bytes());
-        let len = align_up(LSS_RECORD, F::WRITE_SIZE);
+        rec[8..].copy_from_slice(&crc.to_le_bytes());
+        // Programmed through the word collector (slot number `LSS_SLOT`), which pads the last word with
+        // erased bytes. A parameter record is never left half-collected between two calls (its header
+        // write flushes), so nothing of one is programmed here.
+        let media = |_| LssStoreError::MediaAccess;
+        self.flush().map_err(media)?;
         self.flash.erase(r.start, r.end).map_err(|_| LssStoreError::MediaAccess)?;
-        self.flash.write(r.start, &rec[..len]).map_err(|_| LssStoreError::MediaAccess)
+        for (i, &b) in rec.iter().enumerate() {
+            self.push(LSS_SLOT, r.start + i as u32, b).map_err(media)?;
+        }
+        self.flush().map_err(media)
     }
 }
