@@ -278,8 +278,99 @@ const MAGIC: u32 = 0x5253_4F43; // "COSR"
 pub const FORMAT_VERSION: u8 = 1;
 /// Header: magic u32, version u8, groups u8, reserved u16, sequence u32, payload length u32, CRC-32 u32.
 pub const HEADER_LEN: usize = 20;
-/// Bitwise (no 1 KB table): a record is a few hundred bytes, hashed once per save or power-on.
-const CRC: crc::Crc<u32, crc::NoTable> = crc::Crc::<u32, crc::NoTable>::new(&crc::CRC_32_ISO_HDLC);
+
+/// CRC-32/ISO-HDLC (the CRC of zip and Ethernet: reflected polynomial EDB8 8320h, initial value and final
+/// XOR FFFF FFFFh), the parameter record's check, a nibble at a time from a 16-entry table: a record is a
+/// few hundred bytes, hashed once per save or power-on, so no 1 KB byte table; table and loop are about 100
+/// bytes of Thumb code where the `crc` crate's generic bitwise digest linked 330 (footprint.sh:
+/// node+store). `canopen-embassy` checks its LSS record with it too.
+///
+/// ```
+/// use canopen_core::storage::Crc32;
+/// let mut c = Crc32::new();
+/// c.update(b"1234");
+/// c.update(b"56789");
+/// assert_eq!(c.finish(), 0xCBF4_3926); // the check value of CRC-32/ISO-HDLC
+/// assert_eq!(Crc32::checksum(b"123456789"), 0xCBF4_3926);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Crc32(u32);
+
+/// The reflected CRC-32 of each 4-bit value: [`Crc32::update`] takes a byte in two lookups (64 bytes of
+/// table; a byte-wise table would be 1 KB).
+const CRC32_NIBBLE: [u32; 16] = {
+    let mut t = [0u32; 16];
+    let mut i = 0;
+    while i < 16 {
+        let mut c = i as u32;
+        let mut k = 0;
+        while k < 4 {
+            c = (c >> 1) ^ (0xEDB8_8320 & (c & 1).wrapping_neg());
+            k += 1;
+        }
+        t[i] = c;
+        i += 1;
+    }
+    t
+};
+
+impl Crc32 {
+    /// Nothing hashed yet.
+    ///
+    /// ```
+    /// use canopen_core::storage::Crc32;
+    /// assert_eq!(Crc32::new().finish(), 0);
+    /// ```
+    pub const fn new() -> Self {
+        Crc32(u32::MAX)
+    }
+
+    /// Hashes `bytes` after what was hashed before.
+    ///
+    /// ```
+    /// use canopen_core::storage::Crc32;
+    /// let mut c = Crc32::new();
+    /// c.update(&[]);
+    /// assert_eq!(c, Crc32::new());
+    /// ```
+    #[inline(never)] // one copy: the record is hashed from four places
+    pub fn update(&mut self, bytes: &[u8]) {
+        let mut c = self.0;
+        for &b in bytes {
+            c = (c >> 4) ^ CRC32_NIBBLE[((c ^ u32::from(b)) & 0xF) as usize];
+            c = (c >> 4) ^ CRC32_NIBBLE[((c ^ u32::from(b >> 4)) & 0xF) as usize];
+        }
+        self.0 = c;
+    }
+
+    /// The CRC of everything hashed.
+    ///
+    /// ```
+    /// use canopen_core::storage::Crc32;
+    /// assert_eq!(Crc32::checksum(b"a"), 0xE8B7_BE43);
+    /// ```
+    pub const fn finish(self) -> u32 {
+        !self.0
+    }
+
+    /// The CRC of `bytes`.
+    ///
+    /// ```
+    /// use canopen_core::storage::Crc32;
+    /// assert_eq!(Crc32::checksum(&[]), 0);
+    /// ```
+    pub fn checksum(bytes: &[u8]) -> u32 {
+        let mut c = Crc32::new();
+        c.update(bytes);
+        c.finish()
+    }
+}
+
+impl Default for Crc32 {
+    fn default() -> Self {
+        Crc32::new()
+    }
+}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Header {
@@ -310,8 +401,8 @@ impl Header {
     }
 
     /// The CRC covers what the header says about the payload and the payload.
-    fn digest_start(&self) -> crc::Digest<'static, u32, crc::NoTable> {
-        let mut d = CRC.digest();
+    fn digest_start(&self) -> Crc32 {
+        let mut d = Crc32::new();
         d.update(&[FORMAT_VERSION, self.groups.0]);
         d.update(&self.seq.to_le_bytes());
         d.update(&self.len.to_le_bytes());
@@ -342,7 +433,7 @@ fn valid_header<S: Storage + ?Sized>(st: &mut S, slot: u8) -> Result<Option<Head
         d.update(&chunk[..n]);
         off += n;
     }
-    Ok((d.finalize() == h.crc).then_some(h))
+    Ok((d.finish() == h.crc).then_some(h))
 }
 
 /// What a slot holds, as [`slot_status`] finds it.
@@ -457,7 +548,7 @@ struct Writer<'s, S: Storage + ?Sized> {
 
 /// The payload CRC cannot be computed before the length is known, so the payload is hashed twice: the
 /// first pass counts, the second writes. `CrcBuf` hashes in the second pass only.
-struct CrcBuf(Option<crc::Digest<'static, u32, crc::NoTable>>);
+struct CrcBuf(Option<Crc32>);
 
 impl<S: Storage + ?Sized> Writer<'_, S> {
     fn item(&mut self, index: u16, sub: u8, value: &[u8]) -> Result<(), StorageError> {
@@ -594,7 +685,7 @@ where
         write_group(&mut w, Groups::APP, groups, kept, old, app, 0x2000..=0xFFFF, 0)?;
         len = w.len;
         if pass == 1 {
-            let crc = w.crc_data.0.map_or(0, |d| d.finalize());
+            let crc = w.crc_data.0.map_or(0, |d| d.finish());
             let h = Header { groups: stored, seq, len: len as u32, crc };
             st.write(target, 0, &h.emit())?;
         }
@@ -715,7 +806,7 @@ fn rewrite<S: Storage + ?Sized>(st: &mut S, groups: Groups, skip: u16) -> Result
         write_group(&mut w, Groups::APP, Groups::NONE, remaining, old, &empty, 0x2000..=0xFFFF, skip)?;
         len = w.len;
         if pass == 1 {
-            let crc = w.crc_data.0.map_or(0, |d| d.finalize());
+            let crc = w.crc_data.0.map_or(0, |d| d.finish());
             st.write(target, 0, &Header { groups: remaining, seq, len: len as u32, crc }.emit())?;
         }
     }

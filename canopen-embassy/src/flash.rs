@@ -26,6 +26,8 @@ use core::ops::Range;
 
 #[cfg(feature = "lss")]
 use canopen_core::lss::{LssStore, StoreError as LssStoreError};
+#[cfg(feature = "lss")]
+use canopen_core::storage::Crc32;
 use canopen_core::storage::{Storage, StorageError, HEADER_LEN};
 #[cfg(feature = "lss")]
 use canopen_core::wire::lss::BitRate;
@@ -119,9 +121,6 @@ pub struct FlashStorage<F> {
     word: Word,
 }
 
-/// CRC-32 of the LSS record (the same polynomial as the core's parameter record), bitwise: no table.
-#[cfg(feature = "lss")]
-const LSS_CRC: crc::Crc<u32, crc::NoTable> = crc::Crc::<u32, crc::NoTable>::new(&crc::CRC_32_ISO_HDLC);
 /// "LSS" and the record version.
 #[cfg(feature = "lss")]
 const LSS_MAGIC: [u8; 4] = *b"LSS\x01";
@@ -212,7 +211,7 @@ impl<F: NorFlash> FlashStorage<F> {
         let mut rec = [0u8; LSS_RECORD];
         self.read_at(at, &mut rec).ok()?;
         let crc = u32::from_le_bytes([rec[8], rec[9], rec[10], rec[11]]);
-        if rec[..4] != LSS_MAGIC || LSS_CRC.checksum(&rec[..8]) != crc {
+        if rec[..4] != LSS_MAGIC || Crc32::checksum(&rec[..8]) != crc {
             return None;
         }
         let id = rec[4];
@@ -368,7 +367,7 @@ impl<F: NorFlash> LssStore for FlashStorage<F> {
         rec[..4].copy_from_slice(&LSS_MAGIC);
         rec[4] = node_id;
         rec[5] = bit_rate.index();
-        let crc = LSS_CRC.checksum(&rec[..8]);
+        let crc = Crc32::checksum(&rec[..8]);
         rec[8..].copy_from_slice(&crc.to_le_bytes());
         // Programmed through the word collector (slot number `LSS_SLOT`), which pads the last word with
         // erased bytes. A parameter record is never left half-collected between two calls (its header
