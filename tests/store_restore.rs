@@ -273,6 +273,26 @@ fn restore_only_on_load_signature_store_08() {
     assert_eq!(snapshot(&boot(&ram).stations[0]), DEFAULTS);
 }
 
+/// STORE-09/STORE-10: "load" (1011h) with nothing stored succeeds without touching the storage (no erase,
+/// no write: the defaults are what the next reset loads anyway); after a save, "load" of one group drops
+/// only that group from the record.
+#[test]
+fn restore_with_nothing_stored_writes_nothing_store_09() {
+    let ram = Ram::default();
+    let mut bus = boot(&ram);
+    ram.0.borrow_mut().fail_erase = true; // an erase would now fail the command
+    for sub in ["01", "02", "03"] {
+        let req = format!("603 [8] 23 11 10 {sub} 6C 6F 61 64");
+        assert_eq!(sdo(&mut bus, &req).data()[0], 0x60, "{req}");
+    }
+    assert_eq!(ram.0.borrow().written, 0);
+    ram.0.borrow_mut().fail_erase = false;
+    change_everything(&mut bus, 0x44, 4);
+    assert_eq!(sdo(&mut bus, "603 [8] 23 10 10 01 73 61 76 65").data()[0], 0x60);
+    assert_eq!(sdo(&mut bus, "603 [8] 23 11 10 03 6C 6F 61 64").data()[0], 0x60); // drop the application
+    assert_eq!(snapshot(&boot(&ram).stations[0]), (0x44, 0x2001_0020, DEFAULTS.2, DEFAULTS.3));
+}
+
 /// STORE-09 (success → download response; failure → 0606 0000h) for a storage failing at each of its steps:
 /// every read, every erase, a write (torn after 0 bytes; every later byte count is `torn_save_leaves_old_or_new`),
 /// for a save (1010h) and for a restore (1011h). Each failure is answered 0606 0000h, loses nothing (after a

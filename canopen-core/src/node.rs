@@ -306,7 +306,7 @@ impl<A: ObjectDictionary, Z: NodeSizes> Node<A, Z, NoStorage> {
     /// `default =` value — the value the EDS announces), exactly as after an NMT reset node. It has no
     /// storage: 1010h/1011h answer 0606 0000h.
     pub fn new(node_id: NodeId, config: NodeConfig, app: A) -> Self {
-        Self::build(node_id, config, app, NoStorage, |st, g, c, _| storage::save(st, g, c, &NoApplication))
+        Self::build(node_id, config, app, NoStorage, |st, g, d, c, _| storage::update(st, g, d, 0, c, &NoApplication))
     }
 }
 
@@ -322,7 +322,7 @@ impl<A: ObjectDictionary + OdDescribe, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// assert_eq!(node.node_id().get(), 2);
     /// ```
     pub fn with_storage(node_id: NodeId, config: NodeConfig, app: A, storage: S) -> Self {
-        Self::build(node_id, config, app, storage, |st, g, c, a| storage::save(st, g, c, a))
+        Self::build(node_id, config, app, storage, |st, g, d, c, a| storage::update(st, g, d, 0, c, a))
     }
 }
 

@@ -658,16 +658,38 @@ where
     C: ObjectDictionary + OdDescribe + ?Sized,
     A: ObjectDictionary + OdDescribe + ?Sized,
 {
+    update(st, groups, Groups::NONE, 0, comm, app)
+}
+
+/// Writes a new record (the A/B rule of the module docs): the groups `fresh` from `comm` and `app`, the
+/// newest record's other groups copied from it, except the groups `drop` and the items of index `skip`
+/// (0: none). With nothing to write (nothing stored, nothing fresh) it writes nothing. [`save`] is
+/// `fresh` alone, [`restore_defaults`] `drop` alone; the node does both through one instance (1010h and
+/// 1011h: `node::dict`), so that a firmware links one copy of the record code.
+pub(crate) fn update<S, C, A>(
+    st: &mut S,
+    fresh: Groups,
+    drop: Groups,
+    skip: u16,
+    comm: &C,
+    app: &A,
+) -> Result<(), StorageError>
+where
+    S: Storage + ?Sized,
+    C: ObjectDictionary + OdDescribe + ?Sized,
+    A: ObjectDictionary + OdDescribe + ?Sized,
+{
     if st.capacity() < HEADER_LEN {
         return Err(StorageError::Unsupported);
     }
     let old = newest(st)?;
     let target = match old {
         Some((slot, _)) => 1 - slot,
+        None if fresh.0 == 0 => return Ok(()), // nothing stored: the defaults are what loads already
         None => 0,
     };
-    let kept = old.map_or(Groups::NONE, |(_, h)| h.groups);
-    let stored = Groups(groups.0 | kept.0);
+    let kept = Groups(old.map_or(0, |(_, h)| h.groups.0) & !drop.0);
+    let stored = Groups(fresh.0 | kept.0);
     let seq = old.map_or(1, |(_, h)| h.seq.wrapping_add(1));
     // Pass 1 counts, pass 2 writes (the header, written last, needs length and CRC).
     let mut len = 0;
@@ -681,8 +703,8 @@ where
             crc_data = CrcBuf(Some(h.digest_start()));
         }
         let mut w = Writer { st: &mut *st, slot: target, len: 0, crc_data };
-        write_group(&mut w, Groups::COMM, groups, kept, old, comm, 0x1000..=0x1FFF, 0)?;
-        write_group(&mut w, Groups::APP, groups, kept, old, app, 0x2000..=0xFFFF, 0)?;
+        write_group(&mut w, Groups::COMM, fresh, kept, old, comm, 0x1000..=0x1FFF, skip)?;
+        write_group(&mut w, Groups::APP, fresh, kept, old, app, 0x2000..=0xFFFF, skip)?;
         len = w.len;
         if pass == 1 {
             let crc = w.crc_data.0.map_or(0, |d| d.finish());
@@ -779,38 +801,7 @@ pub(crate) fn forget<S: Storage + ?Sized>(st: &mut S, index: u16) -> Result<(), 
 
 /// A new record holding the newest one's items but the groups `groups` and the items of index `skip`.
 fn rewrite<S: Storage + ?Sized>(st: &mut S, groups: Groups, skip: u16) -> Result<(), StorageError> {
-    if st.capacity() < HEADER_LEN {
-        return Err(StorageError::Unsupported);
-    }
-    let Some((_, h)) = newest(st)? else {
-        return Ok(()); // nothing stored: the defaults are what loads already
-    };
-    let remaining = Groups(h.groups.0 & !groups.0);
-    // Re-save the remaining groups by copying them: "fresh" is empty, so everything comes from the record.
-    let empty = NoApplication;
-    let old = newest(st)?;
-    let target = old.map_or(0, |(s, _)| 1 - s);
-    let seq = h.seq.wrapping_add(1);
-    let mut len = 0;
-    for pass in 0..2 {
-        if pass == 1 {
-            st.erase(target)?;
-        }
-        let crc_data = if pass == 1 {
-            CrcBuf(Some(Header { groups: remaining, seq, len: len as u32, crc: 0 }.digest_start()))
-        } else {
-            CrcBuf(None)
-        };
-        let mut w = Writer { st: &mut *st, slot: target, len: 0, crc_data };
-        write_group(&mut w, Groups::COMM, Groups::NONE, remaining, old, &empty, 0x1000..=0x1FFF, skip)?;
-        write_group(&mut w, Groups::APP, Groups::NONE, remaining, old, &empty, 0x2000..=0xFFFF, skip)?;
-        len = w.len;
-        if pass == 1 {
-            let crc = w.crc_data.0.map_or(0, |d| d.finish());
-            st.write(target, 0, &Header { groups: remaining, seq, len: len as u32, crc }.emit())?;
-        }
-    }
-    Ok(())
+    update(st, Groups::NONE, groups, skip, &NoApplication, &NoApplication)
 }
 
 /// Maps a storage failure onto the SDO abort of 1010h/1011h (STORE-04, STORE-09).

@@ -19,11 +19,12 @@ use crate::storage::{Groups, Storage, StorageError};
 #[cfg(feature = "store-restore")]
 use crate::{
     od::OdValue,
-    storage::{self, abort_of, LOAD_SIGNATURE, SAVE_SIGNATURE},
+    storage::{abort_of, LOAD_SIGNATURE, SAVE_SIGNATURE},
 };
 
-/// Saves the groups of a record: `storage::save` with the application's description where the node has it.
-pub(crate) type SaveFn<S, C, A> = fn(&mut S, Groups, &C, &A) -> Result<(), StorageError>;
+/// Writes a new record (`storage::update`): the groups to save (1010h), the groups to drop (1011h), with the
+/// application's description where the node has it. One function for both, so one copy of the record code.
+pub(crate) type SaveFn<S, C, A> = fn(&mut S, Groups, Groups, &C, &A) -> Result<(), StorageError>;
 
 pub(crate) struct NodeDict<'a, Z: ProfileSizes, A, S> {
     od: Merged<&'a mut CommProfile<Z>, &'a mut A>,
@@ -110,11 +111,8 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
             return Err(AbortCode::CannotStore); // STORE-04/09: a wrong signature is 0800 0020h
         }
         let groups = Groups::from_sub(sub).ok_or(AbortCode::SubIndexDoesNotExist)?;
-        if index == 0x1010 {
-            (self.save)(self.storage, groups, self.od.comm, self.od.app).map_err(abort_of)
-        } else {
-            storage::restore_defaults(self.storage, groups).map_err(abort_of)
-        }
+        let (save, drop) = if index == 0x1010 { (groups, Groups::NONE) } else { (Groups::NONE, groups) };
+        (self.save)(self.storage, save, drop, self.od.comm, self.od.app).map_err(abort_of)
     }
 }
 
