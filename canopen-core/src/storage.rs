@@ -281,9 +281,9 @@ pub const HEADER_LEN: usize = 20;
 
 /// CRC-32/ISO-HDLC (the CRC of zip and Ethernet: reflected polynomial EDB8 8320h, initial value and final
 /// XOR FFFF FFFFh), the parameter record's check, a nibble at a time from a 16-entry table: a record is a
-/// few hundred bytes, hashed once per save or power-on, so no 1 KB byte table; table and loop are about 100
-/// bytes of Thumb code where the `crc` crate's generic bitwise digest linked 330 (footprint.sh:
-/// node+store). `canopen-embassy` checks its LSS record with it too.
+/// few hundred bytes, hashed once per save or power-on, so no 1 KB byte table. About 90 bytes of Thumb code
+/// and the 64-byte table, where the `crc` crate's generic bitwise digest linked 330 bytes of code
+/// (footprint.sh: node+store). `canopen-embassy` checks its LSS record with it too.
 ///
 /// ```
 /// use canopen_core::storage::Crc32;
@@ -789,19 +789,14 @@ where
 /// Removes the groups `groups` from the stored record (1011h "load", STORE-08..10): their defaults come
 /// back at the next reset. Writes a new record (same A/B rule as [`save`]), so it is power-safe too.
 pub fn restore_defaults<S: Storage + ?Sized>(st: &mut S, groups: Groups) -> Result<(), StorageError> {
-    rewrite(st, groups, 0)
+    update(st, Groups::NONE, groups, 0, &NoApplication, &NoApplication)
 }
 
 /// Removes the stored values of object `index` from the record (1020h verify configuration once another
 /// command changed the boot-up configuration, STORE-12); same A/B rule as [`save`].
 #[cfg(feature = "verify-config")]
 pub(crate) fn forget<S: Storage + ?Sized>(st: &mut S, index: u16) -> Result<(), StorageError> {
-    rewrite(st, Groups::NONE, index)
-}
-
-/// A new record holding the newest one's items but the groups `groups` and the items of index `skip`.
-fn rewrite<S: Storage + ?Sized>(st: &mut S, groups: Groups, skip: u16) -> Result<(), StorageError> {
-    update(st, Groups::NONE, groups, skip, &NoApplication, &NoApplication)
+    update(st, Groups::NONE, Groups::NONE, index, &NoApplication, &NoApplication)
 }
 
 /// Maps a storage failure onto the SDO abort of 1010h/1011h (STORE-04, STORE-09).

@@ -264,8 +264,9 @@ impl<F: NorFlash> FlashStorage<F> {
             self.flush()?;
         }
         if self.word.slot.is_none() {
-            let bytes = self.word.bytes; // left as they are: only the `written` ones are programmed
-            self.word = Word { slot: Some(slot), at: start, next: start, written: 0, bytes };
+            // A new word; its bytes stay as they are: only the `written` ones are programmed.
+            self.word.slot = Some(slot);
+            (self.word.at, self.word.next, self.word.written) = (start, start, 0);
         }
         if at < self.word.next {
             // A byte programmed twice between erases: NOR flash cannot do it (the core never asks for it).

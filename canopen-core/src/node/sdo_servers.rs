@@ -710,14 +710,21 @@ fn record_entry(index: u16, sub: u8) -> Option<EntryDesc> {
     })
 }
 
+impl<D: OdDescribe> SdoRecordsDesc<D> {
+    /// Where the `n`-th object of the merged order is: (true, own record `i`) or (false, `od`'s `j`).
+    fn locate(&self, n: usize) -> Option<(bool, usize)> {
+        let other = |j| self.od.object_index(j).unwrap_or(u16::MAX);
+        crate::od::merge_nth(n, self.own_count(), |i| self.own_index(i), self.od.object_count(), other)
+    }
+}
+
 impl<D: OdDescribe> OdDescribe for SdoRecordsDesc<D> {
     fn object_count(&self) -> usize {
         self.od.object_count() + self.own_count()
     }
 
     fn object(&self, n: usize) -> Option<ObjectDesc> {
-        let other = |j| self.od.object_index(j).unwrap_or(u16::MAX);
-        match crate::od::merge_nth(n, self.own_count(), |i| self.own_index(i), self.od.object_count(), other)? {
+        match self.locate(n)? {
             (true, i) => {
                 let index = self.own_index(i);
                 let (name, subs) = match index {
@@ -732,8 +739,7 @@ impl<D: OdDescribe> OdDescribe for SdoRecordsDesc<D> {
     }
 
     fn object_index(&self, n: usize) -> Option<u16> {
-        let other = |j| self.od.object_index(j).unwrap_or(u16::MAX);
-        match crate::od::merge_nth(n, self.own_count(), |i| self.own_index(i), self.od.object_count(), other)? {
+        match self.locate(n)? {
             (true, i) => Some(self.own_index(i)),
             (false, j) => self.od.object_index(j),
         }

@@ -168,22 +168,28 @@ fn index_of<D: OdDescribe + ?Sized>(od: &D, n: usize) -> u16 {
     od.object_index(n).unwrap_or(u16::MAX)
 }
 
+impl<C: OdDescribe, A: OdDescribe> Merged<C, A> {
+    /// Where the `n`-th object of the merged order is: (true, `comm`'s `i`) or (false, `app`'s `j`).
+    fn locate(&self, n: usize) -> Option<(bool, usize)> {
+        let (c, a) = (&self.comm, &self.app);
+        merge_nth(n, c.object_count(), |i| index_of(c, i), a.object_count(), |j| index_of(a, j))
+    }
+}
+
 impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
     fn object_count(&self) -> usize {
         self.comm.object_count() + self.app.object_count()
     }
     fn object(&self, n: usize) -> Option<ObjectDesc> {
-        let (c, a) = (&self.comm, &self.app);
-        match merge_nth(n, c.object_count(), |i| index_of(c, i), a.object_count(), |j| index_of(a, j))? {
-            (true, i) => c.object(i),
-            (false, j) => a.object(j),
+        match self.locate(n)? {
+            (true, i) => self.comm.object(i),
+            (false, j) => self.app.object(j),
         }
     }
     fn object_index(&self, n: usize) -> Option<u16> {
-        let (c, a) = (&self.comm, &self.app);
-        match merge_nth(n, c.object_count(), |i| index_of(c, i), a.object_count(), |j| index_of(a, j))? {
-            (true, i) => c.object_index(i),
-            (false, j) => a.object_index(j),
+        match self.locate(n)? {
+            (true, i) => self.comm.object_index(i),
+            (false, j) => self.app.object_index(j),
         }
     }
     /// 1F50h–1F57h: the communication profile's entry, else the application's (which serves them when it

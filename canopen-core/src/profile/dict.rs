@@ -842,6 +842,15 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     }
 }
 
+impl<Z: ProfileSizes> CommProfile<Z> {
+    /// Where the `n`-th object of the merged order is: (true, own object `i`) or (false, optional `j`).
+    fn locate(&self, n: usize) -> Option<(bool, usize)> {
+        let own = |i| Self::index_at(i).unwrap_or(u16::MAX);
+        let opt = |j| self.optional.object_index(j).unwrap_or(u16::MAX);
+        crate::od::merge_nth(n, Self::own_object_count(), own, self.optional.object_count(), opt)
+    }
+}
+
 impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
     fn object_count(&self) -> usize {
         Self::own_object_count() + self.optional.object_count()
@@ -849,9 +858,7 @@ impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
 
     /// The profile's own objects and [`optional`]'s, merged in increasing index order.
     fn object(&self, n: usize) -> Option<ObjectDesc> {
-        let own = |i| Self::index_at(i).unwrap_or(u16::MAX);
-        let opt = |j| self.optional.object_index(j).unwrap_or(u16::MAX);
-        match crate::od::merge_nth(n, Self::own_object_count(), own, self.optional.object_count(), opt)? {
+        match self.locate(n)? {
             (true, i) => self.own_object(i),
             (false, j) => self.optional.object(j),
         }
@@ -860,9 +867,7 @@ impl<Z: ProfileSizes> OdDescribe for CommProfile<Z> {
     /// [`object`](Self::object)'s index alone, from the profile's table of indices: a firmware that stores
     /// its parameters does not link the object and entry names.
     fn object_index(&self, n: usize) -> Option<u16> {
-        let own = |i| Self::index_at(i).unwrap_or(u16::MAX);
-        let opt = |j| self.optional.object_index(j).unwrap_or(u16::MAX);
-        match crate::od::merge_nth(n, Self::own_object_count(), own, self.optional.object_count(), opt)? {
+        match self.locate(n)? {
             (true, i) => Self::index_at(i),
             (false, j) => self.optional.object_index(j),
         }

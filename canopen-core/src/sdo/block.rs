@@ -2,8 +2,8 @@
 //!
 //! - [`Crc16`]: the running CRC-16/XMODEM of SDO-49 (poly 1021h, init 0, no reflection, no final XOR). With
 //!   the `crc-table` feature (default) a byte at a time from a 256-entry table (512 B of flash, one lookup
-//!   per byte; the `crc` crate's digest, which store/restore still uses for its CRC-32, cost about three
-//!   times as many instructions per 7-byte segment); without it a nibble at a time from a 16-entry table
+//!   per byte; the `crc` crate's digest, used here before, cost about three times as many instructions per
+//!   7-byte segment); without it a nibble at a time from a 16-entry table
 //!   (32 B, two lookups per byte). Both tables are built at compile time, and the tests check both against
 //!   the bit-by-bit definition and the check values "123456789" → 31C3h, "ABCDEFGHIJKLMNOP" → 6080h,
 //!   empty → 0. It keeps only the 16-bit register, so a state machine can hold it by value.
