@@ -9,8 +9,10 @@
 //! queue after every call never sees it full.
 //!
 //! Receive dispatch compares the CAN-ID with the few configurable single-object IDs (NMT 000h, SYNC 1005h,
-//! TIME 1012h), then binary-searches a small sorted table of (CAN-ID → RPDO) rebuilt whenever a COB-ID
-//! changes, then decodes the function code once for the rest: no scan over services, no scan over PDOs.
+//! TIME 1012h), then finds the RPDO: up to 8 RPDOs by comparing their CAN-IDs (at most 8 compares, no table
+//! to keep), above that by a binary search of a sorted table of (CAN-ID → RPDO) rebuilt whenever a COB-ID
+//! changes; then it decodes the function code once for the rest. No scan over services, and the work per
+//! frame does not grow with the number of PDOs.
 //!
 //! The PDO, SYNC, TIME and EMCY wiring lives in `node/pdo.rs` and `node/errors.rs`; the dictionary SDO sees
 //! (mapping checks, store/restore commands) in `node/dict.rs`.
@@ -146,9 +148,11 @@ pub struct Node<A, Z: NodeSizes = Sizes, S = NoStorage> {
     emcy: EmcyProducer,
     rpdos: Z::Rpdos,
     tpdos: Z::Tpdos,
-    /// (CAN-ID, RPDO number) of the valid RPDOs, sorted by CAN-ID.
+    /// (CAN-ID, RPDO number) of the valid RPDOs, sorted by CAN-ID; kept only above [`pdo::SCAN_MAX`] RPDOs
+    /// (below, a frame is matched against the RPDOs themselves).
     rx_table: PdoTable<Z::RpdoTable>,
-    /// (CAN-ID, TPDO number) of the TPDOs that answer a remote request, sorted by CAN-ID.
+    /// (CAN-ID, TPDO number) of the TPDOs that answer a remote request, sorted by CAN-ID; kept only above
+    /// [`pdo::SCAN_MAX`] TPDOs.
     rtr_table: PdoTable<Z::TpdoTable>,
     storage: S,
     save: SaveFn<S, CommProfile<Z>, A>,
@@ -599,12 +603,12 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if id == self.sync.can_id() && id != 0 {
             return self.handle_sync(now, frame);
         }
-        if let Ok(i) = self.rx_table.binary_search_by_key(&id, |e| e.0) {
-            return self.handle_rpdo(now, i, frame);
+        if let Some(k) = self.rpdo_for(id) {
+            return self.handle_rpdo(now, k, frame);
         }
         if frame.is_rtr() {
-            if let Ok(i) = self.rtr_table.binary_search_by_key(&id, |e| e.0) {
-                return self.handle_tpdo_rtr(now, i);
+            if let Some(k) = self.rtr_tpdo_for(id) {
+                return self.handle_tpdo_rtr(now, k);
             }
         }
         #[cfg(feature = "time")]

@@ -50,10 +50,12 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 let new = new.with_mpdo(AddressMode::of_mapping(map.count)); // MPDO-05
                 *t = new;
             }
-            self.rtr_table.clear();
-            for (i, t) in self.tpdos.as_ref().iter().enumerate() {
-                if t.rtr_allowed() {
-                    insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
+            if Z::TPDO > SCAN_MAX {
+                self.rtr_table.clear();
+                for (i, t) in self.tpdos.as_ref().iter().enumerate() {
+                    if t.rtr_allowed() {
+                        insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
+                    }
                 }
             }
         } else {
@@ -63,12 +65,34 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 let new = new.with_mpdo(AddressMode::of_mapping(map.count)); // MPDO-05
                 *r = new;
             }
-            self.rx_table.clear();
-            for (i, r) in self.rpdos.as_ref().iter().enumerate() {
-                if r.is_valid() {
-                    insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
+            if Z::RPDO > SCAN_MAX {
+                self.rx_table.clear();
+                for (i, r) in self.rpdos.as_ref().iter().enumerate() {
+                    if r.is_valid() {
+                        insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
+                    }
                 }
             }
+        }
+    }
+
+    /// The valid RPDO that receives CAN-ID `id`, the lowest-numbered if several do.
+    #[inline]
+    pub(super) fn rpdo_for(&self, id: u16) -> Option<usize> {
+        if Z::RPDO <= SCAN_MAX {
+            self.rpdos.as_ref().iter().position(|r| r.is_valid() && r.can_id() == id)
+        } else {
+            first_in(&self.rx_table, id)
+        }
+    }
+
+    /// The TPDO that answers a remote request on CAN-ID `id` (PDO-29), the lowest-numbered if several do.
+    #[inline]
+    pub(super) fn rtr_tpdo_for(&self, id: u16) -> Option<usize> {
+        if Z::TPDO <= SCAN_MAX {
+            self.tpdos.as_ref().iter().position(|t| t.rtr_allowed() && t.can_id() == id)
+        } else {
+            first_in(&self.rtr_table, id)
         }
     }
 
@@ -123,13 +147,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.transmit(CanFrame::from_parts(id, data, len));
     }
 
-    /// An RPDO frame (PDO-04: Operational only; PDO-38/39 lengths; PDO-40 window).
-    pub(super) fn handle_rpdo(&mut self, now: Instant, i: usize, frame: &CanFrame) {
+    /// A frame for RPDO `k` (PDO-04: Operational only; PDO-38/39 lengths; PDO-40 window).
+    pub(super) fn handle_rpdo(&mut self, now: Instant, k: usize, frame: &CanFrame) {
         if frame.is_rtr() || self.nmt.state() != NmtState::Operational {
             return;
         }
-        let Some(&(_, k)) = self.rx_table.get(i) else { return };
-        let k = usize::from(k);
         let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
         // An MPDO consumer (MPDO-02/03/05): its mapping sub 00h, FEh/FFh, made it one when it was configured
         // (the RPDO itself maps nothing); each frame is decoded and written at once.
@@ -183,13 +205,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    /// A remote request for TPDO `rtr_table[i]` (PDO-21, PDO-22, PDO-29).
-    pub(super) fn handle_tpdo_rtr(&mut self, now: Instant, i: usize) {
+    /// A remote request for TPDO `k` (PDO-21, PDO-22, PDO-29).
+    pub(super) fn handle_tpdo_rtr(&mut self, now: Instant, k: usize) {
         if !crate::pdo::RTR || self.nmt.state() != NmtState::Operational {
             return;
         }
-        let Some(&(_, k)) = self.rtr_table.get(i) else { return };
-        let k = usize::from(k);
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         if t.transmission_type() == 252 {
             if let Some((data, len)) = t.last() {
@@ -369,6 +389,19 @@ fn sample<A: ObjectDictionary, Z: NodeSizes>(
 /// 8220h, 8230h, 8250h): 255 for RPDO 255 and every one above (CiA 301 allows 512; a byte holds no more).
 pub(super) fn rpdo_number(k: usize) -> u8 {
     u8::try_from(k + 1).unwrap_or(u8::MAX)
+}
+
+/// Up to this many PDOs of a direction, a received frame is matched by comparing the PDOs' own CAN-IDs: at
+/// most 8 compares, and no table to keep (less flash than the table's upkeep: footprint.sh, see the
+/// commit). Above it, by a binary search of a sorted (CAN-ID, PDO number) table, rebuilt when a PDO is
+/// configured, so that the work per frame does not grow with the number of PDOs (CiA 301 allows 512).
+pub(super) const SCAN_MAX: usize = 8;
+
+/// The PDO of the first entry of `table` with CAN-ID `id`: the lowest-numbered, as the scan finds it
+/// ([`insert_sorted`] keeps equal CAN-IDs in PDO order).
+fn first_in<T: VecStorage<(u16, u16)> + ?Sized>(table: &PdoTable<T>, id: u16) -> Option<usize> {
+    let i = table.partition_point(|e| e.0 < id);
+    table.get(i).filter(|e| e.0 == id).map(|e| usize::from(e.1))
 }
 
 /// Inserts `e` after every entry whose CAN-ID is not greater, so the table stays sorted by CAN-ID with equal
