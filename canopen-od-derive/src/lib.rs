@@ -84,7 +84,8 @@
 //! - `impl ObjectDictionary for App`: a binary search of the 4-byte keys `OD_KEYS` gives a position, a `match` on the
 //!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
 //!   one copy of the search per dictionary, and no write code for a read-only entry (`ro`/`const`: every
-//!   write path, PDO handles included, answers 0601 0002h);
+//!   write path, PDO handles included, answers 0601 0002h); `STREAMS` is whether a string or DOMAIN is
+//!   writable, so that without one the SDO server builds no streamed-write path;
 //! - `impl OdDescribe for App` (for the EDS writer; its `object_index`, what store/restore walks, answers
 //!   from a table of the indices alone, so a firmware that stores links neither names nor defaults);
 //! - `restore_defaults` (NMT-04 Reset Application): each entry gets its `default`, or its type's
@@ -839,6 +840,8 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
     // The streamed write of a string or DOMAIN (segmented and block downloads of an entry without a fixed
     // size). A dictionary without a writable one refuses every stream the same way, through one out-of-line
     // check: an unknown entry or a read-only one gets its own code, any other 0601 0000h.
+    // `ObjectDictionary::STREAMS`: without a writable streamed entry the SDO server builds no stream path.
+    let streams = !begin_arms.is_empty();
     let (stream_write_fns, refuse_stream_fn) = if begin_arms.is_empty() {
         (
             quote! {
@@ -1017,6 +1020,9 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
 
             #[automatically_derived]
             impl #core::od::ObjectDictionary for #ident {
+                /// Whether a writable string or DOMAIN takes streamed writes.
+                const STREAMS: bool = #streams;
+
                 fn info(&self, index: u16, sub: u8) -> ::core::result::Result<#core::od::SubInfo, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
                     ::core::result::Result::Ok(#core::od::SubInfo { data_type: e.data_type, access: e.access, pdo: e.pdo, size: self.__od_size(pos, e) })

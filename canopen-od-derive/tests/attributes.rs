@@ -211,3 +211,21 @@ fn integer_limits_at_the_types_ends() {
     assert_eq!(od.write(0x2002, 0, &[0]), Err(AbortCode::ValueTooHigh));
     assert_eq!((od.whole_i64, od.below_max_u64, od.negative_i8), (i64::MAX, u64::MAX - 1, -128));
 }
+
+#[derive(ObjectDictionary, Default)]
+struct ReadOnlyText {
+    #[od(index = 0x2000, access = "ro")]
+    name: VisibleString<8>,
+    #[od(index = 0x2001)]
+    value: u32,
+}
+
+/// `ObjectDictionary::STREAMS`: a struct with a writable string (`App`) takes streamed writes; one whose
+/// strings are read-only (`ReadOnlyText`) or that has none (`Counts`) does not, so the SDO server builds no
+/// stream path for it.
+#[test]
+fn streams_is_whether_a_string_or_domain_is_writable() {
+    const { assert!(App::STREAMS) };
+    const { assert!(!ReadOnlyText::STREAMS) };
+    const { assert!(!Counts::STREAMS) };
+}

@@ -188,6 +188,9 @@ pub(crate) struct WithRecords<'a, D, P, C> {
 impl<D: ObjectDictionary, P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> ObjectDictionary
     for WithRecords<'_, D, P, C>
 {
+    /// The records are numeric: streams are the wrapped dictionary's.
+    const STREAMS: bool = D::STREAMS;
+
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         if is_sdo_record(index) {
             return self.sdo.info(index, sub);
@@ -365,6 +368,8 @@ impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> SdoRecords<'_, P, C> 
 }
 
 impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> ObjectDictionary for SdoRecords<'_, P, C> {
+    const STREAMS: bool = false;
+
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         if !is_server_record(index) {
             self.client(index)?;

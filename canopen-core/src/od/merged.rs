@@ -73,6 +73,8 @@ macro_rules! route {
 }
 
 impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A> {
+    const STREAMS: bool = C::STREAMS || A::STREAMS;
+
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         route!(self, index, od => od.info(index, sub))
     }

@@ -339,6 +339,25 @@ pub trait ObjectDictionary {
     /// firmware of a device without program download does not grow).
     const SERVES_PROGRAM: bool = false;
 
+    /// Whether [`begin_write`](Self::begin_write) can succeed for some entry: a string or DOMAIN written by a
+    /// segmented or block download as a stream. `false` promises that it always fails, and the SDO server
+    /// then builds no streaming path for this dictionary (`sdo::server`: 196 B less flash in the firmware
+    /// example, `scripts/footprint.sh`). The default is `true`; the derive answers `false` for a struct
+    /// without a writable string or DOMAIN, as do [`NoApplication`] and the communication profile.
+    ///
+    /// ```
+    /// use canopen_core::od::{ObjectDictionary, NoApplication, Merged};
+    /// assert!(!NoApplication::STREAMS);
+    /// struct Custom; // a hand-written dictionary keeps the default
+    /// # impl ObjectDictionary for Custom {
+    /// #     fn info(&self, _: u16, _: u8) -> Result<canopen_core::od::SubInfo, canopen_core::od::AbortCode> { unimplemented!() }
+    /// #     fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, canopen_core::od::AbortCode> { unimplemented!() }
+    /// #     fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), canopen_core::od::AbortCode> { unimplemented!() }
+    /// # }
+    /// assert!(Custom::STREAMS && <Merged<NoApplication, Custom>>::STREAMS);
+    /// ```
+    const STREAMS: bool = true;
+
     /// Describes a sub-entry.
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode>;
 
@@ -579,6 +598,8 @@ impl PdoHandle {
 pub struct NoApplication;
 
 impl ObjectDictionary for NoApplication {
+    const STREAMS: bool = false;
+
     fn info(&self, _: u16, _: u8) -> Result<SubInfo, AbortCode> {
         Err(AbortCode::ObjectDoesNotExist)
     }
@@ -605,6 +626,7 @@ impl OdDescribe for NoApplication {
 /// A mutable reference is a dictionary too, so views such as `Merged<&mut CommProfile, &mut App>` work.
 impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
     const SERVES_PROGRAM: bool = T::SERVES_PROGRAM;
+    const STREAMS: bool = T::STREAMS;
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         (**self).info(index, sub)
     }

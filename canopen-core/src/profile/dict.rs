@@ -742,6 +742,8 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 pub struct Unchecked<'a, Z: ProfileSizes>(pub &'a mut CommProfile<Z>);
 
 impl<Z: ProfileSizes> ObjectDictionary for Unchecked<'_, Z> {
+    const STREAMS: bool = false;
+
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         self.0.info(index, sub)
     }
@@ -757,6 +759,9 @@ impl<Z: ProfileSizes> ObjectDictionary for Unchecked<'_, Z> {
 }
 
 impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
+    /// Every writable entry is numeric: `begin_write` below always fails.
+    const STREAMS: bool = false;
+
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         let f = find_or_optional!(index, sub, self.optional.info(index, sub));
         let (data_type, access, pdo) = f.meta();

@@ -384,7 +384,9 @@ impl Sink {
                 dst.copy_from_slice(&data[..len]);
                 Ok(())
             }
-            Sink::Stream => od.write_chunk(mux.index, mux.sub, offset as usize, &data[..len]),
+            Sink::Stream if O::STREAMS => od.write_chunk(mux.index, mux.sub, offset as usize, &data[..len]),
+            // Never built for such a dictionary (`open_sink`); the arm keeps its streaming path out of the build.
+            Sink::Stream => Err(AbortCode::GeneralError),
         }
     }
 
@@ -395,7 +397,8 @@ impl Sink {
             Sink::Scratch(buf) => {
                 od.write(mux.index, mux.sub, buf.get(..total as usize).ok_or(AbortCode::LengthTooHigh)?)
             }
-            Sink::Stream => od.end_write(mux.index, mux.sub, total as usize),
+            Sink::Stream if O::STREAMS => od.end_write(mux.index, mux.sub, total as usize),
+            Sink::Stream => Err(AbortCode::GeneralError), // never built, as in `write`
         }
     }
 }
@@ -736,9 +739,10 @@ impl SdoServer {
     /// Drops the current transfer; tells the OD when a streamed write is abandoned.
     fn reset<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) {
         match self.state {
-            State::Download { sink: Sink::Stream, .. } => od.abort_write(self.mux.index, self.mux.sub),
+            // No stream without `O::STREAMS` (`open_sink`): then nothing to tell the dictionary.
+            State::Download { sink: Sink::Stream, .. } if O::STREAMS => od.abort_write(self.mux.index, self.mux.sub),
             #[cfg(feature = "sdo-block")]
-            State::BlockDownload(BlockDownload { sink: Sink::Stream, .. }) => {
+            State::BlockDownload(BlockDownload { sink: Sink::Stream, .. }) if O::STREAMS => {
                 od.abort_write(self.mux.index, self.mux.sub)
             }
             _ => {}

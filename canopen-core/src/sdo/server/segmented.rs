@@ -78,6 +78,12 @@ impl SdoServer {
             }
             None => {
                 od.begin_write(mux.index, mux.sub, size.map(|s| s as usize))?;
+                if !O::STREAMS {
+                    // A dictionary that promised no stream (`ObjectDictionary::STREAMS`) began one: undone
+                    // and refused, so that no `Sink::Stream` exists for it.
+                    od.abort_write(mux.index, mux.sub);
+                    return Err(AbortCode::UnsupportedAccess);
+                }
                 Ok(Sink::Stream)
             }
         }

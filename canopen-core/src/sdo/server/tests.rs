@@ -659,3 +659,51 @@ fn stalled_sub_block_is_acknowledged_after_a_quarter_of_the_timeout() {
     assert_eq!(s.poll_timeout(), Some(t(301)));
     assert_eq!(s.handle_timeout(t(301), &mut od).frame, abort_of(0x2000, 0, AbortCode::SdoTimeout));
 }
+
+/// A dictionary that says it takes no streamed write (`STREAMS = false`) but whose `begin_write` succeeds:
+/// the server, which builds no stream path for it, refuses the download with 0601 0000h and undoes the
+/// begun write, for a segmented and (feature `sdo-block`) a block download.
+struct NoStreams {
+    begun: u32,
+    aborted: u32,
+}
+
+impl ObjectDictionary for NoStreams {
+    const STREAMS: bool = false;
+    fn info(&self, _: u16, _: u8) -> Result<crate::od::SubInfo, AbortCode> {
+        let (data_type, access) = (crate::od::DataType::Domain, crate::od::Access::Rw);
+        Ok(crate::od::SubInfo { data_type, access, pdo: crate::od::PdoMapping::No, size: 0 })
+    }
+    fn read(&self, _: u16, _: u8, _: usize, _: &mut [u8]) -> Result<usize, AbortCode> {
+        Ok(0)
+    }
+    fn write(&mut self, _: u16, _: u8, _: &[u8]) -> Result<(), AbortCode> {
+        Ok(())
+    }
+    fn begin_write(&mut self, _: u16, _: u8, _: Option<usize>) -> Result<(), AbortCode> {
+        self.begun += 1;
+        Ok(())
+    }
+    fn abort_write(&mut self, _: u16, _: u8) {
+        self.aborted += 1;
+    }
+}
+
+#[test]
+fn no_stream_for_a_dictionary_without_streams() {
+    let mut od = NoStreams { begun: 0, aborted: 0 };
+    let mut s = server();
+    // Segmented download initiate of 3000h:00, 3 bytes indicated.
+    let r = s.handle_request(T0, &[0x21, 0x00, 0x30, 0x00, 3, 0, 0, 0], &mut od);
+    assert_eq!(r.frame, abort_of(0x3000, 0, AbortCode::UnsupportedAccess));
+    assert_eq!((od.begun, od.aborted), (1, 1));
+    assert!(s.is_idle());
+    #[cfg(feature = "sdo-block")]
+    {
+        // Block download initiate, size indicated (cs = 6, s = 1).
+        let r = s.handle_request(T0, &[0xC2, 0x00, 0x30, 0x00, 3, 0, 0, 0], &mut od);
+        assert_eq!(r.frame, abort_of(0x3000, 0, AbortCode::UnsupportedAccess));
+        assert_eq!((od.begun, od.aborted), (2, 2));
+        assert!(s.is_idle());
+    }
+}
