@@ -85,7 +85,8 @@
 //!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
 //!   one copy of the search per dictionary, and no write code for a read-only entry (`ro`/`const`: every
 //!   write path, PDO handles included, answers 0601 0002h); `STREAMS` is whether a string or DOMAIN is
-//!   writable, so that without one the SDO server builds no streamed-write path;
+//!   writable and `SEGMENTED_UPLOADS` whether a readable entry has no fixed size of 1..=4 bytes, so that
+//!   without one the SDO server builds no streamed-write or segmented-upload path;
 //! - `impl OdDescribe for App` (for the EDS writer; its `object_index`, what store/restore walks, answers
 //!   from a table of the indices alone, so a firmware that stores links neither names nor defaults);
 //! - `restore_defaults` (NMT-04 Reset Application): each entry gets its `default`, or its type's
@@ -1022,6 +1023,21 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             impl #core::od::ObjectDictionary for #ident {
                 /// Whether a writable string or DOMAIN takes streamed writes.
                 const STREAMS: bool = #streams;
+                /// Whether a readable entry's type has no fixed size of 1..=4 bytes (a string, a DOMAIN, a
+                /// 64-bit value), so that an upload of it is segmented.
+                const SEGMENTED_UPLOADS: bool = {
+                    let infos = Self::__OD_INFO;
+                    let mut any = false;
+                    let mut i = 0;
+                    while i < infos.len() {
+                        let e = &infos[i];
+                        if e.access.readable() && (e.size == 0 || e.size > 4) {
+                            any = true;
+                        }
+                        i += 1;
+                    }
+                    any
+                };
 
                 fn info(&self, index: u16, sub: u8) -> ::core::result::Result<#core::od::SubInfo, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;

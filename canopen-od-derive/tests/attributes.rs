@@ -220,12 +220,40 @@ struct ReadOnlyText {
     value: u32,
 }
 
-/// `ObjectDictionary::STREAMS`: a struct with a writable string (`App`) takes streamed writes; one whose
-/// strings are read-only (`ReadOnlyText`) or that has none (`Counts`) does not, so the SDO server builds no
-/// stream path for it.
+#[derive(ObjectDictionary, Default)]
+struct WriteOnlyText {
+    #[od(index = 0x2000, access = "wo")]
+    name: VisibleString<8>,
+    #[od(index = 0x2001)]
+    value: u32,
+}
+
+#[derive(ObjectDictionary, Default)]
+struct Wide {
+    #[od(index = 0x2000, access = "ro")]
+    counter: u64,
+}
+
+/// `ObjectDictionary::STREAMS`: a struct with a writable string (`App`, `WriteOnlyText`) takes streamed
+/// writes; one whose strings are read-only (`ReadOnlyText`) or that has none (`Counts`, `Wide`) does not, so
+/// the SDO server builds no stream path for it.
 #[test]
 fn streams_is_whether_a_string_or_domain_is_writable() {
-    const { assert!(App::STREAMS) };
-    const { assert!(!ReadOnlyText::STREAMS) };
-    const { assert!(!Counts::STREAMS) };
+    let streams = [App::STREAMS, WriteOnlyText::STREAMS, ReadOnlyText::STREAMS, Counts::STREAMS, Wide::STREAMS];
+    assert_eq!(streams, [true, true, false, false, false]);
+}
+
+/// `ObjectDictionary::SEGMENTED_UPLOADS`: a readable string (`App`, `ReadOnlyText`) or a 64-bit value
+/// (`Wide`) is uploaded segmented; a write-only string (`WriteOnlyText`) is never uploaded, and 1..=4-byte
+/// entries (`Counts`) always go expedited, so the SDO server builds no segmented-upload path for those.
+#[test]
+fn segmented_uploads_is_whether_a_readable_entry_can_exceed_4_bytes() {
+    let segmented = [
+        App::SEGMENTED_UPLOADS,
+        ReadOnlyText::SEGMENTED_UPLOADS,
+        Wide::SEGMENTED_UPLOADS,
+        WriteOnlyText::SEGMENTED_UPLOADS,
+        Counts::SEGMENTED_UPLOADS,
+    ];
+    assert_eq!(segmented, [true, true, true, false, false]);
 }

@@ -126,6 +126,7 @@ const fn intercepted(index: u16) -> bool {
 impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for NodeDict<'_, Z, A, S> {
     /// 1010h/1011h and the mappings it intercepts are numeric: streams are the merged dictionary's.
     const STREAMS: bool = <Merged<&mut CommProfile<Z>, &mut A>>::STREAMS;
+    const SEGMENTED_UPLOADS: bool = <Merged<&mut CommProfile<Z>, &mut A>>::SEGMENTED_UPLOADS;
 
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         self.od.info(index, sub)

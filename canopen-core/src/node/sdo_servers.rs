@@ -190,6 +190,7 @@ impl<D: ObjectDictionary, P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> 
 {
     /// The records are numeric: streams are the wrapped dictionary's.
     const STREAMS: bool = D::STREAMS;
+    const SEGMENTED_UPLOADS: bool = D::SEGMENTED_UPLOADS;
 
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         if is_sdo_record(index) {
@@ -369,6 +370,7 @@ impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> SdoRecords<'_, P, C> 
 
 impl<P: Slots<SdoServerParams>, C: Slots<SdoClientRecord>> ObjectDictionary for SdoRecords<'_, P, C> {
     const STREAMS: bool = false;
+    const SEGMENTED_UPLOADS: bool = false;
 
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         if !is_server_record(index) {

@@ -74,6 +74,7 @@ macro_rules! route {
 
 impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A> {
     const STREAMS: bool = C::STREAMS || A::STREAMS;
+    const SEGMENTED_UPLOADS: bool = C::SEGMENTED_UPLOADS || A::SEGMENTED_UPLOADS;
 
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         route!(self, index, od => od.info(index, sub))

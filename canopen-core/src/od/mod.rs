@@ -358,6 +358,19 @@ pub trait ObjectDictionary {
     /// ```
     const STREAMS: bool = true;
 
+    /// Whether an SDO upload of some readable entry is segmented: its value can be longer than 4 bytes or
+    /// empty (a string, an OCTET_STRING, a DOMAIN, a 64-bit value). `false` promises that every readable
+    /// entry has 1..=4 bytes, so that every upload is expedited (or a block upload), and the SDO server then
+    /// builds no segmented-upload path for this dictionary (556 B of the minimal firmware example,
+    /// `scripts/footprint.sh`). The default is `true`; the derive answers from its entries' types, the
+    /// communication profile from its strings (feature `manufacturer-strings`), [`NoApplication`] `false`.
+    ///
+    /// ```
+    /// use canopen_core::od::{ObjectDictionary, NoApplication};
+    /// assert!(!NoApplication::SEGMENTED_UPLOADS);
+    /// ```
+    const SEGMENTED_UPLOADS: bool = true;
+
     /// Describes a sub-entry.
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode>;
 
@@ -599,6 +612,7 @@ pub struct NoApplication;
 
 impl ObjectDictionary for NoApplication {
     const STREAMS: bool = false;
+    const SEGMENTED_UPLOADS: bool = false;
 
     fn info(&self, _: u16, _: u8) -> Result<SubInfo, AbortCode> {
         Err(AbortCode::ObjectDoesNotExist)
@@ -627,6 +641,7 @@ impl OdDescribe for NoApplication {
 impl<T: ObjectDictionary + ?Sized> ObjectDictionary for &mut T {
     const SERVES_PROGRAM: bool = T::SERVES_PROGRAM;
     const STREAMS: bool = T::STREAMS;
+    const SEGMENTED_UPLOADS: bool = T::SEGMENTED_UPLOADS;
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         (**self).info(index, sub)
     }

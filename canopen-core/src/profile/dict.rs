@@ -743,6 +743,7 @@ pub struct Unchecked<'a, Z: ProfileSizes>(pub &'a mut CommProfile<Z>);
 
 impl<Z: ProfileSizes> ObjectDictionary for Unchecked<'_, Z> {
     const STREAMS: bool = false;
+    const SEGMENTED_UPLOADS: bool = CommProfile::<Z>::SEGMENTED_UPLOADS;
 
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         self.0.info(index, sub)
@@ -761,6 +762,9 @@ impl<Z: ProfileSizes> ObjectDictionary for Unchecked<'_, Z> {
 impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// Every writable entry is numeric: `begin_write` below always fails.
     const STREAMS: bool = false;
+    /// Every entry but the strings 1008h–100Ah (feature `manufacturer-strings`) has 1..=4 bytes, the optional
+    /// objects too (the test `segmented_uploads_agrees_with_the_entries` checks it against the description).
+    const SEGMENTED_UPLOADS: bool = cfg!(feature = "manufacturer-strings");
 
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         let f = find_or_optional!(index, sub, self.optional.info(index, sub));
@@ -1017,6 +1021,20 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `SEGMENTED_UPLOADS` (whether the SDO server builds its segmented-upload path) agrees with the
+    /// description: true exactly when some readable entry has no fixed size of 1..=4 bytes, with the
+    /// optional objects of this build.
+    #[test]
+    fn segmented_uploads_agrees_with_the_entries() {
+        type Z = Sizes<4, 16, 16, 4, 4>;
+        let od: CommProfile<Z> = CommProfile::new(CFG);
+        let large = |e: EntryDesc| e.access.readable() && !matches!(e.data_type.size(), Some(1..=4));
+        let any = (0..od.object_count())
+            .filter_map(|n| od.object(n))
+            .any(|o| (0..=255u8).filter_map(|s| od.entry(o.index, s)).any(large));
+        assert_eq!(CommProfile::<Z>::SEGMENTED_UPLOADS, any);
     }
 
     #[test]

@@ -108,6 +108,11 @@ impl SdoServer {
             let data = u32::from_le_bytes(d) & (u32::MAX >> (8 * (4 - n as u32)));
             return Ok(Response::send(frame(0x43 | ((4 - n as u8) << 2), mux.bits(), data)));
         }
+        if !O::SEGMENTED_UPLOADS {
+            // A dictionary that promised 1..=4 bytes for every entry (`ObjectDictionary::SEGMENTED_UPLOADS`)
+            // has another size: refused, and no segmented-upload path is built for it.
+            return Err(AbortCode::GeneralError);
+        }
         self.mux = mux;
         let slot = od.slot(mux.index, mux.sub); // one lookup here, none per segment
         self.state = State::Upload { toggle: false, offset: 0, size, slot };
@@ -161,6 +166,9 @@ impl SdoServer {
     /// into the response frame.
     #[inline]
     pub(super) fn upload_segment<O: ObjectDictionary + ?Sized>(&mut self, t: bool, od: &mut O) -> Response {
+        if !O::SEGMENTED_UPLOADS {
+            return self.invalid(od); // no upload is ever segmented: the answer of a server without one
+        }
         let mux = self.mux;
         let State::Upload { toggle, offset, size, slot } = &mut self.state else {
             return self.invalid(od);
