@@ -92,13 +92,11 @@ const TPDO3: PdoDefault =
 /// TPDO 4: uptime, every 10th SYNC.
 const TPDO4: PdoDefault = PdoDefault { transmission_type: 10, mapping: &[0x2100_0020], ..PdoDefault::EVENT };
 
-/// The strings feed 1008h–100Ah, which this build leaves out: they are not in the image.
+/// No device name or versions: they feed 1008h–100Ah, which this build leaves out. (Strings set here would
+/// still be in the image, 36 B: the node keeps its `NodeConfig`, which `Node::config` returns.)
 const CONFIG: NodeConfig = NodeConfig {
     device_type: 0x0003_0191, // CiA 401, digital inputs and outputs
     identity: Identity { vendor_id: 0, product_code: 0x446, revision: 0x0001_0000, serial: 1 },
-    device_name: "canopen-rs F446",
-    hardware_version: "NUCLEO-F446RE",
-    software_version: env!("CARGO_PKG_VERSION"),
     heartbeat_time_ms: 1000,
     rpdo: &[RPDO1, RPDO2, RPDO3, RPDO4],
     tpdo: &[TPDO1, TPDO2, TPDO3, TPDO4],
