@@ -58,7 +58,10 @@
 //! 1..7 bytes at a time at an offset with [`ObjectDictionary::read_slot`], the entry's position looked up once
 //! at the initiate ([`ObjectDictionary::slot`]: no search per segment in a derived dictionary). Block download writes each in-order
 //! segment to the OD as soon as the next one arrives: only the last 7 bytes are held back, because the number
-//! of valid bytes in the last segment is only known from the end frame (SDO-41). The whole server is
+//! of valid bytes in the last segment is only known from the end frame (SDO-41). The streaming and the
+//! segmented-upload paths are built only for a dictionary that can use them ([`ObjectDictionary::STREAMS`],
+//! [`ObjectDictionary::SEGMENTED_UPLOADS`]: a device whose entries are all numbers of 1..=4 bytes has
+//! neither). The whole server is
 //! [`SdoServer::RAM_BYTES`] = 72 bytes or less (`size_of::<SdoServer>()` is 72 on x86-64, asserted in a unit
 //! test; the client is 88). No other RAM: no buffer of the object's size, no sub-block buffer.
 //!
