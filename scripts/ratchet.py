@@ -26,6 +26,12 @@ def read_baseline(path):
     return base
 
 
+def sed_escape(name):
+    """`name` as a literal in a sed basic regular expression: `re.escape` would write `\\+` for `+`, which
+    GNU sed reads as "one or more"; in a basic expression only these characters are special."""
+    return re.sub(r"([.\[\]*^$\\/])", r"\\\1", name)
+
+
 def fmt(v, decimals):
     return f"{v:,.{decimals}f}"
 
@@ -59,7 +65,7 @@ def main():
         elif v < b:
             verdict = "ok, lower: update the baseline"
             new = fmt(v, decimals).replace(",", "")
-            updates.append(f"sed -i 's/^{re.escape(name)} .*/{name} {new}/' {rel}")
+            updates.append(f"sed -i 's/^{sed_escape(name)} .*/{name} {new}/' {rel}")
         else:
             verdict = "ok"
         print(f"  {name:<24} {fmt(b, decimals):>10} {fmt(v, decimals):>10} {change:>+8.1%}  {verdict}")

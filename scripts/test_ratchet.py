@@ -43,17 +43,22 @@ class Ratchet(unittest.TestCase):
         self.assertIn("s/^node\\.flash .*/node.flash 900/", update[0])
 
     def test_the_printed_update_edits_only_its_line(self):
+        # `node+store.flash`: a name with a character that is special to sed's extended syntax (GNU sed
+        # reads `\+` as "one or more", so a Python-escaped `node\+store` matched nothing).
         with tempfile.NamedTemporaryFile("w", suffix=".baseline", delete=False) as f:
-            f.write("# keep\nnode.flash 1000\nnode.ram 500\n")
+            f.write("# keep\nnode.flash 1000\nnode+store.flash 2000\nnode.ram 500\n")
         try:
             p = subprocess.run(
-                [sys.executable, RATCHET, f.name, "bytes"], input="node.flash 900\nnode.ram 500\n",
+                [sys.executable, RATCHET, f.name, "bytes"],
+                input="node.flash 900\nnode+store.flash 1900\nnode.ram 500\n",
                 capture_output=True, text=True, check=False, cwd="/",
             )
-            cmd = next(l.strip() for l in p.stdout.splitlines() if l.strip().startswith("sed -i"))
-            subprocess.run(cmd, shell=True, check=True, cwd="/")
+            cmds = [l.strip() for l in p.stdout.splitlines() if l.strip().startswith("sed -i")]
+            self.assertEqual(len(cmds), 2, p.stdout)
+            for cmd in cmds:
+                subprocess.run(cmd, shell=True, check=True, cwd="/")
             with open(f.name, encoding="utf-8") as g:
-                self.assertEqual(g.read(), "# keep\nnode.flash 900\nnode.ram 500\n")
+                self.assertEqual(g.read(), "# keep\nnode.flash 900\nnode+store.flash 1900\nnode.ram 500\n")
         finally:
             os.unlink(f.name)
 
