@@ -40,7 +40,7 @@ FAULTS=(
   'emcy-inhibit-in-ms-not-100us @@ pdo_sync_emcy @@ Duration::from_100us(if INHIBIT { u64::from(n) } else { 0 }); @@ Duration::from_millis(if INHIBIT { u64::from(n) } else { 0 });'
   'tpdo-inhibit-boundary @@ pdo_sync_emcy,checklist_items @@ self.inhibit != Deadline::NONE && !self.inhibit.passed(now) @@ self.inhibit != Deadline::NONE && (!self.inhibit.passed(now) || self.inhibit.instant() == now)'
   'rpdo-event-timer-one-ms-late @@ pdo_sync_emcy,checklist_items @@ self.deadline = Deadline::at(now + Duration::from_millis(self.event_timer_ms.into())); @@ self.deadline = Deadline::at(now + Duration::from_millis(u64::from(self.event_timer_ms) + 1));'
-  'pdo02-scan-takes-an-invalid-rpdo @@ pdo_sync_emcy @@ position(|r| r.is_valid() && r.can_id() == id) @@ position(|r| r.can_id() == id)'
+  'pdo02-scan-takes-an-invalid-rpdo @@ pdo_sync_emcy @@ r.is_valid().then(|| r.can_id()) @@ Some(r.can_id())'
   'pdo29-table-takes-the-last-of-equal-can-ids @@ pdo_sync_emcy @@ let i = table.partition_point(|e| e.0 < id); @@ let i = table.partition_point(|e| e.0 <= id).saturating_sub(1);'
   'sdo-no-streams-begun-write-not-undone @@ sdo_node @@ od.abort_write(mux.index, mux.sub);\n                    return Err(AbortCode::UnsupportedAccess); @@ return Err(AbortCode::UnsupportedAccess);'
   'emcy-inhibit-ignored @@ pdo_sync_emcy @@ self.next_allowed == Deadline::NONE || self.next_allowed.passed(now) @@ true'

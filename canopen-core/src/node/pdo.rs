@@ -51,12 +51,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 *t = new;
             }
             if Z::TPDO > SCAN_MAX {
-                self.rtr_table.clear();
-                for (i, t) in self.tpdos.as_ref().iter().enumerate() {
-                    if t.rtr_allowed() {
-                        insert_sorted(&mut self.rtr_table, (t.can_id(), i as u16));
-                    }
-                }
+                rebuild(&mut self.rtr_table, self.tpdos.as_ref().iter().map(rtr_id));
             }
         } else {
             if let Some(r) = self.rpdos.as_mut().get_mut(k) {
@@ -66,12 +61,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 *r = new;
             }
             if Z::RPDO > SCAN_MAX {
-                self.rx_table.clear();
-                for (i, r) in self.rpdos.as_ref().iter().enumerate() {
-                    if r.is_valid() {
-                        insert_sorted(&mut self.rx_table, (r.can_id(), i as u16));
-                    }
-                }
+                rebuild(&mut self.rx_table, self.rpdos.as_ref().iter().map(rx_id));
             }
         }
     }
@@ -79,21 +69,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// The valid RPDO that receives CAN-ID `id`, the lowest-numbered if several do.
     #[inline]
     pub(super) fn rpdo_for(&self, id: u16) -> Option<usize> {
-        if Z::RPDO <= SCAN_MAX {
-            self.rpdos.as_ref().iter().position(|r| r.is_valid() && r.can_id() == id)
-        } else {
-            first_in(&self.rx_table, id)
-        }
+        find(Z::RPDO, self.rpdos.as_ref().iter().map(rx_id), &self.rx_table, id)
     }
 
     /// The TPDO that answers a remote request on CAN-ID `id` (PDO-29), the lowest-numbered if several do.
     #[inline]
     pub(super) fn rtr_tpdo_for(&self, id: u16) -> Option<usize> {
-        if Z::TPDO <= SCAN_MAX {
-            self.tpdos.as_ref().iter().position(|t| t.rtr_allowed() && t.can_id() == id)
-        } else {
-            first_in(&self.rtr_table, id)
-        }
+        find(Z::TPDO, self.tpdos.as_ref().iter().map(rtr_id), &self.rtr_table, id)
     }
 
     /// Entering Operational: event-driven TPDOs go out at once (PDO-28, types FEh/FFh).
@@ -397,11 +379,40 @@ pub(super) fn rpdo_number(k: usize) -> u8 {
 /// configured, so that the work per frame does not grow with the number of PDOs (CiA 301 allows 512).
 pub(super) const SCAN_MAX: usize = 8;
 
-/// The PDO of the first entry of `table` with CAN-ID `id`: the lowest-numbered, as the scan finds it
-/// ([`insert_sorted`] keeps equal CAN-IDs in PDO order).
-fn first_in<T: VecStorage<(u16, u16)> + ?Sized>(table: &PdoTable<T>, id: u16) -> Option<usize> {
+/// The CAN-ID an RPDO receives on: a valid one's.
+pub(super) fn rx_id(r: &Rpdo) -> Option<u16> {
+    r.is_valid().then(|| r.can_id())
+}
+
+/// The CAN-ID whose remote request a TPDO answers: one that allows RTR (PDO-29).
+pub(super) fn rtr_id(t: &Tpdo) -> Option<u16> {
+    t.rtr_allowed().then(|| t.can_id())
+}
+
+/// The first of `n` PDOs (by number) whose CAN-ID (`ids`: [`rx_id`] or [`rtr_id`] of each) is `id`: compared
+/// one by one up to [`SCAN_MAX`] PDOs, else looked up in `table`, which [`rebuild`] filled from the same IDs
+/// (its first entry of `id` is the lowest-numbered PDO: [`insert_sorted`] keeps equal CAN-IDs in PDO order).
+fn find<T: VecStorage<(u16, u16)> + ?Sized>(
+    n: usize,
+    mut ids: impl Iterator<Item = Option<u16>>,
+    table: &PdoTable<T>,
+    id: u16,
+) -> Option<usize> {
+    if n <= SCAN_MAX {
+        return ids.position(|pdo| pdo == Some(id));
+    }
     let i = table.partition_point(|e| e.0 < id);
     table.get(i).filter(|e| e.0 == id).map(|e| usize::from(e.1))
+}
+
+/// Fills `table` with (CAN-ID, PDO number) of the PDOs that have an ID in `ids`, sorted by CAN-ID.
+fn rebuild<T: VecStorage<(u16, u16)>>(table: &mut PdoTable<T>, ids: impl Iterator<Item = Option<u16>>) {
+    table.clear();
+    for (k, id) in ids.enumerate() {
+        if let Some(id) = id {
+            insert_sorted(table, (id, k as u16));
+        }
+    }
 }
 
 /// Inserts `e` after every entry whose CAN-ID is not greater, so the table stays sorted by CAN-ID with equal

@@ -113,11 +113,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             for c in self.sdo_clients.as_ref().iter().filter(|c| c.is_valid()) {
                 ok &= push(exact(c.cob_rx.can_id())); // SDO-56: the server's responses to a 1280h+ client
             }
-            for r in self.rpdos.as_ref().iter().filter(|r| r.is_valid()) {
-                ok &= push(exact(r.can_id()));
-            }
-            for t in self.tpdos.as_ref().iter().filter(|t| t.rtr_allowed()) {
-                ok &= push(exact(t.can_id()));
+            let rpdos = self.rpdos.as_ref().iter().filter_map(super::pdo::rx_id);
+            for id in rpdos.chain(self.tpdos.as_ref().iter().filter_map(super::pdo::rtr_id)) {
+                ok &= push(exact(id));
             }
             for &raw in self.comm.params.heartbeat_consumers.as_ref() {
                 let entry = crate::heartbeat::ConsumerEntry::from_raw(raw);
