@@ -43,6 +43,7 @@ FAULTS=(
   'pdo02-scan-takes-an-invalid-rpdo @@ pdo_sync_emcy @@ r.is_valid().then(|| r.can_id()) @@ Some(r.can_id())'
   'pdo29-table-takes-the-last-of-equal-can-ids @@ pdo_sync_emcy @@ let i = table.partition_point(|e| e.0 < id); @@ let i = table.partition_point(|e| e.0 <= id).saturating_sub(1);'
   'sdo-no-streams-begun-write-not-undone @@ sdo_node @@ od.abort_write(mux.index, mux.sub);\n                    return Err(AbortCode::UnsupportedAccess); @@ return Err(AbortCode::UnsupportedAccess);'
+  'store02-saving-one-group-drops-the-other @@ store_restore @@ w.item(index, sub, &buf[..n])?; @@ let _ = (index, sub, n);'
   'emcy-inhibit-ignored @@ pdo_sync_emcy @@ self.next_allowed == Deadline::NONE || self.next_allowed.passed(now) @@ true'
 )
 

@@ -512,27 +512,36 @@ fn newest<S: Storage + ?Sized>(st: &mut S) -> Result<Option<(u8, Header)>, Stora
     })
 }
 
-/// Items of one stored record, read one by one from the storage.
-struct Items<'s, S: Storage + ?Sized> {
-    st: &'s mut S,
+/// Items of one stored record, read one by one from the storage (which each call is given, so that a
+/// record can be read while another is written).
+struct Items {
     slot: u8,
     off: usize,
     end: usize,
 }
 
-impl<S: Storage + ?Sized> Items<'_, S> {
+impl Items {
+    /// The items of the record `h` in `slot`.
+    fn of(slot: u8, h: &Header) -> Items {
+        Items { slot, off: 0, end: h.len as usize }
+    }
+
     /// The next item: (index, sub, value length); the value is in `buf[..len]`.
-    fn next(&mut self, buf: &mut [u8; 255]) -> Result<Option<(u16, u8, usize)>, StorageError> {
+    fn next<S: Storage + ?Sized>(
+        &mut self,
+        st: &mut S,
+        buf: &mut [u8; 255],
+    ) -> Result<Option<(u16, u8, usize)>, StorageError> {
         if self.off + 4 > self.end {
             return Ok(None);
         }
         let mut h = [0u8; 4];
-        self.st.read(self.slot, HEADER_LEN + self.off, &mut h)?;
+        st.read(self.slot, HEADER_LEN + self.off, &mut h)?;
         let len = usize::from(h[3]);
         if self.off + 4 + len > self.end {
             return Ok(None);
         }
-        self.st.read(self.slot, HEADER_LEN + self.off + 4, &mut buf[..len])?;
+        st.read(self.slot, HEADER_LEN + self.off + 4, &mut buf[..len])?;
         self.off += 4 + len;
         Ok(Some((u16::from_le_bytes([h[0], h[1]]), h[2], len)))
     }
@@ -739,21 +748,21 @@ where
         return Ok(());
     };
     // Copy this group's items from the old record.
+    copy_kept(w, Items::of(slot, &h), range, skip)
+}
+
+/// The items of `items` in `range` (without those of index `skip`) copied into the record `w` writes.
+/// Not generic over the dictionary: one copy for both groups.
+fn copy_kept<S: Storage + ?Sized>(
+    w: &mut Writer<'_, S>,
+    mut items: Items,
+    range: core::ops::RangeInclusive<u16>,
+    skip: u16,
+) -> Result<(), StorageError> {
     let mut buf = [0u8; 255];
-    let mut off = 0usize;
-    while off + 4 <= h.len as usize {
-        let mut head = [0u8; 4];
-        w.st.read(slot, HEADER_LEN + off, &mut head)?;
-        let n = usize::from(head[3]);
-        if off + 4 + n > h.len as usize {
-            break;
-        }
-        w.st.read(slot, HEADER_LEN + off + 4, &mut buf[..n])?;
-        off += 4 + n;
-        let index = u16::from_le_bytes([head[0], head[1]]);
-        // `skip` is only ever set with verify-config (`forget`): no compare in a build without it.
+    while let Some((index, sub, n)) = items.next(&mut *w.st, &mut buf)? {
         if range.contains(&index) && (!cfg!(feature = "verify-config") || index != skip) {
-            w.item(index, head[2], &buf[..n])?;
+            w.item(index, sub, &buf[..n])?;
         }
     }
     Ok(())
@@ -773,9 +782,9 @@ where
     let Some((slot, h)) = newest(st)? else {
         return Ok(false);
     };
-    let mut items = Items { st, slot, off: 0, end: h.len as usize };
+    let mut items = Items::of(slot, &h);
     let mut buf = [0u8; 255];
-    while let Some((index, sub, len)) = items.next(&mut buf)? {
+    while let Some((index, sub, len)) = items.next(st, &mut buf)? {
         let comm = (0x1000..=0x1FFF).contains(&index);
         let wanted =
             if comm { groups.has_comm() && h.groups.has_comm() } else { groups.has_app() && h.groups.has_app() };
