@@ -25,6 +25,9 @@ if ! command -v cargo-fuzz >/dev/null; then
 fi
 cargo +nightly --version
 cargo fuzz --version
+# `cargo fuzz build` takes no --locked: check the lockfile first, so a stale fuzz/Cargo.lock fails here (commit
+# the refreshed file) instead of being rewritten in the checkout, as .ci/run's no_std builds do with --locked.
+cargo +nightly metadata --locked --format-version 1 >/dev/null
 
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
