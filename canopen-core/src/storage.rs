@@ -786,7 +786,7 @@ where
     let mut items = Items::of(slot, &h);
     let mut buf = [0u8; 255];
     while let Some((index, sub, len)) = items.next(st, &mut buf)? {
-        let comm = (0x1000..=0x1FFF).contains(&index);
+        let comm = crate::od::is_comm(index);
         let wanted =
             if comm { groups.has_comm() && h.groups.has_comm() } else { groups.has_app() && h.groups.has_app() };
         if wanted {

@@ -22,9 +22,9 @@ mod value;
 
 pub use crate::abort::AbortCode;
 pub use domain::{Domain, DomainBuf};
-pub(crate) use merged::is_comm_for;
 #[cfg(feature = "program-download")]
 pub(crate) use merged::is_program;
+pub(crate) use merged::{is_comm, is_comm_for};
 pub use merged::{merge_nth, Merged};
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
