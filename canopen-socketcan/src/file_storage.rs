@@ -91,31 +91,37 @@ impl FileStorage {
         StorageError::Io
     }
 
-    /// The image of `slot`, loaded from its file on first use.
-    fn image(&mut self, slot: u8) -> Result<&mut Vec<u8>, StorageError> {
+    /// The image of `slot` and whether it differs from the file (dirty), loaded from its file on first use.
+    fn image(&mut self, slot: u8) -> Result<&mut (Vec<u8>, bool), StorageError> {
         let i = usize::from(slot);
         if i > 1 {
             return Err(StorageError::Io);
         }
-        if self.slots[i].is_none() {
-            let mut data = Vec::new();
-            match File::open(&self.paths[i]) {
-                Ok(mut f) => {
-                    if let Err(e) = f.read_to_end(&mut data) {
-                        let path = self.paths[i].clone();
-                        return Err(self.fail("reading", &path, e));
-                    }
-                }
-                Err(e) if e.kind() == io::ErrorKind::NotFound => {}
-                Err(e) => {
+        let entry = match self.slots[i].take() {
+            Some(entry) => entry,
+            None => (self.load(i)?, false),
+        };
+        Ok(self.slots[i].insert(entry))
+    }
+
+    /// The content of the file of slot `i`, at most `capacity` bytes; empty when there is no file yet.
+    fn load(&mut self, i: usize) -> Result<Vec<u8>, StorageError> {
+        let mut data = Vec::new();
+        match File::open(&self.paths[i]) {
+            Ok(mut f) => {
+                if let Err(e) = f.read_to_end(&mut data) {
                     let path = self.paths[i].clone();
-                    return Err(self.fail("opening", &path, e));
+                    return Err(self.fail("reading", &path, e));
                 }
             }
-            data.truncate(self.capacity);
-            self.slots[i] = Some((data, false));
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+            Err(e) => {
+                let path = self.paths[i].clone();
+                return Err(self.fail("opening", &path, e));
+            }
         }
-        Ok(&mut self.slots[i].as_mut().expect("loaded above").0)
+        data.truncate(self.capacity);
+        Ok(data)
     }
 
     /// Replaces the file of `slot` with its image if they differ: temp file, fsync, rename, fsync of the
@@ -159,9 +165,9 @@ impl Storage for FileStorage {
     }
 
     fn erase(&mut self, slot: u8) -> Result<(), StorageError> {
-        let image = self.image(slot)?;
+        let (image, dirty) = self.image(slot)?;
         image.clear();
-        self.slots[usize::from(slot)].as_mut().expect("loaded by image").1 = true;
+        *dirty = true;
         Ok(())
     }
 
@@ -169,12 +175,12 @@ impl Storage for FileStorage {
         let end = offset.checked_add(data.len()).filter(|&e| e <= self.capacity).ok_or(StorageError::TooLarge)?;
         // Another slot's pending writes go out first, so the files never fall behind the order of writes.
         self.persist(1 - slot.min(1))?;
-        let image = self.image(slot)?;
+        let (image, dirty) = self.image(slot)?;
         if image.len() < end {
             image.resize(end, 0xFF);
         }
         image[offset..end].copy_from_slice(data);
-        self.slots[usize::from(slot)].as_mut().expect("loaded by image").1 = true;
+        *dirty = true;
         if offset < HEADER_LEN {
             self.persist(slot)?;
         }
@@ -183,7 +189,7 @@ impl Storage for FileStorage {
 
     fn read(&mut self, slot: u8, offset: usize, buf: &mut [u8]) -> Result<(), StorageError> {
         self.persist(slot)?;
-        let image = self.image(slot)?;
+        let (image, _) = self.image(slot)?;
         buf.fill(0xFF);
         if let Some(src) = image.get(offset..) {
             let n = src.len().min(buf.len());
@@ -235,6 +241,24 @@ mod tests {
         assert_eq!(read(&mut st, 0, 10, 4), [0xFF; 4]);
         assert_eq!(read(&mut st, 1, 60, 8), [0xFF; 8]); // past the capacity: still "erased", no error
         assert!(!dir.0.join("p.a").exists());
+    }
+
+    /// A file that cannot be read is an I/O error that names the file (the core answers 0606 0000h), and
+    /// the slot is not taken as erased: once the file reads, its content is there.
+    #[test]
+    fn unreadable_file_fails_and_a_later_read_retries() {
+        let dir = TempDir::new("unreadable");
+        let base = dir.0.join("p");
+        let mut st = FileStorage::with_capacity(&base, 64);
+        fs::create_dir(dir.0.join("p.a")).unwrap(); // opens, but reading a directory fails
+        let mut buf = [0u8; 4];
+        assert_eq!(st.read(0, 0, &mut buf), Err(StorageError::Io));
+        assert!(st.last_error().is_some_and(|e| e.starts_with("reading ") && e.contains("p.a")));
+        assert_eq!(st.erase(0), Err(StorageError::Io));
+        assert_eq!(st.read(2, 0, &mut buf), Err(StorageError::Io)); // only slots 0 and 1 exist
+        fs::remove_dir(dir.0.join("p.a")).unwrap();
+        fs::write(dir.0.join("p.a"), [1, 2, 3]).unwrap();
+        assert_eq!(read(&mut st, 0, 0, 4), [1, 2, 3, 0xFF]);
     }
 
     #[test]
