@@ -31,7 +31,7 @@
 //! (STORE-10). Values are written back through the dictionary's normal write path, so a value that a newer
 //! firmware no longer accepts is skipped rather than stored blindly.
 
-use crate::od::{AbortCode, NoApplication, ObjectDictionary, OdDescribe};
+use crate::od::{is_comm, AbortCode, NoApplication, ObjectDictionary, OdDescribe};
 
 /// 1010h signature "save" (UNSIGNED32 6576 6173h): `73 61 76 65` on the bus.
 pub const SAVE_SIGNATURE: u32 = 0x6576_6173;
@@ -786,7 +786,7 @@ where
     let mut items = Items::of(slot, &h);
     let mut buf = [0u8; 255];
     while let Some((index, sub, len)) = items.next(st, &mut buf)? {
-        let comm = crate::od::is_comm(index);
+        let comm = is_comm(index);
         let wanted =
             if comm { groups.has_comm() && h.groups.has_comm() } else { groups.has_app() && h.groups.has_app() };
         if wanted {

@@ -86,8 +86,9 @@ impl FileStorage {
         Ok(())
     }
 
-    fn fail(&mut self, what: &str, path: &Path, e: io::Error) -> StorageError {
-        self.last_error = Some(format!("{what} {}: {e}", path.display()));
+    /// Records the error `e` of `what` (opening, reading, writing) on the file of slot `i`.
+    fn fail(&mut self, what: &str, i: usize, e: io::Error) -> StorageError {
+        self.last_error = Some(format!("{what} {}: {e}", self.paths[i].display()));
         StorageError::Io
     }
 
@@ -110,15 +111,11 @@ impl FileStorage {
         match File::open(&self.paths[i]) {
             Ok(mut f) => {
                 if let Err(e) = f.read_to_end(&mut data) {
-                    let path = self.paths[i].clone();
-                    return Err(self.fail("reading", &path, e));
+                    return Err(self.fail("reading", i, e));
                 }
             }
             Err(e) if e.kind() == io::ErrorKind::NotFound => {}
-            Err(e) => {
-                let path = self.paths[i].clone();
-                return Err(self.fail("opening", &path, e));
-            }
+            Err(e) => return Err(self.fail("opening", i, e)),
         }
         data.truncate(self.capacity);
         Ok(data)
@@ -154,7 +151,7 @@ impl FileStorage {
                 }
                 Ok(())
             }
-            Err(e) => Err(self.fail("writing", &path, e)),
+            Err(e) => Err(self.fail("writing", i, e)),
         }
     }
 }
