@@ -56,16 +56,19 @@ mkdir -p target
 : >"$out"
 backup=""
 file=""
-restore() { if [ -n "$backup" ] && [ -f "$backup" ]; then cp "$backup" "$file"; rm -f "$backup"; backup=""; fi; }
 # The property tests replay their saved failing cases (*.proptest-regressions) under each fault, and save the
-# case that kills it: a case that fails only with the fault planted. The files are put back after each fault.
+# case that kills it: a case that fails only with the fault planted. restore puts them back with the source.
 regressions() { find . \( -name target -o -name .git \) -prune -o -name '*.proptest-regressions' -print | sort; }
 saved=$(mktemp -d)
 regressions >"$saved/list"
 tar -cf "$saved/files.tar" -T "$saved/list"
-restore_regressions() { regressions | comm -13 "$saved/list" - | xargs -r rm -f; tar -xf "$saved/files.tar"; }
-trap 'restore; restore_regressions; exit 130' INT TERM
-trap 'restore; restore_regressions; rm -rf "$saved"' EXIT
+restore() {
+  if [ -n "$backup" ] && [ -f "$backup" ]; then cp "$backup" "$file"; rm -f "$backup"; backup=""; fi
+  regressions | comm -13 "$saved/list" - | xargs -r -d '\n' rm -f
+  tar -xf "$saved/files.tar"
+}
+trap 'restore; exit 130' INT TERM
+trap 'restore; rm -rf "$saved"' EXIT
 
 killed=0 survived=0 broken=0
 for f in "${FAULTS[@]}"; do
@@ -113,7 +116,6 @@ EOF
     verdict="killed   ($by)"
   fi
   restore
-  restore_regressions
   printf '%-40s %-16s %4ss %s\n' "$name" "$file" "$(($(date +%s) - start))" "$verdict" | sed "s|canopen-core/src/||" | tee -a "$out"
 done
 echo "killed $killed, survived $survived, not planted or not built $broken" | tee -a "$out"
