@@ -1,0 +1,67 @@
+//! Writes `$OUT_DIR/dict.rs`: the struct `Dict` of the dictionary OD_COST names.
+//!
+//! - `base`: the reference dictionary (one UNSIGNED32 VAR with a default, one ARRAY of 4 × UNSIGNED16, one
+//!   RECORD of UNSIGNED8/UNSIGNED16/UNSIGNED32, one VISIBLE_STRING), so that every kind's generic code is
+//!   already in the image;
+//! - `var:N`, `array:N`, `record:N`, `string:N`: the base plus N more objects of that kind (at 3000h..);
+//! - `one`: a dictionary of one UNSIGNED8 VAR (the floor a generated module is measured against);
+//! - `file:PATH`: `canopenctl eds-to-rust` output (its `Device` struct becomes `Dict`; the node
+//!   configuration it also holds is not used, so only the application dictionary differs).
+use std::fmt::Write;
+
+fn main() {
+    println!("cargo:rerun-if-env-changed=OD_COST");
+    let spec = std::env::var("OD_COST").unwrap_or_else(|_| "base".into());
+    let out = std::path::PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
+    let src = generate(&spec).unwrap_or_else(|e| panic!("OD_COST={spec}: {e}"));
+    std::fs::write(out.join("dict.rs"), src).expect("OUT_DIR is writable");
+}
+
+fn generate(spec: &str) -> Result<String, String> {
+    if let Some(path) = spec.strip_prefix("file:") {
+        println!("cargo:rerun-if-changed={path}");
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+        // Inner attributes cannot stand in an included file; the struct is renamed.
+        let body: String = text
+            .lines()
+            .filter(|l| !l.starts_with("#![") && !l.starts_with("//!"))
+            .map(|l| l.replace("pub struct Device", "pub struct Dict") + "\n")
+            .collect();
+        return Ok(body);
+    }
+    let mut s = String::from("use canopen_core::od::VisibleString;\nuse canopen_od_derive::ObjectDictionary;\n");
+    s += "#[derive(ObjectDictionary, Default)]\npub struct Dict {\n";
+    if spec == "one" {
+        s += "    #[od(index = 0x2000, access = \"rw\", default = 1)]\n    pub one: u8,\n}\n";
+        return Ok(s);
+    }
+    s += "    #[od(index = 0x2000, access = \"rw\", pdo = \"both\", default = 7)]\n    pub var: u32,\n";
+    s += "    #[od(index = 0x2001, sub = 1..=4, access = \"rw\", pdo = \"both\", default = 3)]\n    pub array: [u16; 4],\n";
+    s += "    #[od(index = 0x2002, sub = 1, record = \"R\", access = \"rw\", default = 1)]\n    pub r1: u8,\n";
+    s += "    #[od(index = 0x2002, sub = 2, access = \"rw\", default = 2)]\n    pub r2: u16,\n";
+    s += "    #[od(index = 0x2002, sub = 3, access = \"rw\", default = 3)]\n    pub r3: u32,\n";
+    s += "    #[od(index = 0x2003, access = \"rw\", default = \"abc\")]\n    pub text: VisibleString<16>,\n";
+    let (kind, n) = match spec.split_once(':') {
+        Some((k, n)) => (k, n.parse::<u32>().map_err(|e| e.to_string())?),
+        None if spec == "base" => ("base", 0),
+        None => return Err("expected base, one, var:N, array:N, record:N, string:N or file:PATH".into()),
+    };
+    for i in 0..n {
+        let index = 0x3000 + i;
+        match kind {
+            "var" => writeln!(s, "    #[od(index = {index:#06x}, access = \"rw\", pdo = \"both\", default = {})]\n    pub v{i}: u32,", i + 1),
+            "array" => writeln!(s, "    #[od(index = {index:#06x}, sub = 1..=4, access = \"rw\", pdo = \"both\", default = {})]\n    pub a{i}: [u16; 4],", i + 1),
+            "record" => writeln!(
+                s,
+                "    #[od(index = {index:#06x}, sub = 1, record = \"R{i}\", access = \"rw\", default = 1)]\n    pub r{i}a: u8,\n    \
+                 #[od(index = {index:#06x}, sub = 2, access = \"rw\", default = 2)]\n    pub r{i}b: u16,\n    \
+                 #[od(index = {index:#06x}, sub = 3, access = \"rw\", default = 3)]\n    pub r{i}c: u32,"
+            ),
+            "string" => writeln!(s, "    #[od(index = {index:#06x}, access = \"rw\", default = \"s{i}\")]\n    pub s{i}: VisibleString<16>,"),
+            _ => return Err(format!("unknown kind {kind}")),
+        }
+        .map_err(|e| e.to_string())?;
+    }
+    s += "}\n";
+    Ok(s)
+}
