@@ -5,15 +5,21 @@
 //!   already in the image;
 //! - `var:N`, `array:N`, `record:N`, `string:N`: the base plus N more objects of that kind (at 3000h..);
 //! - `one`: a dictionary of one UNSIGNED8 VAR (the floor a generated module is measured against);
+//! - with OD_COST_COMPACT=1 the struct is `#[od(compact)]` (the dictionary as data);
 //! - `file:PATH`: `canopenctl eds-to-rust` output (its `Device` struct becomes `Dict`; the node
 //!   configuration it also holds is not used, so only the application dictionary differs).
 use std::fmt::Write;
 
 fn main() {
     println!("cargo:rerun-if-env-changed=OD_COST");
+    println!("cargo:rerun-if-env-changed=OD_COST_COMPACT");
     let spec = std::env::var("OD_COST").unwrap_or_else(|_| "base".into());
     let out = std::path::PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let src = generate(&spec).unwrap_or_else(|e| panic!("OD_COST={spec}: {e}"));
+    let mut src = generate(&spec).unwrap_or_else(|e| panic!("OD_COST={spec}: {e}"));
+    // OD_COST_COMPACT=1: the struct asks for the dictionary as data (`#[od(compact)]`).
+    if std::env::var("OD_COST_COMPACT").is_ok_and(|v| v == "1") {
+        src = src.replacen("pub struct Dict", "#[od(compact)]\npub struct Dict", 1);
+    }
     std::fs::write(out.join("dict.rs"), src).expect("OUT_DIR is writable");
 }
 

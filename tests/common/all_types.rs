@@ -13,7 +13,10 @@ use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::Sizes;
 use canopen_od_derive::ObjectDictionary;
 
+/// With the root package's test feature `od-compact-tests` the same dictionary is derived as data
+/// (`#[od(compact)]`), and `tests/od_all_types.rs` runs its whole suite on that layout too (`.ci/run`).
 #[derive(ObjectDictionary, Debug, Default)]
+#[cfg_attr(feature = "od-compact-tests", od(compact))]
 pub struct AllTypes {
     #[od(index = 0x2000, name = "Boolean", pdo = "both", default = true)]
     pub boolean: bool,

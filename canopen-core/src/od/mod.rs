@@ -14,6 +14,7 @@
 //! sections of the CiA 306 EDS ([`eds`]; the file around them is `profile::eds`). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
 //! written, then used without any table search.
 
+pub mod data;
 mod domain;
 pub mod eds;
 mod merged;
@@ -42,7 +43,7 @@ pub use value::{
 /// assert_eq!(DataType::VisibleString.size(), None);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[repr(u16)]
+#[repr(u8)]
 pub enum DataType {
     /// 0001h BOOLEAN (one byte on SDO: 0 or 1).
     Boolean = 0x0001,
@@ -113,6 +114,19 @@ impl DataType {
             0 => None,
             n => Some(n as usize),
         }
+    }
+
+    /// [`size`](Self::size) as a number, 0 for strings and DOMAIN, inline: what the data dictionary's
+    /// paths ([`data`]) test per access.
+    ///
+    /// ```
+    /// # use canopen_core::od::DataType;
+    /// assert_eq!(DataType::Unsigned16.fixed_size(), 2);
+    /// assert_eq!(DataType::OctetString.fixed_size(), 0);
+    /// ```
+    #[inline]
+    pub const fn fixed_size(self) -> usize {
+        SIZES[self as usize & 0x1F] as usize
     }
 }
 
