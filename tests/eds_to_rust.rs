@@ -21,7 +21,7 @@ mod eds_compare;
 mod eds_of;
 
 use canopen_core::od::ObjectDictionary;
-use canopen_master::eds::{generate, to_rust, Eds};
+use canopen_eds::{rust_module, to_rust, Eds};
 
 const EDS: &str = include_str!("data/eds_to_rust/io_module.eds");
 /// A hand-written EDS with the shapes the example node lacks: BOOLEAN, a negative hex default, a const
@@ -51,7 +51,7 @@ fn round_trip<A: canopen_core::od::OdDescribe + ObjectDictionary>(
     config: canopen_core::profile::NodeConfig,
 ) -> usize {
     let original = Eds::parse(original).unwrap();
-    let left_out = generate(&original, "fixture").left_out;
+    let left_out = rust_module(&original, "fixture").left_out;
     let back = Eds::parse(&eds_of::eds_of(app, config)).unwrap();
     eds_compare::compare("fixture", &original, &back, &left_out)
 }
@@ -69,7 +69,7 @@ fn eds_to_rust_to_eds_is_the_same_dictionary() {
 #[test]
 fn the_comparison_catches_a_changed_entry() {
     let original = Eds::parse(SHAPES).unwrap();
-    let left_out = generate(&original, "shapes.eds").left_out;
+    let left_out = rust_module(&original, "shapes.eds").left_out;
     let back = eds_of::eds_of(shapes::Device::default(), shapes::CONFIG);
     assert_eq!(eds_compare::compare("shapes.eds", &original, &Eds::parse(&back).unwrap(), &left_out), 13);
     let section = |s: &str| back.find(s).unwrap_or_else(|| panic!("{s} not in the EDS written back"));

@@ -9,7 +9,7 @@
 //! out; a malformed number in an object section is an error naming the section, never a panic.
 //!
 //! ```
-//! use canopen_master::eds::{Access, Eds};
+//! use canopen_eds::{Access, Eds};
 //! let eds = Eds::parse("[1017]\nParameterName=Producer heartbeat time\nObjectType=0x7\nDataType=0x0006\nAccessType=rw\nDefaultValue=0\n").unwrap();
 //! let e = eds.entry(0x1017, 0).unwrap();
 //! assert_eq!((e.name.as_str(), e.data_type, e.access), ("Producer heartbeat time", 0x0006, Access::ReadWrite));
@@ -19,7 +19,6 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-pub use crate::codegen::{generate, to_rust, Dropped, Generated, LeftOut};
 
 /// Access of an entry (`AccessType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,7 +47,7 @@ impl Access {
     /// The EDS spelling.
     ///
     /// ```
-    /// assert_eq!(canopen_master::eds::Access::Const.as_str(), "const");
+    /// assert_eq!(canopen_eds::Access::Const.as_str(), "const");
     /// ```
     pub fn as_str(self) -> &'static str {
         match self {
@@ -62,7 +61,7 @@ impl Access {
     /// Whether an SDO upload may read it.
     ///
     /// ```
-    /// assert!(!canopen_master::eds::Access::WriteOnly.readable());
+    /// assert!(!canopen_eds::Access::WriteOnly.readable());
     /// ```
     pub fn readable(self) -> bool {
         self != Access::WriteOnly
@@ -126,7 +125,7 @@ pub struct Eds {
 /// Why an EDS could not be read.
 ///
 /// ```
-/// let e = canopen_master::eds::Eds::parse("[1000]\nParameterName=x\nDataType=0xZZ\n").unwrap_err();
+/// let e = canopen_eds::Eds::parse("[1000]\nParameterName=x\nDataType=0xZZ\n").unwrap_err();
 /// assert_eq!(e.to_string(), "EDS section [1000]: DataType '0xZZ' is not a number");
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -160,7 +159,7 @@ fn number(s: &str) -> Option<u64> {
 /// Evaluates a default that may refer to the node-ID (`$NODEID+0x180`, `1280+$NODEID`, `0x185`).
 ///
 /// ```
-/// use canopen_master::eds::eval_default;
+/// use canopen_eds::eval_default;
 /// assert_eq!(eval_default("$NODEID+0x180", 5), Some(0x185));
 /// assert_eq!(eval_default("1280+$NODEID", 5), Some(1285));
 /// assert_eq!(eval_default("0x20010032", 5), Some(0x2001_0032));
@@ -202,7 +201,7 @@ fn signed_bits(data_type: u16) -> Option<u32> {
 /// sample.eds gives the transmission types) is the same entry as one without limits.
 ///
 /// ```
-/// use canopen_master::eds::type_range;
+/// use canopen_eds::type_range;
 /// assert_eq!(type_range(0x0005), Some((0, 255)));
 /// assert_eq!(type_range(0x0003), Some((-32768, 32767)));
 /// assert_eq!(type_range(0x0008), None); // REAL32
@@ -230,7 +229,7 @@ pub fn type_range(data_type: u16) -> Option<(i128, i128)> {
 /// ([`type_range`]).
 ///
 /// ```
-/// use canopen_master::eds::no_limit;
+/// use canopen_eds::no_limit;
 /// assert!(no_limit(Some("255"), 0x0005, false) && no_limit(Some("0x0"), 0x0005, true) && no_limit(None, 5, true));
 /// assert!(!no_limit(Some("4"), 0x0005, false));
 /// assert!(no_limit(Some("0x80"), 0x0002, true)); // INTEGER8's -128 in two's complement
@@ -246,7 +245,7 @@ pub fn no_limit(limit: Option<&str>, data_type: u16, low: bool) -> bool {
 /// of an INTEGER64 is -10; python canopen reads them so), while a decimal or a `-0x..` value is as written.
 ///
 /// ```
-/// use canopen_master::eds::eval_typed;
+/// use canopen_eds::eval_typed;
 /// assert_eq!(eval_typed("0x80000000", 0x0004, 0), Some(-2147483648));
 /// assert_eq!(eval_typed("0xFFFFFFFFFFFFFFF6", 0x0015, 0), Some(-10));
 /// assert_eq!(eval_typed("0x7F", 0x0002, 0), Some(127));
@@ -400,7 +399,7 @@ impl Eds {
     /// The entry at `index:sub`.
     ///
     /// ```
-    /// let eds = canopen_master::eds::Eds::parse("[1000]\nParameterName=Device type\nDataType=7\nAccessType=ro\n").unwrap();
+    /// let eds = canopen_eds::Eds::parse("[1000]\nParameterName=Device type\nDataType=7\nAccessType=ro\n").unwrap();
     /// assert!(eds.entry(0x1000, 0).is_some() && eds.entry(0x1000, 1).is_none());
     /// ```
     pub fn entry(&self, index: u16, sub: u8) -> Option<&Entry> {
@@ -410,7 +409,7 @@ impl Eds {
     /// Every entry, in index and sub-index order.
     ///
     /// ```
-    /// let eds = canopen_master::eds::Eds::parse("[1000]\nDataType=7\n[1001]\nDataType=5\n").unwrap();
+    /// let eds = canopen_eds::Eds::parse("[1000]\nDataType=7\n[1001]\nDataType=5\n").unwrap();
     /// assert_eq!(eds.entries().count(), 2);
     /// ```
     pub fn entries(&self) -> impl Iterator<Item = &Entry> {
@@ -421,7 +420,7 @@ impl Eds {
     /// name, a dot, an entry's name) gives `(index, Some(sub))`.
     ///
     /// ```
-    /// let eds = canopen_master::eds::Eds::parse(
+    /// let eds = canopen_eds::Eds::parse(
     ///     "[1018]\nParameterName=Identity object\nObjectType=9\n[1018sub4]\nParameterName=Serial number\nDataType=7\n",
     /// ).unwrap();
     /// assert_eq!(eds.find("Identity Object"), Some((0x1018, None)));
@@ -442,7 +441,7 @@ impl Eds {
 /// The CiA 301 name of a data type index (Table 44), `None` for one this crate does not name.
 ///
 /// ```
-/// assert_eq!(canopen_master::eds::data_type_name(0x0007), Some("UNSIGNED32"));
+/// assert_eq!(canopen_eds::data_type_name(0x0007), Some("UNSIGNED32"));
 /// ```
 pub fn data_type_name(data_type: u16) -> Option<&'static str> {
     Some(match data_type {
