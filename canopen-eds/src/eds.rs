@@ -6,7 +6,9 @@
 //! numbers in decimal or `0x`-hex (`ObjectType=7`, `DataType=0x0007`), access in either case (`RW`),
 //! defaults relative to the node-ID (`$NODEID+0x180`, `1280+$NODEID`), empty values, and arrays given
 //! with `CompactSubObj` (their names from the `[xxxxName]` section). Unknown sections and keys are kept
-//! out; a malformed number in an object section is an error naming the section, never a panic.
+//! out (sections that describe no object are kept for the writer); a malformed number, data type or access
+//! type is an error naming its line and section, never a panic. DCF additions are read too: `ParameterValue`
+//! (and `[xxxxValue]` of a `CompactSubObj` array) and `[DeviceComissioning]`.
 //!
 //! ```
 //! use canopen_eds::{Access, Eds};
@@ -18,7 +20,6 @@
 
 use std::collections::BTreeMap;
 use std::fmt;
-
 
 /// Access of an entry (`AccessType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -69,6 +70,12 @@ impl Access {
 }
 
 /// One value of the dictionary: a VAR, or one sub-entry of an ARRAY or RECORD.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[1017]\nParameterName=Producer heartbeat time\nDataType=6\nDefaultValue=0\nParameterValue=1000\n").unwrap();
+/// let e = eds.entry(0x1017, 0).unwrap();
+/// assert_eq!((e.default.as_deref(), e.value.as_deref()), (Some("0"), Some("1000")));
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Entry {
     /// Object index.
@@ -89,9 +96,17 @@ pub struct Entry {
     pub high: Option<String>,
     /// `PDOMapping`.
     pub pdo_mapping: bool,
+    /// `ParameterValue` as written (a DCF's configured value, CiA 306), `None` when absent or empty; of a
+    /// `CompactSubObj` array, from its `[xxxxValue]` section.
+    pub value: Option<String>,
 }
 
 /// `ObjectType` of an object.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[1018]\nObjectType=0x9\n[1018sub1]\nDataType=7\n").unwrap();
+/// assert_eq!(eds.objects[&0x1018].kind, canopen_eds::ObjectKind::Record);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ObjectKind {
     /// 07h VAR (also 02h DOMAIN, 05h/06h DEFTYPE/DEFSTRUCT as they are).
@@ -103,6 +118,12 @@ pub enum ObjectKind {
 }
 
 /// One object: its name, kind and entries by sub-index.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[6000]\nParameterName=Inputs\nObjectType=8\nCompactSubObj=2\nDataType=5\n").unwrap();
+/// let o = &eds.objects[&0x6000];
+/// assert_eq!((o.name.as_str(), o.entries.len()), ("Inputs", 3)); // sub-index 0, the count, and 1..=2
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Object {
     /// Index.
@@ -116,20 +137,135 @@ pub struct Object {
 }
 
 /// A parsed EDS or DCF.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[DeviceInfo]\nVendorName=Acme\n[1000]\nDataType=7\nAccessType=ro\n").unwrap();
+/// assert_eq!(eds.objects.len(), 1);
+/// assert_eq!(eds.sections[0].keys, [("VendorName".to_string(), "Acme".to_string())]);
+/// assert!(eds.commissioning.is_none()); // an EDS; a DCF has [DeviceComissioning]
+/// ```
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Eds {
     /// Every object, by index.
     pub objects: BTreeMap<u16, Object>,
+    /// The sections that describe no object (`[FileInfo]`, `[DeviceInfo]`, `[DummyUsage]`, `[Comments]`,
+    /// ...), in file order with their keys as written, for the writer to give back. The object lists
+    /// (`[MandatoryObjects]` ...), `[xxxxName]`/`[xxxxValue]` and `[DeviceComissioning]` are not among them.
+    pub sections: Vec<InfoSection>,
+    /// A DCF's `[DeviceComissioning]` section.
+    pub commissioning: Option<DeviceCommissioning>,
 }
 
-/// Why an EDS could not be read.
+/// A section that describes no object, kept as written.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[FileInfo]\nFileName=io.eds\nFileVersion=1\n").unwrap();
+/// assert_eq!(eds.sections[0].get("filename"), Some("io.eds"));
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct InfoSection {
+    /// The name between the brackets.
+    pub name: String,
+    /// `(key, value)` in file order, as written.
+    pub keys: Vec<(String, String)>,
+}
+
+impl InfoSection {
+    /// The value of `key`, in any case (the last one when a key is repeated).
+    ///
+    /// ```
+    /// let s = canopen_eds::InfoSection { name: "DeviceInfo".into(), keys: vec![("NrOfRXPDO".into(), "4".into())] };
+    /// assert_eq!(s.get("NrOfRxPdo"), Some("4"));
+    /// ```
+    pub fn get(&self, key: &str) -> Option<&str> {
+        self.keys.iter().rev().find(|(k, _)| k.eq_ignore_ascii_case(key)).map(|(_, v)| v.as_str())
+    }
+}
+
+/// A DCF's `[DeviceComissioning]` section (CiA 306 spells it with one m): where the configured device sits
+/// in its network.
+///
+/// ```
+/// let dcf = canopen_eds::Eds::parse("[DeviceComissioning]\nNodeID=0x05\nNodeName=Valve\nBaudrate=500\n").unwrap();
+/// let c = dcf.commissioning.unwrap();
+/// assert_eq!((c.node_id, c.node_name.as_str(), c.baudrate), (5, "Valve", 500));
+/// let e = canopen_eds::Eds::parse("[DeviceComissioning]\nNodeID=200\n").unwrap_err();
+/// assert_eq!(e.to_string(), "line 2: [DeviceComissioning] NodeID 200 is not 1..=127");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DeviceCommissioning {
+    /// `NodeID`: 1..=127.
+    pub node_id: u8,
+    /// `NodeName`.
+    pub node_name: String,
+    /// `Baudrate`, in kbit/s.
+    pub baudrate: u16,
+    /// `NetNumber`.
+    pub net_number: u32,
+    /// `NetworkName`.
+    pub network_name: String,
+    /// `CANopenManager`: whether this device is the network's CANopen manager.
+    pub canopen_manager: bool,
+    /// `LSS_SerialNumber`, when the device is to be found by LSS.
+    pub lss_serial_number: Option<u32>,
+}
+
+impl DeviceCommissioning {
+    /// A device at `node_id` on a network at `baudrate` kbit/s, with no names, net 0, no manager, no LSS
+    /// serial number.
+    ///
+    /// ```
+    /// let c = canopen_eds::DeviceCommissioning::new(5, 250);
+    /// assert_eq!((c.node_id, c.baudrate, c.canopen_manager), (5, 250, false));
+    /// ```
+    pub fn new(node_id: u8, baudrate: u16) -> DeviceCommissioning {
+        DeviceCommissioning {
+            node_id,
+            node_name: String::new(),
+            baudrate,
+            net_number: 0,
+            network_name: String::new(),
+            canopen_manager: false,
+            lss_serial_number: None,
+        }
+    }
+
+    fn parse(s: &Section<'_>) -> Result<DeviceCommissioning, EdsError> {
+        let line = |key: &str| s.get(key).map_or(s.line, |(_, l)| l);
+        let int = |key: &str, max: u64| -> Result<Option<u64>, EdsError> {
+            match s.number(key, key)? {
+                Some(v) if v > max => Err(s.err(line(key), format!("{key} {v} is above {max}"))),
+                v => Ok(v),
+            }
+        };
+        let node_id = match int("NodeID", 0xFF)? {
+            Some(id @ 1..=127) => id as u8,
+            Some(id) => return Err(s.err(line("NodeID"), format!("NodeID {id} is not 1..=127"))),
+            None => return Err(s.err(s.line, "no NodeID".into())),
+        };
+        Ok(DeviceCommissioning {
+            node_id,
+            node_name: s.text("NodeName").unwrap_or_default(),
+            baudrate: int("Baudrate", u64::from(u16::MAX))?.unwrap_or(0) as u16,
+            net_number: int("NetNumber", u64::from(u32::MAX))?.unwrap_or(0) as u32,
+            network_name: s.text("NetworkName").unwrap_or_default(),
+            canopen_manager: int("CANopenManager", u64::MAX)?.is_some_and(|v| v != 0),
+            lss_serial_number: int("LSS_SerialNumber", u64::from(u32::MAX))?.map(|v| v as u32),
+        })
+    }
+}
+
+/// Why an EDS could not be read: the line (1-based), its section and what is wrong.
 ///
 /// ```
 /// let e = canopen_eds::Eds::parse("[1000]\nParameterName=x\nDataType=0xZZ\n").unwrap_err();
-/// assert_eq!(e.to_string(), "EDS section [1000]: DataType '0xZZ' is not a number");
+/// assert_eq!((e.line, e.section.as_str()), (3, "1000"));
+/// assert_eq!(e.to_string(), "line 3: [1000] DataType '0xZZ' is not a number");
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct EdsError {
+    /// The line, counted from 1: of the key at fault, or of the section's header when a key is missing.
+    pub line: usize,
     /// The section.
     pub section: String,
     /// What is wrong with it.
@@ -138,7 +274,7 @@ pub struct EdsError {
 
 impl fmt::Display for EdsError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "EDS section [{}]: {}", self.section, self.what)
+        write!(f, "line {}: [{}] {}", self.line, self.section, self.what)
     }
 }
 
@@ -266,74 +402,163 @@ pub fn eval_typed(text: &str, data_type: u16, node_id: u8) -> Option<i128> {
 enum SectionName {
     Object(u16),
     Sub(u16, u8),
+    /// `[xxxxName]` / `[xxxxValue]`: the names and DCF values of a `CompactSubObj` array.
+    Compact,
+    /// `[MandatoryObjects]`, `[OptionalObjects]`, `[ManufacturerObjects]`: the writer lists the objects anew.
+    ObjectList,
+    /// `[DeviceComissioning]` (CiA 306's spelling), read into [`DeviceCommissioning`].
+    Commissioning,
     Other,
 }
 
 fn section_name(name: &str) -> SectionName {
     let lower = name.to_ascii_lowercase();
-    let hex = |s: &str| (!s.is_empty() && s.len() <= 4).then(|| u16::from_str_radix(s, 16).ok()).flatten();
+    let hex = |s: &str| {
+        (!s.is_empty() && s.len() <= 4 && s.bytes().all(|b| b.is_ascii_hexdigit()))
+            .then(|| u16::from_str_radix(s, 16).ok())
+            .flatten()
+    };
     if let Some((idx, sub)) = lower.split_once("sub") {
         if let (Some(i), Ok(s)) = (hex(idx), u8::from_str_radix(sub, 16)) {
             return SectionName::Sub(i, s);
         }
     }
+    if lower.strip_suffix("name").or_else(|| lower.strip_suffix("value")).and_then(hex).is_some() {
+        return SectionName::Compact;
+    }
+    match lower.as_str() {
+        "mandatoryobjects" | "optionalobjects" | "manufacturerobjects" => return SectionName::ObjectList,
+        "devicecomissioning" | "devicecommissioning" => return SectionName::Commissioning,
+        _ => {}
+    }
     match hex(&lower) {
-        Some(i) if lower.bytes().all(|b| b.is_ascii_hexdigit()) => SectionName::Object(i),
-        _ => SectionName::Other,
+        Some(i) => SectionName::Object(i),
+        None => SectionName::Other,
     }
 }
 
-type Section = BTreeMap<String, String>;
+/// One section of the file as written: its name, the line of its header, its keys with their lines.
+struct Section<'a> {
+    name: &'a str,
+    line: usize,
+    /// (key as written, value, line), in file order.
+    keys: Vec<(&'a str, &'a str, usize)>,
+}
 
-impl Eds {
-    /// Parses the text of an EDS or DCF.
-    pub fn parse(text: &str) -> Result<Eds, EdsError> {
-        // Sections in file order, keys lower-cased.
-        let mut sections: Vec<(String, Section)> = Vec::new();
-        for line in text.lines() {
-            let line = line.trim();
-            if line.is_empty() || line.starts_with(';') || line.starts_with('#') {
-                continue;
-            }
-            if let Some(name) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
-                sections.push((name.trim().to_owned(), Section::new()));
-            } else if let (Some((key, value)), Some((_, section))) = (line.split_once('='), sections.last_mut()) {
-                section.insert(key.trim().to_ascii_lowercase(), value.trim().to_owned());
+impl<'a> Section<'a> {
+    /// The value of a key (any case) and its line; the last one when a key is repeated.
+    fn get(&self, key: &str) -> Option<(&'a str, usize)> {
+        self.keys.iter().rev().find(|(k, _, _)| k.eq_ignore_ascii_case(key)).map(|&(_, v, l)| (v, l))
+    }
+
+    /// A non-empty value as an owned string.
+    fn text(&self, key: &str) -> Option<String> {
+        self.get(key).map(|(v, _)| v).filter(|v| !v.is_empty()).map(str::to_owned)
+    }
+
+    fn err(&self, line: usize, what: String) -> EdsError {
+        EdsError { line, section: self.name.to_owned(), what }
+    }
+
+    /// A number key: `None` when absent or empty, an error on its line when it is not a number.
+    fn number(&self, key: &str, name: &str) -> Result<Option<u64>, EdsError> {
+        match self.get(key).filter(|(v, _)| !v.is_empty()) {
+            None => Ok(None),
+            Some((v, line)) => {
+                number(v).map(Some).ok_or_else(|| self.err(line, format!("{name} '{v}' is not a number")))
             }
         }
-        let by_name: BTreeMap<String, &Section> = sections.iter().map(|(n, s)| (n.to_ascii_lowercase(), s)).collect();
+    }
+}
+
+/// Splits the text into sections; lines outside any section, comments and lines that are no `key=value`
+/// are skipped (real files have them), so nothing here fails.
+fn sections(text: &str) -> Vec<Section<'_>> {
+    let mut sections: Vec<Section<'_>> = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with(';') || line.starts_with('#') {
+            continue;
+        }
+        if let Some(name) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
+            sections.push(Section { name: name.trim(), line: n + 1, keys: Vec::new() });
+        } else if let (Some((key, value)), Some(section)) = (line.split_once('='), sections.last_mut()) {
+            section.keys.push((key.trim(), value.trim(), n + 1));
+        }
+    }
+    sections
+}
+
+impl Eds {
+    /// Parses the text of an EDS or DCF. A malformed number, data type or access type in an object
+    /// section, or in `[DeviceComissioning]`, is an [`EdsError`] with its line; anything else a real file
+    /// may carry (comments, unknown sections and keys, junk lines) is passed over, never a panic.
+    ///
+    /// ```
+    /// let eds = canopen_eds::Eds::parse("[FileInfo]\nFileName=x.eds\n[1017]\nDataType=0x0006\nDefaultValue=0\n").unwrap();
+    /// assert_eq!(eds.entry(0x1017, 0).map(|e| e.data_type), Some(0x0006));
+    /// assert_eq!(eds.sections[0].name, "FileInfo");
+    /// let e = canopen_eds::Eds::parse("[1017]\nDataType=0x0006\nAccessType=rx\n").unwrap_err();
+    /// assert_eq!(e.line, 3);
+    /// ```
+    pub fn parse(text: &str) -> Result<Eds, EdsError> {
+        let sections = sections(text);
+        let mut subs: BTreeMap<u16, Vec<(u8, &Section<'_>)>> = BTreeMap::new();
+        let mut compact: BTreeMap<String, &Section<'_>> = BTreeMap::new();
+        for s in &sections {
+            match section_name(s.name) {
+                SectionName::Sub(i, sub) => subs.entry(i).or_default().push((sub, s)),
+                SectionName::Compact => {
+                    compact.insert(s.name.to_ascii_lowercase(), s);
+                }
+                _ => {}
+            }
+        }
         let mut eds = Eds::default();
-        for (name, section) in &sections {
-            if let SectionName::Object(index) = section_name(name) {
-                let object = Self::object(index, name, section, &by_name)?;
-                eds.objects.insert(index, object);
+        for s in &sections {
+            match section_name(s.name) {
+                SectionName::Object(index) => {
+                    let object = Self::object(index, s, subs.get(&index).map_or(&[][..], Vec::as_slice), &compact)?;
+                    eds.objects.insert(index, object);
+                }
+                SectionName::Commissioning => eds.commissioning = Some(DeviceCommissioning::parse(s)?),
+                SectionName::Other => eds.sections.push(InfoSection {
+                    name: s.name.to_owned(),
+                    keys: s.keys.iter().map(|&(k, v, _)| (k.to_owned(), v.to_owned())).collect(),
+                }),
+                SectionName::Sub(..) | SectionName::Compact | SectionName::ObjectList => {}
             }
         }
         Ok(eds)
     }
 
-    fn object(index: u16, name: &str, s: &Section, all: &BTreeMap<String, &Section>) -> Result<Object, EdsError> {
-        let err = |what: String| EdsError { section: name.to_owned(), what };
-        let kind = match s.get("objecttype").map(|v| (v, number(v))) {
-            None => ObjectKind::Var,
-            Some((_, Some(8))) => ObjectKind::Array,
-            Some((_, Some(9))) => ObjectKind::Record,
-            Some((_, Some(_))) => ObjectKind::Var,
-            Some((v, None)) => return Err(err(format!("ObjectType '{v}' is not a number"))),
+    fn object(
+        index: u16,
+        s: &Section<'_>,
+        subs: &[(u8, &Section<'_>)],
+        compact: &BTreeMap<String, &Section<'_>>,
+    ) -> Result<Object, EdsError> {
+        let kind = match s.number("ObjectType", "ObjectType")? {
+            Some(8) => ObjectKind::Array,
+            Some(9) => ObjectKind::Record,
+            _ => ObjectKind::Var,
         };
         let mut object =
-            Object { index, name: s.get("parametername").cloned().unwrap_or_default(), kind, entries: BTreeMap::new() };
+            Object { index, name: s.text("ParameterName").unwrap_or_default(), kind, entries: BTreeMap::new() };
         if kind == ObjectKind::Var {
-            object.entries.insert(0, Self::parse_entry(index, 0, name, s)?);
+            object.entries.insert(0, Self::parse_entry(index, 0, s)?);
             return Ok(object);
         }
-        let compact = match s.get("compactsubobj").filter(|v| !v.is_empty()) {
-            Some(v) => number(v).ok_or_else(|| err(format!("CompactSubObj '{v}' is not a number")))?,
-            None => 0,
+        let count = match s.number("CompactSubObj", "CompactSubObj")? {
+            None | Some(0) => None,
+            Some(n) => Some(u8::try_from(n).map_err(|_| {
+                let line = s.get("CompactSubObj").map_or(s.line, |(_, l)| l);
+                s.err(line, format!("CompactSubObj {n} is above 255"))
+            })?),
         };
-        if compact > 0 {
-            let count = u8::try_from(compact).map_err(|_| err(format!("CompactSubObj {compact} is above 255")))?;
-            let names = all.get(&format!("{name}name").to_ascii_lowercase());
+        if let Some(count) = count {
+            let names = compact.get(&format!("{}name", s.name).to_ascii_lowercase());
+            let values = compact.get(&format!("{}value", s.name).to_ascii_lowercase());
             object.entries.insert(
                 0,
                 Entry {
@@ -346,53 +571,49 @@ impl Eds {
                     low: None,
                     high: None,
                     pdo_mapping: false,
+                    value: None,
                 },
             );
             for sub in 1..=count {
-                let mut e = Self::parse_entry(index, sub, name, s)?;
-                e.name = names
-                    .and_then(|n| n.get(&sub.to_string()))
-                    .cloned()
-                    .unwrap_or_else(|| format!("{}{sub}", object.name));
+                let mut e = Self::parse_entry(index, sub, s)?;
+                let key = sub.to_string();
+                e.name = names.and_then(|n| n.text(&key)).unwrap_or_else(|| format!("{}{sub}", object.name));
+                e.value = values.and_then(|v| v.text(&key));
                 object.entries.insert(sub, e);
             }
             return Ok(object);
         }
-        for (sub_name, sub_section) in all {
-            if let SectionName::Sub(i, sub) = section_name(sub_name) {
-                if i == index {
-                    object.entries.insert(sub, Self::parse_entry(index, sub, sub_name, sub_section)?);
-                }
-            }
+        for &(sub, section) in subs {
+            object.entries.insert(sub, Self::parse_entry(index, sub, section)?);
         }
         Ok(object)
     }
 
-    fn parse_entry(index: u16, sub: u8, name: &str, s: &Section) -> Result<Entry, EdsError> {
-        let err = |what: String| EdsError { section: name.to_owned(), what };
-        let data_type = match s.get("datatype") {
-            Some(v) => u16::try_from(number(v).ok_or_else(|| err(format!("DataType '{v}' is not a number")))?)
-                .map_err(|_| err(format!("DataType '{v}' is above FFFFh")))?,
-            None => return Err(err("no DataType".into())),
-        };
-        let access = match s.get("accesstype") {
-            Some(v) => {
-                Access::parse(v).ok_or_else(|| err(format!("AccessType '{v}' is not ro, wo, rw, rwr, rww or const")))?
+    fn parse_entry(index: u16, sub: u8, s: &Section<'_>) -> Result<Entry, EdsError> {
+        let data_type = match s.get("DataType") {
+            Some((v, line)) => {
+                let n = number(v).ok_or_else(|| s.err(line, format!("DataType '{v}' is not a number")))?;
+                u16::try_from(n).map_err(|_| s.err(line, format!("DataType '{v}' is above FFFFh")))?
             }
+            None => return Err(s.err(s.line, "no DataType".into())),
+        };
+        let access = match s.get("AccessType") {
+            Some((v, line)) => Access::parse(v)
+                .ok_or_else(|| s.err(line, format!("AccessType '{v}' is not ro, wo, rw, rwr, rww or const")))?,
             None => Access::ReadWrite,
         };
-        let text = |key: &str| s.get(key).filter(|v| !v.is_empty()).cloned();
-        let pdo_mapping = s.get("pdomapping").and_then(|v| number(v)).is_some_and(|v| v != 0);
+        let pdo_mapping = s.get("PDOMapping").and_then(|(v, _)| number(v)).is_some_and(|v| v != 0);
         Ok(Entry {
             index,
             sub,
-            name: s.get("parametername").cloned().unwrap_or_default(),
+            name: s.text("ParameterName").unwrap_or_default(),
             data_type,
             access,
-            default: text("defaultvalue"),
-            low: text("lowlimit"),
-            high: text("highlimit"),
+            default: s.text("DefaultValue"),
+            low: s.text("LowLimit"),
+            high: s.text("HighLimit"),
             pdo_mapping,
+            value: s.text("ParameterValue"),
         })
     }
 
@@ -581,12 +802,40 @@ DefaultValue=
         assert_eq!(eds.find("tpdo 1 mapping.number of mapped objects"), Some((0x1A00, Some(0))));
     }
 
+    /// A DCF: `ParameterValue` per entry, `[xxxxValue]` for a `CompactSubObj` array, `[DeviceComissioning]`;
+    /// the sections that are no objects are kept as written, the object lists are not.
+    #[test]
+    fn dcf_values_and_commissioning_parse() {
+        let text = format!(
+            "{QUIRKS}\n[3004Value]\nNrOfEntries=1\n2=0x22\n[MandatoryObjects]\nSupportedObjects=1\n1=0x1000\n\
+             [DeviceComissioning]\nNodeID=0x7F\nNodeName=Valve 3\nBaudrate=250\nNetNumber=2\nCANopenManager=1\n\
+             LSS_SerialNumber=0x1234\n[2100]\nDataType=7\nParameterValue=0x80000000\n"
+        );
+        let eds = Eds::parse(&text).unwrap();
+        let status = &eds.objects[&0x3004];
+        assert_eq!((status.entries[&1].value.as_deref(), status.entries[&2].value.as_deref()), (None, Some("0x22")));
+        let c = eds.commissioning.as_ref().unwrap();
+        assert_eq!((c.node_id, c.node_name.as_str(), c.baudrate, c.net_number), (0x7F, "Valve 3", 250, 2));
+        assert_eq!((c.canopen_manager, c.lss_serial_number, c.network_name.as_str()), (true, Some(0x1234), ""));
+        let names: Vec<&str> = eds.sections.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["FileInfo", "DeviceInfo"]);
+        assert_eq!(eds.sections[1].get("nrofrxpdo"), Some("1"));
+        let v = eds.entry(0x2100, 0).unwrap();
+        assert_eq!((v.value.as_deref(), v.default.as_deref()), (Some("0x80000000"), None));
+    }
+
     #[test]
     fn malformed_input_is_an_error_never_a_panic() {
-        assert!(Eds::parse("[1000]\nObjectType=seven\n").is_err());
-        assert!(Eds::parse("[1000]\nDataType=7\nAccessType=rwx\n").is_err());
-        assert!(Eds::parse("[1000]\nObjectType=8\nCompactSubObj=300\nDataType=5\n").is_err());
-        assert!(Eds::parse("[1000]\nParameterName=no type\n").is_err());
+        // Each error names the line of the key at fault, or of the header when a key is missing.
+        let line = |text: &str| Eds::parse(text).map_err(|e| (e.line, e.section)).err();
+        assert_eq!(line("; c\n[1000]\nObjectType=seven\n"), Some((3, "1000".into())));
+        assert_eq!(line("[1000]\nDataType=7\n\nAccessType=rwx\n"), Some((4, "1000".into())));
+        assert_eq!(line("[1000]\nObjectType=8\nCompactSubObj=300\nDataType=5\n"), Some((3, "1000".into())));
+        assert_eq!(line("[FileInfo]\n[1000]\nParameterName=no type\n"), Some((2, "1000".into())));
+        assert_eq!(line("[1018]\nObjectType=9\n[1018sub1]\nDataType=0x10000\n"), Some((4, "1018sub1".into())));
+        assert_eq!(line("[2000]\nObjectType=8\nCompactSubObj=2\nDataType=x\n"), Some((4, "2000".into())));
+        assert_eq!(line("[DeviceComissioning]\nNodeName=x\n"), Some((1, "DeviceComissioning".into())));
+        assert_eq!(line("[DeviceComissioning]\nNodeID=5\nBaudrate=70000\n"), Some((3, "DeviceComissioning".into())));
         // Garbage around is ignored.
         let eds = Eds::parse("junk\n=\n[\n[]\n[zzzz]\nx=y\n[1000sub]\n[10000]\nDataType=1\n").unwrap();
         assert!(eds.objects.is_empty());

@@ -21,5 +21,6 @@ mod eds;
 
 pub use codegen::{rust_module, to_rust, Dropped, Generated, LeftOut};
 pub use eds::{
-    data_type_name, eval_default, eval_typed, no_limit, type_range, Access, Eds, EdsError, Entry, Object, ObjectKind,
+    data_type_name, eval_default, eval_typed, no_limit, type_range, Access, DeviceCommissioning, Eds, EdsError, Entry,
+    InfoSection, Object, ObjectKind,
 };
