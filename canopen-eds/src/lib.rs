@@ -17,9 +17,12 @@
 #![warn(missing_docs)]
 
 mod codegen;
+mod dcf;
 mod eds;
+mod write;
 
 pub use codegen::{rust_module, to_rust, Dropped, Generated, LeftOut};
+pub use dcf::{ConciseDcf, ConciseError, Configured, DcfError};
 pub use eds::{
     data_type_name, eval_default, eval_typed, no_limit, type_range, Access, DeviceCommissioning, Eds, EdsError, Entry,
     InfoSection, Object, ObjectKind,

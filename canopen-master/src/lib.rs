@@ -62,12 +62,12 @@ pub mod sim;
 mod value;
 
 pub use canio::{CanIo, IoFuture, SocketCan};
-/// EDS/DCF import (CiA 306) and EDS → Rust: the [`canopen_eds`] crate, which holds them (std only, for a
-/// firmware's build.rs as well), under the name the master has always given them.
-pub use canopen_eds as eds;
 pub use canopen_core::sdo::client::Mode;
 pub use canopen_core::wire::error_control::StateCode;
 pub use canopen_core::wire::nmt::NmtCommand;
+/// EDS/DCF import (CiA 306) and EDS → Rust: the [`canopen_eds`] crate, which holds them (std only, for a
+/// firmware's build.rs as well), under the name the master has always given them.
+pub use canopen_eds as eds;
 pub use data::Progress;
 pub use error::{abort_meaning, Error};
 pub use value::SdoValue;
