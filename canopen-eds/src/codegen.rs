@@ -30,7 +30,7 @@
 //! (but a mapping count's 0..n and those at the type's bounds, which limit nothing). Sub-index 0 of an
 //! ARRAY or RECORD is ro (`count_access = "ro"`) or const as the EDS says; a writable one is left out.
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 
 use crate::eds::{eval_default, eval_typed, no_limit, Access, Eds, Entry, Object, ObjectKind};
 
@@ -43,6 +43,7 @@ use crate::eds::{eval_default, eval_typed, no_limit, Access, Eds, Entry, Object,
 /// let g = rust_module(&eds, "dev.eds");
 /// assert_eq!((g.left_out[0].index, g.left_out[0].sub, g.left_out[0].dropped), (0x2001, None, Dropped::Access));
 /// assert!(g.rust.contains("// 2001h Blob: access ro not carried (a derived DOMAIN is rw)."));
+/// assert_eq!(g.left_out[0].to_string(), "2001h Blob: access ro not carried (a derived DOMAIN is rw).");
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct LeftOut {
@@ -52,11 +53,26 @@ pub struct LeftOut {
     pub sub: Option<u8>,
     /// What of it is not carried.
     pub dropped: Dropped,
-    /// Why, in words (the module's comment).
+    /// Why, in words.
     pub why: String,
+    /// The whole sentence: the module's comment, a build script's cargo warning, and the `Display` text.
+    pub note: String,
+}
+
+impl fmt::Display for LeftOut {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.note)
+    }
 }
 
 /// What a [`LeftOut`] leaves out.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[2001]\nParameterName=Gain\nDataType=3\nDefaultValue=$NODEID\n").unwrap();
+/// let g = canopen_eds::rust_module(&eds, "dev.eds");
+/// assert_eq!(g.left_out[0].dropped, canopen_eds::Dropped::Default); // the field is kept, its default is not
+/// assert!(g.rust.contains("pub gain_2001: i16,"));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dropped {
     /// The object or entry itself: no field holds it.
@@ -73,6 +89,13 @@ pub enum Dropped {
 }
 
 /// The generated module and what it leaves out.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[2001]\nParameterName=Gain\nDataType=3\n[2002]\nParameterName=X\nDataType=0x40\n").unwrap();
+/// let g = canopen_eds::rust_module(&eds, "dev.eds");
+/// assert!(g.rust.contains("pub struct Device {") && g.rust.contains("pub const CONFIG: NodeConfig"));
+/// assert_eq!(g.left_out.iter().map(|l| l.index).collect::<Vec<_>>(), [0x2002]);
+/// ```
 #[derive(Debug, Clone, Default)]
 pub struct Generated {
     /// The Rust module's text.
@@ -83,8 +106,9 @@ pub struct Generated {
 
 impl Generated {
     fn leave_out_object(&mut self, o: &Object, why: &str) {
-        let _ = writeln!(self.rust, "    // {:04X}h {}: {why}; left out.", o.index, o.name);
-        self.left_out.push(LeftOut { index: o.index, sub: None, dropped: Dropped::Entry, why: why.into() });
+        let note = format!("{:04X}h {}: {why}; left out.", o.index, o.name);
+        let _ = writeln!(self.rust, "    // {note}");
+        self.left_out.push(LeftOut { index: o.index, sub: None, dropped: Dropped::Entry, why: why.into(), note });
     }
 
     fn leave_out(&mut self, e: &Entry, object: Option<&Object>, dropped: Dropped, why: String) {
@@ -92,17 +116,15 @@ impl Generated {
             Some(o) => (None, &o.name, format!("{:04X}h", o.index)),
             None => (Some(e.sub), &e.name, format!("{:04X}h:{:02X}", e.index, e.sub)),
         };
-        let line = match dropped {
-            Dropped::Entry => format!("    // {at} {name}: {why}; left out."),
-            Dropped::Default => format!("    // {at} {name}: default {} not carried ({why}).", show(&e.default)),
-            Dropped::Limits => {
-                format!("    // {at} {name}: limits {}..{} not carried ({why}).", show(&e.low), show(&e.high))
-            }
-            Dropped::Access => format!("    // {at} {name}: access {} not carried ({why}).", e.access.as_str()),
-            Dropped::PdoMapping => format!("    // {at} {name}: PDO mapping not carried ({why})."),
+        let note = match dropped {
+            Dropped::Entry => format!("{at} {name}: {why}; left out."),
+            Dropped::Default => format!("{at} {name}: default {} not carried ({why}).", show(&e.default)),
+            Dropped::Limits => format!("{at} {name}: limits {}..{} not carried ({why}).", show(&e.low), show(&e.high)),
+            Dropped::Access => format!("{at} {name}: access {} not carried ({why}).", e.access.as_str()),
+            Dropped::PdoMapping => format!("{at} {name}: PDO mapping not carried ({why})."),
         };
-        let _ = writeln!(self.rust, "{line}");
-        self.left_out.push(LeftOut { index: e.index, sub, dropped, why });
+        let _ = writeln!(self.rust, "    // {note}");
+        self.left_out.push(LeftOut { index: e.index, sub, dropped, why, note });
     }
 }
 
@@ -441,9 +463,15 @@ pub fn to_rust(eds: &Eds, source: &str) -> String {
 pub fn rust_module(eds: &Eds, source: &str) -> Generated {
     let mut g = Generated::default();
     let out = &mut g.rust;
-    let _ = writeln!(out, "//! Generated from {source} (CiA 306) by `canopenctl eds-to-rust`: the application objects");
-    let _ =
-        writeln!(out, "//! (2000h-FFFFh) as a derived object dictionary, and the node configuration from 1000h-1FFFh.");
+    let _ = writeln!(
+        out,
+        "//! Generated from {source} (CiA 306) by canopen-eds (`canopenctl eds-to-rust` or a build script's"
+    );
+    let _ = writeln!(
+        out,
+        "//! `canopen_eds::generate`): the application objects (2000h-FFFFh) as a derived object dictionary,"
+    );
+    let _ = writeln!(out, "//! and the node configuration from 1000h-1FFFh.");
     let _ = writeln!(out);
     let _ = writeln!(out, "#![allow(unused_imports, clippy::all)]");
     let _ = writeln!(out);

@@ -22,6 +22,11 @@ use std::collections::BTreeMap;
 use std::fmt;
 
 /// Access of an entry (`AccessType`).
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[1000]\nDataType=7\nAccessType=RO\n").unwrap();
+/// assert_eq!(eds.entry(0x1000, 0).map(|e| e.access), Some(canopen_eds::Access::ReadOnly));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Access {
     /// `ro`.

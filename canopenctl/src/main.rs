@@ -191,7 +191,12 @@ fn main() -> ExitCode {
             Ok(eds) => {
                 let name =
                     file.file_name().map_or_else(|| file.display().to_string(), |n| n.to_string_lossy().into_owned());
-                print!("{}", canopen_eds::to_rust(&eds, &name));
+                let g = canopen_eds::rust_module(&eds, &name);
+                print!("{}", g.rust);
+                // What the module leaves out, on stderr too (a comment in the module says each where it is).
+                for l in &g.left_out {
+                    eprintln!("canopenctl: {name}: {l}");
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => fail(&format!("{}: {e}", file.display())),
