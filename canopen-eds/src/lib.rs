@@ -73,3 +73,8 @@ pub use eds::{
     data_type_name, eval_default, eval_typed, no_limit, type_range, Access, DeviceCommissioning, Eds, EdsError, Entry,
     InfoSection, Object, ObjectKind,
 };
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctest;
