@@ -238,7 +238,7 @@ impl DeviceCommissioning {
     fn parse(s: &Section<'_>) -> Result<DeviceCommissioning, EdsError> {
         let line = |key: &str| s.get(key).map_or(s.line, |(_, l)| l);
         let int = |key: &str, max: u64| -> Result<Option<u64>, EdsError> {
-            match s.number(key, key)? {
+            match s.number(key)? {
                 Some(v) if v > max => Err(s.err(line(key), format!("{key} {v} is above {max}"))),
                 v => Ok(v),
             }
@@ -466,11 +466,11 @@ impl<'a> Section<'a> {
     }
 
     /// A number key: `None` when absent or empty, an error on its line when it is not a number.
-    fn number(&self, key: &str, name: &str) -> Result<Option<u64>, EdsError> {
+    fn number(&self, key: &str) -> Result<Option<u64>, EdsError> {
         match self.get(key).filter(|(v, _)| !v.is_empty()) {
             None => Ok(None),
             Some((v, line)) => {
-                number(v).map(Some).ok_or_else(|| self.err(line, format!("{name} '{v}' is not a number")))
+                number(v).map(Some).ok_or_else(|| self.err(line, format!("{key} '{v}' is not a number")))
             }
         }
     }
@@ -543,7 +543,7 @@ impl Eds {
         subs: &[(u8, &Section<'_>)],
         compact: &BTreeMap<String, &Section<'_>>,
     ) -> Result<Object, EdsError> {
-        let kind = match s.number("ObjectType", "ObjectType")? {
+        let kind = match s.number("ObjectType")? {
             Some(8) => ObjectKind::Array,
             Some(9) => ObjectKind::Record,
             _ => ObjectKind::Var,
@@ -554,7 +554,7 @@ impl Eds {
             object.entries.insert(0, Self::parse_entry(index, 0, s)?);
             return Ok(object);
         }
-        let count = match s.number("CompactSubObj", "CompactSubObj")? {
+        let count = match s.number("CompactSubObj")? {
             None | Some(0) => None,
             Some(n) => Some(u8::try_from(n).map_err(|_| {
                 let line = s.get("CompactSubObj").map_or(s.line, |(_, l)| l);

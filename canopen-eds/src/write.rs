@@ -12,7 +12,8 @@
 //! Parsing what this writes gives the same [`Eds`]: that is the writer's contract, tested here and on
 //! python canopen's files (tests/eds_real.rs). What parsing itself folds together stays folded: a
 //! `CompactSubObj` array is written with its entries in full, `rwr`/`rww` as `rw`, and ObjectType 02h
-//! (DOMAIN), 05h and 06h as a VAR (07h).
+//! (DOMAIN), 05h and 06h as a VAR (07h). Text is written as it is: a name or value with a line break (which
+//! no parsed file has, but a hand-built [`Eds`] may) makes a file that does not read back the same.
 
 use std::fmt::{self, Write as _};
 
