@@ -3,7 +3,8 @@
 //! PyPI sdist of the pinned version into target/real-eds (their licence beside them; none of it is
 //! committed). For every `.eds` found there (or under `CANOPEN_REAL_EDS_DIR`):
 //!
-//! 1. it parses, and `generate` gives a module and the list of what it leaves out;
+//! 1. it parses, the EDS writer's text of it parses to the same, and `rust_module` gives a module and the
+//!    list of what it leaves out;
 //! 2. the modules compile as they are, with only canopen-core and canopen-od-derive: they are written into a
 //!    small crate (target/real-eds/check) that this test builds with cargo, like trybuild does, whose
 //!    program writes the EDS of each module's dictionary;
@@ -18,7 +19,7 @@ mod eds_compare;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use canopen_master::eds::{generate, Dropped, Eds};
+use canopen_eds::{rust_module, Dropped, Eds};
 
 fn eds_files(dir: &Path, out: &mut Vec<PathBuf>) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
@@ -91,7 +92,10 @@ fn real_eds_files_import_generate_compile_and_round_trip() {
             .chars()
             .map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' })
             .collect();
-        let g = generate(&eds, &file);
+        let g = rust_module(&eds, &file);
+        // The writer (canopen-eds): what it writes parses to the same description.
+        let written = eds.to_string();
+        assert!(Eds::parse(&written).as_ref() == Ok(&eds), "{file}: written and parsed again differs:\n{written}");
         assert!(eds.objects.len() > 5, "{file}: only {} objects parsed", eds.objects.len());
         parsed.push((format!("m_{name}"), file, eds, g));
     }

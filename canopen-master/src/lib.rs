@@ -54,9 +54,7 @@ use tokio::task::JoinHandle;
 
 pub mod blocking;
 mod canio;
-mod codegen;
 mod data;
-pub mod eds;
 mod error;
 pub mod lss;
 pub mod pdo;
@@ -67,6 +65,9 @@ pub use canio::{CanIo, IoFuture, SocketCan};
 pub use canopen_core::sdo::client::Mode;
 pub use canopen_core::wire::error_control::StateCode;
 pub use canopen_core::wire::nmt::NmtCommand;
+/// EDS/DCF import (CiA 306) and EDS → Rust: the [`canopen_eds`] crate, which holds them (std only, for a
+/// firmware's build.rs as well), under the name the master has always given them.
+pub use canopen_eds as eds;
 pub use data::Progress;
 pub use error::{abort_meaning, Error};
 pub use value::SdoValue;

@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use canopen_core::wire::lss::{IdentityField, LssMode};
 use canopen_core::NodeId;
-use canopen_master::eds::{data_type_name, Eds};
+use canopen_eds::{data_type_name, Eds};
 use canopen_master::{Error, Master, Mode, NmtCommand, BLOCK};
 use canopenctl::{guess, monitor_line, parse_in, parse_node, Type};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -191,7 +191,12 @@ fn main() -> ExitCode {
             Ok(eds) => {
                 let name =
                     file.file_name().map_or_else(|| file.display().to_string(), |n| n.to_string_lossy().into_owned());
-                print!("{}", canopen_master::eds::to_rust(&eds, &name));
+                let g = canopen_eds::rust_module(&eds, &name);
+                print!("{}", g.rust);
+                // What the module leaves out, on stderr too (a comment in the module says each where it is).
+                for l in &g.left_out {
+                    eprintln!("canopenctl: {name}: {l}");
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => fail(&format!("{}: {e}", file.display())),

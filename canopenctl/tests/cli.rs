@@ -238,4 +238,22 @@ fn eds_to_rust_prints_the_module() {
     assert!(rust == include_str!("../../tests/data/eds_to_rust/io_module.rs"), "{rust}");
     let e = fails(&["eds-to-rust", "/nonexistent.eds"]);
     assert!(e.contains("/nonexistent.eds"), "{e}");
+    // What a module leaves out is also said on stderr, one line each (shapes.eds leaves out one object).
+    let shapes = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/eds_to_rust/shapes.eds");
+    let o = ctl(&["eds-to-rust", shapes]);
+    assert!(o.status.success());
+    assert_eq!(
+        stderr(&o),
+        "canopenctl: shapes.eds: 2040h Complex: data type 0040h is not supported; left out.\n",
+        "{}",
+        stderr(&o)
+    );
+    // A malformed EDS: the file and the line.
+    let dir = std::env::temp_dir().join(format!("canopenctl-bad-eds-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.eds");
+    std::fs::write(&bad, "[2001]\nParameterName=x\nDataType=seven\n").unwrap();
+    let e = fails(&["eds-to-rust", bad.to_str().unwrap()]);
+    assert!(e.contains("bad.eds: line 3: [2001] DataType 'seven' is not a number"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

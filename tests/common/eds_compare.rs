@@ -2,10 +2,10 @@
 //! (python canopen's files): the EDS a generated module's dictionary writes equals the original on every
 //! entry the module carries (index, sub-index, data type, access, default, limits, PDO mapping; of
 //! 1000h-1FFFh what a node configuration holds, PDO defaults included), and what it does not carry is
-//! exactly what `generate` listed as left out.
+//! exactly what `rust_module` listed as left out.
 #![allow(dead_code)]
 
-use canopen_master::eds::{eval_typed, no_limit, Access, Dropped, Eds, Entry, LeftOut};
+use canopen_eds::{eval_typed, no_limit, Access, Dropped, Eds, Entry, LeftOut};
 
 /// Two values of a data type are the same: equal text, or equal numbers however written (`0x0` and `0`,
 /// `0xFFFFFFFF` and `-1` for an INTEGER32).

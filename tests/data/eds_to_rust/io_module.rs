@@ -1,5 +1,6 @@
-//! Generated from io_module.eds (CiA 306) by `canopenctl eds-to-rust`: the application objects
-//! (2000h-FFFFh) as a derived object dictionary, and the node configuration from 1000h-1FFFh.
+//! Generated from io_module.eds (CiA 306) by canopen-eds (`canopenctl eds-to-rust` or a build script's
+//! `canopen_eds::generate`): the application objects (2000h-FFFFh) as a derived object dictionary,
+//! and the node configuration from 1000h-1FFFh.
 
 #![allow(unused_imports, clippy::all)]
 

@@ -16,7 +16,8 @@
 //! bytes), a DOMAIN's default (`eds_default`: the EDS text, shown again in the derived EDS, which the node
 //! does not apply: the DOMAIN starts empty).
 //!
-//! Not carried over, each listed by [`generate`] (`Generated::left_out`) and named by a comment in the
+//! Not carried over, each listed by [`rust_module`] (`Generated::left_out`, which a build script's [`generate`](crate::generate)
+//! prints as cargo warnings) and named by a comment in the
 //! module where the field would be: data types the derive does not know (0040h and up, the object or entry
 //! is left out), an ARRAY without any entry, PDO mapping of a string whose default is longer than a PDO
 //! holds, DOMAIN access other than rw, defaults relative to `$NODEID` and limits that are no number of the type, limits on
@@ -29,7 +30,7 @@
 //! (but a mapping count's 0..n and those at the type's bounds, which limit nothing). Sub-index 0 of an
 //! ARRAY or RECORD is ro (`count_access = "ro"`) or const as the EDS says; a writable one is left out.
 
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 
 use crate::eds::{eval_default, eval_typed, no_limit, Access, Eds, Entry, Object, ObjectKind};
 
@@ -37,11 +38,12 @@ use crate::eds::{eval_default, eval_typed, no_limit, Access, Eds, Entry, Object,
 /// reader of the module sees it: each one is also a comment in the module, where the field would be.
 ///
 /// ```
-/// use canopen_master::eds::{generate, Dropped, Eds};
+/// use canopen_eds::{rust_module, Dropped, Eds};
 /// let eds = Eds::parse("[2001]\nParameterName=Blob\nDataType=0xF\nAccessType=ro\n").unwrap();
-/// let g = generate(&eds, "dev.eds");
+/// let g = rust_module(&eds, "dev.eds");
 /// assert_eq!((g.left_out[0].index, g.left_out[0].sub, g.left_out[0].dropped), (0x2001, None, Dropped::Access));
 /// assert!(g.rust.contains("// 2001h Blob: access ro not carried (a derived DOMAIN is rw)."));
+/// assert_eq!(g.left_out[0].to_string(), "2001h Blob: access ro not carried (a derived DOMAIN is rw).");
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct LeftOut {
@@ -51,11 +53,26 @@ pub struct LeftOut {
     pub sub: Option<u8>,
     /// What of it is not carried.
     pub dropped: Dropped,
-    /// Why, in words (the module's comment).
+    /// Why, in words.
     pub why: String,
+    /// The whole sentence: the module's comment, a build script's cargo warning, and the `Display` text.
+    pub note: String,
+}
+
+impl fmt::Display for LeftOut {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.note)
+    }
 }
 
 /// What a [`LeftOut`] leaves out.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[2001]\nParameterName=Gain\nDataType=3\nDefaultValue=$NODEID\n").unwrap();
+/// let g = canopen_eds::rust_module(&eds, "dev.eds");
+/// assert_eq!(g.left_out[0].dropped, canopen_eds::Dropped::Default); // the field is kept, its default is not
+/// assert!(g.rust.contains("pub gain_2001: i16,"));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dropped {
     /// The object or entry itself: no field holds it.
@@ -72,6 +89,13 @@ pub enum Dropped {
 }
 
 /// The generated module and what it leaves out.
+///
+/// ```
+/// let eds = canopen_eds::Eds::parse("[2001]\nParameterName=Gain\nDataType=3\n[2002]\nParameterName=X\nDataType=0x40\n").unwrap();
+/// let g = canopen_eds::rust_module(&eds, "dev.eds");
+/// assert!(g.rust.contains("pub struct Device {") && g.rust.contains("pub const CONFIG: NodeConfig"));
+/// assert_eq!(g.left_out.iter().map(|l| l.index).collect::<Vec<_>>(), [0x2002]);
+/// ```
 #[derive(Debug, Clone, Default)]
 pub struct Generated {
     /// The Rust module's text.
@@ -82,8 +106,9 @@ pub struct Generated {
 
 impl Generated {
     fn leave_out_object(&mut self, o: &Object, why: &str) {
-        let _ = writeln!(self.rust, "    // {:04X}h {}: {why}; left out.", o.index, o.name);
-        self.left_out.push(LeftOut { index: o.index, sub: None, dropped: Dropped::Entry, why: why.into() });
+        let note = format!("{:04X}h {}: {why}; left out.", o.index, o.name);
+        let _ = writeln!(self.rust, "    // {note}");
+        self.left_out.push(LeftOut { index: o.index, sub: None, dropped: Dropped::Entry, why: why.into(), note });
     }
 
     fn leave_out(&mut self, e: &Entry, object: Option<&Object>, dropped: Dropped, why: String) {
@@ -91,17 +116,15 @@ impl Generated {
             Some(o) => (None, &o.name, format!("{:04X}h", o.index)),
             None => (Some(e.sub), &e.name, format!("{:04X}h:{:02X}", e.index, e.sub)),
         };
-        let line = match dropped {
-            Dropped::Entry => format!("    // {at} {name}: {why}; left out."),
-            Dropped::Default => format!("    // {at} {name}: default {} not carried ({why}).", show(&e.default)),
-            Dropped::Limits => {
-                format!("    // {at} {name}: limits {}..{} not carried ({why}).", show(&e.low), show(&e.high))
-            }
-            Dropped::Access => format!("    // {at} {name}: access {} not carried ({why}).", e.access.as_str()),
-            Dropped::PdoMapping => format!("    // {at} {name}: PDO mapping not carried ({why})."),
+        let note = match dropped {
+            Dropped::Entry => format!("{at} {name}: {why}; left out."),
+            Dropped::Default => format!("{at} {name}: default {} not carried ({why}).", show(&e.default)),
+            Dropped::Limits => format!("{at} {name}: limits {}..{} not carried ({why}).", show(&e.low), show(&e.high)),
+            Dropped::Access => format!("{at} {name}: access {} not carried ({why}).", e.access.as_str()),
+            Dropped::PdoMapping => format!("{at} {name}: PDO mapping not carried ({why})."),
         };
-        let _ = writeln!(self.rust, "{line}");
-        self.left_out.push(LeftOut { index: e.index, sub, dropped, why });
+        let _ = writeln!(self.rust, "    // {note}");
+        self.left_out.push(LeftOut { index: e.index, sub, dropped, why, note });
     }
 }
 
@@ -412,10 +435,10 @@ fn only_sub_zero(g: &mut Generated, o: &Object) {
 ///
 /// The application objects (2000h–FFFFh) become a struct with `#[derive(ObjectDictionary)]`, and
 /// 1000h–1FFFh a `NodeConfig` (device type, identity, names, producer heartbeat time, PDO defaults). What is not carried
-/// over is listed in the module docs, and by [`generate`] for a given file.
+/// over is listed in the module docs, and by [`rust_module`] for a given file.
 ///
 /// ```
-/// use canopen_master::eds::{to_rust, Eds};
+/// use canopen_eds::{to_rust, Eds};
 /// let eds = Eds::parse("[1000]\nParameterName=Device type\nDataType=7\nAccessType=ro\nDefaultValue=0x191\n\
 ///     [2001]\nParameterName=Setpoint\nDataType=3\nAccessType=rw\nLowLimit=-10\nHighLimit=10\nDefaultValue=0\n").unwrap();
 /// let rust = to_rust(&eds, "dev.eds");
@@ -424,25 +447,31 @@ fn only_sub_zero(g: &mut Generated, o: &Object) {
 /// assert!(rust.contains("device_type: 401,"));
 /// ```
 pub fn to_rust(eds: &Eds, source: &str) -> String {
-    generate(eds, source).rust
+    rust_module(eds, source).rust
 }
 
 /// [`to_rust`], with the list of what the module leaves out of the application objects (each also a
 /// comment in the module): what a round trip EDS → Rust → EDS may not find again.
 ///
 /// ```
-/// use canopen_master::eds::{generate, Dropped, Eds};
+/// use canopen_eds::{rust_module, Dropped, Eds};
 /// let eds = Eds::parse("[2001]\nParameterName=Complex\nDataType=0x40\n[2002]\nParameterName=Id\nDataType=7\nDefaultValue=$NODEID+1\n").unwrap();
-/// let g = generate(&eds, "dev.eds");
+/// let g = rust_module(&eds, "dev.eds");
 /// let what: Vec<_> = g.left_out.iter().map(|l| (l.index, l.dropped)).collect();
 /// assert_eq!(what, [(0x2001, Dropped::Entry), (0x2002, Dropped::Default)]);
 /// ```
-pub fn generate(eds: &Eds, source: &str) -> Generated {
+pub fn rust_module(eds: &Eds, source: &str) -> Generated {
     let mut g = Generated::default();
     let out = &mut g.rust;
-    let _ = writeln!(out, "//! Generated from {source} (CiA 306) by `canopenctl eds-to-rust`: the application objects");
-    let _ =
-        writeln!(out, "//! (2000h-FFFFh) as a derived object dictionary, and the node configuration from 1000h-1FFFh.");
+    let _ = writeln!(
+        out,
+        "//! Generated from {source} (CiA 306) by canopen-eds (`canopenctl eds-to-rust` or a build script's"
+    );
+    let _ = writeln!(
+        out,
+        "//! `canopen_eds::generate`): the application objects (2000h-FFFFh) as a derived object dictionary,"
+    );
+    let _ = writeln!(out, "//! and the node configuration from 1000h-1FFFh.");
     let _ = writeln!(out);
     let _ = writeln!(out, "#![allow(unused_imports, clippy::all)]");
     let _ = writeln!(out);
@@ -514,7 +543,12 @@ pub fn generate(eds: &Eds, source: &str) -> Generated {
 }
 
 /// PDOs a node configuration carries the defaults of, each way (`canopen_core::Sizes`: RPDO 1-4, TPDO 1-4).
-pub(crate) const CARRIED_PDOS: u16 = 4;
+const CARRIED_PDOS: u16 = 4;
+
+/// The mapping entries a derived node takes per PDO: canopen-core's `pdo::mapping::MAX_ENTRIES` without its
+/// feature `pdo-mapping-64` (this crate does not depend on the core, so that a build script needs nothing but
+/// std; a count limit 0..n with n below it is `max_mapped`, one at it limits nothing).
+const MAX_MAPPED: usize = 8;
 
 /// The CAN-ID of the pre-defined connection set for PDO `k` (0-based, 0..4; COB-05/06): 180h/200h + 100h·k.
 fn predefined_pdo_id(tpdo: bool, k: u16) -> u32 {
@@ -540,7 +574,7 @@ fn pdo_defaults(g: &mut Generated, eds: &Eds, field: &str, comm: u16, map: u16) 
         }
         let mut fields = Vec::new();
         let mut max_mapped = None;
-        let max = canopen_core::pdo::mapping::MAX_ENTRIES;
+        let max = MAX_MAPPED;
         let count = value(map + k, 0).and_then(|(_, c)| usize::try_from(c).ok()).filter(|&c| c <= max);
         let subs = [(comm + k, [1u8, 2, 3, 5, 6].as_slice()), (map + k, [0u8, 1, 2, 3, 4, 5, 6, 7, 8].as_slice())];
         for (index, subs) in subs {
@@ -677,7 +711,7 @@ mod tests {
              [1800sub5]\nDataType=6\nDefaultValue=100\n",
         )
         .unwrap();
-        let g = generate(&eds, "pdo.eds");
+        let g = rust_module(&eds, "pdo.eds");
         assert!(g.rust.contains("use canopen_core::pdo::PdoDefault;"));
         assert!(
             g.rust.contains(
@@ -841,7 +875,7 @@ AccessType=rw
 
     #[test]
     fn real_world_shapes_generate() {
-        let g = generate(&Eds::parse(REAL).unwrap(), "real.eds");
+        let g = rust_module(&Eds::parse(REAL).unwrap(), "real.eds");
         let has = |s: &str| assert!(g.rust.contains(s), "no `{s}` in:\n{}", g.rust);
         has("name = \"Negative\", access = \"rw\", min = -2147483648, max = -1)]");
         has("name = \"Range\", access = \"rw\", min = -10, max = 10)]");
