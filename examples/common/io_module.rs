@@ -185,8 +185,8 @@ const ANALOG_OUTPUTS_MAP: [u32; 4] = map(0x6411, 16);
 /// What the EDS says beyond the dictionary.
 pub const EDS_INFO: EdsInfo = EdsInfo {
     file_name: "io_module.eds",
-    description: "canopen-rs example node: CiA 401-style I/O module",
-    vendor_name: "canopen-rs",
+    description: "canopener example node: CiA 401-style I/O module",
+    vendor_name: "canopener",
     product_name: "canopen example node",
     order_code: "IO-1",
     ..EdsInfo::DEFAULT
