@@ -73,7 +73,7 @@ use clap::Parser;
 use io_module::{IoNode, Store, CONFIG};
 
 /// A CiA 301 CANopen node (a CiA 401-style I/O module) on SocketCAN: serves SDO, PDO, SYNC, EMCY,
-/// heartbeat and LSS to any master on the bus, e.g. python canopen or `cargo run --example master`.
+/// heartbeat and LSS to any master on the bus, e.g. python canopen or `cargo run -p canopenctl -- read 5 0x1008 0`.
 #[derive(Parser, Debug)]
 #[command(
     version,

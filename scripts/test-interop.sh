@@ -8,7 +8,8 @@
 #   3. tests/vcan_master.rs: canopen-master with ten nodes at once, a stopped node's time-out while its
 #      heartbeats arrive, 64 KiB block/segmented byte-exact and 1 MiB block+CRC each way, timed, and the
 #      master surviving vcan1 going down and up (transfers in flight fail at once, later ones work);
-#   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS);
+#   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS, and
+#      what it took over from the retired examples/master.rs: bench, nmt --wait, block without CRC);
 #   5. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
 #      node, on the EDS the node wrote with --eds; tests/python/test_fixed_mapping.py: the same master and the
 #      example node built without pdo-dynamic-mapping (const mapping records, PDO-30);
@@ -50,7 +51,7 @@ echo "== our SDO client + load test on the example node"
 cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test-threads 1
 echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed, vcan1 down/up"
 cargo test --release -q --test vcan_master -- --include-ignored --nocapture --test-threads 1
-echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, program download, LSS)"
+echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, program download, LSS, bench)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
 echo "== python canopen as the master"
 NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \

@@ -1,5 +1,5 @@
 //! The example node's dictionary: a CiA 401-style I/O module (device type 0x000F_0191: profile 401, digital
-//! and analogue inputs and outputs), shared by `examples/node.rs`, `examples/master.rs` and the vcan tests
+//! and analogue inputs and outputs), shared by `examples/node.rs` and the vcan tests
 //! (`#[path]`-included).
 //!
 //! Objects (besides the communication profile the core provides: 1000h, 1001h, 1008h–100Ah, 100Ch, 100Dh,
