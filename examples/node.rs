@@ -8,6 +8,7 @@
 //! cargo run --example node -- --store /var/tmp/node5         # 1010h/1011h in /var/tmp/node5.a and .b
 //! cargo run --example node -- --node-id 255 --store /tmp/n   # wait for an LSS master, keep what it stores
 //! cargo run --example node -- --program /tmp/image.bin       # 1F50h downloads go to /tmp/image.bin
+//! cargo run --example node --features pdo-mapping-64         # PDO mappings of up to 64 entries, not 8
 //! cargo run --example node -- --help
 //! ```
 //!
@@ -73,7 +74,7 @@ use clap::Parser;
 use io_module::{IoNode, Store, CONFIG};
 
 /// A CiA 301 CANopen node (a CiA 401-style I/O module) on SocketCAN: serves SDO, PDO, SYNC, EMCY,
-/// heartbeat and LSS to any master on the bus, e.g. python canopen or `cargo run --example master`.
+/// heartbeat and LSS to any master on the bus, e.g. python canopen or `cargo run -p canopenctl -- read 5 0x1008 0`.
 #[derive(Parser, Debug)]
 #[command(
     version,

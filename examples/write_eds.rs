@@ -24,8 +24,8 @@ fn main() {
     let od = SdoRecordsDesc::of::<WithSdoServers<Sizes, 2, 1>>(all_types::node_od());
     let info = EdsInfo {
         file_name: "all_types.eds",
-        description: "canopen-rs test device with every data type",
-        vendor_name: "canopen-rs",
+        description: "canopener test device with every data type",
+        vendor_name: "canopener",
         product_name: "All types",
         order_code: "AT-1",
         ..EdsInfo::DEFAULT

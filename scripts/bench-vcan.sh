@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SDO throughput over vcan0 (here if it exists, else inside ONE with-vcan VM: scripts/vcan-run.sh), release builds:
-#   - our client (examples/master.rs `bench`) <-> our node (examples/node.rs, tokio runner): 1 MiB each way by
+#   - our client (`canopenctl bench`, on canopen-master) <-> our node (examples/node.rs, tokio runner): 1 MiB each way by
 #     block transfer with CRC (16 transfers of 64 KiB, the 2005h DOMAIN's capacity), 128 KiB segmented;
 #   - the same node with the blocking runner (--blocking), block+CRC only;
 #   - python canopen <-> our node: 64 KiB block download and upload with CRC (python is the bottleneck).
@@ -18,20 +18,21 @@ cd "$(dirname "$0")/.."
 SIZE=${1:-1048576}
 source scripts/bench-setup.sh
 cargo build --release --examples
+cargo build --release -p canopenctl
 cat > target/bench-in-vm.sh <<INNER
 set -euo pipefail
-N=target/release/examples/node; M=target/release/examples/master
+N=target/release/examples/node; M=target/release/canopenctl
 \$N --eds target/bench.eds >/dev/null
 run_node() { \$N --quiet --heartbeat 1000 "\$@" > target/bench-node.log 2>&1 & echo \$!; }
 pid=\$(run_node); sleep 0.5
 echo "== our client <-> our node (tokio runner)"
-\$M bench --size $SIZE --segmented-size 131072 --node-pid \$pid
+\$M bench 5 --size $SIZE --segmented-size 131072 --node-pid \$pid
 echo "== python canopen <-> our node (tokio runner)"
 python3 tests/python/bench_python.py target/bench.eds \$pid 65536
 kill \$pid; wait \$pid 2>/dev/null || true
 pid=\$(run_node --blocking); sleep 0.5
 echo "== our client <-> our node (blocking runner)"
-\$M bench --size $SIZE --node-pid \$pid
+\$M bench 5 --size $SIZE --node-pid \$pid
 kill \$pid; wait \$pid 2>/dev/null || true
 calls() { awk '\$NF=="total"{t=\$4} \$NF=="clock_gettime"{c=\$4} END{print t+0, c+0}' "\$1"; }
 hz=\$(getconf CLK_TCK)

@@ -8,9 +8,10 @@
 #   3. tests/vcan_master.rs: canopen-master with ten nodes at once, a stopped node's time-out while its
 #      heartbeats arrive, 64 KiB block/segmented byte-exact and 1 MiB block+CRC each way, timed, and the
 #      master surviving vcan1 going down and up (transfers in flight fail at once, later ones work);
-#   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS);
+#   4. canopenctl/tests/cli.rs: the CLI against the example node binary (SDO, NMT, monitor, DOMAIN, LSS, and
+#      what it took over from the retired examples/master.rs: bench, nmt --wait, block without CRC);
 #   5. tests/python/test_interop.py: python canopen 2.4.1 + python-can 4.6.1 as the master of the example
-#      node, on the EDS the node wrote with --eds; tests/python/test_fixed_mapping.py: the same master and the
+#      node built with 64 mapping entries per PDO (pdo-mapping-64), on the EDS the node wrote with --eds; tests/python/test_fixed_mapping.py: the same master and the
 #      example node built without pdo-dynamic-mapping (const mapping records, PDO-30);
 #   6. tests/vcan_master_python.rs: canopen-master as the master of python canopen's LocalNode (ten at once).
 # Usage: scripts/test-interop.sh   (SKIP_PIP=1 skips the pip install). Fails (non-zero) if neither the
@@ -31,6 +32,10 @@ fixed=$(python3 -c 'import tomllib; d = tomllib.load(open("Cargo.toml", "rb"))["
 print(",".join(f for f in d if f != "pdo-dynamic-mapping"))')
 cargo build --example node --no-default-features --features "$fixed"
 cp target/debug/examples/node target/debug/examples/node-fixed-mapping
+# The example node with 64 mapping entries per PDO (canopen-core's pdo-mapping-64, off by default: a feature is
+# one per build, and the root package's other tests are about 8) for tests/python/test_interop.py, aside too.
+cargo build --example node --features pdo-mapping-64
+cp target/debug/examples/node target/debug/examples/node-mapping-64
 cargo build --examples
 cargo test --no-run -p canopen-socketcan --test vcan
 # The load test measures the node as it is deployed: optimised (a debug build cannot keep up with a flood plus
@@ -50,10 +55,10 @@ echo "== our SDO client + load test on the example node"
 cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test-threads 1
 echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed, vcan1 down/up"
 cargo test --release -q --test vcan_master -- --include-ignored --nocapture --test-threads 1
-echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, program download, LSS)"
+echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, program download, LSS, bench)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
 echo "== python canopen as the master"
-NODE_BIN=target/debug/examples/node NODE_LOG=target/interop-node.log \
+NODE_BIN=target/debug/examples/node-mapping-64 NODE_LOG=target/interop-node.log \
     python3 -m pytest -q -rs -o faulthandler_timeout=300 tests/python/test_interop.py
 echo "== python canopen as the master of the node with a fixed PDO mapping (PDO-30)"
 NODE_BIN_FIXED=target/debug/examples/node-fixed-mapping python3 -m pytest -q -rs -o faulthandler_timeout=300 \

@@ -290,7 +290,7 @@ fn merged_with_the_comm_profile() {
     let mut od = node_od();
     assert_eq!(read(&od, 0x1000, 0).unwrap(), [0x91, 0x01, 0x01, 0x00]);
     assert_eq!(read(&od, 0x1018, 2).unwrap(), [0x34, 0x12, 0, 0]);
-    assert_eq!(read(&od, 0x1008, 0).unwrap(), b"canopen-rs all types");
+    assert_eq!(read(&od, 0x1008, 0).unwrap(), b"canopener all types");
     assert_eq!(read(&od, 0x2010, 0).unwrap(), [200]);
     od.write(0x1017, 0, &[0x64, 0]).unwrap();
     assert_eq!(od.comm.params.heartbeat_time_ms, 100);

@@ -1,8 +1,10 @@
 //! The parts of `canopenctl` worth testing without a bus: numbers in decimal or 0x-hex, values of every
 //! CiA 301 basic type (negatives, floats, strings, bytes) to and from their SDO bytes, and the one-line
-//! decoding of any CANopen frame that `canopenctl monitor` prints.
+//! decoding of any CANopen frame that `canopenctl monitor` prints; and [`bench`](mod@bench), the SDO throughput bench.
 
 #![warn(missing_docs)]
+
+pub mod bench;
 
 use std::fmt::Write as _;
 

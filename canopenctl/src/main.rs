@@ -8,7 +8,8 @@ use std::time::Duration;
 use canopen_core::wire::lss::{IdentityField, LssMode};
 use canopen_core::NodeId;
 use canopen_eds::{data_type_name, Eds};
-use canopen_master::{Error, Master, Mode, NmtCommand, BLOCK};
+use canopen_master::{Error, Master, Mode, NmtCommand, SocketCan, StateCode, BLOCK};
+use canopenctl::bench::{Bench, Counted};
 use canopenctl::{guess, monitor_line, parse_in, parse_node, Type};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
@@ -51,12 +52,19 @@ enum Command {
         /// The data type; without it a number takes the object's size (read first), text is a string.
         #[arg(long = "type")]
         ty: Option<Type>,
+        /// A segmented transfer even when the value fits an expedited one.
+        #[arg(long)]
+        segmented: bool,
     },
     /// Send an NMT command to NODE (or `all`).
     Nmt {
         command: NmtArg,
         /// A node-ID, or `all`.
         node: String,
+        /// Wait up to 3 s for NODE's heartbeat to report the state the command leads to (boot-up after a
+        /// reset); exit 1 if it does not.
+        #[arg(long)]
+        wait: bool,
     },
     /// LSS (CiA 305): find and configure nodes without a node-ID.
     Lss {
@@ -96,6 +104,27 @@ enum Command {
         file: std::path::PathBuf,
         #[arg(long, default_value = "block")]
         mode: ModeArg,
+    },
+    /// SDO throughput to and from a DOMAIN of NODE, every byte checked: block transfer with CRC (and
+    /// segmented with --segmented-size), KiB/s and frames on the bus each way.
+    Bench {
+        #[arg(value_parser = parse_node)]
+        node: u8,
+        /// Bytes each way.
+        #[arg(long, default_value_t = 1 << 20)]
+        size: usize,
+        /// The DOMAIN.
+        #[arg(long, default_value = "0x2005", value_parser = parse_in::<u16>)]
+        index: u16,
+        /// Bytes per transfer (the DOMAIN's capacity).
+        #[arg(long, default_value_t = 65_536, value_parser = clap::value_parser!(u32).range(1..))]
+        chunk: u32,
+        /// Also segmented transfers of this many bytes each way (0: none).
+        #[arg(long, default_value_t = 0)]
+        segmented_size: usize,
+        /// The node's process ID: print its CPU time per frame (from /proc/PID/stat).
+        #[arg(long)]
+        node_pid: Option<u32>,
     },
 }
 
@@ -147,8 +176,14 @@ enum NmtArg {
 
 #[derive(Clone, Copy, ValueEnum)]
 enum ModeArg {
+    /// Expedited up to 4 bytes, else segmented.
+    Auto,
+    /// Segmented transfer.
     Segmented,
+    /// Block transfer with CRC.
     Block,
+    /// Block transfer without CRC.
+    BlockNoCrc,
 }
 
 #[derive(Subcommand)]
@@ -231,6 +266,9 @@ fn check(cli: &Cli) -> Result<(), String> {
         | Command::Upload { at, .. }
         | Command::Download { at, .. } => at.resolve(eds.as_ref()).map(|_| ()),
         Command::Dump { .. } if eds.is_none() => Err("dump needs the node's EDS: --eds FILE".into()),
+        Command::Nmt { node, wait: true, .. } if node.eq_ignore_ascii_case("all") => {
+            Err("nmt --wait needs one node, not all".into())
+        }
         _ => Ok(()),
     }
 }
@@ -251,7 +289,10 @@ async fn run(cli: Cli) -> Result<(), String> {
     let typed = |ty: Option<Type>, index: u16, sub: u8| {
         ty.or_else(|| eds.and_then(|e| e.entry(index, sub)).and_then(|e| Type::from_data_type(e.data_type)))
     };
-    let master = Master::open(&cli.iface).map_err(text)?.with_sdo_timeout(Duration::from_millis(cli.timeout));
+    // The socket counts its frames, for `bench`.
+    let io = Counted::new(SocketCan::open(&cli.iface).map_err(|e| text(e.into()))?);
+    let frames = io.count();
+    let master = Master::new(io).with_sdo_timeout(Duration::from_millis(cli.timeout));
     let mut out = std::io::stdout().lock();
     let mut say = |line: String| {
         // A closed pipe (`| head`) ends the output, not the program with a panic.
@@ -283,7 +324,7 @@ async fn run(cli: Cli) -> Result<(), String> {
                 None => guess(&bytes),
             });
         }
-        Command::Write { at, value, ty } => {
+        Command::Write { at, value, ty, segmented } => {
             let (node, index, sub) = at.resolve(eds)?;
             let ty = match typed(ty, index, sub) {
                 Some(t) => t,
@@ -298,9 +339,10 @@ async fn run(cli: Cli) -> Result<(), String> {
                 }
             };
             let bytes = ty.encode(&value)?;
-            master.download(node, index, sub, &bytes, Mode::Auto).await.map_err(text)?;
+            let mode = if segmented { Mode::Segmented } else { Mode::Auto };
+            master.download(node, index, sub, &bytes, mode).await.map_err(text)?;
         }
-        Command::Nmt { command, node } => {
+        Command::Nmt { command, node, wait } => {
             let target = if node.eq_ignore_ascii_case("all") { 0 } else { parse_node(&node)? };
             let command = match command {
                 NmtArg::Start => NmtCommand::Start,
@@ -309,7 +351,28 @@ async fn run(cli: Cli) -> Result<(), String> {
                 NmtArg::Reset => NmtCommand::ResetNode,
                 NmtArg::ResetComm => NmtCommand::ResetCommunication,
             };
+            // Subscribed before the command goes out: a boot-up right after it is not missed.
+            let mut beats = master.heartbeats();
             master.nmt(target, command).await.map_err(text)?;
+            if wait {
+                let state = match command {
+                    NmtCommand::Start => StateCode::Operational,
+                    NmtCommand::Stop => StateCode::Stopped,
+                    NmtCommand::EnterPreOperational => StateCode::PreOperational,
+                    NmtCommand::ResetNode | NmtCommand::ResetCommunication => StateCode::BootUp,
+                };
+                let until = tokio::time::Instant::now() + Duration::from_secs(3);
+                loop {
+                    match tokio::time::timeout_at(until, beats.recv()).await {
+                        Ok(Ok(hb)) if hb.node == target && hb.state() == Some(state) => break,
+                        Ok(Ok(_)) | Ok(Err(tokio::sync::broadcast::error::RecvError::Lagged(_))) => {}
+                        Ok(Err(tokio::sync::broadcast::error::RecvError::Closed)) | Err(_) => {
+                            return Err(format!("node {target} did not report {state:?} within 3 s"));
+                        }
+                    }
+                }
+                say(format!("node {target} reports {state:?}"));
+            }
         }
         Command::Lss { command } => {
             let mut lss = master.lss().await.map_err(text)?.with_timeout(Duration::from_millis(cli.timeout.min(500)));
@@ -419,6 +482,18 @@ async fn run(cli: Cli) -> Result<(), String> {
             bar.done();
             say(format!("{len} bytes into {}", file.display()));
         }
+        Command::Bench { node, size, index, chunk, segmented_size, node_pid } => {
+            let mut runs =
+                vec![Bench { node, index, size, chunk: chunk as usize, mode: BLOCK, label: "block+CRC", node_pid }];
+            if segmented_size > 0 {
+                runs.push(Bench { size: segmented_size, mode: Mode::Segmented, label: "segmented", ..runs[0].clone() });
+            }
+            for run in &runs {
+                for line in run.run(&master, &frames).await? {
+                    say(line);
+                }
+            }
+        }
         Command::Download { at, file, mode } => {
             let (node, index, sub) = at.resolve(eds)?;
             let mut f = std::fs::File::open(&file).map_err(|e| format!("{}: {e}", file.display()))?;
@@ -438,8 +513,10 @@ async fn run(cli: Cli) -> Result<(), String> {
 impl From<ModeArg> for Mode {
     fn from(m: ModeArg) -> Mode {
         match m {
+            ModeArg::Auto => Mode::Auto,
             ModeArg::Segmented => Mode::Segmented,
             ModeArg::Block => BLOCK,
+            ModeArg::BlockNoCrc => Mode::Block { crc: false, blksize: 127, pst: 0 },
         }
     }
 }

@@ -47,9 +47,15 @@ fn usage_errors_exit_2_with_the_reason() {
     let o = ctl(&["read", "5", "0x1000", "0", "--type", "u33"]);
     assert!(stderr(&o).contains("unknown type"), "{}", stderr(&o));
     let help = stdout(&ctl(&["--help"]));
-    for cmd in ["scan", "read", "write", "nmt", "lss", "monitor", "upload", "download"] {
+    for cmd in ["scan", "read", "write", "nmt", "lss", "monitor", "upload", "download", "bench"] {
         assert!(help.contains(cmd), "--help lacks {cmd}: {help}");
     }
+    // What the retired `examples/master.rs` checked of its help: what it is for, and one command line.
+    assert!(help.contains("CANopen (CiA 301) master") && help.contains("Example: canopenctl"), "{help}");
+    let o = ctl(&["nmt", "start", "all", "--wait"]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("--wait needs one node"), "{}", stderr(&o));
+    let o = ctl(&["bench", "5", "--chunk", "0"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
 
 #[test]
@@ -125,16 +131,59 @@ fn the_cli_drives_the_example_node() {
     let seen = ok(&["monitor", "--count", "1"]);
     assert!(seen.contains("heartbeat node 5: pre-operational"), "{seen}");
 
-    let dir = std::env::temp_dir().join(format!("canopenctl-{}", std::process::id()));
+    domain_round_trip(50_000, &[(None, "segmented")]);
+}
+
+/// Moves `len` bytes into the 2005h DOMAIN of node 5 and back with `canopenctl download` and `upload`, once per
+/// (download mode, or the default; upload mode), and checks every byte.
+fn domain_round_trip(len: u32, modes: &[(Option<&str>, &str)]) {
+    let dir = std::env::temp_dir().join(format!("canopenctl-{}-{len}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (src, back) = (dir.join("in.bin"), dir.join("out.bin"));
-    let data: Vec<u8> = (0..50_000u32).map(|i| (i * 7 % 251) as u8).collect();
+    let data: Vec<u8> = (0..len).map(|i| (i * 7 % 251) as u8).collect();
     std::fs::write(&src, &data).unwrap();
     let (s, b) = (src.to_str().unwrap(), back.to_str().unwrap());
-    assert!(ok(&["download", "5", "0x2005", "0", s]).contains("50000 bytes"));
-    assert!(ok(&["upload", "5", "0x2005", "0", b, "--mode", "segmented"]).contains("50000 bytes"));
-    assert!(std::fs::read(&back).unwrap() == data, "the DOMAIN came back different");
+    let moved = format!("{len} bytes");
+    for &(down, up) in modes {
+        let _ = std::fs::remove_file(&back);
+        let mut args = vec!["download", "5", "0x2005", "0", s];
+        args.extend(down.map(|m| ["--mode", m]).iter().flatten());
+        assert!(ok(&args).contains(&moved), "{down:?}");
+        assert!(ok(&["upload", "5", "0x2005", "0", b, "--mode", up]).contains(&moved), "{up}");
+        assert!(std::fs::read(&back).unwrap() == data, "{down:?}/{up}: the DOMAIN came back different");
+    }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// What `canopenctl` took over from the retired `examples/master.rs`: `bench` (block with CRC and segmented,
+/// every byte checked, the frames on the bus and the node's CPU time per frame), `nmt --wait` (the state the
+/// node's heartbeat reports, boot-up after a reset, exit 1 when it never comes), `write --segmented`, and
+/// files moved by block transfer without CRC and in `auto` mode.
+#[test]
+#[ignore = "needs SocketCAN (vcan0) and the example node: scripts/test-interop.sh runs it (scripts/vcan-run.sh)"]
+fn the_cli_does_what_the_master_example_did() {
+    let node = NodeProcess::start(&["--node-id", "5", "--heartbeat", "100"]);
+    let pid = node.0.id().to_string();
+    let out = ok(&["bench", "5", "--size", "10000", "--chunk", "4096", "--segmented-size", "3000", "--node-pid", &pid]);
+    for line in [
+        "bench block+CRC download: 10000 bytes in 3 transfers",
+        "bench block+CRC upload: 5424 bytes in 3 transfers",
+        "bench segmented download: 3000 bytes in 1 transfers",
+        "bench segmented upload: 3000 bytes in 1 transfers",
+    ] {
+        assert!(out.contains(line), "no '{line}' in:\n{out}");
+    }
+    assert_eq!(out.matches("us/frame").count(), 4, "{out}");
+    assert!(!out.contains(" 0 frames"), "{out}");
+
+    assert_eq!(ok(&["nmt", "start", "5", "--wait"]).trim(), "node 5 reports Operational");
+    assert_eq!(ok(&["nmt", "reset-comm", "5", "--wait"]).trim(), "node 5 reports BootUp");
+    let e = fails(&["nmt", "stop", "9", "--wait"]);
+    assert!(e.contains("node 9 did not report Stopped within 3 s"), "{e}");
+
+    ok(&["write", "5", "0x2001", "0", "-3", "--type", "i16", "--segmented"]);
+    assert_eq!(ok(&["read", "5", "0x2001", "0", "--type", "i16"]).trim(), "-3");
+    domain_round_trip(20_000, &[(Some("block-no-crc"), "auto"), (Some("auto"), "block-no-crc")]);
 }
 
 /// CiA 302-3 program download through OUR SDO client (canopenctl on canopen-master; PRG-01, PRG-02, PRG-05,

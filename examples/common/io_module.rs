@@ -1,10 +1,11 @@
 //! The example node's dictionary: a CiA 401-style I/O module (device type 0x000F_0191: profile 401, digital
-//! and analogue inputs and outputs), shared by `examples/node.rs`, `examples/master.rs` and the vcan tests
+//! and analogue inputs and outputs), shared by `examples/node.rs` and the vcan tests
 //! (`#[path]`-included).
 //!
 //! Objects (besides the communication profile the core provides: 1000h, 1001h, 1008h–100Ah, 100Ch, 100Dh,
 //! 1003h, 1010h/1011h (with a store), 1014h/1015h, 1016h with 4 consumer entries, 1017h = 1000 ms, 1018h, 1200h,
-//! an additional SDO server 1201h, RPDO/TPDO 1..4 at 1400h–1403h/1600h–1603h and 1800h–1803h/1A00h–1A03h):
+//! an additional SDO server 1201h, an SDO client record 1280h, RPDO/TPDO 1..4 at 1400h–1403h/1600h–1603h and
+//! 1800h–1803h/1A00h–1A03h, up to 8 mapping entries each, 64 built with `--features pdo-mapping-64`):
 //!
 //! | index | type | access | what |
 //! |---|---|---|---|
@@ -26,7 +27,16 @@
 //!
 //! The additional SDO server 1201h starts invalid (COB-IDs 8000_0000h, as after every reset communication):
 //! a master configures its COB-IDs through the default server 1200h (sub 02h, then sub 01h), then talks to
-//! both servers at once (SDO-54, SDO-55; `tests/python/test_interop.py`).
+//! both servers at once (SDO-54, SDO-55; `tests/python/test_interop.py`). The SDO client record 1280h
+//! (SDO-56) is there for a master to configure (COB-IDs and the server's node-ID); the example's
+//! application runs no client on it.
+//!
+//! Built with the feature `pdo-mapping-64` (`cargo run --example node --features pdo-mapping-64`), every
+//! PDO mapping takes 64 entries (sub 01h–40h, CiA 301's maximum, PDO-30), so that foreign masters can test
+//! long mappings of bit-sized entries against this node; scripts/test-interop.sh runs python canopen
+//! against that build. It is not the default: a Cargo feature is one per build, and the root package's
+//! tests (store sizes, vectors) and benches are about the default 8; the firmware example never turns it
+//! on (about 670 B of RAM per PDO).
 //!
 //! Parameters are stored (1010h/1011h) in a [`Store`]: a [`FileStorage`] with `--store FILE`, else none.
 //!
@@ -185,16 +195,16 @@ const ANALOG_OUTPUTS_MAP: [u32; 4] = map(0x6411, 16);
 /// What the EDS says beyond the dictionary.
 pub const EDS_INFO: EdsInfo = EdsInfo {
     file_name: "io_module.eds",
-    description: "canopen-rs example node: CiA 401-style I/O module",
-    vendor_name: "canopen-rs",
+    description: "canopener example node: CiA 401-style I/O module",
+    vendor_name: "canopener",
     product_name: "canopen example node",
     order_code: "IO-1",
     ..EdsInfo::DEFAULT
 };
 
 /// The example node's capacities: 4 heartbeat consumers, transmit queue 32, event queue 32, 4 RPDOs, 4
-/// TPDOs, and one additional SDO server 1201h.
-pub type IoSizes = WithSdoServers<Sizes<4, 32, 32, 4, 4>, 1>;
+/// TPDOs, one additional SDO server 1201h and one SDO client record 1280h.
+pub type IoSizes = WithSdoServers<Sizes<4, 32, 32, 4, 4>, 1, 1>;
 
 /// The example node type: [`IoSizes`], parameters in a [`Store`].
 pub type IoNode = canopen_core::Node<IoApp, IoSizes, Store>;
@@ -365,7 +375,7 @@ pub fn error_injection_after_reset(node: &mut IoNode) -> (u16, u16) {
 }
 
 /// The EDS text of the node (`storage`: whether 1010h/1011h announce that saving is supported): the
-/// dictionary the node serves, program download (1F50h–1F57h) and the SDO records 1200h/1201h included,
+/// dictionary the node serves, program download (1F50h–1F57h) and the SDO records 1200h/1201h/1280h included,
 /// every object in index order.
 pub fn eds_text(config: NodeConfig, storage: bool) -> String {
     let mut comm = canopen_core::profile::CommProfile::<IoSizes>::new(config);

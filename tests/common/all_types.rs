@@ -138,7 +138,7 @@ impl AllTypes {
 pub const CONFIG: NodeConfig = NodeConfig {
     device_type: 0x0001_0191,
     identity: Identity { vendor_id: 0x0000_02B6, product_code: 0x1234, revision: 0x0001_0002, serial: 42 },
-    device_name: "canopen-rs all types",
+    device_name: "canopener all types",
     hardware_version: "HW 1.0",
     software_version: "SW 0.1",
     heartbeat_time_ms: 1000,

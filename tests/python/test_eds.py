@@ -16,7 +16,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 VARS = {
     0x1000: ("Device type", dt.UNSIGNED32, "ro", 0x00010191, False, None, None),
     0x1001: ("Error register", dt.UNSIGNED8, "ro", 0, True, None, None),
-    0x1008: ("Manufacturer device name", dt.VISIBLE_STRING, "const", "canopen-rs all types", False, None, None),
+    0x1008: ("Manufacturer device name", dt.VISIBLE_STRING, "const", "canopener all types", False, None, None),
     0x1009: ("Manufacturer hardware version", dt.VISIBLE_STRING, "const", "HW 1.0", False, None, None),
     0x100A: ("Manufacturer software version", dt.VISIBLE_STRING, "const", "SW 0.1", False, None, None),
     0x100C: ("Guard time", dt.UNSIGNED16, "rw", 0, False, None, None),
@@ -244,7 +244,7 @@ def test_device_info(od):
     assert info.vendor_number == 0x2B6
     assert info.product_number == 0x1234
     assert info.revision_number == 0x00010002
-    assert info.vendor_name == "canopen-rs"
+    assert info.vendor_name == "canopener"
     assert info.product_name == "All types"
     assert info.simple_boot_up_slave is True
     assert info.nr_of_RXPDO == 4 and info.nr_of_TXPDO == 4

@@ -2,7 +2,8 @@
 SocketCAN interface. Runs only where `vcan0` exists: through scripts/vcan-run.sh (scripts/test-interop.sh);
 elsewhere every test is skipped with the reason.
 
-The node is started once per module from NODE_BIN (default target/debug/examples/node) with `--store` in a fresh
+The node is started once per module from NODE_BIN (default target/debug/examples/node; scripts/test-interop.sh
+passes the build with 64 mapping entries per PDO, `--features pdo-mapping-64`, that the 10-entry TPDO test needs) with `--store` in a fresh
 temp directory (so 1010h/1011h work and a restart of the process finds what was saved), and writes its EDS with
 `--eds` first; the master loads that EDS. Its output goes to NODE_LOG (default a temp file) for post-mortems; the
 store test restarts the process (appending to the same log).
@@ -584,6 +585,74 @@ def test_pdo_reconfigured_and_sync_driven(node, network, operational):
     assert len(frames) == 5, frames
     assert -500 <= node.tpdo[1]["Analog inputs.Analog inputs 1"].raw <= 500
     assert node.tpdo[1]["Digital inputs.Digital inputs 3"].raw in (0, 1)
+
+
+def test_tpdo_maps_ten_bit_sized_entries(node, network, operational):
+    """PDO-30: the example node's mappings take 64 entries (the core's feature pdo-mapping-64), so python
+    canopen's PDO API remaps TPDO1 to 10 entries, more than a default build's 8: 6000h:01..08 at 4 bits each
+    and 6401h:01..02 at 16 bits (64 bits), saves it, reads the count back, and receives it at every SYNC
+    with each 4-bit field holding its input."""
+    entries = len(node.object_dictionary[0x1A00]) - 1
+    assert entries == 64, f"1A00h has {entries} entries: build the node with --features pdo-mapping-64"
+    node.nmt.state = "PRE-OPERATIONAL"
+    node.tpdo.read()
+    tpdo = node.tpdo[1]
+    tpdo.clear()
+    for i in range(1, 9):
+        tpdo.add_variable(0x6000, i, length=4)
+    for i in (1, 2):
+        tpdo.add_variable(0x6401, i)
+    assert len(tpdo.map) == 10 and tpdo.length == 64, [(v.name, v.length) for v in tpdo.map]
+    tpdo.trans_type = 1  # every SYNC
+    tpdo.enabled = True
+    tpdo.save()
+    assert int.from_bytes(node.sdo.upload(0x1A00, 0), "little") == 10
+    assert int.from_bytes(node.sdo.upload(0x1A00, 1), "little") == 0x60000104
+    assert int.from_bytes(node.sdo.upload(0x1A00, 9), "little") == 0x64010110
+    assert int.from_bytes(node.sdo.upload(0x1A00, 10), "little") == 0x64010210
+    node.tpdo.read()  # back from the node, as saved
+    assert [(v.index, v.subindex, v.length) for v in node.tpdo[1].map] == (
+        [(0x6000, i, 4) for i in range(1, 9)] + [(0x6401, 1, 16), (0x6401, 2, 16)]
+    )
+    node.nmt.state = "OPERATIONAL"
+    time.sleep(0.1)
+
+    frames = []
+    node.tpdo[1].add_callback(lambda m: frames.append(bytes(m.data)))
+    for _ in range(3):
+        network.sync.transmit()
+        time.sleep(0.1)
+    assert wait_until(lambda: len(frames) >= 3, 2), frames
+    assert all(len(f) == 8 for f in frames), frames
+    # The walking bit (at most one of the eight inputs is 1; none before its first step), each in its own
+    # nibble. INTEROP: Map[i] takes positions 0..7 only (python canopen assumes 8 slots); .map[i] reaches all.
+    nibbles = [node.tpdo[1].map[i].raw for i in range(8)]
+    assert all(n in (0, 1) for n in nibbles) and sum(nibbles) <= 1, (nibbles, frames[-1].hex())
+    assert all(-500 <= node.tpdo[1].map[i].raw <= 500 for i in (8, 9)), frames[-1].hex()
+
+
+def test_sdo_client_record_1280h(node, network):
+    """SDO-56: the example node has an SDO client record 1280h, in its EDS, that a master sets through the
+    default server: the COB-IDs (valid from invalid, no ID change while valid: 0609 0030h) and the server's
+    node-ID (01h..7Fh: 0 is 0609 0032h); reset communication makes it invalid again (never stored)."""
+    record = node.sdo[0x1280]
+    assert record[0].raw == 3
+    assert (record[1].raw, record[2].raw) == (0x8000_0000, 0x8000_0000)
+    with pytest.raises(SdoAbortedError) as e:
+        record[3].raw = 0
+    assert abort_code(e) == 0x0609_0032
+    record[3].raw = 0x20
+    record[1].raw = 0x620
+    record[2].raw = 0x5A0
+    assert [record[i].raw for i in (1, 2, 3)] == [0x620, 0x5A0, 0x20]
+    with pytest.raises(SdoAbortedError) as e:
+        record[1].raw = 0x621
+    assert abort_code(e) == 0x0609_0030
+    with Heartbeats(network) as hb:
+        node.nmt.state = "RESET COMMUNICATION"
+        assert hb.wait_for(0x00, 5), hb.seen
+    time.sleep(0.2)
+    assert (record[1].raw, record[2].raw) == (0x8000_0000, 0x8000_0000)
 
 
 def test_rpdos_write_the_outputs(node, operational):
