@@ -37,9 +37,6 @@ pub(crate) struct DataField {
     pub on_write: Option<Ident>,
     pub min: Option<ConstLit>,
     pub max: Option<ConstLit>,
-    pub has_limits: bool,
-    /// The limit check of a decoded `v` (strings: inline in their arms).
-    pub limits: Ts,
     pub default: Option<ConstLit>,
     pub default_ts: Ts,
     pub member: Ident,
@@ -48,6 +45,11 @@ pub(crate) struct DataField {
 impl DataField {
     fn is_array(&self) -> bool {
         self.sub != 0 && self.n != 0
+    }
+
+    /// Whether it has a `min` or `max` (strings cannot: the attribute check refuses them).
+    fn has_limits(&self) -> bool {
+        self.min.is_some() || self.max.is_some()
     }
 }
 
@@ -240,7 +242,7 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
         if f.count_ro {
             extra.push(quote!(#core::od::data::Row::COUNT_RO));
         }
-        if matches!(f.kind, Kind::Fixed(_)) && (f.has_limits || f.check.is_some() || f.on_write.is_some()) {
+        if matches!(f.kind, Kind::Fixed(_)) && (f.has_limits() || f.check.is_some() || f.on_write.is_some()) {
             extra.push(quote!(#core::od::data::Row::CHECKS));
         }
         let with = (!extra.is_empty()).then(|| quote!(.with(#(#extra)|*)));
@@ -256,7 +258,7 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
     let defaults = defaults.iter().map(|b| Literal::u8_unsuffixed(*b));
     let mut limit_values: Vec<u8> = Vec::new();
     let mut limits = Vec::new();
-    for (pos, f) in fields.iter().enumerate().filter(|(_, f)| f.has_limits && matches!(f.kind, Kind::Fixed(_))) {
+    for (pos, f) in fields.iter().enumerate().filter(|(_, f)| f.has_limits() && matches!(f.kind, Kind::Fixed(_))) {
         let (pos, at) = (pos as u16, limit_values.len() as u16);
         let size = size_and_code(f.dt).0;
         limit_values.extend(default_bytes(f.dt, size, Some(f.min.as_ref().unwrap_or(&extreme(f.dt, false)))));
@@ -436,11 +438,9 @@ fn special_fns(core: &Ts, fields: &[DataField], number: &[u16]) -> Ts {
                 if !f.writable {
                     continue;
                 }
-                let limits = &f.limits;
                 let check_call = f.check.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(sub, &v)?;));
                 let on_write_call = f.on_write.as_ref().map(|c| quote_spanned!(c.span()=> self.#c(sub);));
                 let store = quote! {
-                    #limits
                     #check_call
                     match #w { ::core::option::Option::Some(p) => *p = v, #none => #no_sub }
                     #on_write_call

@@ -734,19 +734,79 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         }
     });
 
+    let n_entries = rows.len();
+    // A position travels as a u16 slot (`slot`, `read_slot`, the PDO handles), with
+    // u16::MAX meaning none: every position must fit below it, or a slot would name another entry.
+    if n_entries >= usize::from(u16::MAX) {
+        return Err(syn::Error::new(
+            Span::call_site(),
+            format!("{n_entries} dictionary entries: at most 65,534 (a position is a u16 slot)"),
+        ));
+    }
+    let object_indices = objects.iter().map(|o| o.index);
+    let max_sizes = data_fields.iter().filter_map(|f| match &f.kind {
+        Kind::Fixed(ty) | Kind::Text(ty) => Some(quote!(<#ty as #core::od::OdValue>::MAX_SIZE)),
+        Kind::Domain => None,
+    });
+    // What both layouts emit: the EDS tables (`OdDescribe`) and the constants around them.
+    let shell = quote! {
+        #[automatically_derived]
+        impl #ident {
+            /// The object-dictionary entries of this struct, sorted by (index, sub-index): names, defaults
+            /// and limits for the EDS writer (`OdDescribe`).
+            pub const OD_ENTRIES: &'static [#core::od::EntryDesc] = &[#(#entries),*];
+            /// The objects of this struct, sorted by index.
+            pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
+            /// The index of each object of `OD_OBJECTS`: what store/restore walks, so that a firmware
+            /// which stores its parameters does not link the names and defaults.
+            const __OD_INDICES: &'static [u16] = &[#(#object_indices),*];
+            /// The largest encoded size of a non-DOMAIN value (to size an SDO buffer for atomic writes).
+            pub const OD_MAX_VALUE_SIZE: usize = {
+                let sizes: &[usize] = &[0, #(#max_sizes),*];
+                let mut m = 0;
+                let mut i = 0;
+                while i < sizes.len() {
+                    if sizes[i] > m { m = sizes[i]; }
+                    i += 1;
+                }
+                m
+            };
+        }
+
+        const _: () = assert!(#core::od::is_sorted(#ident::OD_ENTRIES));
+        const _: () = assert!(#ident::OD_ENTRIES.len() == #n_entries);
+
+        #[automatically_derived]
+        impl #core::od::OdDescribe for #ident {
+            fn object_count(&self) -> usize {
+                Self::OD_OBJECTS.len()
+            }
+            fn object(&self, n: usize) -> ::core::option::Option<#core::od::ObjectDesc> {
+                Self::OD_OBJECTS.get(n).copied()
+            }
+            fn entry(&self, index: u16, sub: u8) -> ::core::option::Option<#core::od::EntryDesc> {
+                let pos = #core::od::lookup(Self::OD_ENTRIES, index, sub).ok()?;
+                Self::OD_ENTRIES.get(pos).copied()
+            }
+            fn object_index(&self, n: usize) -> ::core::option::Option<u16> {
+                Self::__OD_INDICES.get(n).copied()
+            }
+        }
+    };
+    let output = |layout: Ts| {
+        quote! {
+            const _: () = {
+                use #core::od::AbortCode as __AbortCode;
+                #(#type_asserts)*
+                #shell
+                #layout
+            };
+        }
+    };
+
     // `#[od(compact)]`: the dictionary as data (`canopen_core::od::data`).
     if compact {
-        return compact_impl(Compact {
-            core: &core,
-            ident,
-            type_asserts,
-            entries,
-            object_descs,
-            objects: &objects,
-            rows: &rows,
-            data_fields,
-            write_events,
-        });
+        return Ok(output(emit::data_impl(&core, ident, data_fields, write_events)));
     }
 
     let mut size_arms = Vec::new();
@@ -757,7 +817,6 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
     let mut chunk_arms = Vec::new();
     let mut end_arms = Vec::new();
     let mut abort_arms = Vec::new();
-    let mut max_sizes = Vec::new();
     let mut restores = Vec::new();
     let mut var_map_arms = Vec::new(); // the size a mapped string or DOMAIN moves in a PDO
 
@@ -784,7 +843,6 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 read_arms.push(
                     quote!(#pos => ::core::result::Result::Ok(#core::od::OdValue::read_bytes(&self.#member, offset, buf)),),
                 );
-                max_sizes.push(quote!(<#ty as #core::od::OdValue>::MAX_SIZE));
                 if r.mapped && !st.fixed {
                     var_map_arms.push(quote!(#pos => <#ty as #core::od::OdValue>::MAX_SIZE,));
                 }
@@ -959,47 +1017,15 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             },
         )
     };
-    let n_entries = rows.len();
-    // A position travels as a u16 slot (`slot`, `read_slot`, the PDO handles), with
-    // u16::MAX meaning none: every position must fit below it, or a slot would name another entry.
-    if n_entries >= usize::from(u16::MAX) {
-        return Err(syn::Error::new(
-            Span::call_site(),
-            format!("{n_entries} dictionary entries: at most 65,534 (a position is a u16 slot)"),
-        ));
-    }
     let keys = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub));
-    let object_indices = objects.iter().map(|o| o.index);
-    Ok(quote! {
-        const _: () = {
-            use #core::od::AbortCode as __AbortCode;
-            #(#type_asserts)*
-
+    Ok(output(quote! {
             #[automatically_derived]
             impl #ident {
-                /// The object-dictionary entries of this struct, sorted by (index, sub-index).
-                pub const OD_ENTRIES: &'static [#core::od::EntryDesc] = &[#(#entries),*];
                 /// Data type, access and PDO mapping of each entry of `OD_ENTRIES`; `size` is the fixed size of
                 /// the type (0 for strings and DOMAINs), not the current one.
                 const __OD_INFO: &'static [#core::od::SubInfo] = &[#(#infos),*];
-                /// The objects of this struct, sorted by index.
-                pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
-                /// The index of each object of `OD_OBJECTS`: what store/restore walks, so that a firmware
-                /// which stores its parameters does not link the names and defaults.
-                const __OD_INDICES: &'static [u16] = &[#(#object_indices),*];
                 /// The keys `index << 8 | sub` of `OD_ENTRIES`, for a cache-friendly binary search.
                 pub const OD_KEYS: &'static [u32] = &[#(#keys),*];
-                /// The largest encoded size of a non-DOMAIN value (to size an SDO buffer for atomic writes).
-                pub const OD_MAX_VALUE_SIZE: usize = {
-                    let sizes: &[usize] = &[0, #(#max_sizes),*];
-                    let mut m = 0;
-                    let mut i = 0;
-                    while i < sizes.len() {
-                        if sizes[i] > m { m = sizes[i]; }
-                        i += 1;
-                    }
-                    m
-                };
 
                 /// The current size of the entry at `pos` whose info row is `e`: the row's fixed size, or
                 /// for a string or DOMAIN its current length.
@@ -1054,8 +1080,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 }
             }
 
-            const _: () = assert!(#core::od::is_sorted(#ident::OD_ENTRIES));
-            const _: () = assert!(#ident::OD_ENTRIES.len() == #n_entries && #ident::OD_KEYS.len() == #n_entries);
+            const _: () = assert!(#ident::OD_KEYS.len() == #n_entries);
             const _: () = assert!(#ident::__OD_INFO.len() == #n_entries);
 
             #[automatically_derived]
@@ -1168,118 +1193,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                     }
                 }
             }
-
-            #[automatically_derived]
-            impl #core::od::OdDescribe for #ident {
-                fn object_count(&self) -> usize {
-                    Self::OD_OBJECTS.len()
-                }
-                fn object(&self, n: usize) -> ::core::option::Option<#core::od::ObjectDesc> {
-                    Self::OD_OBJECTS.get(n).copied()
-                }
-                fn entry(&self, index: u16, sub: u8) -> ::core::option::Option<#core::od::EntryDesc> {
-                    let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub).ok()?;
-                    Self::OD_ENTRIES.get(pos).copied()
-                }
-                fn object_index(&self, n: usize) -> ::core::option::Option<u16> {
-                    Self::__OD_INDICES.get(n).copied()
-                }
-            }
-        };
-    })
-}
-
-/// What `compact_impl` needs of `expand`.
-struct Compact<'a, E, O> {
-    core: &'a Ts,
-    ident: &'a Ident,
-    type_asserts: Vec<Ts>,
-    entries: E,
-    object_descs: O,
-    objects: &'a [Object],
-    rows: &'a [Row],
-    data_fields: Vec<DataField>,
-    write_events: bool,
-}
-
-/// The output of `#[od(compact)]`: the EDS tables as ever, and `OdData` (rows, defaults, limits, one
-/// accessor arm per field) with an `ObjectDictionary` that forwards to the core's generic path.
-fn compact_impl<E, O>(c: Compact<'_, E, O>) -> syn::Result<Ts>
-where
-    E: Iterator<Item = Ts>,
-    O: Iterator<Item = Ts>,
-{
-    let Compact { core, ident, type_asserts, entries, object_descs, objects, rows, data_fields, write_events } = c;
-    let max_sizes = data_fields
-        .iter()
-        .filter_map(|f| match &f.kind {
-            Kind::Fixed(ty) | Kind::Text(ty) => Some(quote!(<#ty as #core::od::OdValue>::MAX_SIZE)),
-            Kind::Domain => None,
-        })
-        .collect::<Vec<_>>();
-    let n_entries = rows.len();
-    // A position travels as a u16 slot (`slot`, `read_slot`, the PDO handles), with
-    // u16::MAX meaning none: every position must fit below it, or a slot would name another entry.
-    if n_entries >= usize::from(u16::MAX) {
-        return Err(syn::Error::new(
-            Span::call_site(),
-            format!("{n_entries} dictionary entries: at most 65,534 (a position is a u16 slot)"),
-        ));
-    }
-    let object_indices = objects.iter().map(|o| o.index);
-    let data_impl = emit::data_impl(core, ident, data_fields, write_events);
-    Ok(quote! {
-        const _: () = {
-            use #core::od::AbortCode as __AbortCode;
-            #(#type_asserts)*
-
-            #[automatically_derived]
-            impl #ident {
-                /// The object-dictionary entries of this struct, sorted by (index, sub-index): names,
-                /// defaults and limits for the EDS writer (`OdDescribe`). The SDO, PDO and store paths use
-                /// the compact tables of `OdData` instead, so a firmware that writes no EDS links none of it.
-                pub const OD_ENTRIES: &'static [#core::od::EntryDesc] = &[#(#entries),*];
-                /// The objects of this struct, sorted by index.
-                pub const OD_OBJECTS: &'static [#core::od::ObjectDesc] = &[#(#object_descs),*];
-                /// The index of each object of `OD_OBJECTS`: what store/restore walks, so that a firmware
-                /// which stores its parameters does not link the names and defaults.
-                const __OD_INDICES: &'static [u16] = &[#(#object_indices),*];
-                /// The largest encoded size of a non-DOMAIN value (to size an SDO buffer for atomic writes).
-                pub const OD_MAX_VALUE_SIZE: usize = {
-                    let sizes: &[usize] = &[0, #(#max_sizes),*];
-                    let mut m = 0;
-                    let mut i = 0;
-                    while i < sizes.len() {
-                        if sizes[i] > m { m = sizes[i]; }
-                        i += 1;
-                    }
-                    m
-                };
-            }
-
-            const _: () = assert!(#core::od::is_sorted(#ident::OD_ENTRIES));
-            const _: () = assert!(#ident::OD_ENTRIES.len() == #n_entries);
-
-            #data_impl
-
-            #[automatically_derived]
-            impl #core::od::OdDescribe for #ident {
-                fn object_count(&self) -> usize {
-                    Self::OD_OBJECTS.len()
-                }
-                fn object(&self, n: usize) -> ::core::option::Option<#core::od::ObjectDesc> {
-                    Self::OD_OBJECTS.get(n).copied()
-                }
-                fn entry(&self, index: u16, sub: u8) -> ::core::option::Option<#core::od::EntryDesc> {
-                    let pos = #core::od::lookup(Self::OD_ENTRIES, index, sub).ok()?;
-                    Self::OD_ENTRIES.get(pos).copied()
-                }
-                fn object_index(&self, n: usize) -> ::core::option::Option<u16> {
-                    Self::__OD_INDICES.get(n).copied()
-                }
-            }
-        };
-    })
+    }))
 }
 
 fn record_names(fields: &syn::FieldsNamed) -> syn::Result<Vec<(u16, String)>> {
@@ -1352,6 +1266,26 @@ fn field_rows(
     let (access, readable, writable) = access_tokens(core, &a.access)?;
     let (pdo, mapped) = pdo_tokens(core, &a.pdo)?;
     let ty = &field.ty;
+    // The field's row of the data table (`#[od(compact)]`), before hooks, limits and default.
+    let plain = |sub: u8, n: u8, dt: &'static str, kind: Kind| DataField {
+        index,
+        sub,
+        n,
+        dt,
+        kind,
+        access: access.clone(),
+        pdo: pdo.clone(),
+        writable,
+        mapped,
+        count_ro: false,
+        check: None,
+        on_write: None,
+        min: None,
+        max: None,
+        default: None,
+        default_ts: quote!(::core::option::Option::None),
+        member: fident.clone(),
+    };
 
     if a.domain {
         if let Some((_, sp)) = a.count_access {
@@ -1379,8 +1313,8 @@ fn field_rows(
             name: name.clone(),
             numbered: false,
             dt: "Domain",
-            access,
-            pdo,
+            access: access.clone(),
+            pdo: pdo.clone(),
             mapped,
             max_size: quote!(usize::MAX),
             // The EDS text only (`eds_default`): the node neither applies nor checks it.
@@ -1394,27 +1328,7 @@ fn field_rows(
             span: key_span,
             field: fname.into(),
         };
-        let data = DataField {
-            index,
-            sub: 0,
-            n: 1,
-            dt: "Domain",
-            kind: Kind::Domain,
-            access: row.access.clone(),
-            pdo: row.pdo.clone(),
-            writable,
-            mapped,
-            count_ro: false,
-            check: None,
-            on_write: None,
-            min: None,
-            max: None,
-            has_limits: false,
-            limits: quote!(),
-            default: None,
-            default_ts: quote!(::core::option::Option::None),
-            member: fident.clone(),
-        };
+        let data = plain(0, 1, "Domain", Kind::Domain);
         return Ok((vec![row], Some(Object { index, name, code: "Var", span: key_span, field: fname.into() }), data));
     }
 
@@ -1545,25 +1459,14 @@ fn field_rows(
     };
 
     let data = |sub: u8, n: u8| DataField {
-        index,
-        sub,
-        n,
-        dt: st.dt,
-        kind: if st.fixed { Kind::Fixed(elem_ty.clone()) } else { Kind::Text(elem_ty.clone()) },
-        access: access.clone(),
-        pdo: pdo.clone(),
-        writable,
-        mapped,
         count_ro: count_access.is_some(),
         check: a.check.clone(),
         on_write: a.on_write.clone(),
         min: a.min.as_ref().map(|m| m.0.clone()),
         max: a.max.as_ref().map(|m| m.0.clone()),
-        has_limits: a.min.is_some() || a.max.is_some(),
-        limits: limits.clone(),
         default: a.default.as_ref().map(|d| d.0.clone()),
         default_ts: default.clone(),
-        member: fident.clone(),
+        ..plain(sub, n, st.dt, if st.fixed { Kind::Fixed(elem_ty.clone()) } else { Kind::Text(elem_ty.clone()) })
     };
     let make = |sub: u8, name: String, numbered: bool, member: Ts| Row {
         index,
