@@ -23,7 +23,7 @@
 //! slice), each a jump table whose arm adds the field's offset to `self`. Strings and DOMAINs (variable
 //! size, streamed by SDO) keep generated code per field (`special_*`), as do the application's hooks.
 //! The `#[derive(ObjectDictionary)]` macro writes all of it; its `ObjectDictionary` methods call the
-//! functions here ([`info`], [`read`], [`write`], ...), which are generic over the dictionary, so each
+//! functions here ([`info`], [`read`], [`write()`], ...), which are generic over the dictionary, so each
 //! dictionary type gets one copy of them and every object is a few bytes of its tables.
 
 use super::{AbortCode, Access, DataType, OdValue, PdoDir, PdoHandle, PdoMapping, SubInfo};
@@ -971,7 +971,7 @@ pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -
 }
 
 /// [`ObjectDictionary::pdo_write`](super::ObjectDictionary::pdo_write): limits and hooks apply as for
-/// [`write`]; a read-only row is 0601 0002h whatever the handle says.
+/// [`write()`]; a read-only row is 0601 0002h whatever the handle says.
 ///
 /// ```
 /// use canopen_core::od::{data, PdoDir};
