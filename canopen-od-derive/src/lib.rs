@@ -560,12 +560,24 @@ fn pdo_tokens(core: &Ts, p: &Option<(String, Span)>) -> syn::Result<(Ts, bool)> 
     Ok((quote!(#core::od::PdoMapping::#v), true))
 }
 
+/// What the derive emits for the dictionary's accesses.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Layout {
+    /// Match arms per entry (the default).
+    Code,
+    /// `#[od(compact)]`: `od::data` tables and one accessor arm per field.
+    Data,
+    /// `#[od(compact, zerocopy)]` (or `#[od(zerocopy)]`): `od::data` tables, each field reached by its offset
+    /// in the struct's byte view.
+    Offsets,
+}
+
 /// The struct-level `#[od(...)]` keys: `crate = "path"` (the core crate's path) and `write_events = false`
 /// (no `Event::ObjectWritten` for this dictionary's entries).
-fn struct_attrs(input: &DeriveInput) -> syn::Result<(Ts, bool, bool)> {
+fn struct_attrs(input: &DeriveInput) -> syn::Result<(Ts, bool, Layout)> {
     let mut path: Ts = quote!(::canopen_core);
     let mut write_events = true;
-    let mut compact = false;
+    let mut compact = Layout::Code;
     for attr in input.attrs.iter().filter(|a| a.path().is_ident("od")) {
         attr.parse_nested_meta(|meta| {
             if meta.path.is_ident("crate") {
@@ -577,10 +589,17 @@ fn struct_attrs(input: &DeriveInput) -> syn::Result<(Ts, bool, bool)> {
                 write_events = b.value;
                 Ok(())
             } else if meta.path.is_ident("compact") {
-                compact = true;
+                compact = match compact {
+                    Layout::Code => Layout::Data,
+                    l => l,
+                };
+                Ok(())
+            } else if meta.path.is_ident("zerocopy") {
+                compact = Layout::Offsets;
                 Ok(())
             } else {
-                Err(meta.error("unknown struct-level `od` key: expected `crate`, `write_events` or `compact`"))
+                Err(meta
+                    .error("unknown struct-level `od` key: expected `crate`, `write_events`, `compact` or `zerocopy`"))
             }
         })?;
     }
@@ -804,9 +823,10 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
         }
     };
 
-    // `#[od(compact)]`: the dictionary as data (`canopen_core::od::data`).
-    if compact {
-        return Ok(output(emit::data_impl(&core, ident, data_fields, write_events)));
+    // `#[od(compact)]`: the dictionary as data (`canopen_core::od::data`); with `zerocopy`, reached by offset.
+    if compact != Layout::Code {
+        let by_offset = compact == Layout::Offsets;
+        return Ok(output(emit::data_impl(&core, ident, data_fields, write_events, by_offset)));
     }
 
     let mut size_arms = Vec::new();

@@ -78,7 +78,13 @@ enum Command {
     },
     /// Print a Rust module for an EDS: the application objects as a derived object dictionary and the
     /// node configuration (uses only canopen-core and canopen-od-derive). Needs no bus.
-    EdsToRust { file: std::path::PathBuf },
+    EdsToRust {
+        file: std::path::PathBuf,
+        /// How the struct is served: `code` (match arms, fewest instructions), `compact` (tables), or
+        /// `zerocopy` (tables and offsets, least flash; the crate needs `zerocopy` with `derive`).
+        #[arg(long, default_value = "code")]
+        layout: canopen_eds::StructLayout,
+    },
     /// Print every frame on the bus, decoded, candump style.
     Monitor {
         /// Stop after this many frames.
@@ -218,7 +224,7 @@ enum SwitchArg {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if let Command::EdsToRust { file } = &cli.command {
+    if let Command::EdsToRust { file, layout } = &cli.command {
         return match std::fs::read_to_string(file)
             .map_err(|e| e.to_string())
             .and_then(|t| Eds::parse(&t).map_err(|e| e.to_string()))
@@ -226,7 +232,7 @@ fn main() -> ExitCode {
             Ok(eds) => {
                 let name =
                     file.file_name().map_or_else(|| file.display().to_string(), |n| n.to_string_lossy().into_owned());
-                let g = canopen_eds::rust_module(&eds, &name);
+                let g = canopen_eds::rust_module_as(&eds, &name, *layout);
                 print!("{}", g.rust);
                 // What the module leaves out, on stderr too (a comment in the module says each where it is).
                 for l in &g.left_out {

@@ -258,15 +258,40 @@ macro_rules! od_data_trait {
             const KEYS: &'static [u16];
             /// One row per VAR, ARRAY and RECORD member, in (index, sub-index) order.
             const ROWS: &'static [Row];
-            /// The default values of the fixed-size fields: little-endian, grouped by data type, in field
-            /// order within a type (see [`DEFAULT_AT`](Self::DEFAULT_AT)).
+            /// The default values of the fixed-size rows whose default is not zero ([`DEFAULTED`](Self::DEFAULTED)),
+            /// little-endian, in row order: one value per VAR and RECORD member, one per ARRAY (every
+            /// element gets it); strings and DOMAINs have none here.
             const DEFAULTS: &'static [u8];
-            /// By data type code: where that type's defaults start in [`DEFAULTS`](Self::DEFAULTS).
-            const DEFAULT_AT: &'static [u16];
+            /// One bit per row (bit `r % 8` of byte `r / 8`): set when [`DEFAULTS`](Self::DEFAULTS) holds the
+            /// row's default, clear when it is zero (no bytes for the most common default).
+            const DEFAULTED: &'static [u8];
             /// The limits of the rows that have any, by increasing row.
             const LIMITS: &'static [Limit];
             /// The limit values [`Limit::at`] points into.
             const LIMIT_VALUES: &'static [u8];
+
+            /// Whether [`Row::field`] of a fixed-size row is the byte offset of its value in
+            /// [`bytes`](Self::bytes) (`#[od(compact, zerocopy)]`): no accessor is then generated, every
+            /// fixed-size value is reached through the struct's byte view.
+            const BY_OFFSET: bool = false;
+            /// With [`BY_OFFSET`](Self::BY_OFFSET): the data types (bit `code`, [`DataType`] as `u8`) of the
+            /// rows with [`Row::CHECKS`], so the decode and compare of every other type compiles away.
+            const CHECKED_TYPES: u32 = 0;
+
+            /// The struct as bytes (native byte order), with [`BY_OFFSET`](Self::BY_OFFSET); see
+            /// [`as_bytes`].
+            #[doc(hidden)]
+            #[inline]
+            fn bytes(&self) -> &[u8] {
+                &[]
+            }
+
+            /// The struct as mutable bytes, with [`BY_OFFSET`](Self::BY_OFFSET); see [`as_bytes_mut`].
+            #[doc(hidden)]
+            #[inline]
+            fn bytes_mut(&mut self) -> &mut [u8] {
+                &mut []
+            }
 
             /// The application's check of a new value of the row at `row` (before it is stored; an error
             /// refuses the write). The derive calls the field's `check` method.
@@ -381,6 +406,9 @@ macro_rules! od_data_trait {
         /// Bytes `offset..` of the fixed-size value at `row`/`elem`; `None` for a string or DOMAIN.
         #[inline]
         fn read_fixed<D: OdData + ?Sized>(d: &D, row: &Row, elem: u8, offset: usize, buf: &mut [u8]) -> Option<Result<usize, AbortCode>> {
+            if D::BY_OFFSET {
+                return read_at(d, row, elem, offset, buf);
+            }
             let e = usize::from(elem);
             Some(match row.data_type {
                 $(DataType::$dt => {
@@ -404,8 +432,11 @@ macro_rules! od_data_trait {
             data: &[u8],
             checked: bool,
         ) -> Option<Result<(), AbortCode>> {
-            let e = usize::from(elem);
             let hooks = checked && row.checks();
+            if D::BY_OFFSET {
+                return write_at(d, pos, row, elem, sub, data, hooks);
+            }
+            let e = usize::from(elem);
             Some(match row.data_type {
                 $(DataType::$dt => (|| {
                     let v = <$t as OdValue>::decode(data)?;
@@ -422,10 +453,151 @@ macro_rules! od_data_trait {
                 _ => return None,
             })
         }
+
+        /// Limits and the application's check of a write in [`OdData::BY_OFFSET`] mode: decoded in the
+        /// row's own type; the arms of the types without a checked row compile away
+        /// ([`OdData::CHECKED_TYPES`]).
+        #[inline(never)]
+        fn checks_at<D: OdData + ?Sized>(d: &D, pos: u16, row: &Row, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+            match row.data_type {
+                $(DataType::$dt if D::CHECKED_TYPES & (1 << (DataType::$dt as u32 & 31)) != 0 => {
+                    let v = <$t as OdValue>::decode(data)?;
+                    checks::<D, $t>(d, pos, sub, &v, data)
+                })*
+                _ => d.check(pos, sub, data),
+            }
+        }
     };
 }
 
 fixed_types!(od_data_trait);
+
+/// [`OdData::bytes`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes, which zerocopy's
+/// `IntoBytes` proves are all initialised (no padding) and `Immutable` proves are not behind a cell.
+///
+/// ```
+/// use zerocopy::{Immutable, IntoBytes};
+/// #[derive(IntoBytes, Immutable)]
+/// #[repr(C)]
+/// struct App { speed: u32, mode: u16, level: u16 }
+/// let app = App { speed: 1, mode: 2, level: 3 };
+/// assert_eq!(canopen_core::od::data::as_bytes(&app).len(), 8);
+/// ```
+#[inline(always)]
+pub fn as_bytes<T: zerocopy::IntoBytes + zerocopy::Immutable>(t: &T) -> &[u8] {
+    t.as_bytes()
+}
+
+/// [`OdData::bytes_mut`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes to write, which
+/// zerocopy's `FromBytes` proves any value of is a valid struct.
+///
+/// ```
+/// use zerocopy::{FromBytes, IntoBytes};
+/// #[derive(IntoBytes, FromBytes)]
+/// #[repr(C)]
+/// struct App { speed: u32 }
+/// let mut app = App { speed: 1 };
+/// canopen_core::od::data::as_bytes_mut(&mut app).copy_from_slice(&7u32.to_ne_bytes());
+/// assert_eq!(app.speed, 7);
+/// ```
+#[inline(always)]
+pub fn as_bytes_mut<T: zerocopy::IntoBytes + zerocopy::FromBytes>(t: &mut T) -> &mut [u8] {
+    t.as_mut_bytes()
+}
+
+/// Where the value of `row`/`elem` lies in [`OdData::bytes`]: the row's offset plus the element's.
+#[inline(always)]
+fn span(row: &Row, elem: u8, size: usize) -> core::ops::Range<usize> {
+    let at = usize::from(row.field) + usize::from(elem) * size;
+    at..at + size
+}
+
+/// Copies a value between native byte order (`src` of [`span`]) and the little-endian encoding, the sizes
+/// of the native numbers first (as one load and store each, no call to `memcpy`).
+#[inline(always)]
+fn copy_order(src: &[u8], dst: &mut [u8]) {
+    if cfg!(target_endian = "big") {
+        for (d, s) in dst.iter_mut().zip(src.iter().rev()) {
+            *d = *s;
+        }
+        return;
+    }
+    match (src.len(), dst.len()) {
+        (1, 1) => dst[0] = src[0],
+        (2, 2) => dst.copy_from_slice(&src[..2]),
+        (4, 4) => dst.copy_from_slice(&src[..4]),
+        (8, 8) => dst.copy_from_slice(&src[..8]),
+        _ => dst.copy_from_slice(src),
+    }
+}
+
+/// Bytes `offset..` of the fixed-size value of `row`/`elem`, reached by offset ([`OdData::BY_OFFSET`]);
+/// `None` for a string or DOMAIN.
+#[inline(always)]
+fn read_at<D: OdData + ?Sized>(
+    d: &D,
+    row: &Row,
+    elem: u8,
+    offset: usize,
+    buf: &mut [u8],
+) -> Option<Result<usize, AbortCode>> {
+    let size = row.data_type.fixed_size();
+    if size == 0 {
+        return None;
+    }
+    let Some(src) = d.bytes().get(span(row, elem, size)) else {
+        return Some(Err(AbortCode::ObjectDoesNotExist));
+    };
+    Some(Ok(match buf.get_mut(..size) {
+        Some(dst) if offset == 0 => {
+            copy_order(src, dst);
+            size
+        }
+        _ => read_part(src, offset, buf),
+    }))
+}
+
+/// [`read_at`]'s rare case: a part of the value, or a buffer shorter than it (SDO segments of a 64-bit
+/// value).
+#[cold]
+#[inline(never)]
+fn read_part(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
+    let mut le = [0u8; 8];
+    let n = src.len().min(8);
+    copy_order(&src[..n], &mut le[..n]);
+    super::copy_at(&le[..n], offset, buf)
+}
+
+/// Stores a fixed-size value of `row`/`elem` by offset ([`OdData::BY_OFFSET`]), after its limits and the
+/// application's check with `hooks`; `None` for a string or DOMAIN.
+#[inline(always)]
+fn write_at<D: OdData + ?Sized>(
+    d: &mut D,
+    pos: u16,
+    row: &Row,
+    elem: u8,
+    sub: u8,
+    data: &[u8],
+    hooks: bool,
+) -> Option<Result<(), AbortCode>> {
+    let size = row.data_type.fixed_size();
+    if size == 0 {
+        return None;
+    }
+    Some((|| {
+        if hooks {
+            checks_at(d, pos, row, sub, data)?;
+        } else {
+            super::check_len(data, size)?;
+        }
+        let dst = d.bytes_mut().get_mut(span(row, elem, size)).ok_or(AbortCode::ObjectDoesNotExist)?;
+        copy_order(data, dst);
+        if hooks {
+            d.on_write(pos, sub);
+        }
+        Ok(())
+    })())
+}
 
 /// Limits (from [`OdData::LIMITS`]) and the application's check of a decoded value.
 #[inline(never)]
@@ -835,14 +1007,17 @@ pub fn abort_write<D: OdData + ?Sized>(d: &mut D, index: u16, sub: u8) {
 /// assert_eq!((app.a, app.b), ([4; 3], 0));
 /// ```
 pub fn restore_defaults<D: OdData + ?Sized>(d: &mut D) {
+    let mut start = 0;
     for (pos, row) in D::ROWS.iter().enumerate() {
         let size = row.data_type.fixed_size();
         if size == 0 {
             continue;
         }
-        let at = usize::from(D::DEFAULT_AT.get(row.data_type as usize).copied().unwrap_or(0));
-        let start = at + usize::from(row.field) * size;
-        let default = D::DEFAULTS.get(start..start + size).unwrap_or(&[0; 8][..size]);
+        let mut default = &[0; 8][..size];
+        if D::DEFAULTED.get(pos / 8).is_some_and(|b| b >> (pos % 8) & 1 != 0) {
+            default = D::DEFAULTS.get(start..start + size).unwrap_or(default);
+            start += size;
+        }
         for elem in 0..row.n.max(1) {
             let _ = write_value(d, pos as u16, row, elem, row.sub, default, false);
         }
