@@ -87,6 +87,19 @@
 //! 244, RPDO to 4 objects 525.5 instead of 381.5, SYNC to 4 TPDOs 404.5 instead of 216.5 per bus frame),
 //! which is why it is not the default yet.
 //!
+//! `#[od(compact, zerocopy)]` (issue 41): the same tables, and no per-field code at all: each row holds its
+//! field's `offset_of!`, and the core reaches every value through the struct's bytes, which zerocopy proves
+//! sound (the core has no `unsafe`). The struct must be `#[repr(C)]`, free of padding, of plain numbers
+//! (`i8`..`u64`, `f32`, `f64` and arrays of them: no `bool`, string or DOMAIN) and derive zerocopy's
+//! `IntoBytes`, `FromBytes` and `Immutable` (the crate needs `zerocopy` with its `derive` feature); zerocopy's
+//! derive says what stands in the way. `eds-to-rust --layout zerocopy` writes such a struct (fields ordered
+//! by alignment, the tail padded). Construct it with `zerocopy::FromZeros::new_zeroed()` (one `memset`): the
+//! node applies the defaults at boot (NMT-04). Flash per object (`scripts/od-cost.sh`): UNSIGNED32 VAR
+//! 18.5 B, ARRAY of 4 x UNSIGNED16 21.0 B, RECORD of three 40.7 B, python canopen's e35.eds application
+//! 9,980 B (CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! expedited download 284 (default layout 291), RPDO to 4 objects 417.5 (381.5), SYNC to 4 TPDOs 250.9 per
+//! bus frame (216.5): PDO handles hold the value's offset, but each value is still a copy of a run-time size.
+//!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
 //! `f32`, `f64`, `I24`, `I40`, `I48`, `I56`, `U24`, `U40`, `U48`, `U56`, `TimeOfDay`, `TimeDifference`,
 //! `VisibleString<N>`, `OctetString<N>`, `UnicodeString<N>`, and `[T; N]` of those (ARRAY). Anything else

@@ -505,34 +505,19 @@ pub fn as_bytes_mut<T: zerocopy::IntoBytes + zerocopy::FromBytes>(t: &mut T) -> 
     t.as_mut_bytes()
 }
 
-/// Where the value of `row`/`elem` lies in [`OdData::bytes`]: the row's offset plus the element's.
+/// Copies an `N`-byte value between native byte order (in [`OdData::bytes`]) and the little-endian
+/// encoding: one load and one store on a little-endian target.
 #[inline(always)]
-fn span(row: &Row, elem: u8, size: usize) -> core::ops::Range<usize> {
-    let at = usize::from(row.field) + usize::from(elem) * size;
-    at..at + size
-}
-
-/// Copies a value between native byte order (`src` of [`span`]) and the little-endian encoding, the sizes
-/// of the native numbers first (as one load and store each, no call to `memcpy`).
-#[inline(always)]
-fn copy_order(src: &[u8], dst: &mut [u8]) {
+fn copy_order<const N: usize>(src: &[u8; N], dst: &mut [u8; N]) {
+    *dst = *src;
     if cfg!(target_endian = "big") {
-        for (d, s) in dst.iter_mut().zip(src.iter().rev()) {
-            *d = *s;
-        }
-        return;
-    }
-    match (src.len(), dst.len()) {
-        (1, 1) => dst[0] = src[0],
-        (2, 2) => dst.copy_from_slice(&src[..2]),
-        (4, 4) => dst.copy_from_slice(&src[..4]),
-        (8, 8) => dst.copy_from_slice(&src[..8]),
-        _ => dst.copy_from_slice(src),
+        dst.reverse();
     }
 }
 
 /// Bytes `offset..` of the fixed-size value of `row`/`elem`, reached by offset ([`OdData::BY_OFFSET`]);
-/// `None` for a string or DOMAIN.
+/// `None` for a string or DOMAIN. One arm per size, each a fixed-size copy (a copy of the run-time size
+/// was a call to `memcpy` per value).
 #[inline(always)]
 fn read_at<D: OdData + ?Sized>(
     d: &D,
@@ -541,31 +526,54 @@ fn read_at<D: OdData + ?Sized>(
     offset: usize,
     buf: &mut [u8],
 ) -> Option<Result<usize, AbortCode>> {
-    let size = row.data_type.fixed_size();
-    if size == 0 {
-        return None;
-    }
-    let Some(src) = d.bytes().get(span(row, elem, size)) else {
-        return Some(Err(AbortCode::ObjectDoesNotExist));
-    };
-    Some(Ok(match buf.get_mut(..size) {
-        Some(dst) if offset == 0 => {
-            copy_order(src, dst);
-            size
-        }
-        _ => read_part(src, offset, buf),
+    let bytes = d.bytes();
+    Some(Ok(match row.data_type.fixed_size() {
+        0 => return None,
+        1 => read_n::<1>(bytes, row, elem, offset, buf),
+        2 => read_n::<2>(bytes, row, elem, offset, buf),
+        4 => read_n::<4>(bytes, row, elem, offset, buf),
+        8 => read_n::<8>(bytes, row, elem, offset, buf),
+        // A struct with a byte view holds plain numbers only: 1, 2, 4 or 8 bytes.
+        _ => return Some(Err(AbortCode::ObjectDoesNotExist)),
     }))
 }
 
-/// [`read_at`]'s rare case: a part of the value, or a buffer shorter than it (SDO segments of a 64-bit
+/// [`read_at`] of an `N`-byte value: the whole of it into a buffer that holds it, else from `offset`.
+#[inline(always)]
+fn read_n<const N: usize>(bytes: &[u8], row: &Row, elem: u8, offset: usize, buf: &mut [u8]) -> usize {
+    let at = usize::from(row.field) + usize::from(elem) * N;
+    let Some(src) = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok()) else {
+        return 0;
+    };
+    match buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok()) {
+        Some(dst) if offset == 0 => {
+            copy_order(src, dst);
+            N
+        }
+        _ => read_part(src, offset, buf),
+    }
+}
+
+/// [`read_n`]'s rare case: a part of the value, or a buffer shorter than it (SDO segments of a 64-bit
 /// value).
 #[cold]
 #[inline(never)]
-fn read_part(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
-    let mut le = [0u8; 8];
-    let n = src.len().min(8);
-    copy_order(&src[..n], &mut le[..n]);
-    super::copy_at(&le[..n], offset, buf)
+fn read_part<const N: usize>(src: &[u8; N], offset: usize, buf: &mut [u8]) -> usize {
+    let mut le = [0u8; N];
+    copy_order(src, &mut le);
+    super::copy_at(&le, offset, buf)
+}
+
+/// Stores the `N`-byte little-endian `data` at `row`/`elem` in native byte order; 0607 0012h/0607 0013h when
+/// `data` is not `N` bytes.
+#[inline(always)]
+fn store_n<const N: usize>(bytes: &mut [u8], row: &Row, elem: u8, data: &[u8]) -> Result<(), AbortCode> {
+    super::check_len(data, N)?;
+    let src = <&[u8; N]>::try_from(data).map_err(|_| AbortCode::GeneralError)?; // the same check: folded
+    let at = usize::from(row.field) + usize::from(elem) * N;
+    let dst = bytes.get_mut(at..at + N).and_then(|s| <&mut [u8; N]>::try_from(s).ok());
+    copy_order(src, dst.ok_or(AbortCode::ObjectDoesNotExist)?);
+    Ok(())
 }
 
 /// Stores a fixed-size value of `row`/`elem` by offset ([`OdData::BY_OFFSET`]), after its limits and the
@@ -587,11 +595,15 @@ fn write_at<D: OdData + ?Sized>(
     Some((|| {
         if hooks {
             checks_at(d, pos, row, sub, data)?;
-        } else {
-            super::check_len(data, size)?;
         }
-        let dst = d.bytes_mut().get_mut(span(row, elem, size)).ok_or(AbortCode::ObjectDoesNotExist)?;
-        copy_order(data, dst);
+        let bytes = d.bytes_mut();
+        match size {
+            1 => store_n::<1>(bytes, row, elem, data)?,
+            2 => store_n::<2>(bytes, row, elem, data)?,
+            4 => store_n::<4>(bytes, row, elem, data)?,
+            8 => store_n::<8>(bytes, row, elem, data)?,
+            _ => return Err(AbortCode::ObjectDoesNotExist),
+        }
         if hooks {
             d.on_write(pos, sub);
         }
@@ -1111,7 +1123,7 @@ pub fn pdo_resolve<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, dir: PdoDir) 
     };
     let info = SubInfo { data_type: row.data_type, access: row.access(), pdo: row.pdo(), size: 0 };
     if row.data_type.fixed_size() != 0 {
-        return PdoHandle::check(index, sub, &info, dir, pos);
+        return PdoHandle::check(index, sub, &info, dir, offset_slot::<D>(&row, elem).unwrap_or(pos));
     }
     let ok = match dir {
         PdoDir::Tpdo => info.pdo.tpdo() && info.access.readable(),
@@ -1139,6 +1151,9 @@ pub fn pdo_resolve<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, dir: PdoDir) 
 /// ```
 #[inline(always)]
 pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    if D::BY_OFFSET && handle.slot & AT_OFFSET != 0 {
+        return read_offset_slot(d, handle, buf);
+    }
     match at_slot::<D>(handle.slot, handle.sub) {
         Some((row, elem)) => read_value(d, &row, elem, 0, buf),
         None => read(d, handle.index, handle.sub, 0, buf),
@@ -1161,11 +1176,80 @@ pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -
 /// assert_eq!(app.a, 100);
 /// ```
 pub fn pdo_write<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+    if D::BY_OFFSET && handle.slot & AT_OFFSET != 0 {
+        return write_offset_slot(d, handle, data);
+    }
     match at_slot::<D>(handle.slot, handle.sub) {
         Some((row, _)) if !row.writable() => Err(AbortCode::WriteOfReadOnly),
         Some((row, elem)) => write_value(d, handle.slot, &row, elem, handle.sub, data, true),
         None => write(d, handle.index, handle.sub, data),
     }
+}
+
+/// A PDO handle's slot that is the value's byte offset in [`OdData::bytes`] (bits 0..13), not a row:
+/// [`pdo_read`]/[`pdo_write`] then move the value with no row at all. Only for a row without limits or
+/// hooks, and with [`SLOT_RO`] when SDO may not write it.
+const AT_OFFSET: u16 = 0x8000;
+/// With [`AT_OFFSET`]: the entry is not writable ([`pdo_write`] answers 0601 0002h).
+const SLOT_RO: u16 = 0x4000;
+
+/// The offset slot of `row`/`elem` ([`AT_OFFSET`]) in [`OdData::BY_OFFSET`] mode, `None` when the row
+/// needs its checks, SDO may not read it, or the offset does not fit.
+fn offset_slot<D: OdData + ?Sized>(row: &Row, elem: u8) -> Option<u16> {
+    let at = usize::from(row.field) + usize::from(elem) * row.data_type.fixed_size();
+    let ro = if row.writable() { 0 } else { SLOT_RO };
+    (D::BY_OFFSET && !row.checks() && row.readable() && at < usize::from(SLOT_RO)).then_some(AT_OFFSET | ro | at as u16)
+}
+
+/// [`pdo_read`] of an offset slot: the handle's size of bytes from its offset.
+#[inline(always)]
+fn read_offset_slot<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    let at = usize::from(handle.slot & (SLOT_RO - 1));
+    let bytes = d.bytes();
+    let n = match handle.size {
+        1 => copy_out::<1>(bytes, at, buf),
+        2 => copy_out::<2>(bytes, at, buf),
+        4 => copy_out::<4>(bytes, at, buf),
+        8 => copy_out::<8>(bytes, at, buf),
+        _ => None,
+    };
+    n.ok_or(AbortCode::ObjectDoesNotExist)
+}
+
+/// The `N` bytes at `at` into the front of `buf`, little-endian.
+#[inline(always)]
+fn copy_out<const N: usize>(bytes: &[u8], at: usize, buf: &mut [u8]) -> Option<usize> {
+    let src = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok())?;
+    let dst = buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok())?;
+    copy_order(src, dst);
+    Some(N)
+}
+
+/// [`pdo_write`] of an offset slot: `data` (the handle's size) stored at its offset.
+#[inline(always)]
+fn write_offset_slot<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+    if handle.slot & SLOT_RO != 0 {
+        return Err(AbortCode::WriteOfReadOnly);
+    }
+    let at = usize::from(handle.slot & (SLOT_RO - 1));
+    let bytes = d.bytes_mut();
+    match handle.size {
+        1 => copy_in::<1>(bytes, at, data),
+        2 => copy_in::<2>(bytes, at, data),
+        4 => copy_in::<4>(bytes, at, data),
+        8 => copy_in::<8>(bytes, at, data),
+        _ => Err(AbortCode::ObjectDoesNotExist),
+    }
+}
+
+/// `data` (exactly `N` little-endian bytes) stored at `at` in native byte order.
+#[inline(always)]
+fn copy_in<const N: usize>(bytes: &mut [u8], at: usize, data: &[u8]) -> Result<(), AbortCode> {
+    super::check_len(data, N)?;
+    let src = <&[u8; N]>::try_from(data).map_err(|_| AbortCode::GeneralError)?; // the same check: folded
+    let dst = bytes.get_mut(at..at + N).and_then(|s| <&mut [u8; N]>::try_from(s).ok());
+    copy_order(src, dst.ok_or(AbortCode::ObjectDoesNotExist)?);
+    Ok(())
 }
 
 /// Whether a row of `rows` is a writable string or DOMAIN ([`ObjectDictionary::STREAMS`]).
