@@ -290,7 +290,7 @@ impl<A> Drive<A> {
             Demand::Position { position: sat(raw), velocity: self.ramp.velocity() }
         };
         motor.follow(demand, dt_us);
-        self.report(motor, rising, word);
+        self.report(motor, word);
         out
     }
 
@@ -491,6 +491,8 @@ impl<A> Drive<A> {
         match self.homing {
             Homing::InProgress => {
                 if on_switch {
+                    // Stopped by the switch: the demand restarts from where the axis is.
+                    self.ramp = Ramp::at(sat(actual), 0);
                     self.homing = Homing::Leaving;
                 } else {
                     self.ramp.velocity_step(sat(toward * i64::from(fast)), acc, acc, dt);
@@ -524,8 +526,7 @@ impl<A> Drive<A> {
     }
 
     /// 6041h and the actual and demand values.
-    fn report<M: Motor + ?Sized>(&mut self, motor: &M, rising: u16, word: u16) {
-        let _ = rising;
+    fn report<M: Motor + ?Sized>(&mut self, motor: &M, word: u16) {
         let actual = i64::from(motor.position()) + self.offset;
         let o = &mut self.objects;
         o.position_actual = sat(actual);

@@ -11,7 +11,9 @@
 //! - [`Drive`]: one axis, the objects composed with the application's own dictionary (one dictionary for
 //!   the node), run one cycle at a time against the application's [`Motor`]; [`cycle_node`] on a node
 //!   raises the fault's EMCY and sends the changed TPDOs;
-//! - [`Ramp`]: the integer trajectory generator the modes share; [`Homing`]: the homing procedure.
+//! - [`Ramp`]: the integer trajectory generator the modes share; [`Homing`]: the homing procedure;
+//! - [`SimAxis`]: a simulated axis (inertia, top speed, hard stops with limit switches) for tests and the
+//!   example drive.
 //!
 //! ```
 //! use canopen_cia402::{cycle_node, Demand, Drive, Motor, State};
@@ -78,6 +80,7 @@ mod motor;
 mod objects;
 mod options;
 mod ramp;
+mod sim;
 pub mod state;
 
 pub use compose::is_drive_index;
@@ -88,4 +91,5 @@ pub use motor::{Demand, LimitSwitches, Motor};
 pub use objects::Objects;
 pub use options::Stop;
 pub use ramp::Ramp;
+pub use sim::SimAxis;
 pub use state::{transition, Command, State, TABLE};
