@@ -9,12 +9,8 @@
 //! ```
 //!
 //! The drive cycle runs every 2 ms on its own task, and at once after an RPDO or an SDO write; a SYNC
-//! hands the cyclic synchronous modes their set-point. PDOs (the standard's default set for a drive,
-//! pre-defined COB-IDs, event-driven; the TPDOs after the first carry values that change while the axis
-//! moves, so they are spaced by a 10 ms inhibit time). Each TPDO also has an event timer (TPDO1/2 50 ms,
-//! TPDO3/4 100 ms): python canopen takes a PDO received twice for a periodic one (`PdoBase.period`) and
-//! then waits at most 0.2 s for the next statusword (`BaseNode402.check_statusword`), so a drive that
-//! sent only on change would time out there while standing still.
+//! hands the cyclic synchronous modes their set-point. PDOs: `canopen_cia402::pdo`, the standard's default
+//! set for a drive (pre-defined COB-IDs, event-driven, with event timers for python canopen's sake):
 //!
 //! | PDO | mapping |
 //! |---|---|
@@ -39,7 +35,6 @@ use std::sync::Arc;
 use std::time::{Duration, Instant as StdInstant};
 
 use canopen_cia402::{cycle_node, Drive, SimAxis};
-use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::eds::EdsInfo;
 use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::{Event, NodeId, Sizes};
@@ -83,20 +78,6 @@ struct DriveApp {
     simulated_fault: u16,
 }
 
-const fn map1(a: u32) -> [u32; 1] {
-    [a]
-}
-const CW: u32 = 0x6040_0010;
-const SW: u32 = 0x6041_0010;
-const RPDO1: [u32; 1] = map1(CW);
-const RPDO2: [u32; 2] = [CW, 0x6060_0008];
-const RPDO3: [u32; 2] = [CW, 0x607A_0020];
-const RPDO4: [u32; 2] = [CW, 0x60FF_0020];
-const TPDO1: [u32; 1] = map1(SW);
-const TPDO2: [u32; 2] = [SW, 0x6061_0008];
-const TPDO3: [u32; 2] = [SW, 0x6064_0020];
-const TPDO4: [u32; 2] = [SW, 0x606C_0020];
-
 /// The drive's configuration: device type 0002 0192h (CiA 402, servo drive) and the PDOs above.
 const CONFIG: NodeConfig = NodeConfig {
     device_type: 0x0002_0192,
@@ -105,36 +86,8 @@ const CONFIG: NodeConfig = NodeConfig {
     hardware_version: "simulated axis",
     software_version: "0.1.0",
     heartbeat_time_ms: 1000,
-    rpdo: &[
-        PdoDefault { mapping: &RPDO1, transmission_type: 255, ..PdoDefault::EVENT },
-        PdoDefault { mapping: &RPDO2, transmission_type: 255, ..PdoDefault::EVENT },
-        PdoDefault { mapping: &RPDO3, transmission_type: 255, ..PdoDefault::EVENT },
-        PdoDefault { mapping: &RPDO4, transmission_type: 255, ..PdoDefault::EVENT },
-    ],
-    tpdo: &[
-        PdoDefault { mapping: &TPDO1, transmission_type: 255, event_timer_ms: 50, ..PdoDefault::EVENT },
-        PdoDefault {
-            mapping: &TPDO2,
-            transmission_type: 255,
-            inhibit_100us: 100,
-            event_timer_ms: 50,
-            ..PdoDefault::EVENT
-        },
-        PdoDefault {
-            mapping: &TPDO3,
-            transmission_type: 255,
-            inhibit_100us: 100,
-            event_timer_ms: 100,
-            ..PdoDefault::EVENT
-        },
-        PdoDefault {
-            mapping: &TPDO4,
-            transmission_type: 255,
-            inhibit_100us: 100,
-            event_timer_ms: 100,
-            ..PdoDefault::EVENT
-        },
-    ],
+    rpdo: &canopen_cia402::pdo::RPDOS,
+    tpdo: &canopen_cia402::pdo::TPDOS,
     ..NodeConfig::DEFAULT
 };
 

@@ -111,6 +111,8 @@ pub struct Drive<A> {
     /// The set-point the last SYNC latched (csp: position, csv: velocity) and the one before it.
     cs_target: i32,
     cs_previous: i32,
+    /// µs since the last SYNC: the velocity feed-forward holds for one interpolation period only.
+    since_sync: i64,
     /// The fault being handled (603Fh), until a reset succeeds.
     fault: Option<u16>,
     /// A fault the application raised ([`Drive::raise_fault`]), taken at the next cycle.
@@ -139,6 +141,7 @@ impl<A> Drive<A> {
             homing: Homing::Idle,
             cs_target: 0,
             cs_previous: 0,
+            since_sync: 0,
             fault: None,
             raised: None,
             limited: false,
@@ -191,6 +194,7 @@ impl<A> Drive<A> {
     /// d.sync(); // nothing to take outside csp/csv
     /// ```
     pub fn sync(&mut self) {
+        self.since_sync = 0;
         self.cs_previous = self.cs_target;
         self.cs_target = match self.mode {
             Mode::CyclicSyncPosition => self.objects.target_position,
@@ -408,7 +412,14 @@ impl<A> Drive<A> {
             Mode::Homing => self.homing_step(motor, rising, actual, dt),
             Mode::CyclicSyncPosition => {
                 let target = self.limit(self.cs_target);
-                let velocity = (i64::from(target) - i64::from(self.cs_previous)) * 1_000_000 / self.period_us();
+                let period = self.period_us();
+                self.since_sync = self.since_sync.saturating_add(i64::from(dt));
+                // The set-points' own speed, while they come (a SYNC missed for a whole period: none).
+                let velocity = if self.since_sync <= period {
+                    (i64::from(target) - i64::from(self.cs_previous)) * 1_000_000 / period
+                } else {
+                    0
+                };
                 self.ramp = Ramp::at(target, sat(velocity));
             }
             Mode::CyclicSyncVelocity => {

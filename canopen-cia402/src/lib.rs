@@ -11,6 +11,7 @@
 //! - [`Drive`]: one axis, the objects composed with the application's own dictionary (one dictionary for
 //!   the node), run one cycle at a time against the application's [`Motor`]; [`cycle_node`] on a node
 //!   raises the fault's EMCY and sends the changed TPDOs;
+//! - [`pdo`]: the default PDO mapping of a drive (controlword, statusword and the mode pairs);
 //! - [`Ramp`]: the integer trajectory generator the modes share; [`Homing`]: the homing procedure;
 //! - [`SimAxis`]: a simulated axis (inertia, top speed, hard stops with limit switches) for tests and the
 //!   example drive.
@@ -79,6 +80,7 @@ mod mode;
 mod motor;
 mod objects;
 mod options;
+pub mod pdo;
 mod ramp;
 mod sim;
 pub mod state;
