@@ -226,8 +226,8 @@ fn run(args: &Args, shared: Arc<MutexShared<DriveNode>>) -> std::io::Result<()> 
                     run_cycle();
                 }
                 Observed::Event(Event::RpdoReceived { .. }) => run_cycle(),
-                Observed::Event(e @ Event::ObjectWritten { .. }) => {
-                    println!("({:10.6}) {e:?}", t());
+                Observed::Event(Event::ObjectWritten { index, sub }) => {
+                    println!("({:10.6}) SDO wrote {index:04X}h:{sub:02X}", t());
                     run_cycle();
                 }
                 Observed::Event(e) => println!("({:10.6}) event {e:?}", t()),
