@@ -459,3 +459,47 @@ proptest! {
         prop_assert_eq!(b.drive.objects.error_code, 0x3210);
     }
 }
+
+/// A motor that warns (statusword bit 7), around the simulated axis.
+struct Warning(SimAxis);
+
+impl Motor for Warning {
+    fn set_power(&mut self, on: bool) {
+        self.0.set_power(on)
+    }
+    fn follow(&mut self, demand: canopen_cia402::Demand, dt_us: u32) {
+        self.0.follow(demand, dt_us)
+    }
+    fn position(&self) -> i32 {
+        self.0.position()
+    }
+    fn velocity(&self) -> i32 {
+        self.0.velocity()
+    }
+    fn limit_switches(&self) -> canopen_cia402::LimitSwitches {
+        self.0.limit_switches()
+    }
+    fn warning(&self) -> bool {
+        true
+    }
+}
+
+#[test]
+fn warning_remote_and_a_limit_switch_in_the_statusword() {
+    let mut drive = Drive::new(NoApplication);
+    let mut motor = Warning(SimAxis::new(-100, 100));
+    drive.cycle(&mut motor, DT);
+    assert_eq!(drive.objects.statusword, 0x0040 | 0x0080 | 0x0200, "switch on disabled, warning, remote");
+    drive.objects.modes_of_operation = Mode::ProfileVelocity.code();
+    for w in [0x06, 0x07, 0x0F] {
+        drive.objects.write_controlword(w);
+        drive.cycle(&mut motor, DT);
+    }
+    drive.objects.target_velocity = 1_000;
+    for _ in 0..200 {
+        drive.cycle(&mut motor, DT);
+    }
+    // At the hard stop: the positive limit switch is active (bit 11).
+    assert!(motor.limit_switches().positive);
+    assert_ne!(drive.objects.statusword & 0x0800, 0);
+}
