@@ -13,6 +13,8 @@ use canopenctl::bench::{Bench, Counted};
 use canopenctl::{guess, monitor_line, parse_in, parse_node, Type};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+mod drive_cmd;
+
 #[derive(Parser)]
 #[command(name = "canopenctl", version, about = "A CANopen (CiA 301) master for Linux SocketCAN")]
 #[command(after_help = "Numbers (nodes, indices, sub-indices, values) are decimal or 0x-hex.\n\
@@ -110,6 +112,13 @@ enum Command {
         file: std::path::PathBuf,
         #[arg(long, default_value = "block")]
         mode: ModeArg,
+    },
+    /// A CiA 402 drive: state, enable, disable, quick-stop, fault-reset, mode, move, velocity, home, stream.
+    Drive {
+        #[arg(value_parser = parse_node)]
+        node: u8,
+        #[command(subcommand)]
+        command: drive_cmd::DriveCommand,
     },
     /// SDO throughput to and from a DOMAIN of NODE, every byte checked: block transfer with CRC (and
     /// segmented with --segmented-size), KiB/s and frames on the bus each way.
@@ -320,6 +329,11 @@ async fn run(cli: Cli) -> Result<(), String> {
                 say(line);
             }
             say(format!("{} node(s)", found.len()));
+        }
+        Command::Drive { node, command } => {
+            for line in drive_cmd::run(&master, node, command).await? {
+                say(line);
+            }
         }
         Command::Read { at, ty } => {
             let (node, index, sub) = at.resolve(eds)?;
