@@ -13,15 +13,17 @@
 //!
 //! - [`OdData::KEYS`]: the object index of each [`Row`], sorted; a binary search finds an object.
 //! - [`OdData::ROWS`]: one 6-byte [`Row`] per VAR, per ARRAY (all its elements) and per RECORD member: the
-//!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number.
-//! - [`OdData::DEFAULTS`]: the power-on values as little-endian bytes, grouped by data type
-//!   ([`OdData::DEFAULT_AT`]), one value per VAR or record member and one per ARRAY.
+//!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number (or offset).
+//! - [`OdData::DEFAULTS`]: the power-on values that are not zero, as little-endian bytes in row order, and
+//!   [`OdData::DEFAULTED`], a bit per row saying which rows have one there.
 //! - [`OdData::LIMITS`]: low/high limits of the rows that have any.
 //!
-//! The only per-field code is the way to the field: for each fixed-size type a dictionary uses, one
-//! accessor of `&self` and one of `&mut self` (`var_unsigned32(f) -> Option<&u32>`, and for arrays a
-//! slice), each a jump table whose arm adds the field's offset to `self`. Strings and DOMAINs (variable
-//! size, streamed by SDO) keep generated code per field (`special_*`), as do the application's hooks.
+//! The only per-field code is the way to the field. With `#[od(compact)]`, for each fixed-size type a
+//! dictionary uses, one accessor of `&self` and one of `&mut self` (`var_unsigned32(f) -> Option<&u32>`,
+//! and for arrays a slice), each a jump table whose arm adds the field's offset to `self`. With
+//! `#[od(compact, zerocopy)]` none at all: the row holds the field's offset in the struct's bytes
+//! ([`offset`] module). Strings and DOMAINs (variable size, streamed by SDO) keep generated code per field
+//! (`special_*`), as do the application's hooks.
 //! The `#[derive(ObjectDictionary)]` macro writes all of it; its `ObjectDictionary` methods call the
 //! functions here ([`info`], [`read`], [`write()`], ...), which are generic over the dictionary, so each
 //! dictionary type gets one copy of them and every object is a few bytes of its tables.
@@ -30,167 +32,12 @@ use super::{AbortCode, Access, DataType, OdValue, PdoDir, PdoHandle, PdoMapping,
 use super::{TimeDifference, TimeOfDay};
 use super::{I24, I40, I48, I56, U24, U40, U48, U56};
 
-/// One row of a data dictionary: a VAR, a whole ARRAY, or one member of a RECORD (OD-03, OD-04).
-///
-/// | object | `sub` | `n` |
-/// |---|---|---|
-/// | VAR | 0 | 1 |
-/// | ARRAY | its first element's sub-index (1 or more) | its number of elements |
-/// | RECORD member | the member's sub-index (1 or more) | 0 |
-///
-/// Sub-index 00h of an ARRAY or RECORD has no row: its value is the highest sub-index (the ARRAY's last
-/// element, the RECORD's last member) and its access `const`, or `ro` with [`Row::COUNT_RO`].
-///
-/// ```
-/// use canopen_core::od::{Access, DataType, PdoMapping};
-/// use canopen_core::od::data::Row;
-/// const VAR: Row = Row::var(0, DataType::Unsigned32, Access::Rw, PdoMapping::Both);
-/// assert!(VAR.readable() && VAR.writable() && !VAR.is_array());
-/// assert_eq!((VAR.access(), VAR.pdo()), (Access::Rw, PdoMapping::Both));
-/// const ARRAY: Row = Row::array(2, DataType::Unsigned16, Access::Ro, PdoMapping::Tpdo, 1, 4);
-/// assert!(ARRAY.is_array() && !ARRAY.writable());
-/// assert_eq!(core::mem::size_of::<Row>(), 6);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Row {
-    /// The field's number among the dictionary's fields of this data type (what its accessors match on);
-    /// for a string or DOMAIN, its number among those.
-    pub field: u16,
-    /// The data type of the value (of each element of an ARRAY).
-    pub data_type: DataType,
-    /// Access, PDO mapping and the other bits ([`Row::READ`] ...).
-    pub flags: u8,
-    /// VAR: 0; ARRAY: the first element's sub-index; RECORD member: its sub-index.
-    pub sub: u8,
-    /// ARRAY: the number of elements; VAR: 1; RECORD member: 0.
-    pub n: u8,
-}
+pub mod offset;
+mod row;
 
-impl Row {
-    /// SDO may read it.
-    pub const READ: u8 = 1 << 0;
-    /// SDO may write it.
-    pub const WRITE: u8 = 1 << 1;
-    /// With READ alone: `const`; with READ and WRITE: `rwr` (an input).
-    pub const VARIANT_A: u8 = 1 << 2;
-    /// With READ and WRITE: `rww` (an output).
-    pub const VARIANT_B: u8 = 1 << 3;
-    /// Mappable into a TPDO.
-    pub const TPDO: u8 = 1 << 4;
-    /// Mappable into an RPDO.
-    pub const RPDO: u8 = 1 << 5;
-    /// Sub-index 00h of this ARRAY (or of the RECORD whose first member this is) is `ro`, not `const`.
-    pub const COUNT_RO: u8 = 1 << 6;
-    /// A write goes through [`OdData::LIMITS`] and the application's hooks ([`OdData::check`],
-    /// [`OdData::on_write`]).
-    pub const CHECKS: u8 = 1 << 7;
-
-    /// The flags of an access type and a PDO mapping.
-    pub const fn flags(access: Access, pdo: PdoMapping) -> u8 {
-        let a = match access {
-            Access::Ro => Self::READ,
-            Access::Const => Self::READ | Self::VARIANT_A,
-            Access::Wo => Self::WRITE,
-            Access::Rw => Self::READ | Self::WRITE,
-            Access::Rwr => Self::READ | Self::WRITE | Self::VARIANT_A,
-            Access::Rww => Self::READ | Self::WRITE | Self::VARIANT_B,
-        };
-        let p = match pdo {
-            PdoMapping::No => 0,
-            PdoMapping::Tpdo => Self::TPDO,
-            PdoMapping::Rpdo => Self::RPDO,
-            PdoMapping::Both => Self::TPDO | Self::RPDO,
-        };
-        a | p
-    }
-
-    /// A VAR (sub 00h).
-    pub const fn var(field: u16, data_type: DataType, access: Access, pdo: PdoMapping) -> Row {
-        Row { field, data_type, flags: Self::flags(access, pdo), sub: 0, n: 1 }
-    }
-
-    /// An ARRAY of `n` elements at sub-indices `first..first + n`.
-    pub const fn array(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, first: u8, n: u8) -> Row {
-        Row { field, data_type, flags: Self::flags(access, pdo), sub: first, n }
-    }
-
-    /// A RECORD member at sub-index `sub`.
-    pub const fn member(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, sub: u8) -> Row {
-        Row { field, data_type, flags: Self::flags(access, pdo), sub, n: 0 }
-    }
-
-    /// The same row with more flags ([`Row::COUNT_RO`], [`Row::CHECKS`]).
-    pub const fn with(mut self, flags: u8) -> Row {
-        self.flags |= flags;
-        self
-    }
-
-    /// Whether SDO may read it.
-    #[inline]
-    pub const fn readable(&self) -> bool {
-        self.flags & Self::READ != 0
-    }
-
-    /// Whether SDO may write it.
-    #[inline]
-    pub const fn writable(&self) -> bool {
-        self.flags & Self::WRITE != 0
-    }
-
-    /// Whether writes go through limits and hooks.
-    #[inline]
-    pub const fn checks(&self) -> bool {
-        self.flags & Self::CHECKS != 0
-    }
-
-    /// Whether this row is an ARRAY (its accessors give a slice).
-    #[inline]
-    pub const fn is_array(&self) -> bool {
-        self.sub != 0 && self.n != 0
-    }
-
-    /// The access type.
-    pub const fn access(&self) -> Access {
-        match self.flags & 0x0F {
-            0x01 => Access::Ro,
-            0x05 => Access::Const,
-            0x02 => Access::Wo,
-            0x07 => Access::Rwr,
-            0x0B => Access::Rww,
-            _ => Access::Rw,
-        }
-    }
-
-    /// The PDO mapping.
-    pub const fn pdo(&self) -> PdoMapping {
-        match (self.flags & Self::TPDO != 0, self.flags & Self::RPDO != 0) {
-            (false, false) => PdoMapping::No,
-            (true, false) => PdoMapping::Tpdo,
-            (false, true) => PdoMapping::Rpdo,
-            (true, true) => PdoMapping::Both,
-        }
-    }
-}
-
-/// Where the low and high limits of one row are (OD-11): a write outside them is 0609 0032h / 0609 0031h,
-/// and a value that does not compare (a NaN) 0609 0030h.
-///
-/// The limits are in [`OdData::LIMIT_VALUES`] from `at`: the low one, then the high one, each encoded in
-/// the row's data type (a side without a limit holds the type's extreme). Compared in the type itself, so
-/// a firmware links no conversion to a wider number or to floating point for them.
-///
-/// ```
-/// use canopen_core::od::data::Limit;
-/// const L: Limit = Limit { row: 3, at: 0 };
-/// assert_eq!(core::mem::size_of::<Limit>(), 4);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Limit {
-    /// The row's position in [`OdData::ROWS`].
-    pub row: u16,
-    /// Where its low limit starts in [`OdData::LIMIT_VALUES`].
-    pub at: u16,
-}
+pub use offset::{as_bytes, as_bytes_mut};
+use offset::{offset_slot, read_at, read_offset_slot, write_at, write_offset_slot, AT_OFFSET};
+pub use row::{Limit, Row};
 
 /// Calls `$m!` with every fixed-size data type: its [`DataType`], its Rust type and the names of its four
 /// accessors (VAR `&`/`&mut`, ARRAY `&`/`&mut`).
@@ -471,145 +318,6 @@ macro_rules! od_data_trait {
 }
 
 fixed_types!(od_data_trait);
-
-/// [`OdData::bytes`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes, which zerocopy's
-/// `IntoBytes` proves are all initialised (no padding) and `Immutable` proves are not behind a cell.
-///
-/// ```
-/// use zerocopy::{Immutable, IntoBytes};
-/// #[derive(IntoBytes, Immutable)]
-/// #[repr(C)]
-/// struct App { speed: u32, mode: u16, level: u16 }
-/// let app = App { speed: 1, mode: 2, level: 3 };
-/// assert_eq!(canopen_core::od::data::as_bytes(&app).len(), 8);
-/// ```
-#[inline(always)]
-pub fn as_bytes<T: zerocopy::IntoBytes + zerocopy::Immutable>(t: &T) -> &[u8] {
-    t.as_bytes()
-}
-
-/// [`OdData::bytes_mut`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes to write, which
-/// zerocopy's `FromBytes` proves any value of is a valid struct.
-///
-/// ```
-/// use zerocopy::{FromBytes, IntoBytes};
-/// #[derive(IntoBytes, FromBytes)]
-/// #[repr(C)]
-/// struct App { speed: u32 }
-/// let mut app = App { speed: 1 };
-/// canopen_core::od::data::as_bytes_mut(&mut app).copy_from_slice(&7u32.to_ne_bytes());
-/// assert_eq!(app.speed, 7);
-/// ```
-#[inline(always)]
-pub fn as_bytes_mut<T: zerocopy::IntoBytes + zerocopy::FromBytes>(t: &mut T) -> &mut [u8] {
-    t.as_mut_bytes()
-}
-
-/// Copies an `N`-byte value between native byte order (in [`OdData::bytes`]) and the little-endian
-/// encoding: one load and one store on a little-endian target.
-#[inline(always)]
-fn copy_order<const N: usize>(src: &[u8; N], dst: &mut [u8; N]) {
-    *dst = *src;
-    if cfg!(target_endian = "big") {
-        dst.reverse();
-    }
-}
-
-/// Bytes `offset..` of the fixed-size value of `row`/`elem`, reached by offset ([`OdData::BY_OFFSET`]);
-/// `None` for a string or DOMAIN. One arm per size, each a fixed-size copy (a copy of the run-time size
-/// was a call to `memcpy` per value).
-#[inline(always)]
-fn read_at<D: OdData + ?Sized>(
-    d: &D,
-    row: &Row,
-    elem: u8,
-    offset: usize,
-    buf: &mut [u8],
-) -> Option<Result<usize, AbortCode>> {
-    let bytes = d.bytes();
-    Some(Ok(match row.data_type.fixed_size() {
-        0 => return None,
-        1 => read_n::<1>(bytes, row, elem, offset, buf),
-        2 => read_n::<2>(bytes, row, elem, offset, buf),
-        4 => read_n::<4>(bytes, row, elem, offset, buf),
-        8 => read_n::<8>(bytes, row, elem, offset, buf),
-        // A struct with a byte view holds plain numbers only: 1, 2, 4 or 8 bytes.
-        _ => return Some(Err(AbortCode::ObjectDoesNotExist)),
-    }))
-}
-
-/// [`read_at`] of an `N`-byte value: the whole of it into a buffer that holds it, else from `offset`.
-#[inline(always)]
-fn read_n<const N: usize>(bytes: &[u8], row: &Row, elem: u8, offset: usize, buf: &mut [u8]) -> usize {
-    let at = usize::from(row.field) + usize::from(elem) * N;
-    let Some(src) = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok()) else {
-        return 0;
-    };
-    match buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok()) {
-        Some(dst) if offset == 0 => {
-            copy_order(src, dst);
-            N
-        }
-        _ => read_part(src, offset, buf),
-    }
-}
-
-/// [`read_n`]'s rare case: a part of the value, or a buffer shorter than it (SDO segments of a 64-bit
-/// value).
-#[cold]
-#[inline(never)]
-fn read_part<const N: usize>(src: &[u8; N], offset: usize, buf: &mut [u8]) -> usize {
-    let mut le = [0u8; N];
-    copy_order(src, &mut le);
-    super::copy_at(&le, offset, buf)
-}
-
-/// Stores the `N`-byte little-endian `data` at `row`/`elem` in native byte order; 0607 0012h/0607 0013h when
-/// `data` is not `N` bytes.
-#[inline(always)]
-fn store_n<const N: usize>(bytes: &mut [u8], row: &Row, elem: u8, data: &[u8]) -> Result<(), AbortCode> {
-    super::check_len(data, N)?;
-    let src = <&[u8; N]>::try_from(data).map_err(|_| AbortCode::GeneralError)?; // the same check: folded
-    let at = usize::from(row.field) + usize::from(elem) * N;
-    let dst = bytes.get_mut(at..at + N).and_then(|s| <&mut [u8; N]>::try_from(s).ok());
-    copy_order(src, dst.ok_or(AbortCode::ObjectDoesNotExist)?);
-    Ok(())
-}
-
-/// Stores a fixed-size value of `row`/`elem` by offset ([`OdData::BY_OFFSET`]), after its limits and the
-/// application's check with `hooks`; `None` for a string or DOMAIN.
-#[inline(always)]
-fn write_at<D: OdData + ?Sized>(
-    d: &mut D,
-    pos: u16,
-    row: &Row,
-    elem: u8,
-    sub: u8,
-    data: &[u8],
-    hooks: bool,
-) -> Option<Result<(), AbortCode>> {
-    let size = row.data_type.fixed_size();
-    if size == 0 {
-        return None;
-    }
-    Some((|| {
-        if hooks {
-            checks_at(d, pos, row, sub, data)?;
-        }
-        let bytes = d.bytes_mut();
-        match size {
-            1 => store_n::<1>(bytes, row, elem, data)?,
-            2 => store_n::<2>(bytes, row, elem, data)?,
-            4 => store_n::<4>(bytes, row, elem, data)?,
-            8 => store_n::<8>(bytes, row, elem, data)?,
-            _ => return Err(AbortCode::ObjectDoesNotExist),
-        }
-        if hooks {
-            d.on_write(pos, sub);
-        }
-        Ok(())
-    })())
-}
 
 /// Limits (from [`OdData::LIMITS`]) and the application's check of a decoded value.
 #[inline(never)]
@@ -1184,72 +892,6 @@ pub fn pdo_write<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8])
         Some((row, elem)) => write_value(d, handle.slot, &row, elem, handle.sub, data, true),
         None => write(d, handle.index, handle.sub, data),
     }
-}
-
-/// A PDO handle's slot that is the value's byte offset in [`OdData::bytes`] (bits 0..13), not a row:
-/// [`pdo_read`]/[`pdo_write`] then move the value with no row at all. Only for a row without limits or
-/// hooks, and with [`SLOT_RO`] when SDO may not write it.
-const AT_OFFSET: u16 = 0x8000;
-/// With [`AT_OFFSET`]: the entry is not writable ([`pdo_write`] answers 0601 0002h).
-const SLOT_RO: u16 = 0x4000;
-
-/// The offset slot of `row`/`elem` ([`AT_OFFSET`]) in [`OdData::BY_OFFSET`] mode, `None` when the row
-/// needs its checks, SDO may not read it, or the offset does not fit.
-fn offset_slot<D: OdData + ?Sized>(row: &Row, elem: u8) -> Option<u16> {
-    let at = usize::from(row.field) + usize::from(elem) * row.data_type.fixed_size();
-    let ro = if row.writable() { 0 } else { SLOT_RO };
-    (D::BY_OFFSET && !row.checks() && row.readable() && at < usize::from(SLOT_RO)).then_some(AT_OFFSET | ro | at as u16)
-}
-
-/// [`pdo_read`] of an offset slot: the handle's size of bytes from its offset.
-#[inline(always)]
-fn read_offset_slot<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
-    let at = usize::from(handle.slot & (SLOT_RO - 1));
-    let bytes = d.bytes();
-    let n = match handle.size {
-        1 => copy_out::<1>(bytes, at, buf),
-        2 => copy_out::<2>(bytes, at, buf),
-        4 => copy_out::<4>(bytes, at, buf),
-        8 => copy_out::<8>(bytes, at, buf),
-        _ => None,
-    };
-    n.ok_or(AbortCode::ObjectDoesNotExist)
-}
-
-/// The `N` bytes at `at` into the front of `buf`, little-endian.
-#[inline(always)]
-fn copy_out<const N: usize>(bytes: &[u8], at: usize, buf: &mut [u8]) -> Option<usize> {
-    let src = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok())?;
-    let dst = buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok())?;
-    copy_order(src, dst);
-    Some(N)
-}
-
-/// [`pdo_write`] of an offset slot: `data` (the handle's size) stored at its offset.
-#[inline(always)]
-fn write_offset_slot<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
-    if handle.slot & SLOT_RO != 0 {
-        return Err(AbortCode::WriteOfReadOnly);
-    }
-    let at = usize::from(handle.slot & (SLOT_RO - 1));
-    let bytes = d.bytes_mut();
-    match handle.size {
-        1 => copy_in::<1>(bytes, at, data),
-        2 => copy_in::<2>(bytes, at, data),
-        4 => copy_in::<4>(bytes, at, data),
-        8 => copy_in::<8>(bytes, at, data),
-        _ => Err(AbortCode::ObjectDoesNotExist),
-    }
-}
-
-/// `data` (exactly `N` little-endian bytes) stored at `at` in native byte order.
-#[inline(always)]
-fn copy_in<const N: usize>(bytes: &mut [u8], at: usize, data: &[u8]) -> Result<(), AbortCode> {
-    super::check_len(data, N)?;
-    let src = <&[u8; N]>::try_from(data).map_err(|_| AbortCode::GeneralError)?; // the same check: folded
-    let dst = bytes.get_mut(at..at + N).and_then(|s| <&mut [u8; N]>::try_from(s).ok());
-    copy_order(src, dst.ok_or(AbortCode::ObjectDoesNotExist)?);
-    Ok(())
 }
 
 /// Whether a row of `rows` is a writable string or DOMAIN ([`ObjectDictionary::STREAMS`]).
