@@ -34,6 +34,7 @@ use super::{I24, I40, I48, I56, U24, U40, U48, U56};
 
 pub mod offset;
 mod row;
+pub mod search;
 
 pub use offset::{as_bytes, as_bytes_mut};
 use offset::{offset_slot, read_at, read_offset_slot, write_at, write_offset_slot, AT_OFFSET};
@@ -116,6 +117,9 @@ macro_rules! od_data_trait {
             const LIMITS: &'static [Limit];
             /// The limit values [`Limit::at`] points into.
             const LIMIT_VALUES: &'static [u8];
+            /// The scale of the interpolated first guess of a search of [`KEYS`](Self::KEYS)
+            /// ([`search::scale`]), computed at compile time.
+            const SCALE: u32 = search::scale(Self::KEYS);
 
             /// Whether [`Row::field`] of a fixed-size row is the byte offset of its value in
             /// [`bytes`](Self::bytes) (`#[od(compact, zerocopy)]`): no accessor is then generated, every
@@ -358,7 +362,7 @@ enum At {
 /// Finds `index`/`sub` (OD-16: 0602 0000h for no such object, 0609 0011h for no such sub-index).
 #[inline]
 fn find<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
-    let pos = D::KEYS.partition_point(|&k| k < index);
+    let pos = search::locate(D::KEYS, D::SCALE, index);
     let row = match (D::KEYS.get(pos), D::ROWS.get(pos)) {
         (Some(&k), Some(row)) if k == index => *row,
         _ => return Err(AbortCode::ObjectDoesNotExist),

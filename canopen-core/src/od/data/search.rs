@@ -1,0 +1,85 @@
+//! Finding an object index among a data dictionary's sorted keys (OD-01, OD-16) in a number of steps that
+//! does not grow with the dictionary when its indices are spread evenly (issue 41 item 4): an interpolated
+//! guess (one multiply by a constant the compiler computes from the keys), checked, and the binary search
+//! when it misses. A dictionary of 1,000 VARs at 2000h..23E7h finds every key on the guess; a lumpy one
+//! (RECORD members repeat their index, gaps between ranges) pays the check on top of the binary search.
+
+/// The scale of the interpolated guess for `keys`: `(len - 1) / (last - first)` in 16.16 fixed point (0 for
+/// fewer than two distinct keys, where the guess is always the first position).
+///
+/// ```
+/// use canopen_core::od::data::search::scale;
+/// assert_eq!(scale(&[0x2000, 0x2001, 0x2002]), 1 << 16);
+/// assert_eq!(scale(&[0x2000, 0x2000]), 0);
+/// ```
+pub const fn scale(keys: &[u16]) -> u32 {
+    let n = keys.len();
+    if n < 2 || keys[n - 1] <= keys[0] {
+        return 0;
+    }
+    (((n - 1) as u32) << 16) / (keys[n - 1] - keys[0]) as u32
+}
+
+/// The first position in `keys` (sorted, repeats allowed) whose key is not below `index`, as
+/// `keys.partition_point(|&k| k < index)`, with `scale` from [`scale`] of the same keys: the interpolated
+/// guess when it holds `index` and is its first row (checked, so any guess is safe), else the binary search.
+///
+/// ```
+/// use canopen_core::od::data::search::{locate, scale};
+/// let keys = [0x1000, 0x2000, 0x2000, 0x2001, 0x6000];
+/// for index in [0u16, 0x1000, 0x1FFF, 0x2000, 0x2001, 0x2002, 0x6000, 0xFFFF] {
+///     assert_eq!(locate(&keys, scale(&keys), index), keys.partition_point(|&k| k < index));
+/// }
+/// ```
+#[inline]
+pub fn locate(keys: &[u16], scale: u32, index: u16) -> usize {
+    let Some(&first) = keys.first() else {
+        return 0;
+    };
+    // Below the first key the distance wraps and the product may too: whatever the guess, it only stands
+    // when the check below confirms it.
+    let guess = (u32::from(index.wrapping_sub(first)).wrapping_mul(scale) >> 16) as usize;
+    if let Some(&k) = keys.get(guess) {
+        let first_of_its_key = guess == 0 || keys.get(guess - 1).is_some_and(|&p| p < index);
+        if k == index && first_of_its_key {
+            return guess;
+        }
+    }
+    keys.partition_point(|&k| k < index)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The same answer as a binary search, for any sorted keys (repeats, gaps) and any index.
+        #[test]
+        fn locate_is_partition_point(mut keys in proptest::collection::vec(any::<u16>(), 0..300), index in any::<u16>(), near in 0usize..300) {
+            keys.sort_unstable();
+            let s = scale(&keys);
+            prop_assert_eq!(locate(&keys, s, index), keys.partition_point(|&k| k < index));
+            // And for the keys themselves and their neighbours (the interesting cases).
+            if let Some(&k) = keys.get(near % keys.len().max(1)) {
+                for i in [k.wrapping_sub(1), k, k.wrapping_add(1)] {
+                    prop_assert_eq!(locate(&keys, s, i), keys.partition_point(|&x| x < i));
+                }
+            }
+        }
+    }
+
+    /// Evenly spread keys: the first guess is the answer.
+    #[test]
+    fn dense_keys_are_found_on_the_first_guess() {
+        let mut keys = [0u16; 1000];
+        for (k, i) in keys.iter_mut().zip(0x2000..) {
+            *k = i;
+        }
+        let s = scale(&keys);
+        for (pos, &k) in keys.iter().enumerate() {
+            assert_eq!(((u32::from(k - keys[0]) * s) >> 16) as usize, pos);
+            assert_eq!(locate(&keys, s, k), pos);
+        }
+    }
+}
