@@ -5,8 +5,9 @@ use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 
-use crate::codegen::{rust_module, LeftOut};
+use crate::codegen::LeftOut;
 use crate::eds::{Eds, EdsError};
+use crate::layout::{rust_module_as, StructLayout};
 
 /// Why [`generate`] could not write the module.
 ///
@@ -59,8 +60,20 @@ impl std::error::Error for BuildError {
 /// assert!(module.ends_with("device.rs"));
 /// ```
 pub fn generate(eds: impl AsRef<Path>) -> Result<PathBuf, BuildError> {
+    generate_as(eds, StructLayout::Code)
+}
+
+/// [`generate`] with the struct in `layout` ([`StructLayout::Zerocopy`]: the least flash; the crate then
+/// needs `zerocopy` with its `derive` feature among its dependencies).
+///
+/// ```no_run
+/// // build.rs
+/// let module = canopen_eds::generate_as("device.eds", canopen_eds::StructLayout::Zerocopy).unwrap_or_else(|e| panic!("{e}"));
+/// assert!(module.ends_with("device.rs"));
+/// ```
+pub fn generate_as(eds: impl AsRef<Path>, layout: StructLayout) -> Result<PathBuf, BuildError> {
     let out_dir = std::env::var_os("OUT_DIR").ok_or(BuildError::NoOutDir)?;
-    generate_into(eds.as_ref(), Path::new(&out_dir), &mut io::stdout().lock())
+    generate_into_as(eds.as_ref(), Path::new(&out_dir), layout, &mut io::stdout().lock())
 }
 
 /// [`generate`] with the output directory given and the cargo instructions written to `cargo` (what a test
@@ -80,11 +93,31 @@ pub fn generate(eds: impl AsRef<Path>) -> Result<PathBuf, BuildError> {
 /// assert!(cargo.contains("cargo:warning=Drive.eds: 2001h Complex: data type 0040h is not supported; left out.\n"));
 /// ```
 pub fn generate_into(eds: &Path, out_dir: &Path, cargo: &mut dyn io::Write) -> Result<PathBuf, BuildError> {
+    generate_into_as(eds, out_dir, StructLayout::Code, cargo)
+}
+
+/// [`generate_into`] with the struct in `layout`.
+///
+/// ```
+/// use canopen_eds::StructLayout;
+/// let dir = std::env::temp_dir().join("canopen-eds-doc-generate-into-as");
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let eds = dir.join("axis.eds");
+/// std::fs::write(&eds, "[2002]\nParameterName=Gain\nDataType=3\nAccessType=rw\n").unwrap();
+/// let module = canopen_eds::generate_into_as(&eds, &dir, StructLayout::Zerocopy, &mut Vec::new()).unwrap();
+/// assert!(std::fs::read_to_string(module).unwrap().contains("#[od(compact, zerocopy)]"));
+/// ```
+pub fn generate_into_as(
+    eds: &Path,
+    out_dir: &Path,
+    layout: StructLayout,
+    cargo: &mut dyn io::Write,
+) -> Result<PathBuf, BuildError> {
     let text = std::fs::read_to_string(eds).map_err(|e| BuildError::Read(eds.to_owned(), e))?;
     let parsed = Eds::parse(&text).map_err(|e| BuildError::Parse(eds.to_owned(), e))?;
     let file = eds.file_name().map_or_else(|| eds.display().to_string(), |n| n.to_string_lossy().into_owned());
     let name = module_name(eds);
-    let g = rust_module(&parsed, &file);
+    let g = rust_module_as(&parsed, &file, layout);
     let out = out_dir.join(format!("{name}.rs"));
     let module = format!(
         "// Written by canopen_eds::generate from {file} at build time: include! it, do not edit it.\n\
@@ -165,7 +198,7 @@ mod tests {
         let mut cargo = Vec::new();
         let out = generate_into(&eds, &dir, &mut cargo).unwrap();
         assert_eq!(out, dir.join("io_module_2.rs"));
-        let g = rust_module(&Eds::parse(text).unwrap(), "io-module 2.eds");
+        let g = crate::rust_module(&Eds::parse(text).unwrap(), "io-module 2.eds");
         assert_eq!(g.left_out.len(), 3);
         let mut want = format!("cargo:rerun-if-changed={}\n", eds.display());
         for l in &g.left_out {

@@ -67,7 +67,7 @@ mod eds;
 mod layout;
 mod write;
 
-pub use build_script::{generate, generate_into, BuildError};
+pub use build_script::{generate, generate_as, generate_into, generate_into_as, BuildError};
 pub use codegen::{rust_module, to_rust, Dropped, Generated, LeftOut};
 pub use dcf::{ConciseDcf, ConciseError, Configured, DcfError};
 pub use eds::{

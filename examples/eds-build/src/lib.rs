@@ -8,8 +8,14 @@
 use canopen_core::{Node, NodeId};
 
 include!(concat!(env!("OUT_DIR"), "/device.rs"));
+include!(concat!(env!("OUT_DIR"), "/axis.rs"));
 
 pub use device::{Device, CONFIG};
+
+/// The axis's node at `id` (axis.eds, generated `#[od(compact, zerocopy)]`: its values reached by offset).
+pub fn axis_node(id: NodeId) -> Node<axis::Device> {
+    Node::new(id, axis::CONFIG, axis::Device::default())
+}
 
 /// The device's node at `id`, every entry at its EDS default once it boots (`handle_timeout`).
 pub fn node(id: NodeId) -> Node<Device> {
@@ -25,6 +31,30 @@ mod tests {
         let mut node = super::node(NodeId::new(5).unwrap());
         node.handle_timeout(Instant::ZERO);
         while node.poll_transmit().is_some() {} // the boot-up
+        read_of(&mut node, index, sub)
+    }
+
+    /// The axis's node 5, booted.
+    fn axis() -> canopen_core::Node<super::axis::Device> {
+        let mut node = super::axis_node(NodeId::new(5).unwrap());
+        node.handle_timeout(Instant::ZERO);
+        while node.poll_transmit().is_some() {}
+        node
+    }
+
+    /// The one reply to an SDO request.
+    fn request<A: canopen_core::od::ObjectDictionary>(node: &mut canopen_core::Node<A>, req: [u8; 8]) -> [u8; 8] {
+        node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x605, &req).unwrap());
+        let reply = node.poll_transmit().expect("an SDO reply");
+        reply.data().try_into().expect("8 bytes")
+    }
+
+    /// `sdo_read` on a booted node of any dictionary.
+    fn read_of<A: canopen_core::od::ObjectDictionary>(
+        node: &mut canopen_core::Node<A>,
+        index: u16,
+        sub: u8,
+    ) -> [u8; 4] {
         let [lo, hi] = index.to_le_bytes();
         node.handle_frame(Instant::from_millis(1), &CanFrame::new(0x605, &[0x40, lo, hi, sub, 0, 0, 0, 0]).unwrap());
         let reply = node.poll_transmit().expect("an SDO reply");
@@ -59,5 +89,27 @@ mod tests {
         let reply = node.poll_transmit().expect("an SDO reply");
         assert_eq!(reply.data(), &[0x80, 0x00, 0x22, 0x00, 0x00, 0x00, 0x02, 0x06]);
         // 0602 0000h: no object
+    }
+
+    /// The axis, reached by offset: its EDS defaults by SDO, a write, a limit's abort code, sub 00h counts.
+    #[test]
+    fn the_zerocopy_dictionary_answers_sdo() {
+        let mut node = axis();
+        assert_eq!(i16::from_le_bytes([read_of(&mut node, 0x2000, 0)[0], read_of(&mut node, 0x2000, 0)[1]]), 100);
+        assert_eq!(f32::from_le_bytes(read_of(&mut node, 0x2100, 1)), 1.5);
+        assert_eq!(i32::from_le_bytes(read_of(&mut node, 0x2100, 2)), -20);
+        assert_eq!(read_of(&mut node, 0x6000, 0)[0], 4);
+        assert_eq!(u32::from_le_bytes(read_of(&mut node, 0x1000, 0)), 0x0002_0192);
+        // 607Ah = 0x12345678, then read back.
+        assert_eq!(request(&mut node, [0x23, 0x7A, 0x60, 0, 0x78, 0x56, 0x34, 0x12])[0], 0x60);
+        assert_eq!(node.app().target_position_607a, 0x1234_5678);
+        assert_eq!(read_of(&mut node, 0x607A, 0), [0x78, 0x56, 0x34, 0x12]);
+        // 2000h = 2000 is above its HighLimit: 0609 0031h, and the value stays.
+        let [lo, hi] = 2000i16.to_le_bytes();
+        assert_eq!(
+            request(&mut node, [0x2B, 0x00, 0x20, 0, lo, hi, 0, 0]),
+            [0x80, 0x00, 0x20, 0, 0x31, 0x00, 0x09, 0x06]
+        );
+        assert_eq!(node.app().gain_2000, 100);
     }
 }
