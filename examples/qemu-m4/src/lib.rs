@@ -1,0 +1,50 @@
+//! Board support for QEMU's `mps2-an386` (ARM's AN386 FPGA image for the MPS2 board: a Cortex-M4 with
+//! SysTick and CMSDK APB UARTs), enough to run the canopener node under embassy with its frames as slcan
+//! lines on UART0. No PAC or HAL exists for this board in Rust; the few registers used are written here.
+//!
+//! Public descriptions relied on: QEMU's `docs/system/arm/mps2.rst` and `hw/arm/mps2.c` (memory map: image
+//! at 0, RAM at 2000_0000h; UART0 at 4000_4000h with its RX interrupt on IRQ 0 and TX on IRQ 1; a 25 MHz
+//! system clock), ARM's CMSDK APB UART description (DATA, STATE, CTRL, INTSTATUS/INTCLEAR, BAUDDIV at 0, 4, 8,
+//! Ch, 10h), the ARMv7-M Architecture Reference Manual for SysTick and the semihosting exit call, and
+//! embassy-time-driver's documentation for the driver and its timer queue.
+//!
+//! - [`uart`]: UART0, receive on its interrupt into a pipe, transmit polled;
+//! - [`time_driver`]: the embassy-time driver on SysTick (1 ms interrupt, microsecond `now`);
+//! - [`link`]: the node's `CanRx`/`CanTx` as slcan over the UART (`canopen-slcan`'s decoder and adapter);
+//! - [`stack`]: the stack painted at boot and its high-water mark read back;
+//! - [`semihosting`]: leave QEMU with an exit status (the bench binary).
+#![no_std]
+
+pub mod link;
+pub mod semihosting;
+pub mod stack;
+pub mod time_driver;
+pub mod uart;
+
+/// The system clock of QEMU's MPS2 boards (`SYSCLK_FRQ` in `hw/arm/mps2.c`), which SysTick counts.
+pub const SYSCLK_HZ: u32 = 25_000_000;
+
+/// The board's interrupts: all of them reach cortex-m-rt's `DefaultHandler` (no device crate), which
+/// dispatches on the number.
+#[cortex_m_rt::exception]
+unsafe fn DefaultHandler(irqn: i16) {
+    if irqn == uart::UART0_RX_IRQ as i16 {
+        uart::on_rx_interrupt();
+    }
+}
+
+/// An NVIC interrupt number of this board.
+#[derive(Clone, Copy)]
+pub struct Irq(pub u16);
+
+// SAFETY: the numbers used are the board's (UART0 RX = 0), below the 32 its NVIC has.
+unsafe impl cortex_m::interrupt::InterruptNumber for Irq {
+    fn number(self) -> u16 {
+        self.0
+    }
+}
+
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    semihosting::exit(false)
+}
