@@ -8,6 +8,7 @@
 //! Ch, 10h), the ARMv7-M Architecture Reference Manual for SysTick and the semihosting exit call, and
 //! embassy-time-driver's documentation for the driver and its timer queue.
 //!
+//! - [`device`]: the node's dictionary and configuration (shared with the host example `qemu_m4_eds`);
 //! - [`uart`]: UART0, receive on its interrupt into a pipe, transmit polled;
 //! - [`time_driver`]: the embassy-time driver on SysTick (1 ms interrupt, microsecond `now`);
 //! - [`link`]: the node's `CanRx`/`CanTx` as slcan over the UART (`canopen-slcan`'s decoder and adapter);
@@ -15,6 +16,7 @@
 //! - [`semihosting`]: leave QEMU with an exit status (the bench binary).
 #![no_std]
 
+pub mod device;
 pub mod link;
 pub mod semihosting;
 pub mod stack;
@@ -44,7 +46,24 @@ unsafe impl cortex_m::interrupt::InterruptNumber for Irq {
     }
 }
 
+/// A panic ends QEMU with status 1 after its source file on QEMU's standard error (the log CI prints).
+/// No `core::fmt` here: it would add kilobytes of flash to every binary.
 #[panic_handler]
-fn panic(_: &core::panic::PanicInfo) -> ! {
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    semihosting::write("firmware panic in ");
+    semihosting::write(info.location().map_or("?", |l| l.file()));
+    semihosting::write("\n");
+    semihosting::exit(false)
+}
+
+/// A fault ends QEMU with status 1 and the faulting PC on its standard error.
+#[cortex_m_rt::exception]
+unsafe fn HardFault(frame: &cortex_m_rt::ExceptionFrame) -> ! {
+    let mut hex = *b"firmware hard fault at pc 0x00000000\n";
+    let at = hex.len() - 9;
+    for (i, d) in hex[at..at + 8].iter_mut().enumerate() {
+        *d = b"0123456789abcdef"[(frame.pc() >> (28 - 4 * i)) as usize & 0xF];
+    }
+    semihosting::write(core::str::from_utf8(&hex).unwrap_or("firmware hard fault\n"));
     semihosting::exit(false)
 }

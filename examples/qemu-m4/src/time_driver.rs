@@ -33,6 +33,9 @@ pub fn init(mut syst: SYST) {
     syst.clear_current();
     syst.enable_interrupt();
     syst.enable_counter();
+    // The counter reads 0 until its first reload (which raises no interrupt): wait for it, so that `now`
+    // never goes back from "the end of ms 0" to its start.
+    while SYST::get_current() == 0 {}
 }
 
 /// Processor clock cycles since [`init`] (40 ns each).
