@@ -5,12 +5,12 @@
 //! Public descriptions relied on: QEMU's `docs/system/arm/mps2.rst` and `hw/arm/mps2.c` (memory map: image
 //! at 0, RAM at 2000_0000h; UART0 at 4000_4000h with its RX interrupt on IRQ 0 and TX on IRQ 1; a 25 MHz
 //! system clock), ARM's CMSDK APB UART description (DATA, STATE, CTRL, INTSTATUS/INTCLEAR, BAUDDIV at 0, 4, 8,
-//! Ch, 10h), the ARMv7-M Architecture Reference Manual for SysTick and the semihosting exit call, and
+//! Ch, 10h) and APB timer (CTRL, VALUE, RELOAD at 0, 4, 8; TIMER0 at 4000_0000h), the ARMv7-M Architecture Reference Manual for SysTick and the semihosting exit call, and
 //! embassy-time-driver's documentation for the driver and its timer queue.
 //!
 //! - [`device`]: the node's dictionary and configuration (shared with the host example `qemu_m4_eds`);
 //! - [`uart`]: UART0, receive on its interrupt into a pipe, transmit polled;
-//! - [`time_driver`]: the embassy-time driver on SysTick (1 ms interrupt, microsecond `now`);
+//! - [`time_driver`]: the embassy-time driver: TIMER0 as the clock, SysTick every 1 ms for the wake-ups;
 //! - [`link`]: the node's `CanRx`/`CanTx` as slcan over the UART (`canopen-slcan`'s decoder and adapter);
 //! - [`stack`]: the stack painted at boot and its high-water mark read back;
 //! - [`semihosting`]: leave QEMU with an exit status (the bench binary).
@@ -23,7 +23,7 @@ pub mod stack;
 pub mod time_driver;
 pub mod uart;
 
-/// The system clock of QEMU's MPS2 boards (`SYSCLK_FRQ` in `hw/arm/mps2.c`), which SysTick counts.
+/// The system clock of QEMU's MPS2 boards (`SYSCLK_FRQ` in `hw/arm/mps2.c`), which SysTick and TIMER0 count.
 pub const SYSCLK_HZ: u32 = 25_000_000;
 
 /// The board's interrupts: all of them reach cortex-m-rt's `DefaultHandler` (no device crate), which

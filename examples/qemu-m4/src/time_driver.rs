@@ -1,71 +1,83 @@
-//! The embassy-time driver: SysTick on the 25 MHz processor clock, reloaded every millisecond. `now` is in
-//! microseconds (embassy-time's 1 MHz tick): elapsed milliseconds (counted by the SysTick interrupt) plus the
-//! counter's position in the current one. Wake-ups go through embassy-time-queue-utils' `Queue`; the SysTick
-//! interrupt runs it every millisecond, so a timer fires within 1 ms of its instant (CANopen's times are
-//! milliseconds). [`cycles`] gives the raw 25 MHz count for measurements.
+//! The embassy-time driver. The clock is CMSDK APB TIMER0 (4000_0000h), a 32-bit down-counter on the 25 MHz
+//! peripheral clock, free-running from FFFF_FFFFh; `now` extends it to 64 bits by counting its wraps in
+//! software (one every 171 s, and `now` runs at least every millisecond) and divides to embassy-time's 1 MHz
+//! tick. Wake-ups: embassy-time-queue-utils' `Queue`, run by the SysTick interrupt every millisecond, so a
+//! timer fires within 1 ms of its instant (CANopen's times are milliseconds).
+//!
+//! Why not count SysTick interrupts for the clock: under a loaded host QEMU delivers a periodic timer late
+//! and does not make up the lost periods, so a clock made of interrupts runs slow (seen: 200 ms heartbeats
+//! 250-340 ms apart). A counter register is computed from QEMU's virtual clock at each read and is exact.
+//! [`cycles`] gives the raw 25 MHz count for measurements.
 
 use core::cell::{Cell, RefCell};
+use core::ptr::{read_volatile, write_volatile};
 use core::task::Waker;
 
-use cortex_m::peripheral::{syst::SystClkSource, SCB, SYST};
+use cortex_m::peripheral::{syst::SystClkSource, SYST};
 use critical_section::{CriticalSection, Mutex};
 use embassy_time_driver::Driver;
 use embassy_time_queue_utils::Queue;
 
 const CYCLES_PER_MS: u32 = crate::SYSCLK_HZ / 1000;
+const CYCLES_PER_US: u64 = crate::SYSCLK_HZ as u64 / 1_000_000;
 
-struct SysTickDriver {
-    ms: Mutex<Cell<u64>>,
+const TIMER0_CTRL: usize = 0x4000_0000;
+const TIMER0_VALUE: usize = 0x4000_0004;
+const TIMER0_RELOAD: usize = 0x4000_0008;
+const CTRL_ENABLE: u32 = 1;
+
+struct ClockDriver {
+    /// Wraps of TIMER0 so far, and its last up-count, to detect the next.
+    wraps: Mutex<Cell<(u32, u32)>>,
     alarm: Mutex<Cell<u64>>,
     queue: Mutex<RefCell<Queue>>,
 }
 
-embassy_time_driver::time_driver_impl!(static DRIVER: SysTickDriver = SysTickDriver {
-    ms: Mutex::new(Cell::new(0)),
+embassy_time_driver::time_driver_impl!(static DRIVER: ClockDriver = ClockDriver {
+    wraps: Mutex::new(Cell::new((0, 0))),
     alarm: Mutex::new(Cell::new(u64::MAX)),
     queue: Mutex::new(RefCell::new(Queue::new())),
 });
 
-/// Starts SysTick: processor clock, 1 ms period, interrupt on.
+/// Starts TIMER0 free-running and SysTick's 1 ms wake-up check (processor clock, interrupt on).
 pub fn init(mut syst: SYST) {
+    // SAFETY: TIMER0's registers, mapped by the board; nothing else uses the timer.
+    unsafe {
+        write_volatile(TIMER0_RELOAD as *mut u32, u32::MAX);
+        write_volatile(TIMER0_VALUE as *mut u32, u32::MAX);
+        write_volatile(TIMER0_CTRL as *mut u32, CTRL_ENABLE);
+    }
     syst.set_clock_source(SystClkSource::Core);
     syst.set_reload(CYCLES_PER_MS - 1);
     syst.clear_current();
     syst.enable_interrupt();
     syst.enable_counter();
-    // The counter reads 0 until its first reload (which raises no interrupt): wait for it, so that `now`
-    // never goes back from "the end of ms 0" to its start.
-    while SYST::get_current() == 0 {}
 }
 
-/// Processor clock cycles since [`init`] (40 ns each).
+/// Peripheral clock cycles (40 ns each) since [`init`].
 pub fn cycles() -> u64 {
-    critical_section::with(|cs| {
-        let (ms, in_ms) = DRIVER.position(cs);
-        ms * u64::from(CYCLES_PER_MS) + u64::from(in_ms)
-    })
+    critical_section::with(|cs| DRIVER.cycles(cs))
 }
 
-impl SysTickDriver {
-    /// Elapsed whole milliseconds and cycles into the current one. A wrap whose interrupt is still pending
-    /// (we are in a critical section) is counted, and the counter read again after it.
-    fn position(&self, cs: CriticalSection) -> (u64, u32) {
-        let ms = self.ms.borrow(cs).get();
-        let current = SYST::get_current();
-        if SCB::is_pendst_pending() {
-            (ms + 1, CYCLES_PER_MS - 1 - SYST::get_current())
-        } else {
-            (ms, CYCLES_PER_MS - 1 - current)
+impl ClockDriver {
+    fn cycles(&self, cs: CriticalSection) -> u64 {
+        // SAFETY: a read of TIMER0's counter.
+        let up = u32::MAX - unsafe { read_volatile(TIMER0_VALUE as *const u32) };
+        let cell = self.wraps.borrow(cs);
+        let (mut wraps, last) = cell.get();
+        if up < last {
+            wraps = wraps.wrapping_add(1);
         }
+        cell.set((wraps, up));
+        (u64::from(wraps) << 32) | u64::from(up)
     }
 
     fn now_cs(&self, cs: CriticalSection) -> u64 {
-        let (ms, in_ms) = self.position(cs);
-        ms * 1000 + u64::from(in_ms / (CYCLES_PER_MS / 1000))
+        self.cycles(cs) / CYCLES_PER_US
     }
 }
 
-impl Driver for SysTickDriver {
+impl Driver for ClockDriver {
     fn now(&self) -> u64 {
         critical_section::with(|cs| self.now_cs(cs))
     }
@@ -84,8 +96,6 @@ impl Driver for SysTickDriver {
 #[cortex_m_rt::exception]
 fn SysTick() {
     critical_section::with(|cs| {
-        let ms = DRIVER.ms.borrow(cs);
-        ms.set(ms.get() + 1);
         let now = DRIVER.now_cs(cs);
         let alarm = DRIVER.alarm.borrow(cs);
         if now >= alarm.get() {

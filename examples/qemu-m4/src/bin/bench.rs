@@ -1,7 +1,7 @@
 //! Cortex-M instructions per received frame for the six reference scenarios of DESIGN.md "Performance"
 //! (the workload of `benches/node_instructions.rs`, which callgrind counts on x86-64), run on the target's
 //! instruction set: QEMU's mps2-an386 with `-icount shift=0`, where each executed guest instruction advances
-//! the virtual clock by exactly 1 ns. SysTick counts that clock at 25 MHz, so 40 instructions per cycle;
+//! the virtual clock by exactly 1 ns. TIMER0 counts that clock at 25 MHz, so 40 instructions per cycle;
 //! each scenario is replayed until about 4,000 frames went through, so the 40-instruction grain is ~0.01.
 //!
 //! The count is instructions, not cycles (QEMU models no pipeline, wait states or flash latency): the figure

@@ -7,10 +7,13 @@
 //! - there is no button and no LED: output 6200h:01 is wired back to input 6000h:01 (a loopback), so an
 //!   RPDO or SDO write to the output makes the input change and the event-driven TPDO 1 carry it, and 2101h
 //!   counts the input's rising edges;
-//! - two objects of ours: 2103h, the stack's high-water mark in bytes (painted at boot, read back every
-//!   second), and 2104h, the slcan lines skipped as bad (plus 29-bit frames ignored).
+//! - objects of ours: 2103h, the stack's high-water mark in bytes (painted at boot, read back every second;
+//!   sub 01h since boot, sub 02h since the node runs), 2104h, the slcan lines skipped as bad (plus 29-bit
+//!   frames ignored), and 2105h, 256 bytes of scratch for SDO transfers.
 #![no_std]
 #![no_main]
+
+use core::sync::atomic::{AtomicU32, Ordering};
 
 use canopen_core::driver::{self, Shared};
 use canopen_core::storage::RamStorage;
@@ -21,13 +24,17 @@ use canopen_qemu_m4::link::{SlcanRx, SlcanTx};
 use canopen_qemu_m4::{stack, time_driver, uart};
 use embassy_executor::Spawner;
 use embassy_time::{Duration, Ticker};
-use static_cell::StaticCell;
+use static_cell::{ConstStaticCell, StaticCell};
 
-/// Parameters saved by 1010h go to RAM (2 slots of 2 KB).
-type DeviceNode = Node<Device, NodeSizes, RamStorage<2048>>;
+/// Parameters saved by 1010h go to RAM (2 slots of 2 KB, in `.data`: erased RAM reads 0xFF as erased flash).
+type DeviceNode = Node<Device, NodeSizes, &'static mut RamStorage<2048>>;
+
+/// A `static` of its own rather than a value moved into the node: built in place, never on the stack.
+static STORE: ConstStaticCell<RamStorage<2048>> = ConstStaticCell::new(RamStorage::new());
 
 static NODE: StaticCell<NodeCell<DeviceNode>> = StaticCell::new();
 static WAKE: AppWake = AppWake::new();
+static BOOT_STACK: AtomicU32 = AtomicU32::new(0);
 
 #[embassy_executor::main]
 async fn main(spawner: Spawner) {
@@ -39,7 +46,10 @@ async fn main(spawner: Spawner) {
     let device = Device::new();
     let Some(id) = NodeId::new(NODE_ID) else { return };
     let node: &'static NodeCell<DeviceNode> =
-        NODE.init_with(|| NodeCell::new(Node::with_storage(id, CONFIG, device, RamStorage::new())));
+        NODE.init_with(|| NodeCell::new(Node::with_storage(id, CONFIG, device, STORE.take())));
+    // What building the node took, then a fresh coat for what running it takes (2103h:01 / 02).
+    BOOT_STACK.store(stack::high_water(), Ordering::Relaxed);
+    stack::paint();
     spawner.spawn(process(node).unwrap());
     spawner.spawn(canopen(node).unwrap());
 }
@@ -78,7 +88,7 @@ async fn process(node: &'static NodeCell<DeviceNode>) {
             app.inputs[0] = inputs;
             app.uptime_s = ticks / 100;
             if second {
-                app.stack_high_water = high_water;
+                app.stack_high_water = [BOOT_STACK.load(Ordering::Relaxed).max(high_water), high_water];
                 app.slcan_skipped = canopen_qemu_m4::link::skipped();
             }
             changed && n.trigger_tpdo(0)
