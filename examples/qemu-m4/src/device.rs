@@ -69,6 +69,12 @@ impl Device {
     }
 }
 
+impl Default for Device {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 const RPDO1: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x6200_0108], ..PdoDefault::EVENT };
 const RPDO2: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x2001_0010], ..PdoDefault::EVENT };
 const RPDO3: PdoDefault =

@@ -76,7 +76,7 @@ async fn process(node: &'static NodeCell<DeviceNode>) {
     loop {
         ticker.next().await;
         ticks = ticks.wrapping_add(1);
-        let second = ticks % 100 == 0;
+        let second = ticks.is_multiple_of(100);
         let high_water = if second { stack::high_water() } else { 0 };
         let sent = node.lock(|n| {
             let app = n.app_mut();
