@@ -58,6 +58,7 @@ mod nmt;
 pub mod pdo;
 mod sdo;
 pub mod sim;
+pub mod slcan;
 mod sync;
 mod value;
 
