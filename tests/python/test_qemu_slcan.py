@@ -118,6 +118,7 @@ def test_segmented_download_and_upload_byte_exact(node, size):
 
 @pytest.mark.parametrize("size", [1, 7, 8, 127, 256])
 def test_block_download_and_upload_with_crc_byte_exact(node, size):
+    """SDO-49: block transfers with the CRC, computed by python canopen and by the Cortex-M4 node."""
     data = bytes((i * 91 + 3 * size) & 0xFF for i in range(size))
     with node.sdo.open(0x2105, 0, "wb", size=size, block_transfer=True) as f:
         f.write(data)
@@ -161,6 +162,7 @@ def test_nmt_states_seen_in_heartbeats(node, network, fast_heartbeat):
 
 
 def test_heartbeat_period_follows_1017h(node, network):
+    """HB-03: sent every 1017h ms, timed by the firmware's embassy-time driver in QEMU."""
     node.sdo[0x1017].raw = 200
     try:
         with Heartbeats(network) as hb:
@@ -242,6 +244,7 @@ def test_pdo_remapped_and_sync_driven(node, network, operational):
 # ---- EMCY -----------------------------------------------------------------------------------------------
 
 def test_short_rpdo_raises_emcy_8210h_and_fills_1003h(node, network, operational):
+    """PDO-39: an RPDO shorter than its mapping is not applied and raises EMCY 8210h."""
     mark = len(node.emcy.log)  # INTEROP: read the log from a mark
     network.send_message(0x200 + NODE_ID, b"")  # RPDO 1 maps 8 bits: 0 bytes is a length error
     assert wait_until(lambda: any(e.code == 0x8210 for e in node.emcy.log[mark:])), node.emcy.log[mark:]
