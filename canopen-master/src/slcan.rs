@@ -1,7 +1,8 @@
 //! Serial CAN: the master on an slcan (LAWICEL) adapter ([`Slcan`]), a serial port (CANable, USBtin and the
 //! like: `/dev/ttyACM0`, `COM3`) through the `serialport` crate or a TCP port (`tcp:HOST:PORT`, as QEMU's
 //! serial port or a ser2net bridge) through tokio; and [`Interface`], which opens a SocketCAN name or an
-//! `slcan:` one, so every command line and [`Master::open`](crate::Master::open) take both.
+//! `slcan:` one, so that a command line takes both. Off Linux (macOS, Windows) the master has slcan only:
+//! `canopen-socketcan` is a Linux-only dependency.
 //!
 //! The lines are `canopen-slcan`'s: at open the master drops what a serial port had buffered, writes `C` (close, in case the adapter was left
 //! open), `S`n when a bit rate was given (`slcan:/dev/ttyACM0@500000`), then `O`, and drops the frames of
@@ -19,7 +20,9 @@ use canopen_slcan::{bitrate_code, encode_frame, Counters, Decoder, Message, MAX_
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::sync::mpsc;
 
-use crate::{CanIo, IoFuture, SocketCan};
+#[cfg(target_os = "linux")]
+use crate::SocketCan;
+use crate::{CanIo, IoFuture};
 
 /// The serial line's baud rate (USB adapters ignore it; a UART adapter needs the one it was set to).
 pub const SERIAL_BAUD: u32 = 115_200;
@@ -273,7 +276,8 @@ impl CanIo for Slcan {
     }
 }
 
-/// A CAN interface by name: `slcan:SPEC` ([`Slcan::open`]) or a SocketCAN interface ([`SocketCan::open`]).
+/// A CAN interface by name: `slcan:SPEC` ([`Slcan::open`]) or, on Linux, a SocketCAN interface
+/// (`SocketCan::open`).
 ///
 /// ```no_run
 /// # async fn demo() -> std::io::Result<()> {
@@ -283,7 +287,8 @@ impl CanIo for Slcan {
 /// # Ok(()) }
 /// ```
 pub enum Interface {
-    /// A SocketCAN interface.
+    /// A SocketCAN interface (Linux only).
+    #[cfg(target_os = "linux")]
     SocketCan(SocketCan),
     /// An slcan adapter.
     Slcan(Slcan),
@@ -300,7 +305,15 @@ impl Interface {
     pub async fn open(name: &str) -> io::Result<Self> {
         match name.strip_prefix("slcan:") {
             Some(spec) => Slcan::open(spec).await.map(Interface::Slcan),
+            #[cfg(target_os = "linux")]
             None => SocketCan::open(name).map(Interface::SocketCan),
+            #[cfg(not(target_os = "linux"))]
+            None => Err(io::Error::new(
+                io::ErrorKind::Unsupported,
+                format!(
+                    "{name}: SocketCAN exists on Linux only; an slcan adapter is slcan:PORT or slcan:tcp:HOST:PORT"
+                ),
+            )),
         }
     }
 }
@@ -308,30 +321,35 @@ impl Interface {
 impl CanIo for Interface {
     fn send<'a>(&'a self, frame: &'a CanFrame) -> IoFuture<'a, ()> {
         match self {
+            #[cfg(target_os = "linux")]
             Interface::SocketCan(io) => io.send(frame),
             Interface::Slcan(io) => io.send(frame),
         }
     }
     fn recv(&self) -> IoFuture<'_, CanFrame> {
         match self {
+            #[cfg(target_os = "linux")]
             Interface::SocketCan(io) => io.recv(),
             Interface::Slcan(io) => io.recv(),
         }
     }
     fn send_many<'a>(&'a self, frames: &'a [CanFrame]) -> IoFuture<'a, ()> {
         match self {
+            #[cfg(target_os = "linux")]
             Interface::SocketCan(io) => io.send_many(frames),
             Interface::Slcan(io) => io.send_many(frames),
         }
     }
     fn recv_many<'a>(&'a self, out: &'a mut Vec<CanFrame>) -> IoFuture<'a, usize> {
         match self {
+            #[cfg(target_os = "linux")]
             Interface::SocketCan(io) => io.recv_many(out),
             Interface::Slcan(io) => io.recv_many(out),
         }
     }
     fn reopen(&self) -> IoFuture<'_, bool> {
         match self {
+            #[cfg(target_os = "linux")]
             Interface::SocketCan(io) => io.reopen(),
             Interface::Slcan(io) => io.reopen(),
         }
