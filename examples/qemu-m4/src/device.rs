@@ -40,9 +40,10 @@ pub struct Device {
     #[od(index = 0x2102, access = "ro", pdo = "tpdo", name = "Time of day ms")]
     pub time_ms: u32,
     /// 2103h: the stack's high-water mark in bytes: sub 01h since boot (building the node included), sub 02h
-    /// since the node runs (the stack painted again after `main` built it).
-    #[od(index = 0x2103, sub = 1..=2, access = "ro", name = "Stack high-water mark")]
-    pub stack_high_water: [u32; 2],
+    /// since the node runs (the stack painted again after `main` built it), sub 03h in the steady state (painted
+    /// again one second after that, when every task has run and the futures are in place).
+    #[od(index = 0x2103, sub = 1..=3, access = "ro", name = "Stack high-water mark")]
+    pub stack_high_water: [u32; 3],
     /// 2104h: slcan lines skipped as bad (garbage, over-long, a lost CR) plus 29-bit frames ignored.
     #[od(index = 0x2104, access = "ro", name = "slcan lines skipped")]
     pub slcan_skipped: u32,
@@ -62,7 +63,7 @@ impl Device {
             uptime_s: 0,
             presses: 0,
             time_ms: 0,
-            stack_high_water: [0; 2],
+            stack_high_water: [0; 3],
             slcan_skipped: 0,
             scratch: OctetString::new(),
         }

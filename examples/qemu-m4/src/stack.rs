@@ -26,9 +26,10 @@ pub fn size() -> u32 {
 }
 
 /// Paints the stack below the current frame (less a margin for this function's own). Call it first in
-/// `main`.
-pub fn paint() {
-    let (bottom, _) = bounds();
+/// `main`. Returns how deep the stack already is (bytes from its top to the painted part), so that a later
+/// [`high_water`] less it is what the code run in between took.
+pub fn paint() -> u32 {
+    let (bottom, top) = bounds();
     let below = cortex_m::register::msp::read() as usize - 64;
     let mut at = (bottom + 3) & !3;
     while at < below {
@@ -36,6 +37,7 @@ pub fn paint() {
         unsafe { write_volatile(at as *mut u32, PAINT) };
         at += 4;
     }
+    (top - below) as u32
 }
 
 /// The deepest the stack has been since [`paint`], in bytes from its top.

@@ -9,6 +9,9 @@
 //! instructions) adds well under 0.1 %. A calibration loop of known length is measured first and must read
 //! within 0.5 %, or the bench fails: then the emulator was not run with `-icount shift=0`.
 //!
+//! Beside each figure: the stack the passes took below the measuring loop (painted before, high-water mark
+//! after), i.e. what `handle_frame` and the drain need on this target, without the executor and the driver.
+//!
 //! One main-loop pass per frame as in the x86 bench: `handle_frame`, then `poll_event` until empty and
 //! `peek_transmit`/`transmitted` for every frame out. The SDO client's frames are recorded once with our SDO
 //! client before the measured part and replayed. The core's features are the firmware's (the STM32 `node`'s
@@ -29,7 +32,7 @@ use canopen_core::wire::sdo::Multiplexer;
 use canopen_core::{CanFrame, Instant, NmtState, NodeId, Sizes};
 use canopen_od_derive::ObjectDictionary;
 use canopen_qemu_m4::uart::Writer;
-use canopen_qemu_m4::{semihosting, time_driver, uart};
+use canopen_qemu_m4::{semihosting, stack, time_driver, uart};
 
 const K: usize = 8;
 const BLOCK_LEN: usize = 889 * K;
@@ -145,13 +148,16 @@ fn record(script: &mut Script, mux: Multiplexer, mode: Mode, download: Option<&m
     }
 }
 
-/// Replays `script` until at least `frames` went through; returns (received, sent, instructions).
+/// Replays `script` until at least `frames` went through; returns (received, sent, instructions, stack
+/// bytes the passes took below this function's frame).
+#[inline(never)]
 fn run<A: ObjectDictionary + OdDescribe>(
     node: &mut Node<A, Sizes>,
     script: &[CanFrame],
     frames: usize,
-) -> (u64, u64, u64) {
+) -> (u64, u64, u64, u32) {
     let (mut received, mut sent) = (0u64, 0u64);
+    let base = stack::paint();
     let start = time_driver::cycles();
     while (received as usize) < frames {
         for f in script {
@@ -169,14 +175,16 @@ fn run<A: ObjectDictionary + OdDescribe>(
         }
     }
     let cycles = time_driver::cycles() - start;
+    let stack = stack::high_water().saturating_sub(base);
     if node.tx_dropped() != 0 {
         fail("transmit queue overflow");
     }
-    (received, sent, cycles * INSNS_PER_CYCLE)
+    (received, sent, cycles * INSNS_PER_CYCLE, stack)
 }
 
-fn report(name: &str, (received, sent, insns): (u64, u64, u64)) {
+fn report(name: &str, (received, sent, insns, stack): (u64, u64, u64, u32)) {
     report_per(name, insns, received, "received frame", (received, sent));
+    let _ = writeln!(Writer, "{:<26} {stack:>6} B of stack below the loop, deepest pass", "");
 }
 
 /// `insns / per` with one decimal.
@@ -245,11 +253,11 @@ fn main() -> ! {
         fail("rpdo_4_objects wrote nothing");
     }
     let mut node = pdo_node();
-    let (received, sent, insns) = run(&mut node, &[CanFrame::from_parts(0x080, [0; 8], 0)], FRAMES);
+    let (received, sent, insns, stack) = run(&mut node, &[CanFrame::from_parts(0x080, [0; 8], 0)], FRAMES);
     if sent != 4 * received {
         fail("sync_4_tpdos did not send 4 TPDOs per SYNC");
     }
-    report("sync_4_tpdos", (received, sent, insns));
+    report("sync_4_tpdos", (received, sent, insns, stack));
     // The x86 ratchet counts this one per bus frame (1 SYNC in, 4 TPDOs out).
     report_per("sync_4_tpdos", insns, received + sent, "bus frame", (received, sent));
     let _ = writeln!(Writer, "done");

@@ -8,7 +8,7 @@
 //!   RPDO or SDO write to the output makes the input change and the event-driven TPDO 1 carry it, and 2101h
 //!   counts the input's rising edges;
 //! - objects of ours: 2103h, the stack's high-water mark in bytes (painted at boot, read back every second;
-//!   sub 01h since boot, sub 02h since the node runs), 2104h, the slcan lines skipped as bad (plus 29-bit
+//!   sub 01h since boot, sub 02h since the node runs, sub 03h in the steady state), 2104h, the slcan lines skipped as bad (plus 29-bit
 //!   frames ignored), and 2105h, 256 bytes of scratch for SDO transfers.
 #![no_std]
 #![no_main]
@@ -35,10 +35,11 @@ static STORE: ConstStaticCell<RamStorage<2048>> = ConstStaticCell::new(RamStorag
 static NODE: StaticCell<NodeCell<DeviceNode>> = StaticCell::new();
 static WAKE: AppWake = AppWake::new();
 static BOOT_STACK: AtomicU32 = AtomicU32::new(0);
+static START_STACK: AtomicU32 = AtomicU32::new(0);
 
 #[embassy_executor::main]
 async fn main(spawner: Spawner) {
-    stack::paint();
+    let _ = stack::paint();
     let Some(core) = cortex_m::Peripherals::take() else { return };
     time_driver::init(core.SYST);
     uart::init();
@@ -49,7 +50,7 @@ async fn main(spawner: Spawner) {
         NODE.init_with(|| NodeCell::new(Node::with_storage(id, CONFIG, device, STORE.take())));
     // What building the node took, then a fresh coat for what running it takes (2103h:01 / 02).
     BOOT_STACK.store(stack::high_water(), Ordering::Relaxed);
-    stack::paint();
+    let _ = stack::paint();
     spawner.spawn(process(node).unwrap());
     spawner.spawn(canopen(node).unwrap());
 }
@@ -78,6 +79,11 @@ async fn process(node: &'static NodeCell<DeviceNode>) {
         ticks = ticks.wrapping_add(1);
         let second = ticks.is_multiple_of(100);
         let high_water = if second { stack::high_water() } else { 0 };
+        if ticks == 100 {
+            // The first second (the tasks' first polls) is in sub 02h; from here on, the steady state.
+            START_STACK.store(high_water, Ordering::Relaxed);
+            let _ = stack::paint();
+        }
         let sent = node.lock(|n| {
             let app = n.app_mut();
             let inputs = app.outputs[0];
@@ -88,7 +94,8 @@ async fn process(node: &'static NodeCell<DeviceNode>) {
             app.inputs[0] = inputs;
             app.uptime_s = ticks / 100;
             if second {
-                app.stack_high_water = [BOOT_STACK.load(Ordering::Relaxed).max(high_water), high_water];
+                let running = START_STACK.load(Ordering::Relaxed).max(high_water);
+                app.stack_high_water = [BOOT_STACK.load(Ordering::Relaxed).max(running), running, high_water];
                 app.slcan_skipped = canopen_qemu_m4::link::skipped();
             }
             changed && n.trigger_tpdo(0)
