@@ -44,7 +44,7 @@ for _ in $(seq 50); do
     sleep 0.1
 done
 if ! QEMU_SLCAN="socket://127.0.0.1:$PORT" QEMU_EDS="$OUT/qemu-m4.eds" \
-        timeout 600 python3 -m pytest -q -rA tests/python/test_qemu_slcan.py; then
+        timeout 600 python3 -m pytest -q -rA -p no:cacheprovider -o faulthandler_timeout=300 tests/python/test_qemu_slcan.py; then
     echo "== FAIL; the emulator's log ($LOG):"
     cat "$LOG"
     kill -0 "$QEMU_PID" 2>/dev/null || echo "(QEMU is no longer running)"
