@@ -25,9 +25,17 @@ use crate::SocketCan;
 use crate::{CanIo, IoFuture};
 
 /// The serial line's baud rate (USB adapters ignore it; a UART adapter needs the one it was set to).
+///
+/// ```
+/// assert_eq!(canopen_master::slcan::SERIAL_BAUD, 115_200);
+/// ```
 pub const SERIAL_BAUD: u32 = 115_200;
 
 /// How long [`Slcan::open`] drops frames after it opened the channel.
+///
+/// ```
+/// assert_eq!(canopen_master::slcan::SETTLE.as_millis(), 50);
+/// ```
 pub const SETTLE: Duration = Duration::from_millis(50);
 
 /// What the reader hands to `recv`.
@@ -40,6 +48,11 @@ enum Writer {
 }
 
 /// Skipped input: the decoder's counters plus 29-bit frames (not CANopen, CAN-01).
+///
+/// ```
+/// let c = canopen_master::slcan::SlcanCounters::default();
+/// assert_eq!((c.lines.skipped(), c.extended), (0, 0));
+/// ```
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct SlcanCounters {
     /// The line decoder's counters (frames, commands/answers, malformed, unknown, over-long lines).

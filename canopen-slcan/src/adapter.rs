@@ -16,10 +16,23 @@ use crate::frame::SlcanFrame;
 use crate::line::Message;
 
 /// Status flag (`F`): a frame from the host was lost (bit 3, data overrun).
+///
+/// ```
+/// use canopen_slcan::{STATUS_BUS_ERROR, STATUS_DATA_OVERRUN, STATUS_ERROR_PASSIVE};
+/// assert_eq!((STATUS_DATA_OVERRUN, STATUS_ERROR_PASSIVE, STATUS_BUS_ERROR), (0x08, 0x20, 0x80));
+/// ```
 pub const STATUS_DATA_OVERRUN: u8 = 1 << 3;
 /// Status flag (`F`): the CAN controller is error passive (bit 5).
+///
+/// ```
+/// assert_eq!(canopen_slcan::STATUS_ERROR_PASSIVE, 1 << 5);
+/// ```
 pub const STATUS_ERROR_PASSIVE: u8 = 1 << 5;
 /// Status flag (`F`): bus error (bit 7).
+///
+/// ```
+/// assert_eq!(canopen_slcan::STATUS_BUS_ERROR, 1 << 7);
+/// ```
 pub const STATUS_BUS_ERROR: u8 = 1 << 7;
 
 /// What the adapter does with one line.
