@@ -5,7 +5,8 @@
 //! Public descriptions relied on: QEMU's `docs/system/arm/mps2.rst` and `hw/arm/mps2.c` (memory map: image
 //! at 0, RAM at 2000_0000h; UART0 at 4000_4000h with its RX interrupt on IRQ 0 and TX on IRQ 1; a 25 MHz
 //! system clock), ARM's CMSDK APB UART description (DATA, STATE, CTRL, INTSTATUS/INTCLEAR, BAUDDIV at 0, 4, 8,
-//! Ch, 10h) and APB timer (CTRL, VALUE, RELOAD at 0, 4, 8; TIMER0 at 4000_0000h), the ARMv7-M Architecture Reference Manual for SysTick and the semihosting exit call, and
+//! Ch, 10h) and APB timer (CTRL, VALUE, RELOAD at 0, 4, 8; TIMER0 at 4000_0000h), the ARMv7-M Architecture
+//! Reference Manual for SysTick and the semihosting exit call, and
 //! embassy-time-driver's documentation for the driver and its timer queue.
 //!
 //! - [`device`]: the node's dictionary and configuration (shared with the host example `qemu_m4_eds`);

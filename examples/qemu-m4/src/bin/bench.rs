@@ -36,7 +36,7 @@ use canopen_qemu_m4::{semihosting, stack, time_driver, uart};
 
 const K: usize = 8;
 const BLOCK_LEN: usize = 889 * K;
-/// Instructions per SysTick cycle under `-icount shift=0` (1 ns each) at 25 MHz.
+/// Instructions per TIMER0 cycle under `-icount shift=0` (1 ns each) at 25 MHz.
 const INSNS_PER_CYCLE: u64 = 1_000_000_000 / canopen_qemu_m4::SYSCLK_HZ as u64;
 
 #[derive(ObjectDictionary, Default)]
