@@ -19,6 +19,11 @@
 //! - `rpdo_4_objects`: one 8-byte RPDO (FFh) mapped to 4 UNSIGNED16 objects, node Operational;
 //! - `sync_4_tpdos`: one SYNC that makes 4 synchronous (01h) TPDOs of 8 bytes, each mapped to 4 UNSIGNED16,
 //!   node Operational (5 bus frames per received frame).
+//!
+//! The dictionary reached by offset (`#[od(compact, zerocopy)]`, issue 41), beside the default layout:
+//! `expedited_download@zerocopy`, `rpdo_4_objects@zerocopy` and `sync_4_tpdos@zerocopy` are the same
+//! scenarios on such dictionaries, and `expedited_download@thousand` writes 2002h of a 1,000-VAR one
+//! (`thousand.rs`): the lookup cost as the dictionary grows.
 
 use std::hint::black_box;
 
@@ -60,6 +65,18 @@ struct Quiet {
     blob: DomainBuf<BLOCK_LEN>,
 }
 
+/// `App`'s 2002h alone, reached by offset.
+#[derive(ObjectDictionary, Default, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]
+#[od(crate = "canopen::core", compact, zerocopy)]
+#[repr(C)]
+struct ZeroCopyApp {
+    #[od(index = 0x2002, access = "rw")]
+    value: u32,
+}
+
+#[path = "thousand.rs"]
+mod thousand;
+
 fn new_node() -> Node<App, Sizes> {
     booted(App::default()) // power-on (Reset Application) gives every entry its `default =` value
 }
@@ -90,19 +107,53 @@ struct Process {
     unmapped: u32,
 }
 
+/// `Process`, reached by offset.
+#[derive(ObjectDictionary, Default, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]
+#[od(crate = "canopen::core", compact, zerocopy)]
+#[repr(C)]
+struct ZeroCopyProcess {
+    #[od(index = 0x6010, access = "rw", default = 7)]
+    unmapped: u32,
+    #[od(index = 0x6000, access = "rww", pdo = "both")]
+    a: u16,
+    #[od(index = 0x6001, access = "rww", pdo = "both")]
+    b: u16,
+    #[od(index = 0x6002, access = "rww", pdo = "both")]
+    c: u16,
+    #[od(index = 0x6003, access = "rww", pdo = "both")]
+    d: u16,
+}
+
 const MAP: &[u32] = &[0x6000_0010, 0x6001_0010, 0x6002_0010, 0x6003_0010];
 const RPDO: PdoDefault = PdoDefault { transmission_type: 255, mapping: MAP, ..PdoDefault::EVENT };
 const TPDO: PdoDefault = PdoDefault { transmission_type: 1, mapping: MAP, ..PdoDefault::EVENT };
 const PDO_CFG: NodeConfig = NodeConfig { rpdo: &[RPDO], tpdo: &[TPDO, TPDO, TPDO, TPDO], ..NodeConfig::DEFAULT };
 
 /// A node with one RPDO and four synchronous TPDOs, Operational, queues drained.
-fn pdo_node() -> Node<Process, Sizes> {
-    let mut node = Node::new(NodeId::new(5).unwrap(), PDO_CFG, Process::default());
+fn pdo_node<P: canopen::core::od::ObjectDictionary + Default>() -> Node<P, Sizes> {
+    let mut node = Node::new(NodeId::new(5).unwrap(), PDO_CFG, P::default());
     node.handle_timeout(Instant::ZERO);
     node.enter_state(NmtState::Operational);
     while node.poll_transmit().is_some() {}
     while node.poll_event().is_some() {}
     node
+}
+
+/// The PDO scenarios on a node of [`pdo_node`]: an RPDO of 8 bytes, or a SYNC (4 TPDOs each).
+fn pdo_run<P: canopen::core::od::ObjectDictionary + canopen::core::od::OdDescribe>(
+    node: &mut Node<P, Sizes>,
+    scenario: &str,
+    iterations: usize,
+) -> (usize, usize) {
+    let frame = match scenario.starts_with("rpdo_4_objects") {
+        true => CanFrame::new(0x205, &[1, 2, 3, 4, 5, 6, 7, 8]).unwrap(),
+        false => CanFrame::new(0x080, &[]).unwrap(),
+    };
+    let r = run(node, &[frame], iterations);
+    if scenario.starts_with("sync_4_tpdos") {
+        assert_eq!(r.1, 4 * iterations);
+    }
+    r
 }
 
 /// Replays `script` `iterations` times, one main-loop pass per frame; returns (received, sent) frames.
@@ -166,18 +217,29 @@ fn main() {
     let iterations: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(1);
     let (frames, sent) = match scenario.as_str() {
         "rpdo_4_objects" | "sync_4_tpdos" => {
-            let mut node = pdo_node();
-            let frame = match scenario.as_str() {
-                "rpdo_4_objects" => CanFrame::new(0x205, &[1, 2, 3, 4, 5, 6, 7, 8]).unwrap(),
-                _ => CanFrame::new(0x080, &[]).unwrap(),
-            };
-            let r = run(&mut node, &[frame], iterations);
-            if scenario == "rpdo_4_objects" && iterations > 0 {
-                assert_eq!(node.app().d, 0x0807);
-            }
-            if scenario == "sync_4_tpdos" {
-                assert_eq!(r.1, 4 * iterations);
-            }
+            let mut node = pdo_node::<Process>();
+            let r = pdo_run(&mut node, &scenario, iterations);
+            assert!(scenario != "rpdo_4_objects" || iterations == 0 || node.app().d == 0x0807);
+            r
+        }
+        "rpdo_4_objects@zerocopy" | "sync_4_tpdos@zerocopy" => {
+            let mut node = pdo_node::<ZeroCopyProcess>();
+            let r = pdo_run(&mut node, &scenario, iterations);
+            assert!(scenario != "rpdo_4_objects@zerocopy" || iterations == 0 || node.app().d == 0x0807);
+            r
+        }
+        "expedited_download@zerocopy" => {
+            let script = record(Multiplexer::new(0x2002, 0), Mode::Auto, Some(vec![1, 2, 3, 4]));
+            let mut node = booted(ZeroCopyApp::default());
+            let r = run(&mut node, &script, iterations);
+            assert!(iterations == 0 || node.app().value == 0x0403_0201);
+            r
+        }
+        "expedited_download@thousand" => {
+            let script = record(Multiplexer::new(0x2002, 0), Mode::Auto, Some(vec![1, 2, 3, 4]));
+            let mut node = booted(<thousand::Thousand as zerocopy::FromZeros>::new_zeroed());
+            let r = run(&mut node, &script, iterations);
+            assert!(iterations == 0 || node.app().v2 == 0x0403_0201);
             r
         }
         "expedited_download_quiet" => {

@@ -25,13 +25,16 @@ fn help(name: &str) -> String {
 }
 
 /// Every example of the repository (examples/*.rs).
-const EXAMPLES: [&str; 4] = ["master_bench", "node", "qemu_m4_eds", "write_eds"];
+const EXAMPLES: [&str; 5] = ["drive", "master_bench", "node", "qemu_m4_eds", "write_eds"];
 
 #[test]
 fn every_example_says_what_it_is_for_and_how_to_run_it() {
-    for (name, purpose) in
-        [("node", "CANopen node"), ("master_bench", "throughput bench"), ("write_eds", "writes the EDS")]
-    {
+    for (name, purpose) in [
+        ("node", "CANopen node"),
+        ("master_bench", "throughput bench"),
+        ("write_eds", "writes the EDS"),
+        ("drive", "CiA 402 drive"),
+    ] {
         let text = help(name);
         assert!(text.contains(purpose), "{name} --help does not say what it is for:\n{text}");
         let line = format!("cargo run --example {name}");

@@ -14,9 +14,9 @@ use canopen_od_derive::ObjectDictionary;
 /// Defines a dictionary with one entry per access type, as a VAR of 4 bytes (expedited), a VAR of 8 bytes
 /// (segmented), an ARRAY element and a RECORD member; `$attr` picks the derive's layout.
 macro_rules! rules {
-    ($name:ident $(, $attr:meta)?) => {
+    ($name:ident $(, $attr:meta)*) => {
         #[derive(ObjectDictionary, Default)]
-        $(#[$attr])?
+        $(#[$attr])*
         struct $name {
             #[od(index = 0x2000, access = "ro", default = 0x1111_1111)]
             ro: u32,
@@ -42,11 +42,14 @@ macro_rules! rules {
             member_ro: u8,
             #[od(index = 0x2021, sub = 3, access = "wo")]
             member_wo: u8,
-}
+            /// Not in the dictionary: the tail a `repr(C)` struct would pad (zerocopy's byte view has none).
+            _pad: [u8; 2],
+        }
     };
 }
 rules!(Rules);
 rules!(Compact, od(compact));
+rules!(Offsets, od(compact, zerocopy), derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable), repr(C));
 
 const ACCESS_4: [(u16, &str); 6] =
     [(0x2000, "ro"), (0x2001, "wo"), (0x2002, "rw"), (0x2003, "rwr"), (0x2004, "rww"), (0x2005, "const")];
@@ -206,3 +209,4 @@ macro_rules! access_tests {
 }
 access_tests!(match_arms, Rules);
 access_tests!(compact, Compact);
+access_tests!(offsets, Offsets);

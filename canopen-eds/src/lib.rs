@@ -64,6 +64,7 @@ mod build_script;
 mod codegen;
 mod dcf;
 mod eds;
+mod layout;
 mod write;
 
 pub use build_script::{generate, generate_into, BuildError};
@@ -73,6 +74,7 @@ pub use eds::{
     data_type_name, eval_default, eval_typed, no_limit, type_range, Access, DeviceCommissioning, Eds, EdsError, Entry,
     InfoSection, Object, ObjectKind,
 };
+pub use layout::{rust_module_as, StructLayout};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -7,6 +7,8 @@
 //! - **NMT** node control ([`Master::nmt`]), **heartbeat** and **EMCY** as broadcast streams
 //!   ([`Master::heartbeats`], [`Master::emergencies`]), every received frame ([`Master::frames`]).
 //! - Blocking calls for code without a runtime: [`blocking::BlockingMaster`].
+//! - **CiA 402 drives** ([`Master::drive`]): enable, disable, quick stop, fault reset, modes, profile
+//!   position moves that await target reached, profile velocity, homing, cyclic set-points at SYNC.
 //! - A **SYNC** producer ([`Master::start_sync`]), **PDO** remapping through SDO with the CiA 301
 //!   disable/map/enable sequence ([`Master::configure_pdo`]), the core's **LSS** master ([`Master::lss`]).
 //!
@@ -52,6 +54,7 @@ pub mod blocking;
 mod bus;
 mod canio;
 mod data;
+pub mod drive;
 mod error;
 pub mod lss;
 mod nmt;
@@ -72,6 +75,7 @@ pub use canopen_core::wire::nmt::NmtCommand;
 /// firmware's build.rs as well), under the name the master has always given them.
 pub use canopen_eds as eds;
 pub use data::Progress;
+pub use drive::Drive402;
 pub use error::{abort_meaning, Error};
 pub use nmt::{EmcyEvent, Heartbeat};
 pub use sdo::{BLOCK, DEFAULT_SDO_TIMEOUT, QUIET};

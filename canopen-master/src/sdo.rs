@@ -264,7 +264,7 @@ impl Master {
         };
         started.map_err(|Busy| Error::InvalidArgument("the SDO client is busy".into()))?;
         let mut armed = AbortOnDrop { io: self.inner.io.clone(), cob: tx_cob, mux: Some(mux) };
-        let result = self.drive(&mut client, &mut route, data, tx_cob).await;
+        let result = self.run_client(&mut client, &mut route, data, tx_cob).await;
         armed.mux = None;
         if let Err(e) = &result {
             // A transfer cut off by the socket (the interface went down) leaves the server in it: once the
@@ -289,7 +289,7 @@ impl Master {
         result
     }
 
-    async fn drive(
+    async fn run_client(
         &self,
         client: &mut SdoClient,
         route: &mut Route,

@@ -26,7 +26,7 @@ use std::sync::Arc;
 use canopen_core::driver::{self, CanRx, CanTx, Timer};
 use canopen_core::driver::{Shared, Wake};
 use canopen_core::node::SansIo;
-use canopen_core::{CanFrame, Instant};
+use canopen_core::{CanFrame, Event, Instant};
 use tokio::sync::{broadcast, Mutex};
 use tokio::task::JoinHandle;
 
@@ -98,6 +98,29 @@ impl SimBus {
     /// # });
     /// ```
     pub fn spawn_node<N: SansIo + Send + 'static>(&self, node: N) -> SimNode<N> {
+        self.spawn_node_with(node, |_, _| {})
+    }
+
+    /// As [`spawn_node`](Self::spawn_node), with the node's application reacting to its events: `on_event`
+    /// gets the node (locked) and each event the driver hands out (a drive taking its set-point at a SYNC,
+    /// running its cycle after an RPDO).
+    ///
+    /// ```
+    /// use canopen_core::{node::NoApplication, profile::NodeConfig, Event, Node, NodeId};
+    /// # let rt = tokio::runtime::Builder::new_current_thread().enable_all().build().unwrap();
+    /// # rt.block_on(async {
+    /// let bus = canopen_master::sim::SimBus::new();
+    /// let node: Node<NoApplication> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, NoApplication);
+    /// let sim = bus.spawn_node_with(node, |_node, event| {
+    ///     if let Event::Sync { .. } = event { /* the application's SYNC work */ }
+    /// });
+    /// # });
+    /// ```
+    pub fn spawn_node_with<N: SansIo + Send + 'static>(
+        &self,
+        node: N,
+        mut on_event: impl FnMut(&mut N, Event) + Send + 'static,
+    ) -> SimNode<N> {
         let shared = Arc::new(MutexShared::new(node));
         let wake = Arc::new(NotifyWake::new());
         let port = self.port();
@@ -107,7 +130,8 @@ impl SimBus {
                 let (mut rx, mut tx) = (NodeRx(&port), NodeTx(&port));
                 let mut timer = TokioClock::new();
                 // The bus never fails: the driver only ends when the task is aborted.
-                let _ = driver::run(&*shared, &mut rx, &mut tx, &mut timer, &*wake, |_| {}).await;
+                let on = |e| shared.with(|n| on_event(n, e));
+                let _ = driver::run(&*shared, &mut rx, &mut tx, &mut timer, &*wake, on).await;
             })
         };
         SimNode { shared, wake, task }

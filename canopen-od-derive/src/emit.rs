@@ -151,7 +151,16 @@ fn place(f: &DataField, mutable: bool) -> Ts {
 }
 
 /// `impl OdData` and the forwarding `impl ObjectDictionary`.
-pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, write_events: bool) -> Ts {
+///
+/// `by_offset` (`#[od(compact, zerocopy)]`): a fixed-size row's `field` is the member's `offset_of!` and
+/// no accessor is emitted; the struct's byte view (zerocopy) reaches every fixed-size value.
+pub(crate) fn data_impl(
+    core: &Ts,
+    ident: &Ident,
+    mut fields: Vec<DataField>,
+    write_events: bool,
+    by_offset: bool,
+) -> Ts {
     fields.sort_by_key(|f| (f.index, f.sub));
     // Sub 00h of a RECORD is `ro` when any member says so; the row the search lands on is the first.
     let ro_records: Vec<u16> = fields.iter().filter(|f| f.n == 0 && f.count_ro).map(|f| f.index).collect();
@@ -169,12 +178,8 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
     }
     dts.sort_by_key(|dt| size_and_code(dt).1);
     let mut number = vec![0u16; fields.len()];
-    let mut defaults: Vec<u8> = Vec::new();
-    let mut default_at: Vec<(usize, usize)> = Vec::new();
     let mut accessors = Vec::new();
-    for dt in &dts {
-        let (size, code) = size_and_code(dt);
-        default_at.push((code, defaults.len()));
+    for dt in dts.iter().filter(|_| !by_offset) {
         let of_type = |array: bool| {
             fields.iter().enumerate().filter(move |(_, f)| f.dt == *dt && f.is_array() == array).map(|(i, _)| i)
         };
@@ -183,7 +188,6 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
         for (k, &i) in order.iter().enumerate() {
             let f = &fields[i];
             number[i] = k as u16;
-            defaults.extend(default_bytes(dt, size, f.default.as_ref()));
             let (m, k) = (&f.member, k as u16);
             if f.is_array() {
                 arr.push(quote!(#k => ::core::option::Option::Some(&self.#m[..]),));
@@ -234,8 +238,29 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
         }
     }
 
+    // The defaults of the fixed-size rows, in row order (Reset Application walks the rows).
+    let mut defaults: Vec<u8> = Vec::new();
+    let mut defaulted = vec![0u8; fields.len().div_ceil(8)];
+    let mut checked_types = 0u32;
+    for (pos, f) in fields.iter().enumerate().filter(|(_, f)| matches!(f.kind, Kind::Fixed(_))) {
+        let (size, code) = size_and_code(f.dt);
+        let bytes = default_bytes(f.dt, size, f.default.as_ref());
+        if bytes.iter().any(|&b| b != 0) {
+            defaults.extend(bytes);
+            defaulted[pos / 8] |= 1 << (pos % 8);
+        }
+        if f.has_limits() || f.check.is_some() || f.on_write.is_some() {
+            checked_types |= 1 << (code & 31);
+        }
+    }
+
     let keys = fields.iter().map(|f| f.index);
     let rows = fields.iter().zip(&number).map(|(f, &num)| {
+        let member = &f.member;
+        let num = match f.kind {
+            Kind::Fixed(_) if by_offset => quote!(::core::mem::offset_of!(#ident, #member) as u16),
+            _ => quote!(#num),
+        };
         let dt = Ident::new(f.dt, Span::call_site());
         let (access, pdo, sub, n) = (&f.access, &f.pdo, f.sub, f.n);
         let mut extra = Vec::new();
@@ -250,12 +275,8 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
             #core::od::data::Row { field: #num, data_type: #core::od::DataType::#dt, flags: #core::od::data::Row::flags(#access, #pdo), sub: #sub, n: #n } #with
         }
     });
-    let default_at_len = default_at.iter().map(|(c, _)| c + 1).max().unwrap_or(0);
-    let default_at_sets = default_at.iter().map(|(c, at)| {
-        let (c, at) = (Literal::usize_unsuffixed(*c), *at as u16);
-        quote!(t[#c] = #at;)
-    });
     let defaults = defaults.iter().map(|b| Literal::u8_unsuffixed(*b));
+    let defaulted = defaulted.iter().map(|b| Literal::u8_unsuffixed(*b));
     let mut limit_values: Vec<u8> = Vec::new();
     let mut limits = Vec::new();
     for (pos, f) in fields.iter().enumerate().filter(|(_, f)| f.has_limits() && matches!(f.kind, Kind::Fixed(_))) {
@@ -267,6 +288,30 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
     }
     let limit_values = limit_values.iter().map(|b| Literal::u8_unsuffixed(*b));
 
+    // The byte view: zerocopy's traits on the struct (the user derives them) prove it sound, and offsets
+    // must fit a row's u16.
+    let by_offset_items = by_offset.then(|| {
+        quote! {
+            const BY_OFFSET: bool = true;
+            const CHECKED_TYPES: u32 = #checked_types;
+            #[inline(always)]
+            fn bytes(&self) -> &[u8] {
+                #core::od::data::as_bytes(self)
+            }
+            #[inline(always)]
+            fn bytes_mut(&mut self) -> &mut [u8] {
+                #core::od::data::as_bytes_mut(self)
+            }
+        }
+    });
+    let offset_assert = by_offset.then(|| {
+        quote! {
+            const _: () = assert!(
+                ::core::mem::size_of::<#ident>() <= u16::MAX as usize,
+                "#[od(compact, zerocopy)]: a dictionary struct of more than 65,535 bytes"
+            );
+        }
+    });
     let hooks = hook_fns(core, &fields);
     let specials = special_fns(core, &fields, &number);
 
@@ -276,12 +321,8 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
             const KEYS: &'static [u16] = &[#(#keys),*];
             const ROWS: &'static [#core::od::data::Row] = &[#(#rows),*];
             const DEFAULTS: &'static [u8] = &[#(#defaults),*];
-            const DEFAULT_AT: &'static [u16] = &{
-                #[allow(unused_mut)]
-                let mut t = [0u16; #default_at_len];
-                #(#default_at_sets)*
-                t
-            };
+            const DEFAULTED: &'static [u8] = &[#(#defaulted),*];
+            #by_offset_items
             const LIMITS: &'static [#core::od::data::Limit] = &[#(#limits),*];
             const LIMIT_VALUES: &'static [u8] = &[#(#limit_values),*];
             #hooks
@@ -292,6 +333,7 @@ pub(crate) fn data_impl(core: &Ts, ident: &Ident, mut fields: Vec<DataField>, wr
         const _: () = assert!(
             <#ident as #core::od::data::OdData>::KEYS.len() == <#ident as #core::od::data::OdData>::ROWS.len()
         );
+        #offset_assert
 
         #[automatically_derived]
         impl #core::od::ObjectDictionary for #ident {

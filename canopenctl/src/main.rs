@@ -14,6 +14,8 @@ use canopenctl::bench::{Bench, Counted};
 use canopenctl::{guess, monitor_line, parse_in, parse_node, Type};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+mod drive_cmd;
+
 #[derive(Parser)]
 #[command(
     name = "canopenctl",
@@ -84,7 +86,13 @@ enum Command {
     },
     /// Print a Rust module for an EDS: the application objects as a derived object dictionary and the
     /// node configuration (uses only canopen-core and canopen-od-derive). Needs no bus.
-    EdsToRust { file: std::path::PathBuf },
+    EdsToRust {
+        file: std::path::PathBuf,
+        /// How the struct is served: `code` (match arms, fewest instructions), `compact` (tables), or
+        /// `zerocopy` (tables and offsets, least flash; the crate needs `zerocopy` with `derive`).
+        #[arg(long, default_value = "code")]
+        layout: canopen_eds::StructLayout,
+    },
     /// Print every frame on the bus, decoded, candump style.
     Monitor {
         /// Stop after this many frames.
@@ -110,6 +118,13 @@ enum Command {
         file: std::path::PathBuf,
         #[arg(long, default_value = "block")]
         mode: ModeArg,
+    },
+    /// A CiA 402 drive: state, enable, disable, quick-stop, fault-reset, mode, move, velocity, home, stream.
+    Drive {
+        #[arg(value_parser = parse_node)]
+        node: u8,
+        #[command(subcommand)]
+        command: drive_cmd::DriveCommand,
     },
     /// SDO throughput to and from a DOMAIN of NODE, every byte checked: block transfer with CRC (and
     /// segmented with --segmented-size), KiB/s and frames on the bus each way.
@@ -224,7 +239,7 @@ enum SwitchArg {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if let Command::EdsToRust { file } = &cli.command {
+    if let Command::EdsToRust { file, layout } = &cli.command {
         return match std::fs::read_to_string(file)
             .map_err(|e| e.to_string())
             .and_then(|t| Eds::parse(&t).map_err(|e| e.to_string()))
@@ -232,7 +247,7 @@ fn main() -> ExitCode {
             Ok(eds) => {
                 let name =
                     file.file_name().map_or_else(|| file.display().to_string(), |n| n.to_string_lossy().into_owned());
-                let g = canopen_eds::rust_module(&eds, &name);
+                let g = canopen_eds::rust_module_as(&eds, &name, *layout);
                 print!("{}", g.rust);
                 // What the module leaves out, on stderr too (a comment in the module says each where it is).
                 for l in &g.left_out {
@@ -320,6 +335,11 @@ async fn run(cli: Cli) -> Result<(), String> {
                 say(line);
             }
             say(format!("{} node(s)", found.len()));
+        }
+        Command::Drive { node, command } => {
+            for line in drive_cmd::run(&master, node, command).await? {
+                say(line);
+            }
         }
         Command::Read { at, ty } => {
             let (node, index, sub) = at.resolve(eds)?;

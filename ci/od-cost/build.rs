@@ -5,7 +5,10 @@
 //!   already in the image;
 //! - `var:N`, `array:N`, `record:N`, `string:N`: the base plus N more objects of that kind (at 3000h..);
 //! - `one`: a dictionary of one UNSIGNED8 VAR (the floor a generated module is measured against);
-//! - with OD_COST_COMPACT=1 the struct is `#[od(compact)]` (the dictionary as data);
+//! - with OD_COST_COMPACT=1 the struct is `#[od(compact)]` (the dictionary as data); with 2 it is
+//!   `#[od(compact, zerocopy)]` (reached by offset): `repr(C)`, zerocopy's derives, the fields ordered by
+//!   alignment and the tail padded, and no string in the base (a string has no byte view; `string:N`
+//!   is refused);
 //! - `file:PATH`: `canopenctl eds-to-rust` output (its `Device` struct becomes `Dict`; the node
 //!   configuration it also holds is not used, so only the application dictionary differs).
 use std::fmt::Write;
@@ -15,15 +18,17 @@ fn main() {
     println!("cargo:rerun-if-env-changed=OD_COST_COMPACT");
     let spec = std::env::var("OD_COST").unwrap_or_else(|_| "base".into());
     let out = std::path::PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let mut src = generate(&spec).unwrap_or_else(|e| panic!("OD_COST={spec}: {e}"));
-    // OD_COST_COMPACT=1: the struct asks for the dictionary as data (`#[od(compact)]`).
-    if std::env::var("OD_COST_COMPACT").is_ok_and(|v| v == "1") {
+    let layout = std::env::var("OD_COST_COMPACT").unwrap_or_default();
+    let mut src = generate(&spec, layout == "2").unwrap_or_else(|e| panic!("OD_COST={spec}: {e}"));
+    // OD_COST_COMPACT=1: the struct asks for the dictionary as data (`#[od(compact)]`); 2: reached by
+    // offset (generate wrote the zerocopy attributes, or the file came from `eds-to-rust --layout zerocopy`).
+    if layout == "1" {
         src = src.replacen("pub struct Dict", "#[od(compact)]\npub struct Dict", 1);
     }
     std::fs::write(out.join("dict.rs"), src).expect("OUT_DIR is writable");
 }
 
-fn generate(spec: &str) -> Result<String, String> {
+fn generate(spec: &str, zerocopy: bool) -> Result<String, String> {
     if let Some(path) = spec.strip_prefix("file:") {
         println!("cargo:rerun-if-changed={path}");
         let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
@@ -31,22 +36,23 @@ fn generate(spec: &str) -> Result<String, String> {
         let body: String = text
             .lines()
             .filter(|l| !l.starts_with("#![") && !l.starts_with("//!"))
-            .map(|l| l.replace("pub struct Device", "pub struct Dict") + "\n")
+            .map(|l| l.replace("pub struct Device", "pub struct Dict").replace("impl Default for Device", "impl Default for Dict") + "\n")
             .collect();
         return Ok(body);
     }
-    let mut s = String::from("use canopen_core::od::VisibleString;\nuse canopen_od_derive::ObjectDictionary;\n");
-    s += "#[derive(ObjectDictionary, Default)]\npub struct Dict {\n";
+    let mut s = String::new();
     if spec == "one" {
-        s += "    #[od(index = 0x2000, access = \"rw\", default = 1)]\n    pub one: u8,\n}\n";
-        return Ok(s);
+        s += "    #[od(index = 0x2000, access = \"rw\", default = 1)]\n    pub one: u8,\n";
+        return Ok(wrap(&s, zerocopy));
     }
     s += "    #[od(index = 0x2000, access = \"rw\", pdo = \"both\", default = 7)]\n    pub var: u32,\n";
     s += "    #[od(index = 0x2001, sub = 1..=4, access = \"rw\", pdo = \"both\", default = 3)]\n    pub array: [u16; 4],\n";
     s += "    #[od(index = 0x2002, sub = 1, record = \"R\", access = \"rw\", default = 1)]\n    pub r1: u8,\n";
     s += "    #[od(index = 0x2002, sub = 2, access = \"rw\", default = 2)]\n    pub r2: u16,\n";
     s += "    #[od(index = 0x2002, sub = 3, access = \"rw\", default = 3)]\n    pub r3: u32,\n";
-    s += "    #[od(index = 0x2003, access = \"rw\", default = \"abc\")]\n    pub text: VisibleString<16>,\n";
+    if !zerocopy {
+        s += "    #[od(index = 0x2003, access = \"rw\", default = \"abc\")]\n    pub text: VisibleString<16>,\n";
+    }
     let (kind, n) = match spec.split_once(':') {
         Some((k, n)) => (k, n.parse::<u32>().map_err(|e| e.to_string())?),
         None if spec == "base" => ("base", 0),
@@ -63,11 +69,50 @@ fn generate(spec: &str) -> Result<String, String> {
                  #[od(index = {index:#06x}, sub = 2, access = \"rw\", default = 2)]\n    pub r{i}b: u16,\n    \
                  #[od(index = {index:#06x}, sub = 3, access = \"rw\", default = 3)]\n    pub r{i}c: u32,"
             ),
+            "string" if zerocopy => return Err("a string has no byte view (OD_COST_COMPACT=2)".into()),
             "string" => writeln!(s, "    #[od(index = {index:#06x}, access = \"rw\", default = \"s{i}\")]\n    pub s{i}: VisibleString<16>,"),
             _ => return Err(format!("unknown kind {kind}")),
         }
         .map_err(|e| e.to_string())?;
     }
-    s += "}\n";
-    Ok(s)
+    Ok(wrap(&s, zerocopy))
+}
+
+/// The struct `Dict` around `fields` (pairs of an `#[od]` line and a `pub name: type,` line); with
+/// `zerocopy`, `#[od(compact, zerocopy)]` with the fields ordered by alignment and the tail padded.
+fn wrap(fields: &str, zerocopy: bool) -> String {
+    let mut s = String::from("use canopen_core::od::VisibleString;\nuse canopen_od_derive::ObjectDictionary;\n");
+    if !zerocopy {
+        return s + "#[derive(ObjectDictionary, Default)]\npub struct Dict {\n" + fields + "}\n";
+    }
+    let lines: Vec<&str> = fields.lines().collect();
+    let mut pairs: Vec<(usize, usize, String)> = lines
+        .chunks(2)
+        .map(|p| {
+            let ty = p[1].rsplit(": ").next().unwrap_or("").trim_end_matches(',');
+            let (elem, n) = match ty.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
+                Some(t) => t.split_once("; ").map_or((t, 1), |(e, n)| (e, n.parse().unwrap_or(1))),
+                None => (ty, 1),
+            };
+            let size = match elem { "u8" | "i8" => 1, "u16" | "i16" => 2, "u64" | "i64" => 8, _ => 4 };
+            (size, size * n, p.join("\n"))
+        })
+        .collect();
+    pairs.sort_by_key(|(a, ..)| std::cmp::Reverse(*a));
+    let total: usize = pairs.iter().map(|(_, b, _)| b).sum();
+    let align = pairs.first().map_or(1, |(a, ..)| *a);
+    // Zeroed in one `memset` rather than a store per field (the derived Default): the node gives every
+    // entry its default at boot anyway (Reset Application, NMT-04), so this is what such a firmware writes.
+    s += "impl Default for Dict {\n    fn default() -> Self {\n        <Self as zerocopy::FromZeros>::new_zeroed()\n    }\n}\n";
+    s += "#[derive(ObjectDictionary, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]\n";
+    s += "#[repr(C)]\n#[od(compact, zerocopy)]\npub struct Dict {\n";
+    for (.., text) in &pairs {
+        s += text;
+        s += "\n";
+    }
+    let pad = (align - total % align) % align;
+    if pad > 0 {
+        s += &format!("    pub _pad: [u8; {pad}],\n");
+    }
+    s + "}\n"
 }

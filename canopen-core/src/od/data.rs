@@ -13,15 +13,17 @@
 //!
 //! - [`OdData::KEYS`]: the object index of each [`Row`], sorted; a binary search finds an object.
 //! - [`OdData::ROWS`]: one 6-byte [`Row`] per VAR, per ARRAY (all its elements) and per RECORD member: the
-//!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number.
-//! - [`OdData::DEFAULTS`]: the power-on values as little-endian bytes, grouped by data type
-//!   ([`OdData::DEFAULT_AT`]), one value per VAR or record member and one per ARRAY.
+//!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number (or offset).
+//! - [`OdData::DEFAULTS`]: the power-on values that are not zero, as little-endian bytes in row order, and
+//!   [`OdData::DEFAULTED`], a bit per row saying which rows have one there.
 //! - [`OdData::LIMITS`]: low/high limits of the rows that have any.
 //!
-//! The only per-field code is the way to the field: for each fixed-size type a dictionary uses, one
-//! accessor of `&self` and one of `&mut self` (`var_unsigned32(f) -> Option<&u32>`, and for arrays a
-//! slice), each a jump table whose arm adds the field's offset to `self`. Strings and DOMAINs (variable
-//! size, streamed by SDO) keep generated code per field (`special_*`), as do the application's hooks.
+//! The only per-field code is the way to the field. With `#[od(compact)]`, for each fixed-size type a
+//! dictionary uses, one accessor of `&self` and one of `&mut self` (`var_unsigned32(f) -> Option<&u32>`,
+//! and for arrays a slice), each a jump table whose arm adds the field's offset to `self`. With
+//! `#[od(compact, zerocopy)]` none at all: the row holds the field's offset in the struct's bytes
+//! ([`offset`] module). Strings and DOMAINs (variable size, streamed by SDO) keep generated code per field
+//! (`special_*`), as do the application's hooks.
 //! The `#[derive(ObjectDictionary)]` macro writes all of it; its `ObjectDictionary` methods call the
 //! functions here ([`info`], [`read`], [`write()`], ...), which are generic over the dictionary, so each
 //! dictionary type gets one copy of them and every object is a few bytes of its tables.
@@ -30,167 +32,12 @@ use super::{AbortCode, Access, DataType, OdValue, PdoDir, PdoHandle, PdoMapping,
 use super::{TimeDifference, TimeOfDay};
 use super::{I24, I40, I48, I56, U24, U40, U48, U56};
 
-/// One row of a data dictionary: a VAR, a whole ARRAY, or one member of a RECORD (OD-03, OD-04).
-///
-/// | object | `sub` | `n` |
-/// |---|---|---|
-/// | VAR | 0 | 1 |
-/// | ARRAY | its first element's sub-index (1 or more) | its number of elements |
-/// | RECORD member | the member's sub-index (1 or more) | 0 |
-///
-/// Sub-index 00h of an ARRAY or RECORD has no row: its value is the highest sub-index (the ARRAY's last
-/// element, the RECORD's last member) and its access `const`, or `ro` with [`Row::COUNT_RO`].
-///
-/// ```
-/// use canopen_core::od::{Access, DataType, PdoMapping};
-/// use canopen_core::od::data::Row;
-/// const VAR: Row = Row::var(0, DataType::Unsigned32, Access::Rw, PdoMapping::Both);
-/// assert!(VAR.readable() && VAR.writable() && !VAR.is_array());
-/// assert_eq!((VAR.access(), VAR.pdo()), (Access::Rw, PdoMapping::Both));
-/// const ARRAY: Row = Row::array(2, DataType::Unsigned16, Access::Ro, PdoMapping::Tpdo, 1, 4);
-/// assert!(ARRAY.is_array() && !ARRAY.writable());
-/// assert_eq!(core::mem::size_of::<Row>(), 6);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Row {
-    /// The field's number among the dictionary's fields of this data type (what its accessors match on);
-    /// for a string or DOMAIN, its number among those.
-    pub field: u16,
-    /// The data type of the value (of each element of an ARRAY).
-    pub data_type: DataType,
-    /// Access, PDO mapping and the other bits ([`Row::READ`] ...).
-    pub flags: u8,
-    /// VAR: 0; ARRAY: the first element's sub-index; RECORD member: its sub-index.
-    pub sub: u8,
-    /// ARRAY: the number of elements; VAR: 1; RECORD member: 0.
-    pub n: u8,
-}
+pub mod offset;
+mod row;
 
-impl Row {
-    /// SDO may read it.
-    pub const READ: u8 = 1 << 0;
-    /// SDO may write it.
-    pub const WRITE: u8 = 1 << 1;
-    /// With READ alone: `const`; with READ and WRITE: `rwr` (an input).
-    pub const VARIANT_A: u8 = 1 << 2;
-    /// With READ and WRITE: `rww` (an output).
-    pub const VARIANT_B: u8 = 1 << 3;
-    /// Mappable into a TPDO.
-    pub const TPDO: u8 = 1 << 4;
-    /// Mappable into an RPDO.
-    pub const RPDO: u8 = 1 << 5;
-    /// Sub-index 00h of this ARRAY (or of the RECORD whose first member this is) is `ro`, not `const`.
-    pub const COUNT_RO: u8 = 1 << 6;
-    /// A write goes through [`OdData::LIMITS`] and the application's hooks ([`OdData::check`],
-    /// [`OdData::on_write`]).
-    pub const CHECKS: u8 = 1 << 7;
-
-    /// The flags of an access type and a PDO mapping.
-    pub const fn flags(access: Access, pdo: PdoMapping) -> u8 {
-        let a = match access {
-            Access::Ro => Self::READ,
-            Access::Const => Self::READ | Self::VARIANT_A,
-            Access::Wo => Self::WRITE,
-            Access::Rw => Self::READ | Self::WRITE,
-            Access::Rwr => Self::READ | Self::WRITE | Self::VARIANT_A,
-            Access::Rww => Self::READ | Self::WRITE | Self::VARIANT_B,
-        };
-        let p = match pdo {
-            PdoMapping::No => 0,
-            PdoMapping::Tpdo => Self::TPDO,
-            PdoMapping::Rpdo => Self::RPDO,
-            PdoMapping::Both => Self::TPDO | Self::RPDO,
-        };
-        a | p
-    }
-
-    /// A VAR (sub 00h).
-    pub const fn var(field: u16, data_type: DataType, access: Access, pdo: PdoMapping) -> Row {
-        Row { field, data_type, flags: Self::flags(access, pdo), sub: 0, n: 1 }
-    }
-
-    /// An ARRAY of `n` elements at sub-indices `first..first + n`.
-    pub const fn array(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, first: u8, n: u8) -> Row {
-        Row { field, data_type, flags: Self::flags(access, pdo), sub: first, n }
-    }
-
-    /// A RECORD member at sub-index `sub`.
-    pub const fn member(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, sub: u8) -> Row {
-        Row { field, data_type, flags: Self::flags(access, pdo), sub, n: 0 }
-    }
-
-    /// The same row with more flags ([`Row::COUNT_RO`], [`Row::CHECKS`]).
-    pub const fn with(mut self, flags: u8) -> Row {
-        self.flags |= flags;
-        self
-    }
-
-    /// Whether SDO may read it.
-    #[inline]
-    pub const fn readable(&self) -> bool {
-        self.flags & Self::READ != 0
-    }
-
-    /// Whether SDO may write it.
-    #[inline]
-    pub const fn writable(&self) -> bool {
-        self.flags & Self::WRITE != 0
-    }
-
-    /// Whether writes go through limits and hooks.
-    #[inline]
-    pub const fn checks(&self) -> bool {
-        self.flags & Self::CHECKS != 0
-    }
-
-    /// Whether this row is an ARRAY (its accessors give a slice).
-    #[inline]
-    pub const fn is_array(&self) -> bool {
-        self.sub != 0 && self.n != 0
-    }
-
-    /// The access type.
-    pub const fn access(&self) -> Access {
-        match self.flags & 0x0F {
-            0x01 => Access::Ro,
-            0x05 => Access::Const,
-            0x02 => Access::Wo,
-            0x07 => Access::Rwr,
-            0x0B => Access::Rww,
-            _ => Access::Rw,
-        }
-    }
-
-    /// The PDO mapping.
-    pub const fn pdo(&self) -> PdoMapping {
-        match (self.flags & Self::TPDO != 0, self.flags & Self::RPDO != 0) {
-            (false, false) => PdoMapping::No,
-            (true, false) => PdoMapping::Tpdo,
-            (false, true) => PdoMapping::Rpdo,
-            (true, true) => PdoMapping::Both,
-        }
-    }
-}
-
-/// Where the low and high limits of one row are (OD-11): a write outside them is 0609 0032h / 0609 0031h,
-/// and a value that does not compare (a NaN) 0609 0030h.
-///
-/// The limits are in [`OdData::LIMIT_VALUES`] from `at`: the low one, then the high one, each encoded in
-/// the row's data type (a side without a limit holds the type's extreme). Compared in the type itself, so
-/// a firmware links no conversion to a wider number or to floating point for them.
-///
-/// ```
-/// use canopen_core::od::data::Limit;
-/// const L: Limit = Limit { row: 3, at: 0 };
-/// assert_eq!(core::mem::size_of::<Limit>(), 4);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Limit {
-    /// The row's position in [`OdData::ROWS`].
-    pub row: u16,
-    /// Where its low limit starts in [`OdData::LIMIT_VALUES`].
-    pub at: u16,
-}
+pub use offset::{as_bytes, as_bytes_mut};
+use offset::{offset_slot, read_at, read_offset_slot, write_at, write_offset_slot, AT_OFFSET};
+pub use row::{Limit, Row};
 
 /// Calls `$m!` with every fixed-size data type: its [`DataType`], its Rust type and the names of its four
 /// accessors (VAR `&`/`&mut`, ARRAY `&`/`&mut`).
@@ -258,15 +105,40 @@ macro_rules! od_data_trait {
             const KEYS: &'static [u16];
             /// One row per VAR, ARRAY and RECORD member, in (index, sub-index) order.
             const ROWS: &'static [Row];
-            /// The default values of the fixed-size fields: little-endian, grouped by data type, in field
-            /// order within a type (see [`DEFAULT_AT`](Self::DEFAULT_AT)).
+            /// The default values of the fixed-size rows whose default is not zero ([`DEFAULTED`](Self::DEFAULTED)),
+            /// little-endian, in row order: one value per VAR and RECORD member, one per ARRAY (every
+            /// element gets it); strings and DOMAINs have none here.
             const DEFAULTS: &'static [u8];
-            /// By data type code: where that type's defaults start in [`DEFAULTS`](Self::DEFAULTS).
-            const DEFAULT_AT: &'static [u16];
+            /// One bit per row (bit `r % 8` of byte `r / 8`): set when [`DEFAULTS`](Self::DEFAULTS) holds the
+            /// row's default, clear when it is zero (no bytes for the most common default).
+            const DEFAULTED: &'static [u8];
             /// The limits of the rows that have any, by increasing row.
             const LIMITS: &'static [Limit];
             /// The limit values [`Limit::at`] points into.
             const LIMIT_VALUES: &'static [u8];
+
+            /// Whether [`Row::field`] of a fixed-size row is the byte offset of its value in
+            /// [`bytes`](Self::bytes) (`#[od(compact, zerocopy)]`): no accessor is then generated, every
+            /// fixed-size value is reached through the struct's byte view.
+            const BY_OFFSET: bool = false;
+            /// With [`BY_OFFSET`](Self::BY_OFFSET): the data types (bit `code`, [`DataType`] as `u8`) of the
+            /// rows with [`Row::CHECKS`], so the decode and compare of every other type compiles away.
+            const CHECKED_TYPES: u32 = 0;
+
+            /// The struct as bytes (native byte order), with [`BY_OFFSET`](Self::BY_OFFSET); see
+            /// [`as_bytes`].
+            #[doc(hidden)]
+            #[inline]
+            fn bytes(&self) -> &[u8] {
+                &[]
+            }
+
+            /// The struct as mutable bytes, with [`BY_OFFSET`](Self::BY_OFFSET); see [`as_bytes_mut`].
+            #[doc(hidden)]
+            #[inline]
+            fn bytes_mut(&mut self) -> &mut [u8] {
+                &mut []
+            }
 
             /// The application's check of a new value of the row at `row` (before it is stored; an error
             /// refuses the write). The derive calls the field's `check` method.
@@ -381,6 +253,9 @@ macro_rules! od_data_trait {
         /// Bytes `offset..` of the fixed-size value at `row`/`elem`; `None` for a string or DOMAIN.
         #[inline]
         fn read_fixed<D: OdData + ?Sized>(d: &D, row: &Row, elem: u8, offset: usize, buf: &mut [u8]) -> Option<Result<usize, AbortCode>> {
+            if D::BY_OFFSET {
+                return read_at(d, row, elem, offset, buf);
+            }
             let e = usize::from(elem);
             Some(match row.data_type {
                 $(DataType::$dt => {
@@ -404,8 +279,11 @@ macro_rules! od_data_trait {
             data: &[u8],
             checked: bool,
         ) -> Option<Result<(), AbortCode>> {
-            let e = usize::from(elem);
             let hooks = checked && row.checks();
+            if D::BY_OFFSET {
+                return write_at(d, pos, row, elem, sub, data, hooks);
+            }
+            let e = usize::from(elem);
             Some(match row.data_type {
                 $(DataType::$dt => (|| {
                     let v = <$t as OdValue>::decode(data)?;
@@ -421,6 +299,20 @@ macro_rules! od_data_trait {
                 })(),)*
                 _ => return None,
             })
+        }
+
+        /// Limits and the application's check of a write in [`OdData::BY_OFFSET`] mode: decoded in the
+        /// row's own type; the arms of the types without a checked row compile away
+        /// ([`OdData::CHECKED_TYPES`]).
+        #[inline(never)]
+        fn checks_at<D: OdData + ?Sized>(d: &D, pos: u16, row: &Row, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
+            match row.data_type {
+                $(DataType::$dt if D::CHECKED_TYPES & (1 << (DataType::$dt as u32 & 31)) != 0 => {
+                    let v = <$t as OdValue>::decode(data)?;
+                    checks::<D, $t>(d, pos, sub, &v, data)
+                })*
+                _ => d.check(pos, sub, data),
+            }
         }
     };
 }
@@ -835,14 +727,17 @@ pub fn abort_write<D: OdData + ?Sized>(d: &mut D, index: u16, sub: u8) {
 /// assert_eq!((app.a, app.b), ([4; 3], 0));
 /// ```
 pub fn restore_defaults<D: OdData + ?Sized>(d: &mut D) {
+    let mut start = 0;
     for (pos, row) in D::ROWS.iter().enumerate() {
         let size = row.data_type.fixed_size();
         if size == 0 {
             continue;
         }
-        let at = usize::from(D::DEFAULT_AT.get(row.data_type as usize).copied().unwrap_or(0));
-        let start = at + usize::from(row.field) * size;
-        let default = D::DEFAULTS.get(start..start + size).unwrap_or(&[0; 8][..size]);
+        let mut default = &[0; 8][..size];
+        if D::DEFAULTED.get(pos / 8).is_some_and(|b| b >> (pos % 8) & 1 != 0) {
+            default = D::DEFAULTS.get(start..start + size).unwrap_or(default);
+            start += size;
+        }
         for elem in 0..row.n.max(1) {
             let _ = write_value(d, pos as u16, row, elem, row.sub, default, false);
         }
@@ -936,7 +831,7 @@ pub fn pdo_resolve<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, dir: PdoDir) 
     };
     let info = SubInfo { data_type: row.data_type, access: row.access(), pdo: row.pdo(), size: 0 };
     if row.data_type.fixed_size() != 0 {
-        return PdoHandle::check(index, sub, &info, dir, pos);
+        return PdoHandle::check(index, sub, &info, dir, offset_slot::<D>(&row, elem).unwrap_or(pos));
     }
     let ok = match dir {
         PdoDir::Tpdo => info.pdo.tpdo() && info.access.readable(),
@@ -964,6 +859,9 @@ pub fn pdo_resolve<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, dir: PdoDir) 
 /// ```
 #[inline(always)]
 pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    if D::BY_OFFSET && handle.slot & AT_OFFSET != 0 {
+        return read_offset_slot(d, handle, buf);
+    }
     match at_slot::<D>(handle.slot, handle.sub) {
         Some((row, elem)) => read_value(d, &row, elem, 0, buf),
         None => read(d, handle.index, handle.sub, 0, buf),
@@ -986,6 +884,9 @@ pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -
 /// assert_eq!(app.a, 100);
 /// ```
 pub fn pdo_write<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+    if D::BY_OFFSET && handle.slot & AT_OFFSET != 0 {
+        return write_offset_slot(d, handle, data);
+    }
     match at_slot::<D>(handle.slot, handle.sub) {
         Some((row, _)) if !row.writable() => Err(AbortCode::WriteOfReadOnly),
         Some((row, elem)) => write_value(d, handle.slot, &row, elem, handle.sub, data, true),

@@ -91,7 +91,58 @@ struct Device {
 /// transmit and event queues of 8: the driver drains both after every frame and every deadline, and the
 /// largest burst one step makes is entering Operational or a SYNC (4 TPDOs, plus an EMCY or an SDO
 /// response), so 16 only cost RAM (8 × 12 B of frames + 8 × 12 B of events).
-type DeviceNode = Node<Device, Sizes<4, 8, 8, 4, 4>, Store>;
+type DeviceNode = Node<App, Sizes<4, 8, 8, 4, 4>, Store>;
+
+/// The node's application dictionary: the device's objects, and with the feature `cia402` the CiA 402
+/// drive's objects composed with them (6000h-67FFh served by `canopen_cia402::Drive`; the device's 6000h and
+/// 6200h are then shadowed, which is fine for measuring what the drive part costs).
+#[cfg(not(feature = "cia402"))]
+type App = Device;
+#[cfg(feature = "cia402")]
+type App = canopen_cia402::Drive<Device>;
+
+/// The device's own objects inside the application.
+#[cfg(not(feature = "cia402"))]
+fn device(app: &mut App) -> &mut Device {
+    app
+}
+#[cfg(feature = "cia402")]
+fn device(app: &mut App) -> &mut Device {
+    &mut app.app
+}
+
+/// An open-loop stepper: the position is the demand (feature `cia402`).
+#[cfg(feature = "cia402")]
+#[derive(Default)]
+struct Stepper {
+    position: i32,
+    velocity: i32,
+    powered: bool,
+}
+
+#[cfg(feature = "cia402")]
+impl canopen_cia402::Motor for Stepper {
+    fn set_power(&mut self, on: bool) {
+        self.powered = on;
+    }
+    fn follow(&mut self, demand: canopen_cia402::Demand, dt_us: u32) {
+        use canopen_cia402::Demand;
+        match demand {
+            Demand::Off => self.velocity = 0,
+            Demand::Position { position, velocity } => (self.position, self.velocity) = (position, velocity),
+            Demand::Velocity(v) => {
+                self.velocity = v;
+                self.position = self.position.wrapping_add(((i64::from(v) * i64::from(dt_us)) / 1_000_000) as i32);
+            }
+        }
+    }
+    fn position(&self) -> i32 {
+        self.position
+    }
+    fn velocity(&self) -> i32 {
+        self.velocity
+    }
+}
 
 /// Parameters and LSS configuration in the on-chip flash (feature `store`, on by default).
 #[cfg(feature = "store")]
@@ -178,6 +229,8 @@ async fn main(spawner: Spawner) {
     // Built inside `init_with`: the compiler then moves fewer of the node's parts through the stack on their way
     // into the static (52 B less flash than building it first and calling `init`).
     let node: &'static NodeCell<DeviceNode> = NODE.init_with(|| {
+        #[cfg(feature = "cia402")]
+        let device = canopen_cia402::Drive::new(device);
         let mut node = Node::with_storage(NodeId::new(raw).unwrap_or(factory), CONFIG, device, store);
         if NodeId::new(raw).is_none() {
             node = node.without_node_id();
@@ -218,7 +271,10 @@ async fn canopen(mut can: Can<'static>, node: &'static NodeCell<DeviceNode>) {
 fn on_event(node: &NodeCell<DeviceNode>, event: Event) {
     match event {
         // TIME consumer: the application keeps the time of day (2102h, mappable into TPDO 4).
-        Event::Time(t) => node.lock(|n| n.app_mut().time_ms = t.ms),
+        Event::Time(t) => node.lock(|n| device(n.app_mut()).time_ms = t.ms),
+        // A drive takes its cyclic synchronous set-point at the SYNC.
+        #[cfg(feature = "cia402")]
+        Event::Sync { .. } => node.lock(|n| n.app_mut().sync()),
         // LSS "store configuration": node-ID and bit rate to flash, then the answer to the master.
         #[cfg(feature = "store")]
         Event::Lss(LssEvent::StoreRequested { .. }) => node.lock(|n| n.complete_lss_store_in_storage()),
@@ -226,7 +282,9 @@ fn on_event(node: &NodeCell<DeviceNode>, event: Event) {
         // another node's EMCY, an RPDO timeout and heartbeat observations need no local reaction here.
         Event::StateChanged { to: NmtState::Operational, .. } => {}
         Event::Heartbeat(_) | Event::SdoAborted { .. } | Event::ObjectWritten { .. } => {}
-        Event::Emergency { .. } | Event::RpdoTimeout { .. } | Event::RpdoReceived { .. } | Event::Sync { .. } => {}
+        Event::Emergency { .. } | Event::RpdoTimeout { .. } | Event::RpdoReceived { .. } => {}
+        #[cfg(not(feature = "cia402"))]
+        Event::Sync { .. } => {}
         _ => {}
     }
 }
@@ -238,13 +296,17 @@ async fn process(node: &'static NodeCell<DeviceNode>, button: Input<'static>, mu
     let mut ticker = Ticker::every(Duration::from_millis(10));
     // Uptime counted in ticks: `Instant::elapsed().as_secs()` would link a 64-bit division (~1 KB of flash).
     let mut ticks: u32 = 0;
+    #[cfg(feature = "cia402")]
+    let mut stepper = Stepper::default();
     loop {
         ticker.next().await;
         ticks = ticks.wrapping_add(1);
         let inputs = u8::from(button.is_low());
         let uptime_s = ticks / 100;
         let (sent, level) = node.lock(|n| {
-            let app = n.app_mut();
+            #[cfg(feature = "cia402")]
+            canopen_cia402::cycle_node(n, &mut stepper, 10_000);
+            let app = device(n.app_mut());
             let changed = app.inputs[0] != inputs;
             if changed && inputs != 0 {
                 app.presses = app.presses.wrapping_add(1);

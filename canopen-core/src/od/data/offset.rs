@@ -1,0 +1,220 @@
+//! The dictionary reached by offset (`#[od(compact, zerocopy)]`, [`OdData::BY_OFFSET`]): a fixed-size value
+//! is its row's byte offset in the struct's bytes, which zerocopy's traits prove sound (no `unsafe` here),
+//! moved in the little-endian encoding (ENC-01); PDO handles carry the offset itself (PDO-11/PDO-12), so a
+//! mapped object is one copy with no row at all. Limits and hooks (OD-11) still go through the row.
+
+use super::{checks_at, OdData, Row};
+use crate::od::{AbortCode, PdoHandle};
+
+/// [`OdData::bytes`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes, which zerocopy's
+/// `IntoBytes` proves are all initialised (no padding) and `Immutable` proves are not behind a cell.
+///
+/// ```
+/// use zerocopy::{Immutable, IntoBytes};
+/// #[derive(IntoBytes, Immutable)]
+/// #[repr(C)]
+/// struct App { speed: u32, mode: u16, level: u16 }
+/// let app = App { speed: 1, mode: 2, level: 3 };
+/// assert_eq!(canopen_core::od::data::as_bytes(&app).len(), 8);
+/// ```
+#[inline(always)]
+pub fn as_bytes<T: zerocopy::IntoBytes + zerocopy::Immutable>(t: &T) -> &[u8] {
+    t.as_bytes()
+}
+
+/// [`OdData::bytes_mut`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes to write, which
+/// zerocopy's `FromBytes` proves any value of is a valid struct.
+///
+/// ```
+/// use zerocopy::{FromBytes, IntoBytes};
+/// #[derive(IntoBytes, FromBytes)]
+/// #[repr(C)]
+/// struct App { speed: u32 }
+/// let mut app = App { speed: 1 };
+/// canopen_core::od::data::as_bytes_mut(&mut app).copy_from_slice(&7u32.to_ne_bytes());
+/// assert_eq!(app.speed, 7);
+/// ```
+#[inline(always)]
+pub fn as_bytes_mut<T: zerocopy::IntoBytes + zerocopy::FromBytes>(t: &mut T) -> &mut [u8] {
+    t.as_mut_bytes()
+}
+
+/// Copies an `N`-byte value between native byte order (in [`OdData::bytes`]) and the little-endian
+/// encoding: one load and one store on a little-endian target.
+#[inline(always)]
+fn copy_order<const N: usize>(src: &[u8; N], dst: &mut [u8; N]) {
+    *dst = *src;
+    if cfg!(target_endian = "big") {
+        dst.reverse();
+    }
+}
+
+/// Bytes `offset..` of the fixed-size value of `row`/`elem`, reached by offset ([`OdData::BY_OFFSET`]);
+/// `None` for a string or DOMAIN. One arm per size, each a fixed-size copy (a copy of the run-time size
+/// was a call to `memcpy` per value).
+#[inline(always)]
+pub(super) fn read_at<D: OdData + ?Sized>(
+    d: &D,
+    row: &Row,
+    elem: u8,
+    offset: usize,
+    buf: &mut [u8],
+) -> Option<Result<usize, AbortCode>> {
+    let bytes = d.bytes();
+    Some(Ok(match row.data_type.fixed_size() {
+        0 => return None,
+        1 => read_n::<1>(bytes, row, elem, offset, buf),
+        2 => read_n::<2>(bytes, row, elem, offset, buf),
+        4 => read_n::<4>(bytes, row, elem, offset, buf),
+        8 => read_n::<8>(bytes, row, elem, offset, buf),
+        // A struct with a byte view holds plain numbers only: 1, 2, 4 or 8 bytes.
+        _ => return Some(Err(AbortCode::ObjectDoesNotExist)),
+    }))
+}
+
+/// [`read_at`] of an `N`-byte value: the whole of it into a buffer that holds it, else from `offset`.
+#[inline(always)]
+fn read_n<const N: usize>(bytes: &[u8], row: &Row, elem: u8, offset: usize, buf: &mut [u8]) -> usize {
+    let at = usize::from(row.field) + usize::from(elem) * N;
+    let Some(src) = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok()) else {
+        return 0;
+    };
+    match buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok()) {
+        Some(dst) if offset == 0 => {
+            copy_order(src, dst);
+            N
+        }
+        _ => read_part(src, offset, buf),
+    }
+}
+
+/// [`read_n`]'s rare case: a part of the value, or a buffer shorter than it (SDO segments of a 64-bit
+/// value).
+#[cold]
+#[inline(never)]
+fn read_part<const N: usize>(src: &[u8; N], offset: usize, buf: &mut [u8]) -> usize {
+    let mut le = [0u8; N];
+    copy_order(src, &mut le);
+    crate::od::copy_at(&le, offset, buf)
+}
+
+/// Stores the `N`-byte little-endian `data` at `row`/`elem` in native byte order; 0607 0012h/0607 0013h when
+/// `data` is not `N` bytes.
+#[inline(always)]
+fn store_n<const N: usize>(bytes: &mut [u8], row: &Row, elem: u8, data: &[u8]) -> Result<(), AbortCode> {
+    crate::od::check_len(data, N)?;
+    let src = <&[u8; N]>::try_from(data).map_err(|_| AbortCode::GeneralError)?; // the same check: folded
+    let at = usize::from(row.field) + usize::from(elem) * N;
+    let dst = bytes.get_mut(at..at + N).and_then(|s| <&mut [u8; N]>::try_from(s).ok());
+    copy_order(src, dst.ok_or(AbortCode::ObjectDoesNotExist)?);
+    Ok(())
+}
+
+/// Stores a fixed-size value of `row`/`elem` by offset ([`OdData::BY_OFFSET`]), after its limits and the
+/// application's check with `hooks`; `None` for a string or DOMAIN.
+#[inline(always)]
+pub(super) fn write_at<D: OdData + ?Sized>(
+    d: &mut D,
+    pos: u16,
+    row: &Row,
+    elem: u8,
+    sub: u8,
+    data: &[u8],
+    hooks: bool,
+) -> Option<Result<(), AbortCode>> {
+    let size = row.data_type.fixed_size();
+    if size == 0 {
+        return None;
+    }
+    Some((|| {
+        if hooks {
+            checks_at(d, pos, row, sub, data)?;
+        }
+        let bytes = d.bytes_mut();
+        match size {
+            1 => store_n::<1>(bytes, row, elem, data)?,
+            2 => store_n::<2>(bytes, row, elem, data)?,
+            4 => store_n::<4>(bytes, row, elem, data)?,
+            8 => store_n::<8>(bytes, row, elem, data)?,
+            _ => return Err(AbortCode::ObjectDoesNotExist),
+        }
+        if hooks {
+            d.on_write(pos, sub);
+        }
+        Ok(())
+    })())
+}
+
+/// A PDO handle's slot that is the value's byte offset in [`OdData::bytes`] (bits 0..13), not a row:
+/// [`pdo_read`]/[`pdo_write`] then move the value with no row at all. Only for a row without limits or
+/// hooks, and with [`SLOT_RO`] when SDO may not write it.
+pub(super) const AT_OFFSET: u16 = 0x8000;
+/// With [`AT_OFFSET`]: the entry is not writable ([`pdo_write`] answers 0601 0002h).
+const SLOT_RO: u16 = 0x4000;
+
+/// The offset slot of `row`/`elem` ([`AT_OFFSET`]) in [`OdData::BY_OFFSET`] mode, `None` when the row
+/// needs its checks, SDO may not read it, or the offset does not fit.
+pub(super) fn offset_slot<D: OdData + ?Sized>(row: &Row, elem: u8) -> Option<u16> {
+    let at = usize::from(row.field) + usize::from(elem) * row.data_type.fixed_size();
+    let ro = if row.writable() { 0 } else { SLOT_RO };
+    (D::BY_OFFSET && !row.checks() && row.readable() && at < usize::from(SLOT_RO)).then_some(AT_OFFSET | ro | at as u16)
+}
+
+/// [`pdo_read`] of an offset slot: the handle's size of bytes from its offset.
+#[inline(always)]
+pub(super) fn read_offset_slot<D: OdData + ?Sized>(
+    d: &D,
+    handle: &PdoHandle,
+    buf: &mut [u8],
+) -> Result<usize, AbortCode> {
+    let at = usize::from(handle.slot & (SLOT_RO - 1));
+    let bytes = d.bytes();
+    let n = match handle.size {
+        1 => copy_out::<1>(bytes, at, buf),
+        2 => copy_out::<2>(bytes, at, buf),
+        4 => copy_out::<4>(bytes, at, buf),
+        8 => copy_out::<8>(bytes, at, buf),
+        _ => None,
+    };
+    n.ok_or(AbortCode::ObjectDoesNotExist)
+}
+
+/// The `N` bytes at `at` into the front of `buf`, little-endian.
+#[inline(always)]
+fn copy_out<const N: usize>(bytes: &[u8], at: usize, buf: &mut [u8]) -> Option<usize> {
+    let src = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok())?;
+    let dst = buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok())?;
+    copy_order(src, dst);
+    Some(N)
+}
+
+/// [`pdo_write`] of an offset slot: `data` (the handle's size) stored at its offset.
+#[inline(always)]
+pub(super) fn write_offset_slot<D: OdData + ?Sized>(
+    d: &mut D,
+    handle: &PdoHandle,
+    data: &[u8],
+) -> Result<(), AbortCode> {
+    if handle.slot & SLOT_RO != 0 {
+        return Err(AbortCode::WriteOfReadOnly);
+    }
+    let at = usize::from(handle.slot & (SLOT_RO - 1));
+    let bytes = d.bytes_mut();
+    match handle.size {
+        1 => copy_in::<1>(bytes, at, data),
+        2 => copy_in::<2>(bytes, at, data),
+        4 => copy_in::<4>(bytes, at, data),
+        8 => copy_in::<8>(bytes, at, data),
+        _ => Err(AbortCode::ObjectDoesNotExist),
+    }
+}
+
+/// `data` (exactly `N` little-endian bytes) stored at `at` in native byte order.
+#[inline(always)]
+fn copy_in<const N: usize>(bytes: &mut [u8], at: usize, data: &[u8]) -> Result<(), AbortCode> {
+    crate::od::check_len(data, N)?;
+    let src = <&[u8; N]>::try_from(data).map_err(|_| AbortCode::GeneralError)?; // the same check: folded
+    let dst = bytes.get_mut(at..at + N).and_then(|s| <&mut [u8; N]>::try_from(s).ok());
+    copy_order(src, dst.ok_or(AbortCode::ObjectDoesNotExist)?);
+    Ok(())
+}

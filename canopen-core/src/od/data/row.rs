@@ -1,0 +1,166 @@
+//! The rows of a data dictionary (OD-03, OD-04, OD-08, OD-09, OD-11): what one VAR, ARRAY or RECORD member
+//! is, in six bytes, and where its limits are.
+
+use crate::od::{Access, DataType, PdoMapping};
+
+/// One row of a data dictionary: a VAR, a whole ARRAY, or one member of a RECORD (OD-03, OD-04).
+///
+/// | object | `sub` | `n` |
+/// |---|---|---|
+/// | VAR | 0 | 1 |
+/// | ARRAY | its first element's sub-index (1 or more) | its number of elements |
+/// | RECORD member | the member's sub-index (1 or more) | 0 |
+///
+/// Sub-index 00h of an ARRAY or RECORD has no row: its value is the highest sub-index (the ARRAY's last
+/// element, the RECORD's last member) and its access `const`, or `ro` with [`Row::COUNT_RO`].
+///
+/// ```
+/// use canopen_core::od::{Access, DataType, PdoMapping};
+/// use canopen_core::od::data::Row;
+/// const VAR: Row = Row::var(0, DataType::Unsigned32, Access::Rw, PdoMapping::Both);
+/// assert!(VAR.readable() && VAR.writable() && !VAR.is_array());
+/// assert_eq!((VAR.access(), VAR.pdo()), (Access::Rw, PdoMapping::Both));
+/// const ARRAY: Row = Row::array(2, DataType::Unsigned16, Access::Ro, PdoMapping::Tpdo, 1, 4);
+/// assert!(ARRAY.is_array() && !ARRAY.writable());
+/// assert_eq!(core::mem::size_of::<Row>(), 6);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Row {
+    /// The field's number among the dictionary's fields of this data type (what its accessors match on);
+    /// for a string or DOMAIN, its number among those.
+    pub field: u16,
+    /// The data type of the value (of each element of an ARRAY).
+    pub data_type: DataType,
+    /// Access, PDO mapping and the other bits ([`Row::READ`] ...).
+    pub flags: u8,
+    /// VAR: 0; ARRAY: the first element's sub-index; RECORD member: its sub-index.
+    pub sub: u8,
+    /// ARRAY: the number of elements; VAR: 1; RECORD member: 0.
+    pub n: u8,
+}
+
+impl Row {
+    /// SDO may read it.
+    pub const READ: u8 = 1 << 0;
+    /// SDO may write it.
+    pub const WRITE: u8 = 1 << 1;
+    /// With READ alone: `const`; with READ and WRITE: `rwr` (an input).
+    pub const VARIANT_A: u8 = 1 << 2;
+    /// With READ and WRITE: `rww` (an output).
+    pub const VARIANT_B: u8 = 1 << 3;
+    /// Mappable into a TPDO.
+    pub const TPDO: u8 = 1 << 4;
+    /// Mappable into an RPDO.
+    pub const RPDO: u8 = 1 << 5;
+    /// Sub-index 00h of this ARRAY (or of the RECORD whose first member this is) is `ro`, not `const`.
+    pub const COUNT_RO: u8 = 1 << 6;
+    /// A write goes through [`OdData::LIMITS`](super::OdData::LIMITS) and the application's hooks ([`OdData::check`](super::OdData::check),
+    /// [`OdData::on_write`](super::OdData::on_write)).
+    pub const CHECKS: u8 = 1 << 7;
+
+    /// The flags of an access type and a PDO mapping.
+    pub const fn flags(access: Access, pdo: PdoMapping) -> u8 {
+        let a = match access {
+            Access::Ro => Self::READ,
+            Access::Const => Self::READ | Self::VARIANT_A,
+            Access::Wo => Self::WRITE,
+            Access::Rw => Self::READ | Self::WRITE,
+            Access::Rwr => Self::READ | Self::WRITE | Self::VARIANT_A,
+            Access::Rww => Self::READ | Self::WRITE | Self::VARIANT_B,
+        };
+        let p = match pdo {
+            PdoMapping::No => 0,
+            PdoMapping::Tpdo => Self::TPDO,
+            PdoMapping::Rpdo => Self::RPDO,
+            PdoMapping::Both => Self::TPDO | Self::RPDO,
+        };
+        a | p
+    }
+
+    /// A VAR (sub 00h).
+    pub const fn var(field: u16, data_type: DataType, access: Access, pdo: PdoMapping) -> Row {
+        Row { field, data_type, flags: Self::flags(access, pdo), sub: 0, n: 1 }
+    }
+
+    /// An ARRAY of `n` elements at sub-indices `first..first + n`.
+    pub const fn array(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, first: u8, n: u8) -> Row {
+        Row { field, data_type, flags: Self::flags(access, pdo), sub: first, n }
+    }
+
+    /// A RECORD member at sub-index `sub`.
+    pub const fn member(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, sub: u8) -> Row {
+        Row { field, data_type, flags: Self::flags(access, pdo), sub, n: 0 }
+    }
+
+    /// The same row with more flags ([`Row::COUNT_RO`], [`Row::CHECKS`]).
+    pub const fn with(mut self, flags: u8) -> Row {
+        self.flags |= flags;
+        self
+    }
+
+    /// Whether SDO may read it.
+    #[inline]
+    pub const fn readable(&self) -> bool {
+        self.flags & Self::READ != 0
+    }
+
+    /// Whether SDO may write it.
+    #[inline]
+    pub const fn writable(&self) -> bool {
+        self.flags & Self::WRITE != 0
+    }
+
+    /// Whether writes go through limits and hooks.
+    #[inline]
+    pub const fn checks(&self) -> bool {
+        self.flags & Self::CHECKS != 0
+    }
+
+    /// Whether this row is an ARRAY (its accessors give a slice).
+    #[inline]
+    pub const fn is_array(&self) -> bool {
+        self.sub != 0 && self.n != 0
+    }
+
+    /// The access type.
+    pub const fn access(&self) -> Access {
+        match self.flags & 0x0F {
+            0x01 => Access::Ro,
+            0x05 => Access::Const,
+            0x02 => Access::Wo,
+            0x07 => Access::Rwr,
+            0x0B => Access::Rww,
+            _ => Access::Rw,
+        }
+    }
+
+    /// The PDO mapping.
+    pub const fn pdo(&self) -> PdoMapping {
+        match (self.flags & Self::TPDO != 0, self.flags & Self::RPDO != 0) {
+            (false, false) => PdoMapping::No,
+            (true, false) => PdoMapping::Tpdo,
+            (false, true) => PdoMapping::Rpdo,
+            (true, true) => PdoMapping::Both,
+        }
+    }
+}
+
+/// Where the low and high limits of one row are (OD-11): a write outside them is 0609 0032h / 0609 0031h,
+/// and a value that does not compare (a NaN) 0609 0030h.
+///
+/// The limits are in [`OdData::LIMIT_VALUES`](super::OdData::LIMIT_VALUES) from `at`: the low one, then the high one, each encoded in
+/// the row's data type (a side without a limit holds the type's extreme). Compared in the type itself, so
+/// a firmware links no conversion to a wider number or to floating point for them.
+///
+/// ```
+/// use canopen_core::od::data::Limit;
+/// const L: Limit = Limit { row: 3, at: 0 };
+/// assert_eq!(core::mem::size_of::<Limit>(), 4);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limit {
+    /// The row's position in [`OdData::ROWS`](super::OdData::ROWS).
+    pub row: u16,
+    /// Where its low limit starts in [`OdData::LIMIT_VALUES`](super::OdData::LIMIT_VALUES).
+    pub at: u16,
+}

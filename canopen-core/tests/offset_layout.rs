@@ -1,0 +1,120 @@
+//! The dictionary reached by offset (`#[od(compact, zerocopy)]`, issue 41): PDO handles that carry the value's
+//! byte offset (PDO-11/PDO-12: a mapped object moves its bytes each PDO; OD-08/OD-09: a read-only object is
+//! not written, 0601 0002h), limits and hooks still applied through the row (OD-11), defaults restored from
+//! the tables, zero defaults included (NMT-04), and every value in the little-endian encoding (ENC-01).
+
+use canopen_core::od::{AbortCode, ObjectDictionary, PdoDir};
+use canopen_od_derive::ObjectDictionary;
+
+#[derive(ObjectDictionary, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]
+#[od(compact, zerocopy)]
+#[repr(C)]
+struct Drive {
+    #[od(index = 0x607A, access = "rww", pdo = "both", default = -5)]
+    target: i32,
+    #[od(index = 0x6064, access = "ro", pdo = "tpdo", default = 0x0102_0304)]
+    actual: i32,
+    #[od(index = 0x6081, access = "rww", pdo = "both", max = 1000)]
+    speed: u32,
+    #[od(index = 0x2000, sub = 1..=2, access = "rww", pdo = "both", default = 0x1122)]
+    pair: [u16; 2],
+    #[od(index = 0x6040, access = "rww", pdo = "rpdo", on_write = "controlword_written")]
+    controlword: u16,
+    #[od(index = 0x6060, access = "rww", pdo = "both")]
+    mode: i8,
+    #[od(index = 0x2001, access = "rw")]
+    writes: u8,
+}
+
+impl Drive {
+    fn controlword_written(&mut self, _sub: u8) {
+        self.writes += 1;
+    }
+}
+
+fn drive() -> Drive {
+    let mut d = <Drive as zerocopy::FromZeros>::new_zeroed();
+    d.restore_defaults();
+    d
+}
+
+#[test]
+fn defaults_come_from_the_tables_zero_ones_included() {
+    let mut d = drive();
+    assert_eq!((d.target, d.actual, d.speed, d.pair, d.controlword, d.mode), (-5, 0x0102_0304, 0, [0x1122; 2], 0, 0));
+    d.speed = 9;
+    d.mode = 3;
+    d.restore_defaults();
+    assert_eq!((d.speed, d.mode), (0, 0), "a zero default has no bytes in DEFAULTS but is restored");
+}
+
+#[test]
+fn a_pdo_handle_moves_the_value_little_endian() {
+    let mut d = drive();
+    let h = d.pdo_resolve(0x607A, 0, PdoDir::Rpdo).unwrap();
+    assert_eq!(h.size, 4);
+    d.pdo_write(&h, &[0x78, 0x56, 0x34, 0x12]).unwrap();
+    assert_eq!(d.target, 0x1234_5678);
+    let t = d.pdo_resolve(0x607A, 0, PdoDir::Tpdo).unwrap();
+    let mut buf = [0u8; 4];
+    assert_eq!(d.pdo_read(&t, &mut buf), Ok(4));
+    assert_eq!(buf, [0x78, 0x56, 0x34, 0x12]);
+    // An ARRAY element: its own offset.
+    let e = d.pdo_resolve(0x2000, 2, PdoDir::Rpdo).unwrap();
+    d.pdo_write(&e, &[0xCD, 0xAB]).unwrap();
+    assert_eq!(d.pair, [0x1122, 0xABCD]);
+    let m = d.pdo_resolve(0x6060, 0, PdoDir::Rpdo).unwrap();
+    d.pdo_write(&m, &[0xFE]).unwrap();
+    assert_eq!(d.mode, -2);
+    // A wrong length is the SDO length answer, and changes nothing.
+    assert_eq!(d.pdo_write(&h, &[1, 2]), Err(AbortCode::LengthTooLow));
+    assert_eq!(d.target, 0x1234_5678);
+}
+
+#[test]
+fn a_read_only_entry_is_not_written_through_its_handle() {
+    let mut d = drive();
+    let h = d.pdo_resolve(0x6064, 0, PdoDir::Tpdo).unwrap();
+    assert_eq!(d.pdo_write(&h, &[0, 0, 0, 0]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(d.actual, 0x0102_0304);
+    let mut buf = [0u8; 4];
+    assert_eq!(d.pdo_read(&h, &mut buf), Ok(4));
+    assert_eq!(buf, [4, 3, 2, 1]);
+    assert_eq!(d.pdo_resolve(0x6064, 0, PdoDir::Rpdo).err(), Some(AbortCode::NotMappable));
+}
+
+#[test]
+fn limits_and_hooks_still_apply_to_mapped_entries() {
+    let mut d = drive();
+    let s = d.pdo_resolve(0x6081, 0, PdoDir::Rpdo).unwrap();
+    assert_eq!(d.pdo_write(&s, &1001u32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.speed, 0);
+    d.pdo_write(&s, &1000u32.to_le_bytes()).unwrap();
+    assert_eq!(d.speed, 1000);
+    let c = d.pdo_resolve(0x6040, 0, PdoDir::Rpdo).unwrap();
+    d.pdo_write(&c, &[0x0F, 0x00]).unwrap();
+    assert_eq!((d.controlword, d.writes), (0x000F, 1), "on_write ran");
+    // And over SDO the same.
+    assert_eq!(d.write(0x6081, 0, &2000u32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    d.write(0x6040, 0, &[6, 0]).unwrap();
+    assert_eq!((d.controlword, d.writes), (6, 2));
+}
+
+#[test]
+fn sdo_reads_of_every_size_and_a_part_of_one() {
+    let mut d = drive();
+    d.mode = -1;
+    let mut buf = [0u8; 8];
+    assert_eq!(d.read(0x6060, 0, 0, &mut buf), Ok(1));
+    assert_eq!(buf[0], 0xFF);
+    assert_eq!(d.read(0x2000, 1, 0, &mut buf), Ok(2));
+    assert_eq!(&buf[..2], &[0x22, 0x11]);
+    assert_eq!(d.read(0x6064, 0, 0, &mut buf), Ok(4));
+    assert_eq!(&buf[..4], &[4, 3, 2, 1]);
+    // From an offset into the value (a segment), and into a short buffer.
+    assert_eq!(d.read(0x6064, 0, 1, &mut buf), Ok(3));
+    assert_eq!(&buf[..3], &[3, 2, 1]);
+    let mut short = [0u8; 2];
+    assert_eq!(d.read(0x6064, 0, 0, &mut short), Ok(2));
+    assert_eq!(short, [4, 3]);
+}
