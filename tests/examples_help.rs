@@ -25,7 +25,7 @@ fn help(name: &str) -> String {
 }
 
 /// Every example of the repository (examples/*.rs).
-const EXAMPLES: [&str; 4] = ["drive", "master_bench", "node", "write_eds"];
+const EXAMPLES: [&str; 5] = ["drive", "master_bench", "node", "qemu_m4_eds", "write_eds"];
 
 #[test]
 fn every_example_says_what_it_is_for_and_how_to_run_it() {

@@ -51,6 +51,7 @@ impl BlockingMaster {
     /// let name: String = m.read(5, 0x1008, 0)?;
     /// # Ok::<(), canopen_master::Error>(())
     /// ```
+    #[cfg(target_os = "linux")]
     pub fn open(iface: &str) -> Result<Self, Error> {
         BlockingMaster::new(|| crate::SocketCan::open(iface))
     }

@@ -12,7 +12,9 @@ use tokio::sync::{broadcast, mpsc, watch};
 use tokio::task::JoinHandle;
 
 use crate::sim::TokioClock;
-use crate::{CanIo, EmcyEvent, Error, Heartbeat, Master, SocketCan, DEFAULT_SDO_TIMEOUT};
+#[cfg(target_os = "linux")]
+use crate::SocketCan;
+use crate::{CanIo, EmcyEvent, Error, Heartbeat, Master, DEFAULT_SDO_TIMEOUT};
 
 /// The frame routing table shared by the receive task and the transfers.
 pub(crate) struct Router {
@@ -185,7 +187,7 @@ impl Master {
             tokio::spawn(async move {
                 // Every frame queued at a wake-up is taken at once (one recvmmsg on SocketCAN) and routed
                 // before the transfers run: a block upload's sub-block wakes each side once, not per frame.
-                let mut batch = Vec::with_capacity(canopen_socketcan::BATCH);
+                let mut batch = Vec::with_capacity(crate::canio::BATCH);
                 loop {
                     match io.recv_many(&mut batch).await {
                         Ok(_) => batch.drain(..).for_each(|f| router.dispatch(f)),
@@ -217,6 +219,7 @@ impl Master {
     /// let master = canopen_master::Master::open("can0")?;
     /// # Ok(()) }
     /// ```
+    #[cfg(target_os = "linux")]
     pub fn open(iface: &str) -> Result<Self, Error> {
         Ok(Master::new(SocketCan::open(iface)?))
     }

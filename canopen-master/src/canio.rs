@@ -4,12 +4,29 @@
 use std::future::Future;
 use std::io;
 use std::pin::Pin;
+#[cfg(target_os = "linux")]
 use std::sync::atomic::{AtomicBool, Ordering};
+#[cfg(target_os = "linux")]
 use std::sync::{Arc, Mutex, RwLock};
 
 use canopen_core::CanFrame;
+#[cfg(target_os = "linux")]
 use canopen_socketcan::{AdapterEvent, BatchReceiver, Observed, TokioBus};
+#[cfg(target_os = "linux")]
 use tokio::sync::{broadcast, Notify};
+
+/// How often a closed SocketCAN interface is polled to reopen it (canopen-socketcan's runners poll as often).
+#[cfg(target_os = "linux")]
+pub(crate) use canopen_socketcan::REOPEN_POLL;
+/// The same pause off Linux, where nothing reopens (the abort after an outage waits it).
+#[cfg(not(target_os = "linux"))]
+pub(crate) const REOPEN_POLL: std::time::Duration = std::time::Duration::from_millis(100);
+/// Frames taken per receive call.
+#[cfg(target_os = "linux")]
+pub(crate) use canopen_socketcan::BATCH;
+/// Frames taken per receive call (what canopen-socketcan's `recvmmsg` takes on Linux).
+#[cfg(not(target_os = "linux"))]
+pub(crate) const BATCH: usize = 64;
 
 /// A boxed, `Send` I/O future (the [`CanIo`] methods return one so that the trait stays object-safe).
 pub type IoFuture<'a, T> = Pin<Box<dyn Future<Output = io::Result<T>> + Send + 'a>>;
@@ -107,6 +124,7 @@ pub trait CanIo: Send + Sync + 'static {
 /// let master = canopen_master::Master::new(io);
 /// # Ok(()) }
 /// ```
+#[cfg(target_os = "linux")]
 pub struct SocketCan {
     iface: String,
     /// The socket; replaced by [`CanIo::reopen`] (senders take a clone of the `Arc` for one send).
@@ -123,6 +141,7 @@ pub struct SocketCan {
     down_seen: Notify,
 }
 
+#[cfg(target_os = "linux")]
 impl SocketCan {
     /// Opens `iface` (inside a tokio runtime) with a receive buffer of
     /// [`RECEIVE_BUFFER`](canopen_socketcan::RECEIVE_BUFFER) where the system allows it (a node's block
@@ -200,6 +219,7 @@ impl SocketCan {
     }
 }
 
+#[cfg(target_os = "linux")]
 impl CanIo for SocketCan {
     fn send<'a>(&'a self, frame: &'a CanFrame) -> IoFuture<'a, ()> {
         Box::pin(async move { self.sent(self.bus().send(frame, &self.observe()).await) })

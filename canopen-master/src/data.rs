@@ -18,11 +18,36 @@ pub(crate) trait Data: ClientData + Send {
     }
 }
 
-/// Upload into a growing `Vec` of at most `cap` bytes (more aborts with 0504 0005h): the blocking master's
-/// [`VecData`](canopen_socketcan::master::VecData).
-pub(crate) use canopen_socketcan::master::VecData as VecSink;
+/// Upload into a growing `Vec` of at most `cap` bytes (more aborts with 0504 0005h).
+pub(crate) struct VecSink {
+    pub(crate) buf: Vec<u8>,
+    cap: usize,
+}
 
-impl Data for VecSink<'_> {}
+impl VecSink {
+    pub(crate) fn upload(cap: usize) -> Self {
+        VecSink { buf: Vec::new(), cap }
+    }
+}
+
+impl ClientData for VecSink {
+    fn download_len(&self) -> usize {
+        0
+    }
+    fn read(&mut self, _offset: usize, _buf: &mut [u8]) -> usize {
+        0
+    }
+    fn write(&mut self, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
+        let end = offset.checked_add(data.len()).filter(|&e| e <= self.cap).ok_or(AbortCode::OutOfMemory)?;
+        if self.buf.len() < end {
+            self.buf.resize(end, 0);
+        }
+        self.buf[offset..end].copy_from_slice(data);
+        Ok(())
+    }
+}
+
+impl Data for VecSink {}
 
 /// Download from a slice.
 pub(crate) struct SliceSource<'a> {

@@ -61,10 +61,13 @@ mod nmt;
 pub mod pdo;
 mod sdo;
 pub mod sim;
+pub mod slcan;
 mod sync;
 mod value;
 
-pub use canio::{CanIo, IoFuture, SocketCan};
+#[cfg(target_os = "linux")]
+pub use canio::SocketCan;
+pub use canio::{CanIo, IoFuture};
 pub use canopen_core::sdo::client::Mode;
 pub use canopen_core::wire::error_control::StateCode;
 pub use canopen_core::wire::nmt::NmtCommand;

@@ -384,7 +384,7 @@ fn queue(
 }
 
 /// Sends `abort` for a transfer an outage cut off, once the socket is up again and
-/// 2 × [`REOPEN_POLL`](canopen_socketcan::REOPEN_POLL) later (a send that fails because
+/// 2 × [`REOPEN_POLL`](crate::canio::REOPEN_POLL) later (a send that fails because
 /// the receive task has not seen the outage yet is retried after it has, up to three times), and returns
 /// a route for the server's COB-ID `cob` to discard what it still sends; `None` when the master closed.
 async fn abort_after_outage(io: &dyn CanIo, router: &Arc<Router>, cob: u16, abort: &CanFrame) -> Option<Route> {
@@ -395,7 +395,7 @@ async fn abort_after_outage(io: &dyn CanIo, router: &Arc<Router>, cob: u16, abor
         }
         // Nodes on the same interface (vcan) reopen their sockets too, polling as often as the master
         // (canopen-socketcan's runners): an abort sent before they did would be lost.
-        tokio::time::sleep(2 * canopen_socketcan::REOPEN_POLL).await;
+        tokio::time::sleep(2 * crate::canio::REOPEN_POLL).await;
         if io.send(abort).await.is_ok() {
             break;
         }

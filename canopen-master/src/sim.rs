@@ -24,9 +24,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use canopen_core::driver::{self, CanRx, CanTx, Timer};
+use canopen_core::driver::{Shared, Wake};
 use canopen_core::node::SansIo;
 use canopen_core::{CanFrame, Event, Instant};
-use canopen_socketcan::{MutexShared, NotifyWake};
 use tokio::sync::{broadcast, Mutex};
 use tokio::task::JoinHandle;
 
@@ -135,6 +135,42 @@ impl SimBus {
             })
         };
         SimNode { shared, wake, task }
+    }
+}
+
+/// The node's cell: a `std` mutex (the driver holds it only while the node computes, never across an await).
+struct MutexShared<N>(std::sync::Mutex<N>);
+
+impl<N> MutexShared<N> {
+    fn new(node: N) -> Self {
+        MutexShared(std::sync::Mutex::new(node))
+    }
+    fn with<R>(&self, f: impl FnOnce(&mut N) -> R) -> R {
+        f(&mut self.0.lock().unwrap_or_else(|p| p.into_inner()))
+    }
+}
+
+impl<N> Shared<N> for MutexShared<N> {
+    fn lock<R>(&self, f: impl FnOnce(&mut N) -> R) -> R {
+        self.with(f)
+    }
+}
+
+/// The driver's wake-up on a tokio `Notify`.
+struct NotifyWake(tokio::sync::Notify);
+
+impl NotifyWake {
+    fn new() -> Self {
+        NotifyWake(tokio::sync::Notify::new())
+    }
+    fn signal(&self) {
+        self.0.notify_one();
+    }
+}
+
+impl Wake for NotifyWake {
+    fn wait(&self) -> impl Future<Output = ()> {
+        self.0.notified()
     }
 }
 

@@ -8,7 +8,8 @@ use std::time::Duration;
 use canopen_core::wire::lss::{IdentityField, LssMode};
 use canopen_core::NodeId;
 use canopen_eds::{data_type_name, Eds};
-use canopen_master::{Error, Master, Mode, NmtCommand, SocketCan, StateCode, BLOCK};
+use canopen_master::slcan::Interface;
+use canopen_master::{Error, Master, Mode, NmtCommand, StateCode, BLOCK};
 use canopenctl::bench::{Bench, Counted};
 use canopenctl::{guess, monitor_line, parse_in, parse_node, Type};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -16,11 +17,16 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 mod drive_cmd;
 
 #[derive(Parser)]
-#[command(name = "canopenctl", version, about = "A CANopen (CiA 301) master for Linux SocketCAN")]
+#[command(
+    name = "canopenctl",
+    version,
+    about = "A CANopen (CiA 301) master for Linux SocketCAN and slcan serial adapters"
+)]
 #[command(after_help = "Numbers (nodes, indices, sub-indices, values) are decimal or 0x-hex.\n\
 Example: canopenctl --iface can0 read 5 0x1018 1")]
 struct Cli {
-    /// The SocketCAN interface.
+    /// The CAN interface: a SocketCAN name (can0), or an slcan adapter: slcan:/dev/ttyACM0, slcan:COM3,
+    /// slcan:tcp:HOST:PORT, each optionally @BITRATE in bit/s (slcan:/dev/ttyACM0@500000) to set its bit rate.
     #[arg(long, global = true, default_value = "vcan0")]
     iface: String,
     /// SDO time-out per protocol step, in ms.
@@ -305,7 +311,7 @@ async fn run(cli: Cli) -> Result<(), String> {
         ty.or_else(|| eds.and_then(|e| e.entry(index, sub)).and_then(|e| Type::from_data_type(e.data_type)))
     };
     // The socket counts its frames, for `bench`.
-    let io = Counted::new(SocketCan::open(&cli.iface).map_err(|e| text(e.into()))?);
+    let io = Counted::new(Interface::open(&cli.iface).await.map_err(|e| text(e.into()))?);
     let frames = io.count();
     let master = Master::new(io).with_sdo_timeout(Duration::from_millis(cli.timeout));
     let mut out = std::io::stdout().lock();
