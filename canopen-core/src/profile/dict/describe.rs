@@ -4,11 +4,9 @@
 //! here: they read the `table` module's rows (see the parent module); the test `meta_agrees_with_desc` there
 //! checks that both say the same of every sub-entry.
 //!
-//! Names and defaults follow CiA 301 Annex A / §7.5.2 (1000h–1029h, 1400h–1BFFh, 1F80h): DEV-01/03/04,
-//! ERR-04 (1003h), SYNC-01..10 (1005h–1007h, 1019h), GUARD-02/03, STORE-01..11 (1010h/1011h), TIME-01,
-//! EMCY-02/09, HB-01/06, ERR-10 (1029h), PDO-06..18 and PDO-30 (the PDO records: a mapping is rw with
-//! `pdo-dynamic-mapping`, const without), NMT-27 (1F80h). An object a build leaves out is not described
-//! (OD-16).
+//! The objects are the parent module's (its docs list them with their checklist IDs); their names and
+//! defaults follow CiA 301 §7.5.2 and Annex A. A PDO mapping record is rw with `pdo-dynamic-mapping` and
+//! const without (PDO-30); an object a build leaves out is not described (OD-16).
 
 use super::super::{optional, ProfileSizes};
 use super::{compiled_out, CommProfile, PdoObj, OBJECTS};
