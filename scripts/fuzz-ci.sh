@@ -8,9 +8,13 @@
 # fuzz/seeds/<target>/ under its libFuzzer name, so that it is a test case kept: commit it with the fix,
 # and every later run replays it first (libFuzzer runs the whole corpus before mutating).
 #
-# The checked-in corpus is the hand-written seeds plus a libFuzzer merge of a run's corpus (-merge=1 keeps
-# only inputs that add coverage). To refresh it after a run:
-#   (cd fuzz && target/x86_64-unknown-linux-gnu/release/<t> -merge=1 seeds/<t> corpus/<t>)
+# The checked-in corpus is the hand-written seeds (named) plus a libFuzzer merge of runs' corpora (hash-named;
+# -merge=1 keeps only inputs that add coverage). To refresh it after a long run, minimising (issue 42 item 3:
+# the hand-written seeds stay, the hash-named ones are chosen again from the old ones and the run's corpus):
+#   cd fuzz && mkdir /tmp/min /tmp/old && cd seeds/<t>
+#   ls | grep -vxE '[0-9a-f]{40}' | xargs cp -t /tmp/min && ls | grep -xE '[0-9a-f]{40}' | xargs cp -t /tmp/old
+#   cd ../.. && target/x86_64-unknown-linux-gnu/release/<t> -merge=1 /tmp/min /tmp/old corpus/<t>
+#   rm seeds/<t>/* && cp /tmp/min/* seeds/<t>/   # then check: -runs=0 over seeds/<t> gives the union's cov/ft
 #
 # Usage: scripts/fuzz-ci.sh [target...]   (no target: all of `cargo fuzz list`)
 set -euo pipefail

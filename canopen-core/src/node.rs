@@ -14,20 +14,21 @@
 //! changes; then it decodes the function code once for the rest. No scan over services, and the work per
 //! frame does not grow with the number of PDOs.
 //!
-//! The PDO, SYNC, TIME and EMCY wiring lives in `node/pdo.rs` and `node/errors.rs`; the dictionary SDO sees
-//! (mapping checks, store/restore commands) in `node/dict.rs`.
+//! The PDO, SYNC, TIME and EMCY wiring lives in `node/pdo.rs` and `node/errors.rs`, NMT node control and
+//! error control (heartbeat, guarding, the reaction to a communication error) in `node/error_control.rs`;
+//! the dictionary SDO sees (mapping checks, store/restore commands) in `node/dict.rs`.
 //!
 //! Requirements (`docs/CONFORMANCE.md`) carried out here: NMT-03 (power-on: Initialising → reset application → reset
 //! communication → boot-up → Pre-operational, on the first call), NMT-04/NMT-05 (what the resets restore),
-//! NMT-08 (own node-ID or broadcast), NMT-14 (never replies on 000h), NMT-18 (services per state),
-//! NMT-23/NMT-24 (boot-up on 700h + node, once per Initialization → Pre-operational), NMT-26/ERR-12 (a
-//! communication error in Operational → Pre-operational by default), HB-03/HB-04, HB-05 (guarding is
-//! answered only while the heartbeat producer is off), HB-13/GUARD-11 (time-outs are communication errors),
-//! CAN-07 (frames malformed for their COB-ID are ignored), NMT-06 (power-on and resets load the stored
-//! values, [`crate::storage`]), NMT-22 (EMCY pending in Stopped), NMT-27 (1F80h bit 2 = 0: enter Operational
-//! by itself after boot-up; the bit meaning is CiA 302-2's, as the lely stack reads it in
-//! `co_nmt_startup_slave`: "enter the operational state automatically if bit 2 of the NMT startup value is
-//! 0"), ERR-10..13 (1029h sub 01h decides the reaction to a communication error).
+//! NMT-18 (services per state), NMT-23/NMT-24 (boot-up on 700h + node, once per Initialization →
+//! Pre-operational), HB-03/HB-04, CAN-07 (frames malformed for their COB-ID are ignored), NMT-06 (power-on
+//! and resets load the stored values, [`crate::storage`]), NMT-22 (EMCY pending in Stopped), NMT-27 (1F80h
+//! bit 2 = 0: enter Operational by itself after boot-up; the bit meaning is CiA 302-2's, as the lely stack
+//! reads it in `co_nmt_startup_slave`: "enter the operational state automatically if bit 2 of the NMT
+//! startup value is 0"). In `node/error_control.rs`: NMT-08 (own node-ID or broadcast), NMT-14 (never
+//! replies on 000h), HB-05 (guarding is answered only while the heartbeat producer is off), HB-13/GUARD-11
+//! (time-outs are communication errors), NMT-26/ERR-12 (a communication error in Operational →
+//! Pre-operational by default), ERR-10..13 (1029h sub 01h decides the reaction to a communication error).
 
 /// Evaluates `$body` with `$od` bound to the dictionary the SDO servers see: the node's [`dict::NodeDict`],
 /// wrapped in [`sdo_servers::WithRecords`] (the records 1200h–127Fh) only when the node has additional
@@ -54,6 +55,7 @@ macro_rules! sdo_dict {
 }
 
 mod dict;
+mod error_control;
 mod errors;
 #[cfg(feature = "mpdo")]
 mod mpdo;
@@ -79,7 +81,7 @@ use crate::event::Event;
 use crate::frame::CanFrame;
 #[cfg(feature = "guarding")]
 use crate::guarding::Guarding;
-use crate::heartbeat::{ConsumerEvent, HeartbeatConsumer, HeartbeatProducer};
+use crate::heartbeat::{HeartbeatConsumer, HeartbeatProducer};
 #[cfg(feature = "lss")]
 use crate::lss::LssSlave;
 use crate::nmt::{Nmt, NmtState, Service, Transition};
@@ -96,7 +98,6 @@ use crate::storage::{self, Groups, NoStorage, Storage};
 use crate::sync::Sync;
 use crate::time::Instant;
 use crate::wire::error_control::{Heartbeat, StateCode};
-use crate::wire::nmt::NodeControl;
 use dict::SaveFn;
 
 /// A CANopen node with application dictionary `A`, the capacities `Z` ([`Sizes`]`<HB, TXQ, EVQ, RPDO,
@@ -866,92 +867,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    fn handle_node_control(&mut self, now: Instant, frame: &CanFrame) {
-        // CAN-07: a malformed node-control frame is ignored.
-        let Ok(request) = NodeControl::parse(frame.data()) else {
-            return;
-        };
-        if !request.addresses(self.node_id.get()) {
-            return;
-        }
-        let from = self.nmt.state();
-        match self.nmt.handle_command(request.command) {
-            Transition::None => {}
-            Transition::Enter(to) => self.state_changed(from, to),
-            Transition::ResetApplication => self.reset(now, true),
-            Transition::ResetCommunication => self.reset(now, false),
-        }
-    }
-
-    #[cfg(feature = "guarding")]
-    fn handle_guarding(&mut self, now: Instant, frame: &CanFrame) {
-        // GUARD-05: the request is an RTR; HB-05: no guarding while the heartbeat producer runs.
-        if !frame.is_rtr() || self.producer.is_active() || !self.nmt.state().allows(Service::ErrorControl) {
-            return;
-        }
-        let (reply, resolved) = self.guarding.handle_request(
-            now,
-            self.nmt.state().state_code(),
-            self.comm.params.guard_time_ms,
-            self.comm.params.life_time_factor,
-        );
-        self.transmit(self.error_control_frame(reply.emit()));
-        if let Some(ev) = resolved {
-            self.push_event(Event::LifeGuarding(ev));
-            self.error_control_recovered();
-        }
-    }
-
-    fn handle_remote_heartbeat(&mut self, now: Instant, node: u8, frame: &CanFrame) {
-        if frame.is_rtr() || !self.nmt.state().allows(Service::ErrorControl) {
-            return;
-        }
-        let Ok(Heartbeat(state)) = Heartbeat::parse(frame.data()) else {
-            return;
-        };
-        if let Some(ev) = self.consumer.handle_heartbeat(now, node, state) {
-            let resumed = matches!(ev, ConsumerEvent::Resumed { .. });
-            self.push_event(Event::Heartbeat(ev));
-            if resumed {
-                self.error_control_recovered();
-            }
-        }
-    }
-
-    /// EMCY 8130h is cleared once its cause is gone: no monitored node is timed out and life guarding is not
-    /// (the node's error state machine then sends EMCY 0000h with the remaining error register, EMCY-07).
-    fn error_control_recovered(&mut self) {
-        #[cfg(feature = "guarding")]
-        if self.guarding.is_timed_out() {
-            return;
-        }
-        if !self.consumer.any_timed_out() {
-            self.clear_error(codes::HEARTBEAT_OR_LIFE_GUARD);
-        }
-    }
-
-    /// A heartbeat consumer or life guarding time-out (HB-11, GUARD-10): reported, EMCY 8130h, and a
-    /// communication error (HB-13, GUARD-11).
-    fn error_control_lost(&mut self, now: Instant, event: Event) {
-        self.push_event(event);
-        self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
-        self.communication_error(now);
-    }
-
-    /// HB-13, GUARD-11, NMT-26, ERR-10..13: a communication error; 1029h sub 01h says what happens: 0 (the
-    /// default) Operational → Pre-operational, 1 no change, 2 Stopped, 80h–FFh (manufacturer) as 1. Out of
-    /// line: reached from the bus-off report and every error-control time-out, all rare. A build without
-    /// 1029h (the Cargo feature `error-behaviour`) always does 0.
-    #[inline(never)]
-    fn communication_error(&mut self, _now: Instant) {
-        let behaviour = if cfg!(feature = "error-behaviour") { self.comm.params.error_behaviour } else { 0 };
-        match behaviour {
-            0 if self.nmt.state() == NmtState::Operational => self.enter_state(NmtState::PreOperational),
-            2 => self.enter_state(NmtState::Stopped),
-            _ => {}
-        }
-    }
-
     fn state_changed(&mut self, from: NmtState, to: NmtState) {
         self.push_event(Event::StateChanged { from, to });
         if from == NmtState::Operational {
@@ -971,12 +886,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if from == NmtState::Stopped {
             self.pump_emcy(self.now); // NMT-22: the most recent pending EMCY goes out now
         }
-    }
-
-    fn error_control_frame(&self, data: [u8; 1]) -> CanFrame {
-        let mut buf = [0u8; 8];
-        buf[0] = data[0];
-        CanFrame::from_parts(FunctionCode::NmtErrorControl.cob_id(self.node_id), buf, 1)
     }
 
     /// Queues a frame; a full queue drops it, counts it and raises EMCY 8110h (CAN overrun, EEC-10) as soon

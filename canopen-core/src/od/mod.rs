@@ -8,7 +8,8 @@
 //! The trait is byte-oriented and offset-based so that SDO can stream a large value (a string, a DOMAIN
 //! holding a firmware image) segment by segment without a buffer of the value's size.
 //!
-//! Submodules: value types and their encodings (`value`: DT-01..DT-14), [`Domain`] streaming (DT-15),
+//! Submodules: value types and their encodings (`value`: DT-01..DT-08, DT-13, DT-14; `string`: DT-10..DT-12),
+//! [`Domain`] streaming (DT-15),
 //! the `const` entry tables and their binary-search [`lookup`] (`table`), the [`Merged`] dictionary (two
 //! dictionaries dispatched by index range: the profile's and the application's) and the per-object
 //! sections of the CiA 306 EDS ([`eds`]; the file around them is `profile::eds`). PDO access goes through [`PdoHandle`]s: resolved once when a mapping is
@@ -18,6 +19,7 @@ pub mod data;
 mod domain;
 pub mod eds;
 mod merged;
+mod string;
 mod table;
 mod value;
 
@@ -27,10 +29,11 @@ pub use domain::{Domain, DomainBuf};
 pub(crate) use merged::is_program;
 pub(crate) use merged::{is_comm, is_comm_for};
 pub use merged::{merge_nth, Merged};
+pub use string::{OctetString, UnicodeString, VisibleString};
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
-    check_len, check_limits, check_range, copy_at, OctetString, OdValue, TimeDifference, TimeOfDay, UnicodeString,
-    VisibleString, I24, I40, I48, I56, U24, U40, U48, U56,
+    check_len, check_limits, check_range, copy_at, OdValue, TimeDifference, TimeOfDay, I24, I40, I48, I56, U24, U40,
+    U48, U56,
 };
 
 /// CiA 301 basic data types with their static type index (DT-17, 000 §7.4.7.1 Table 44).

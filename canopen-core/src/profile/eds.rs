@@ -47,7 +47,7 @@ impl EdsInfo {
     pub const DEFAULT: EdsInfo = EdsInfo {
         file_name: "device.eds",
         description: "",
-        created_by: "canopen-rs",
+        created_by: "canopener",
         creation_date: "01-01-2025",
         creation_time: "12:00AM",
         vendor_name: "",

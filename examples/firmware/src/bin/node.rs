@@ -188,7 +188,7 @@ const TPDO4: PdoDefault =
 const CONFIG: NodeConfig = NodeConfig {
     device_type: 0x0003_0191, // CiA 401, digital inputs and outputs
     identity: Identity { vendor_id: 0, product_code: 0x446, revision: 0x0001_0000, serial: 1 },
-    device_name: "canopen-rs F446",
+    device_name: "canopener F446",
     hardware_version: "NUCLEO-F446RE",
     software_version: env!("CARGO_PKG_VERSION"),
     heartbeat_time_ms: 1000,

@@ -1,0 +1,115 @@
+//! The node's NMT node control and error control: NMT commands addressed to it (NMT-08: its own node-ID or
+//! 0 for all; CAN-07: a malformed command is ignored; NMT-14: never answered), node guarding answered as the
+//! NMT slave (GUARD-05: an RTR; HB-05: only while the heartbeat producer is off), remote heartbeats fed to
+//! the consumer (HB-10/HB-11), and what an error-control loss does: EMCY 8130h while it lasts (see `errors.rs`)
+//! and a communication error (HB-13, GUARD-11), whose reaction 1029h sub 01h chooses (NMT-26, ERR-10..13).
+//!
+//! The heartbeat producer and the time-outs are driven from [`Node::handle_timeout`]; the services
+//! themselves (`heartbeat`, `guarding`, `nmt`) know nothing of the node.
+
+use super::{Node, NodeSizes};
+use crate::cob::FunctionCode;
+use crate::emcy::codes;
+use crate::event::Event;
+use crate::frame::CanFrame;
+use crate::heartbeat::ConsumerEvent;
+use crate::nmt::{NmtState, Service, Transition};
+use crate::od::ObjectDictionary;
+use crate::storage::Storage;
+use crate::time::Instant;
+use crate::wire::error_control::Heartbeat;
+use crate::wire::nmt::NodeControl;
+
+impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
+    pub(super) fn handle_node_control(&mut self, now: Instant, frame: &CanFrame) {
+        // CAN-07: a malformed node-control frame is ignored.
+        let Ok(request) = NodeControl::parse(frame.data()) else {
+            return;
+        };
+        if !request.addresses(self.node_id.get()) {
+            return;
+        }
+        let from = self.nmt.state();
+        match self.nmt.handle_command(request.command) {
+            Transition::None => {}
+            Transition::Enter(to) => self.state_changed(from, to),
+            Transition::ResetApplication => self.reset(now, true),
+            Transition::ResetCommunication => self.reset(now, false),
+        }
+    }
+
+    #[cfg(feature = "guarding")]
+    pub(super) fn handle_guarding(&mut self, now: Instant, frame: &CanFrame) {
+        // GUARD-05: the request is an RTR; HB-05: no guarding while the heartbeat producer runs.
+        if !frame.is_rtr() || self.producer.is_active() || !self.nmt.state().allows(Service::ErrorControl) {
+            return;
+        }
+        let (reply, resolved) = self.guarding.handle_request(
+            now,
+            self.nmt.state().state_code(),
+            self.comm.params.guard_time_ms,
+            self.comm.params.life_time_factor,
+        );
+        self.transmit(self.error_control_frame(reply.emit()));
+        if let Some(ev) = resolved {
+            self.push_event(Event::LifeGuarding(ev));
+            self.error_control_recovered();
+        }
+    }
+
+    pub(super) fn handle_remote_heartbeat(&mut self, now: Instant, node: u8, frame: &CanFrame) {
+        if frame.is_rtr() || !self.nmt.state().allows(Service::ErrorControl) {
+            return;
+        }
+        let Ok(Heartbeat(state)) = Heartbeat::parse(frame.data()) else {
+            return;
+        };
+        if let Some(ev) = self.consumer.handle_heartbeat(now, node, state) {
+            let resumed = matches!(ev, ConsumerEvent::Resumed { .. });
+            self.push_event(Event::Heartbeat(ev));
+            if resumed {
+                self.error_control_recovered();
+            }
+        }
+    }
+
+    /// EMCY 8130h is cleared once its cause is gone: no monitored node is timed out and life guarding is not
+    /// (the node's error state machine then sends EMCY 0000h with the remaining error register, EMCY-07).
+    pub(super) fn error_control_recovered(&mut self) {
+        #[cfg(feature = "guarding")]
+        if self.guarding.is_timed_out() {
+            return;
+        }
+        if !self.consumer.any_timed_out() {
+            self.clear_error(codes::HEARTBEAT_OR_LIFE_GUARD);
+        }
+    }
+
+    /// A heartbeat consumer or life guarding time-out (HB-11, GUARD-10): reported, EMCY 8130h, and a
+    /// communication error (HB-13, GUARD-11).
+    pub(super) fn error_control_lost(&mut self, now: Instant, event: Event) {
+        self.push_event(event);
+        self.raise_error(codes::HEARTBEAT_OR_LIFE_GUARD, [0; 5]);
+        self.communication_error(now);
+    }
+
+    /// HB-13, GUARD-11, NMT-26, ERR-10..13: a communication error; 1029h sub 01h says what happens: 0 (the
+    /// default) Operational → Pre-operational, 1 no change, 2 Stopped, 80h–FFh (manufacturer) as 1. Out of
+    /// line: reached from the bus-off report and every error-control time-out, all rare. A build without
+    /// 1029h (the Cargo feature `error-behaviour`) always does 0.
+    #[inline(never)]
+    pub(super) fn communication_error(&mut self, _now: Instant) {
+        let behaviour = if cfg!(feature = "error-behaviour") { self.comm.params.error_behaviour } else { 0 };
+        match behaviour {
+            0 if self.nmt.state() == NmtState::Operational => self.enter_state(NmtState::PreOperational),
+            2 => self.enter_state(NmtState::Stopped),
+            _ => {}
+        }
+    }
+
+    pub(super) fn error_control_frame(&self, data: [u8; 1]) -> CanFrame {
+        let mut buf = [0u8; 8];
+        buf[0] = data[0];
+        CanFrame::from_parts(FunctionCode::NmtErrorControl.cob_id(self.node_id), buf, 1)
+    }
+}
