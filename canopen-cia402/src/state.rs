@@ -63,6 +63,13 @@ pub enum State {
 }
 
 /// Statusword bits of the state (bits 0–3, 5, 6) and "voltage enabled" (bit 4).
+///
+/// ```
+/// use canopen_cia402::state::sw;
+/// // Operation enabled: bits 0, 1, 2 and 5 (xx1x x111 in the state mask).
+/// let statusword = sw::READY_TO_SWITCH_ON | sw::SWITCHED_ON | sw::OPERATION_ENABLED | sw::QUICK_STOP;
+/// assert_eq!(statusword & sw::STATE_MASK, 0x0027);
+/// ```
 pub mod sw {
     /// Bit 0: ready to switch on.
     pub const READY_TO_SWITCH_ON: u16 = 1 << 0;
@@ -96,6 +103,12 @@ pub mod sw {
 }
 
 /// Controlword bits (6040h).
+///
+/// ```
+/// use canopen_cia402::state::cw;
+/// // "Enable operation": switch on, enable voltage, quick stop (inactive, so set), enable operation.
+/// assert_eq!(cw::SWITCH_ON | cw::ENABLE_VOLTAGE | cw::QUICK_STOP | cw::ENABLE_OPERATION, 0x000F);
+/// ```
 pub mod cw {
     /// Bit 0: switch on.
     pub const SWITCH_ON: u16 = 1 << 0;

@@ -59,6 +59,11 @@ impl Row {
     pub const CHECKS: u8 = 1 << 7;
 
     /// The flags of an access type and a PDO mapping.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// assert_eq!(Row::flags(Access::Rw, PdoMapping::Rpdo), Row::READ | Row::WRITE | Row::RPDO);
+    /// assert_eq!(Row::flags(Access::Const, PdoMapping::No), Row::READ | Row::VARIANT_A);
+    /// ```
     pub const fn flags(access: Access, pdo: PdoMapping) -> u8 {
         let a = match access {
             Access::Ro => Self::READ,
@@ -78,51 +83,91 @@ impl Row {
     }
 
     /// A VAR (sub 00h).
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// let r = Row::var(4, DataType::Integer16, Access::Rw, PdoMapping::Both);
+    /// assert_eq!((r.field, r.sub, r.n), (4, 0, 1));
+    /// ```
     pub const fn var(field: u16, data_type: DataType, access: Access, pdo: PdoMapping) -> Row {
         Row { field, data_type, flags: Self::flags(access, pdo), sub: 0, n: 1 }
     }
 
     /// An ARRAY of `n` elements at sub-indices `first..first + n`.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// let r = Row::array(0, DataType::Unsigned8, Access::Ro, PdoMapping::Tpdo, 1, 8);
+    /// assert!(r.is_array() && r.readable() && !r.writable());
+    /// ```
     pub const fn array(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, first: u8, n: u8) -> Row {
         Row { field, data_type, flags: Self::flags(access, pdo), sub: first, n }
     }
 
     /// A RECORD member at sub-index `sub`.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// let r = Row::member(1, DataType::Unsigned32, Access::Wo, PdoMapping::No, 3);
+    /// assert!((r.sub, r.n) == (3, 0) && !r.is_array() && !r.readable());
+    /// ```
     pub const fn member(field: u16, data_type: DataType, access: Access, pdo: PdoMapping, sub: u8) -> Row {
         Row { field, data_type, flags: Self::flags(access, pdo), sub, n: 0 }
     }
 
     /// The same row with more flags ([`Row::COUNT_RO`], [`Row::CHECKS`]).
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// let r = Row::var(0, DataType::Unsigned8, Access::Rw, PdoMapping::No).with(Row::CHECKS);
+    /// assert!(r.checks());
+    /// ```
     pub const fn with(mut self, flags: u8) -> Row {
         self.flags |= flags;
         self
     }
 
     /// Whether SDO may read it.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// assert!(!Row::var(0, DataType::Unsigned8, Access::Wo, PdoMapping::No).readable());
+    /// ```
     #[inline]
     pub const fn readable(&self) -> bool {
         self.flags & Self::READ != 0
     }
 
     /// Whether SDO may write it.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// assert!(Row::var(0, DataType::Unsigned8, Access::Rww, PdoMapping::No).writable());
+    /// ```
     #[inline]
     pub const fn writable(&self) -> bool {
         self.flags & Self::WRITE != 0
     }
 
     /// Whether writes go through limits and hooks.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// assert!(!Row::var(0, DataType::Unsigned8, Access::Rw, PdoMapping::No).checks());
+    /// ```
     #[inline]
     pub const fn checks(&self) -> bool {
         self.flags & Self::CHECKS != 0
     }
 
     /// Whether this row is an ARRAY (its accessors give a slice).
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// assert!(!Row::member(0, DataType::Unsigned8, Access::Rw, PdoMapping::No, 1).is_array());
+    /// ```
     #[inline]
     pub const fn is_array(&self) -> bool {
         self.sub != 0 && self.n != 0
     }
 
     /// The access type.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// assert_eq!(Row::var(0, DataType::Unsigned8, Access::Rwr, PdoMapping::No).access(), Access::Rwr);
+    /// ```
     pub const fn access(&self) -> Access {
         match self.flags & 0x0F {
             0x01 => Access::Ro,
@@ -135,6 +180,10 @@ impl Row {
     }
 
     /// The PDO mapping.
+    /// ```
+    /// use canopen_core::od::{data::Row, Access, DataType, PdoMapping};
+    /// assert_eq!(Row::var(0, DataType::Unsigned8, Access::Ro, PdoMapping::Tpdo).pdo(), PdoMapping::Tpdo);
+    /// ```
     pub const fn pdo(&self) -> PdoMapping {
         match (self.flags & Self::TPDO != 0, self.flags & Self::RPDO != 0) {
             (false, false) => PdoMapping::No,
