@@ -75,8 +75,7 @@ pub(super) fn read_at<D: OdData + ?Sized>(
 /// [`read_at`] of an `N`-byte value: the whole of it into a buffer that holds it, else from `offset`.
 #[inline(always)]
 fn read_n<const N: usize>(bytes: &[u8], row: &Row, elem: u8, offset: usize, buf: &mut [u8]) -> usize {
-    let at = usize::from(row.field) + usize::from(elem) * N;
-    let Some(src) = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok()) else {
+    let Some(src) = value::<N>(bytes, at(row, elem, N)) else {
         return 0;
     };
     match buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok()) {
@@ -98,16 +97,30 @@ fn read_part<const N: usize>(src: &[u8; N], offset: usize, buf: &mut [u8]) -> us
     crate::od::copy_at(&le, offset, buf)
 }
 
-/// Stores the `N`-byte little-endian `data` at `row`/`elem` in native byte order; 0607 0012h/0607 0013h when
-/// `data` is not `N` bytes.
+/// Where the value of `row`/`elem` starts in [`OdData::bytes`]: the row's offset and the element's.
 #[inline(always)]
-fn store_n<const N: usize>(bytes: &mut [u8], row: &Row, elem: u8, data: &[u8]) -> Result<(), AbortCode> {
-    crate::od::check_len(data, N)?;
-    let src = <&[u8; N]>::try_from(data).map_err(|_| AbortCode::GeneralError)?; // the same check: folded
-    let at = usize::from(row.field) + usize::from(elem) * N;
-    let dst = bytes.get_mut(at..at + N).and_then(|s| <&mut [u8; N]>::try_from(s).ok());
-    copy_order(src, dst.ok_or(AbortCode::ObjectDoesNotExist)?);
-    Ok(())
+fn at(row: &Row, elem: u8, size: usize) -> usize {
+    usize::from(row.field) + usize::from(elem) * size
+}
+
+/// The `N` bytes of the value at `at`, or `None` past the end of `bytes`.
+#[inline(always)]
+fn value<const N: usize>(bytes: &[u8], at: usize) -> Option<&[u8; N]> {
+    bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok())
+}
+
+/// Stores `data` (little-endian, `size` bytes: 1, 2, 4 or 8) at `at` in native byte order, one arm per size
+/// ([`copy_in`]): a write by row and a write through an offset PDO handle alike.
+#[inline(always)]
+fn store(bytes: &mut [u8], at: usize, size: usize, data: &[u8]) -> Result<(), AbortCode> {
+    match size {
+        1 => copy_in::<1>(bytes, at, data),
+        2 => copy_in::<2>(bytes, at, data),
+        4 => copy_in::<4>(bytes, at, data),
+        8 => copy_in::<8>(bytes, at, data),
+        // A struct with a byte view holds plain numbers only.
+        _ => Err(AbortCode::ObjectDoesNotExist),
+    }
 }
 
 /// Stores a fixed-size value of `row`/`elem` by offset ([`OdData::BY_OFFSET`]), after its limits and the
@@ -130,14 +143,7 @@ pub(super) fn write_at<D: OdData + ?Sized>(
         if hooks {
             checks_at(d, pos, row, sub, data)?;
         }
-        let bytes = d.bytes_mut();
-        match size {
-            1 => store_n::<1>(bytes, row, elem, data)?,
-            2 => store_n::<2>(bytes, row, elem, data)?,
-            4 => store_n::<4>(bytes, row, elem, data)?,
-            8 => store_n::<8>(bytes, row, elem, data)?,
-            _ => return Err(AbortCode::ObjectDoesNotExist),
-        }
+        store(d.bytes_mut(), at(row, elem, size), size, data)?;
         if hooks {
             d.on_write(pos, sub);
         }
@@ -155,7 +161,7 @@ const SLOT_RO: u16 = 0x4000;
 /// The offset slot of `row`/`elem` ([`AT_OFFSET`]) in [`OdData::BY_OFFSET`] mode, `None` when the row
 /// needs its checks, SDO may not read it, or the offset does not fit.
 pub(super) fn offset_slot<D: OdData + ?Sized>(row: &Row, elem: u8) -> Option<u16> {
-    let at = usize::from(row.field) + usize::from(elem) * row.data_type.fixed_size();
+    let at = at(row, elem, row.data_type.fixed_size());
     let ro = if row.writable() { 0 } else { SLOT_RO };
     (D::BY_OFFSET && !row.checks() && row.readable() && at < usize::from(SLOT_RO)).then_some(AT_OFFSET | ro | at as u16)
 }
@@ -182,7 +188,7 @@ pub(super) fn read_offset_slot<D: OdData + ?Sized>(
 /// The `N` bytes at `at` into the front of `buf`, little-endian.
 #[inline(always)]
 fn copy_out<const N: usize>(bytes: &[u8], at: usize, buf: &mut [u8]) -> Option<usize> {
-    let src = bytes.get(at..at + N).and_then(|s| <&[u8; N]>::try_from(s).ok())?;
+    let src = value::<N>(bytes, at)?;
     let dst = buf.get_mut(..N).and_then(|b| <&mut [u8; N]>::try_from(b).ok())?;
     copy_order(src, dst);
     Some(N)
@@ -198,15 +204,7 @@ pub(super) fn write_offset_slot<D: OdData + ?Sized>(
     if handle.slot & SLOT_RO != 0 {
         return Err(AbortCode::WriteOfReadOnly);
     }
-    let at = usize::from(handle.slot & (SLOT_RO - 1));
-    let bytes = d.bytes_mut();
-    match handle.size {
-        1 => copy_in::<1>(bytes, at, data),
-        2 => copy_in::<2>(bytes, at, data),
-        4 => copy_in::<4>(bytes, at, data),
-        8 => copy_in::<8>(bytes, at, data),
-        _ => Err(AbortCode::ObjectDoesNotExist),
-    }
+    store(d.bytes_mut(), usize::from(handle.slot & (SLOT_RO - 1)), usize::from(handle.size), data)
 }
 
 /// `data` (exactly `N` little-endian bytes) stored at `at` in native byte order.
