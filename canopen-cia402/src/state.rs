@@ -131,6 +131,24 @@ pub mod cw {
 }
 
 impl State {
+    /// Every state of the power drive system, in the standard's order.
+    ///
+    /// ```
+    /// use canopen_cia402::State;
+    /// assert_eq!(State::ALL.len(), 8);
+    /// assert!(State::ALL.iter().all(|s| State::from_statusword(s.statusword_bits()) == Some(*s)));
+    /// ```
+    pub const ALL: [State; 8] = [
+        State::NotReadyToSwitchOn,
+        State::SwitchOnDisabled,
+        State::ReadyToSwitchOn,
+        State::SwitchedOn,
+        State::OperationEnabled,
+        State::QuickStopActive,
+        State::FaultReactionActive,
+        State::Fault,
+    ];
+
     /// The state's statusword bits 0–6 (bit 4 "voltage enabled" set where high voltage is applied; bit 5
     /// "quick stop" set where no quick stop is active and the standard does not leave it open).
     ///
@@ -327,16 +345,6 @@ pub const TABLE: [(u8, State, State); 21] = [
 mod tests {
     use super::*;
 
-    const ALL: [State; 8] = [
-        State::NotReadyToSwitchOn,
-        State::SwitchOnDisabled,
-        State::ReadyToSwitchOn,
-        State::SwitchedOn,
-        State::OperationEnabled,
-        State::QuickStopActive,
-        State::FaultReactionActive,
-        State::Fault,
-    ];
     const COMMANDS: [Command; 6] = [
         Command::Shutdown,
         Command::SwitchOn,
@@ -372,7 +380,7 @@ mod tests {
             }
         };
         let mut count = 0;
-        for s in ALL {
+        for s in State::ALL {
             for c in COMMANDS {
                 for stays in [false, true] {
                     assert_eq!(transition(s, c, stays), expected(s, c, stays), "{s:?} {c:?} {stays}");
@@ -389,7 +397,7 @@ mod tests {
 
     #[test]
     fn statusword_round_trips_with_any_other_bits() {
-        for s in ALL {
+        for s in State::ALL {
             let bits = s.statusword_bits();
             assert_eq!(State::from_statusword(bits), Some(s));
             // Bits 7..15 do not change the state.

@@ -404,22 +404,11 @@ impl Drive402 {
 mod tests {
     use super::*;
 
-    const ALL: [State; 8] = [
-        State::NotReadyToSwitchOn,
-        State::SwitchOnDisabled,
-        State::ReadyToSwitchOn,
-        State::SwitchedOn,
-        State::OperationEnabled,
-        State::QuickStopActive,
-        State::FaultReactionActive,
-        State::Fault,
-    ];
-
     /// From every state, following `next_command` through the device's own table reaches every
     /// commandable target within 4 steps.
     #[test]
     fn every_commandable_state_is_reached_through_the_table() {
-        for from in ALL {
+        for from in State::ALL {
             for to in [
                 State::SwitchOnDisabled,
                 State::ReadyToSwitchOn,
