@@ -118,3 +118,69 @@ fn sdo_reads_of_every_size_and_a_part_of_one() {
     assert_eq!(d.read(0x6064, 0, 0, &mut short), Ok(2));
     assert_eq!(short, [4, 3]);
 }
+
+/// Limits of every width and sign through the one order key of `od::data::limits` (OD-11): 0609 0032h
+/// below, 0609 0031h above, the limits themselves accepted, a NaN 0609 0030h where there are limits and
+/// stored where there are none (a hook alone), −0.0 equal to a low limit of 0.0.
+#[derive(ObjectDictionary, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]
+#[od(compact, zerocopy)]
+#[repr(C)]
+struct Limited {
+    #[od(index = 0x2000, min = -9000000000, max = 5)]
+    wide: i64,
+    #[od(index = 0x2001, min = 0.0, max = 2.5)]
+    real: f64,
+    #[od(index = 0x2002, min = 10, max = 4000000000)]
+    count: u32,
+    #[od(index = 0x2003, min = -1.5, max = -0.25)]
+    small: f32,
+    #[od(index = 0x2004, check = "any_real")]
+    hooked: f32,
+    #[od(index = 0x2005, min = -100, max = -2)]
+    offset: i16,
+    #[od(index = 0x2006, min = -128)]
+    tiny: i8,
+    #[od(index = 0x2007, max = 254)]
+    byte: u8,
+}
+
+impl Limited {
+    fn any_real(&self, _sub: u8, _value: &f32) -> Result<(), AbortCode> {
+        Ok(())
+    }
+}
+
+#[test]
+fn limits_compare_in_each_type() {
+    let mut d = <Limited as zerocopy::FromZeros>::new_zeroed();
+    let w = |d: &mut Limited, index: u16, bytes: &[u8]| d.write(index, 0, bytes);
+    assert_eq!(w(&mut d, 0x2000, &(-9_000_000_001i64).to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(w(&mut d, 0x2000, &(-9_000_000_000i64).to_le_bytes()), Ok(()));
+    assert_eq!(w(&mut d, 0x2000, &6i64.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.wide, -9_000_000_000);
+    assert_eq!(w(&mut d, 0x2001, &(-0.0f64).to_le_bytes()), Ok(()));
+    assert_eq!(w(&mut d, 0x2001, &(-1e-300f64).to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(w(&mut d, 0x2001, &2.5000001f64.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(w(&mut d, 0x2001, &f64::NAN.to_le_bytes()), Err(AbortCode::InvalidValue));
+    assert_eq!(w(&mut d, 0x2001, &f64::INFINITY.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(w(&mut d, 0x2002, &9u32.to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(w(&mut d, 0x2002, &4_000_000_001u32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(w(&mut d, 0x2002, &4_000_000_000u32.to_le_bytes()), Ok(()));
+    assert_eq!(w(&mut d, 0x2003, &(-2.0f32).to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(w(&mut d, 0x2003, &(-0.1f32).to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(w(&mut d, 0x2003, &(-0.25f32).to_le_bytes()), Ok(()));
+    assert_eq!(w(&mut d, 0x2003, &f32::NEG_INFINITY.to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(w(&mut d, 0x2004, &f32::NAN.to_le_bytes()), Ok(()));
+    assert!(d.hooked.is_nan());
+    assert_eq!(w(&mut d, 0x2004, &[0, 0]), Err(AbortCode::LengthTooLow));
+    assert_eq!(w(&mut d, 0x2005, &(-101i16).to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(w(&mut d, 0x2005, &(-1i16).to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(w(&mut d, 0x2005, &(-2i16).to_le_bytes()), Ok(()));
+    assert_eq!(w(&mut d, 0x2006, &[0x80]), Ok(()));
+    assert_eq!(w(&mut d, 0x2007, &[255]), Err(AbortCode::ValueTooHigh));
+    assert_eq!(w(&mut d, 0x2007, &[254, 0]), Err(AbortCode::LengthTooHigh));
+    assert_eq!(
+        (d.real.to_bits(), d.count, d.small, d.offset, d.tiny),
+        ((-0.0f64).to_bits(), 4_000_000_000, -0.25, -2, -128)
+    );
+}

@@ -241,16 +241,12 @@ pub(crate) fn data_impl(
     // The defaults of the fixed-size rows, in row order (Reset Application walks the rows).
     let mut defaults: Vec<u8> = Vec::new();
     let mut defaulted = vec![0u8; fields.len().div_ceil(8)];
-    let mut checked_types = 0u32;
     for (pos, f) in fields.iter().enumerate().filter(|(_, f)| matches!(f.kind, Kind::Fixed(_))) {
-        let (size, code) = size_and_code(f.dt);
+        let size = size_and_code(f.dt).0;
         let bytes = default_bytes(f.dt, size, f.default.as_ref());
         if bytes.iter().any(|&b| b != 0) {
             defaults.extend(bytes);
             defaulted[pos / 8] |= 1 << (pos % 8);
-        }
-        if f.has_limits() || f.check.is_some() || f.on_write.is_some() {
-            checked_types |= 1 << (code & 31);
         }
     }
 
@@ -293,7 +289,6 @@ pub(crate) fn data_impl(
     let by_offset_items = by_offset.then(|| {
         quote! {
             const BY_OFFSET: bool = true;
-            const CHECKED_TYPES: u32 = #checked_types;
             #[inline(always)]
             fn bytes(&self) -> &[u8] {
                 #core::od::data::as_bytes(self)

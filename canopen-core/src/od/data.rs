@@ -32,13 +32,14 @@ use super::{AbortCode, Access, DataType, OdValue, PdoDir, PdoHandle, PdoMapping,
 use super::{TimeDifference, TimeOfDay};
 use super::{I24, I40, I48, I56, U24, U40, U48, U56};
 
+pub mod limits;
 pub mod offset;
 mod row;
 pub mod search;
 
 pub use offset::{as_bytes, as_bytes_mut};
 use offset::{offset_slot, read_at, read_offset_slot, write_at, write_offset_slot, AT_OFFSET};
-pub use row::{Limit, Row};
+pub use row::{any_checks, Limit, Row};
 
 /// Calls `$m!` with every fixed-size data type: its [`DataType`], its Rust type and the names of its four
 /// accessors (VAR `&`/`&mut`, ARRAY `&`/`&mut`).
@@ -120,14 +121,14 @@ macro_rules! od_data_trait {
             /// The scale of the interpolated first guess of a search of [`KEYS`](Self::KEYS)
             /// ([`search::scale`]), computed at compile time.
             const SCALE: u32 = search::scale(Self::KEYS);
+            /// Whether any row has [`Row::CHECKS`] ([`any_checks`], computed at compile time): without, the
+            /// path of limits and hooks compiles away.
+            const CHECKED: bool = any_checks(Self::ROWS);
 
             /// Whether [`Row::field`] of a fixed-size row is the byte offset of its value in
             /// [`bytes`](Self::bytes) (`#[od(compact, zerocopy)]`): no accessor is then generated, every
             /// fixed-size value is reached through the struct's byte view.
             const BY_OFFSET: bool = false;
-            /// With [`BY_OFFSET`](Self::BY_OFFSET): the data types (bit `code`, [`DataType`] as `u8`) of the
-            /// rows with [`Row::CHECKS`], so the decode and compare of every other type compiles away.
-            const CHECKED_TYPES: u32 = 0;
 
             /// The struct as bytes (native byte order), with [`BY_OFFSET`](Self::BY_OFFSET); see
             /// [`as_bytes`].
@@ -283,7 +284,7 @@ macro_rules! od_data_trait {
             data: &[u8],
             checked: bool,
         ) -> Option<Result<(), AbortCode>> {
-            let hooks = checked && row.checks();
+            let hooks = checked && D::CHECKED && row.checks();
             if D::BY_OFFSET {
                 return write_at(d, pos, row, elem, sub, data, hooks);
             }
@@ -292,7 +293,7 @@ macro_rules! od_data_trait {
                 $(DataType::$dt => (|| {
                     let v = <$t as OdValue>::decode(data)?;
                     if hooks {
-                        checks::<D, $t>(d, pos, sub, &v, data)?;
+                        limits::check(d, pos, row.data_type, sub, data)?;
                     }
                     let place = if row.is_array() { d.$arr_mut(row.field).and_then(|a| a.get_mut(e)) } else { d.$var_mut(row.field) };
                     *place.ok_or(AbortCode::ObjectDoesNotExist)? = v;
@@ -304,51 +305,10 @@ macro_rules! od_data_trait {
                 _ => return None,
             })
         }
-
-        /// Limits and the application's check of a write in [`OdData::BY_OFFSET`] mode: decoded in the
-        /// row's own type; the arms of the types without a checked row compile away
-        /// ([`OdData::CHECKED_TYPES`]).
-        #[inline(never)]
-        fn checks_at<D: OdData + ?Sized>(d: &D, pos: u16, row: &Row, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-            match row.data_type {
-                $(DataType::$dt if D::CHECKED_TYPES & (1 << (DataType::$dt as u32 & 31)) != 0 => {
-                    let v = <$t as OdValue>::decode(data)?;
-                    checks::<D, $t>(d, pos, sub, &v, data)
-                })*
-                _ => d.check(pos, sub, data),
-            }
-        }
     };
 }
 
 fixed_types!(od_data_trait);
-
-/// Limits (from [`OdData::LIMITS`]) and the application's check of a decoded value.
-#[inline(never)]
-fn checks<D: OdData + ?Sized, T: OdValue + PartialOrd>(
-    d: &D,
-    pos: u16,
-    sub: u8,
-    v: &T,
-    data: &[u8],
-) -> Result<(), AbortCode> {
-    if let Ok(i) = D::LIMITS.binary_search_by_key(&pos, |l| l.row) {
-        let at = D::LIMITS.get(i).map_or(0, |l| usize::from(l.at));
-        let limit = |from: usize| D::LIMIT_VALUES.get(from..from + T::MAX_SIZE).and_then(|b| T::decode(b).ok());
-        beyond(v, limit(at), core::cmp::Ordering::Less, AbortCode::ValueTooLow)?;
-        beyond(v, limit(at + T::MAX_SIZE), core::cmp::Ordering::Greater, AbortCode::ValueTooHigh)?;
-    }
-    d.check(pos, sub, data)
-}
-
-/// `code` when `v` compares to `limit` as `side`, 0609 0030h when it does not compare (a NaN).
-fn beyond<T: PartialOrd>(v: &T, limit: Option<T>, side: core::cmp::Ordering, code: AbortCode) -> Result<(), AbortCode> {
-    match limit.map(|l| v.partial_cmp(&l)) {
-        Some(Some(o)) if o == side => Err(code),
-        Some(None) => Err(AbortCode::InvalidValue),
-        _ => Ok(()),
-    }
-}
 
 /// Where an (index, sub-index) lies in a data dictionary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -3,7 +3,7 @@
 //! moved in the little-endian encoding (ENC-01); PDO handles carry the offset itself (PDO-11/PDO-12), so a
 //! mapped object is one copy with no row at all. Limits and hooks (OD-11) still go through the row.
 
-use super::{checks_at, OdData, Row};
+use super::{limits, OdData, Row};
 use crate::od::{AbortCode, PdoHandle};
 
 /// [`OdData::bytes`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes, which zerocopy's
@@ -141,7 +141,7 @@ pub(super) fn write_at<D: OdData + ?Sized>(
     }
     Some((|| {
         if hooks {
-            checks_at(d, pos, row, sub, data)?;
+            limits::check(d, pos, row.data_type, sub, data)?;
         }
         store(d.bytes_mut(), at(row, elem, size), size, data)?;
         if hooks {

@@ -194,6 +194,26 @@ impl Row {
     }
 }
 
+/// Whether any of `rows` has [`Row::CHECKS`] ([`OdData::CHECKED`](super::OdData::CHECKED), computed at compile
+/// time): without, the limits and hooks of a write compile away.
+///
+/// ```
+/// use canopen_core::od::{data::{any_checks, Row}, Access, DataType, PdoMapping};
+/// let plain = Row::var(0, DataType::Unsigned8, Access::Rw, PdoMapping::No);
+/// assert!(!any_checks(&[plain]));
+/// assert!(any_checks(&[plain, plain.with(Row::CHECKS)]));
+/// ```
+pub const fn any_checks(rows: &[Row]) -> bool {
+    let mut i = 0;
+    while i < rows.len() {
+        if rows[i].checks() {
+            return true;
+        }
+        i += 1;
+    }
+    false
+}
+
 /// Where the low and high limits of one row are (OD-11): a write outside them is 0609 0032h / 0609 0031h,
 /// and a value that does not compare (a NaN) 0609 0030h.
 ///
