@@ -121,6 +121,9 @@ macro_rules! od_data_trait {
             /// The scale of the interpolated first guess of a search of [`KEYS`](Self::KEYS)
             /// ([`search::scale`]), computed at compile time.
             const SCALE: u32 = search::scale(Self::KEYS);
+            /// Whether no index repeats in [`KEYS`](Self::KEYS) (no RECORD; [`search::unique`], computed at
+            /// compile time): a search's hit needs no look at the row before.
+            const UNIQUE_KEYS: bool = search::unique(Self::KEYS);
             /// Whether any row has [`Row::CHECKS`] ([`any_checks`], computed at compile time): without, the
             /// path of limits and hooks compiles away.
             const CHECKED: bool = any_checks(Self::ROWS);
@@ -322,7 +325,7 @@ enum At {
 /// Finds `index`/`sub` (OD-16: 0602 0000h for no such object, 0609 0011h for no such sub-index).
 #[inline]
 fn find<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
-    let pos = search::locate(D::KEYS, D::SCALE, index);
+    let pos = search::locate(D::KEYS, D::SCALE, D::UNIQUE_KEYS, index);
     let row = match (D::KEYS.get(pos), D::ROWS.get(pos)) {
         (Some(&k), Some(row)) if k == index => *row,
         _ => return Err(AbortCode::ObjectDoesNotExist),

@@ -20,19 +20,39 @@ pub const fn scale(keys: &[u16]) -> u32 {
     (((n - 1) as u32) << 16) / (keys[n - 1] - keys[0]) as u32
 }
 
-/// The first position in `keys` (sorted, repeats allowed) whose key is not below `index`, as
-/// `keys.partition_point(|&k| k < index)`, with `scale` from [`scale`] of the same keys: the interpolated
-/// guess when it holds `index` and is its first row (checked, so any guess is safe), else the binary search.
+/// Whether no key repeats in `keys` (sorted): then a guess that holds the index is its first row, with no
+/// look at the row before (a dictionary without RECORDs; computed at compile time).
 ///
 /// ```
-/// use canopen_core::od::data::search::{locate, scale};
+/// use canopen_core::od::data::search::unique;
+/// assert!(unique(&[0x2000, 0x2001, 0x6000]));
+/// assert!(!unique(&[0x2000, 0x2001, 0x2001]));
+/// ```
+pub const fn unique(keys: &[u16]) -> bool {
+    let mut i = 1;
+    while i < keys.len() {
+        if keys[i] == keys[i - 1] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// The first position in `keys` (sorted, repeats allowed) whose key is not below `index`, as
+/// `keys.partition_point(|&k| k < index)`, with `scale` from [`scale`] and `unique` from [`unique`] of the
+/// same keys: the interpolated guess when it holds `index` and is its first row (checked, so any guess is
+/// safe), else the binary search.
+///
+/// ```
+/// use canopen_core::od::data::search::{locate, scale, unique};
 /// let keys = [0x1000, 0x2000, 0x2000, 0x2001, 0x6000];
 /// for index in [0u16, 0x1000, 0x1FFF, 0x2000, 0x2001, 0x2002, 0x6000, 0xFFFF] {
-///     assert_eq!(locate(&keys, scale(&keys), index), keys.partition_point(|&k| k < index));
+///     assert_eq!(locate(&keys, scale(&keys), unique(&keys), index), keys.partition_point(|&k| k < index));
 /// }
 /// ```
 #[inline]
-pub fn locate(keys: &[u16], scale: u32, index: u16) -> usize {
+pub fn locate(keys: &[u16], scale: u32, unique: bool, index: u16) -> usize {
     let Some(&first) = keys.first() else {
         return 0;
     };
@@ -40,7 +60,7 @@ pub fn locate(keys: &[u16], scale: u32, index: u16) -> usize {
     // when the check below confirms it.
     let guess = (u32::from(index.wrapping_sub(first)).wrapping_mul(scale) >> 16) as usize;
     if let Some(&k) = keys.get(guess) {
-        let first_of_its_key = guess == 0 || keys.get(guess - 1).is_some_and(|&p| p < index);
+        let first_of_its_key = unique || guess == 0 || keys.get(guess - 1).is_some_and(|&p| p < index);
         if k == index && first_of_its_key {
             return guess;
         }
@@ -58,12 +78,12 @@ mod tests {
         #[test]
         fn locate_is_partition_point(mut keys in proptest::collection::vec(any::<u16>(), 0..300), index in any::<u16>(), near in 0usize..300) {
             keys.sort_unstable();
-            let s = scale(&keys);
-            prop_assert_eq!(locate(&keys, s, index), keys.partition_point(|&k| k < index));
+            let (s, u) = (scale(&keys), unique(&keys));
+            prop_assert_eq!(locate(&keys, s, u, index), keys.partition_point(|&k| k < index));
             // And for the keys themselves and their neighbours (the interesting cases).
             if let Some(&k) = keys.get(near % keys.len().max(1)) {
                 for i in [k.wrapping_sub(1), k, k.wrapping_add(1)] {
-                    prop_assert_eq!(locate(&keys, s, i), keys.partition_point(|&x| x < i));
+                    prop_assert_eq!(locate(&keys, s, u, i), keys.partition_point(|&x| x < i));
                 }
             }
         }
@@ -79,7 +99,7 @@ mod tests {
         let s = scale(&keys);
         for (pos, &k) in keys.iter().enumerate() {
             assert_eq!(((u32::from(k - keys[0]) * s) >> 16) as usize, pos);
-            assert_eq!(locate(&keys, s, k), pos);
+            assert_eq!(locate(&keys, s, true, k), pos);
         }
     }
 }
