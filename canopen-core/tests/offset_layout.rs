@@ -184,3 +184,70 @@ fn limits_compare_in_each_type() {
         ((-0.0f64).to_bits(), 4_000_000_000, -0.25, -2, -128)
     );
 }
+
+/// Every size class of an offset PDO handle (1, 2, 4, 8 bytes), and values beyond the 4 KiB an offset
+/// slot reaches, which keep a row slot and move the same (PDO-11/PDO-12).
+#[derive(ObjectDictionary, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]
+#[od(compact, zerocopy)]
+#[repr(C)]
+struct Wide {
+    #[od(index = 0x2000, pdo = "both")]
+    big: u64,
+    #[od(index = 0x2001, pdo = "both")]
+    word: u32,
+    #[od(index = 0x2002, pdo = "both")]
+    half: i16,
+    #[od(index = 0x2003, pdo = "both")]
+    byte: u8,
+    pad: u8,
+    #[od(index = 0x2004, sub = 1..=254, access = "ro")]
+    bulk: [u64; 254],
+    #[od(index = 0x2008, sub = 1..=254, access = "ro")]
+    more: [u64; 254],
+    #[od(index = 0x2009, sub = 1..=4, access = "ro")]
+    last: [u64; 4],
+    #[od(index = 0x2005, pdo = "both")]
+    far: u64,
+    #[od(index = 0x2006, access = "ro", pdo = "tpdo", default = 0x0A0B)]
+    far_ro: u16,
+    #[od(index = 0x2007, pdo = "both")]
+    far_byte: u8,
+    tail: [u8; 5],
+}
+
+#[test]
+fn every_size_and_offsets_past_4_kib_move_through_handles() {
+    let mut d = <Wide as zerocopy::FromZeros>::new_zeroed();
+    d.restore_defaults();
+    let cases: [(u16, &[u8]); 6] = [
+        (0x2000, &[1, 2, 3, 4, 5, 6, 7, 8]),
+        (0x2001, &[9, 10, 11, 12]),
+        (0x2002, &[0xFE, 0xFF]),
+        (0x2003, &[0x7F]),
+        (0x2005, &[8, 7, 6, 5, 4, 3, 2, 1]),
+        (0x2007, &[0x33]),
+    ];
+    for (index, bytes) in cases {
+        let rx = d.pdo_resolve(index, 0, PdoDir::Rpdo).unwrap();
+        assert_eq!(usize::from(rx.size), bytes.len());
+        assert_eq!(d.pdo_write(&rx, bytes), Ok(()), "{index:04X}h");
+        let tx = d.pdo_resolve(index, 0, PdoDir::Tpdo).unwrap();
+        let mut buf = [0u8; 8];
+        assert_eq!(d.pdo_read(&tx, &mut buf), Ok(bytes.len()), "{index:04X}h");
+        assert_eq!(&buf[..bytes.len()], bytes, "{index:04X}h");
+        // One byte short: the length's answer, nothing stored.
+        assert_eq!(d.pdo_write(&rx, &bytes[1..]), Err(AbortCode::LengthTooLow), "{index:04X}h");
+    }
+    assert_eq!((d.big, d.word, d.half, d.byte), (0x0807_0605_0403_0201, 0x0C0B_0A09, -2, 0x7F));
+    assert_eq!((d.far, d.far_byte), (0x0102_0304_0506_0708, 0x33));
+    assert!(core::mem::offset_of!(Wide, far) > 4096, "far lies beyond what an offset slot reaches");
+    // A read-only value past 4 KiB: read through its handle, refused for a write.
+    let ro = d.pdo_resolve(0x2006, 0, PdoDir::Tpdo).unwrap();
+    let mut buf = [0u8; 2];
+    assert_eq!(d.pdo_read(&ro, &mut buf), Ok(2));
+    assert_eq!(buf, [0x0B, 0x0A]);
+    assert_eq!(d.pdo_write(&ro, &[0, 0]), Err(AbortCode::WriteOfReadOnly));
+    // A buffer too short for the value reads nothing past it.
+    let big = d.pdo_resolve(0x2000, 0, PdoDir::Tpdo).unwrap();
+    assert!(d.pdo_read(&big, &mut [0u8; 4]).is_err());
+}

@@ -97,9 +97,9 @@
 //! node applies the defaults at boot (NMT-04). Flash per further object (`scripts/od-cost.sh`, the node a
 //! static as in a firmware): UNSIGNED32 VAR 13.8 B (match arms 51.0, `compact` 17.9), ARRAY of 4 x UNSIGNED16
 //! 9.1 B (190.4, 24.3), RECORD of three 36.9 B (138.8, 49.1), RAM the values alone; python canopen's e35.eds
-//! application 10,692 B (39,608, 23,632; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
-//! expedited download 287 (default layout 291), RPDO to 4 objects 413.5 (381.5), SYNC to 4 TPDOs 250.9 per
-//! bus frame (216.5): PDO handles hold the value's offset, but each value is still a copy of a run-time size.
+//! application 10,668 B (39,608, 23,632; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! expedited download 287 (default layout 291), RPDO to 4 objects 377.5 (381.5), SYNC to 4 TPDOs 223.7 per
+//! bus frame (216.5): PDO handles hold the value's offset and size class, one jump table per value.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
 //! `f32`, `f64`, `I24`, `I40`, `I48`, `I56`, `U24`, `U40`, `U48`, `U56`, `TimeOfDay`, `TimeDifference`,

@@ -38,7 +38,7 @@ mod row;
 pub mod search;
 
 pub use offset::{as_bytes, as_bytes_mut};
-use offset::{offset_slot, read_at, read_offset_slot, write_at, write_offset_slot, AT_OFFSET};
+use offset::{offset_slot, read_at, read_offset_slot, write_at, write_offset_slot};
 pub use row::{any_checks, Limit, Row};
 
 /// Calls `$m!` with every fixed-size data type: its [`DataType`], its Rust type and the names of its four
@@ -826,8 +826,10 @@ pub fn pdo_resolve<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, dir: PdoDir) 
 /// ```
 #[inline(always)]
 pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
-    if D::BY_OFFSET && handle.slot & AT_OFFSET != 0 {
-        return read_offset_slot(d, handle, buf);
+    if D::BY_OFFSET {
+        if let Some(r) = read_offset_slot(d, handle, buf) {
+            return r;
+        }
     }
     match at_slot::<D>(handle.slot, handle.sub) {
         Some((row, elem)) => read_value(d, &row, elem, 0, buf),
@@ -851,8 +853,10 @@ pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -
 /// assert_eq!(app.a, 100);
 /// ```
 pub fn pdo_write<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
-    if D::BY_OFFSET && handle.slot & AT_OFFSET != 0 {
-        return write_offset_slot(d, handle, data);
+    if D::BY_OFFSET {
+        if let Some(r) = write_offset_slot(d, handle, data) {
+            return r;
+        }
     }
     match at_slot::<D>(handle.slot, handle.sub) {
         Some((row, _)) if !row.writable() => Err(AbortCode::WriteOfReadOnly),

@@ -151,38 +151,58 @@ pub(super) fn write_at<D: OdData + ?Sized>(
     })())
 }
 
-/// A PDO handle's slot that is the value's byte offset in [`OdData::bytes`] (bits 0..13), not a row:
-/// [`pdo_read`]/[`pdo_write`] then move the value with no row at all. Only for a row without limits or
-/// hooks, and with [`SLOT_RO`] when SDO may not write it.
-pub(super) const AT_OFFSET: u16 = 0x8000;
-/// With [`AT_OFFSET`]: the entry is not writable ([`pdo_write`] answers 0601 0002h).
+/// A PDO handle's slot that is the value's byte offset in [`OdData::bytes`] (bits 0..11) and its size
+/// class (bits 12..13: 1, 2, 4 or 8 bytes), not a row: [`pdo_read`]/[`pdo_write`] then move the value with
+/// no row at all, dispatched on the two bits (a jump table with no range check). Only for a row without
+/// limits or hooks, at an offset below 4 KiB (a value further in keeps its row slot), and with [`SLOT_RO`]
+/// when SDO may not write it.
+///
+/// [`pdo_read`]: super::pdo_read
+/// [`pdo_write`]: super::pdo_write
+const AT_OFFSET: u16 = 0x8000;
+/// With [`AT_OFFSET`]: the entry is not writable ([`pdo_write`](super::pdo_write) answers 0601 0002h).
 const SLOT_RO: u16 = 0x4000;
+/// With [`AT_OFFSET`]: where the size class is (`log2` of the size).
+const SIZE_SHIFT: u16 = 12;
+/// With [`AT_OFFSET`]: the offset's bits.
+const OFFSET_MASK: u16 = (1 << SIZE_SHIFT) - 1;
 
 /// The offset slot of `row`/`elem` ([`AT_OFFSET`]) in [`OdData::BY_OFFSET`] mode, `None` when the row
 /// needs its checks, SDO may not read it, or the offset does not fit.
 pub(super) fn offset_slot<D: OdData + ?Sized>(row: &Row, elem: u8) -> Option<u16> {
-    let at = at(row, elem, row.data_type.fixed_size());
+    let size = row.data_type.fixed_size();
+    let at = at(row, elem, size);
+    let class = match size {
+        1 => 0,
+        2 => 1,
+        4 => 2,
+        8 => 3,
+        _ => return None,
+    };
     let ro = if row.writable() { 0 } else { SLOT_RO };
-    (D::BY_OFFSET && !row.checks() && row.readable() && at < usize::from(SLOT_RO)).then_some(AT_OFFSET | ro | at as u16)
+    (D::BY_OFFSET && !row.checks() && row.readable() && at <= usize::from(OFFSET_MASK))
+        .then_some(AT_OFFSET | ro | class << SIZE_SHIFT | at as u16)
 }
 
-/// [`pdo_read`] of an offset slot: the handle's size of bytes from its offset.
+/// [`pdo_read`](super::pdo_read) of an offset slot: the value's bytes from its offset; `None` for a row slot.
+/// One dispatch on the slot's top four bits ([`AT_OFFSET`], [`SLOT_RO`], the size class), so that telling
+/// an offset slot from a row slot costs no test of its own.
 #[inline(always)]
 pub(super) fn read_offset_slot<D: OdData + ?Sized>(
     d: &D,
     handle: &PdoHandle,
     buf: &mut [u8],
-) -> Result<usize, AbortCode> {
-    let at = usize::from(handle.slot & (SLOT_RO - 1));
-    let bytes = d.bytes();
-    let n = match handle.size {
-        1 => copy_out::<1>(bytes, at, buf),
-        2 => copy_out::<2>(bytes, at, buf),
-        4 => copy_out::<4>(bytes, at, buf),
-        8 => copy_out::<8>(bytes, at, buf),
-        _ => None,
+) -> Option<Result<usize, AbortCode>> {
+    let (bytes, at) = (d.bytes(), usize::from(handle.slot & OFFSET_MASK));
+    const _: () = assert!(AT_OFFSET >> SIZE_SHIFT == 8 && SLOT_RO >> SIZE_SHIFT == 4);
+    let n = match handle.slot >> SIZE_SHIFT {
+        8 | 12 => copy_out::<1>(bytes, at, buf),
+        9 | 13 => copy_out::<2>(bytes, at, buf),
+        10 | 14 => copy_out::<4>(bytes, at, buf),
+        11 | 15 => copy_out::<8>(bytes, at, buf),
+        _ => return None,
     };
-    n.ok_or(AbortCode::ObjectDoesNotExist)
+    Some(n.ok_or(AbortCode::ObjectDoesNotExist))
 }
 
 /// The `N` bytes at `at` into the front of `buf`, little-endian.
@@ -194,17 +214,24 @@ fn copy_out<const N: usize>(bytes: &[u8], at: usize, buf: &mut [u8]) -> Option<u
     Some(N)
 }
 
-/// [`pdo_write`] of an offset slot: `data` (the handle's size) stored at its offset.
+/// [`pdo_write`](super::pdo_write) of an offset slot: `data` (the value's size) stored at its offset;
+/// `None` for a row slot. As [`read_offset_slot`], one dispatch: a read-only entry ([`SLOT_RO`]) is one
+/// more arm, 0601 0002h.
 #[inline(always)]
 pub(super) fn write_offset_slot<D: OdData + ?Sized>(
     d: &mut D,
     handle: &PdoHandle,
     data: &[u8],
-) -> Result<(), AbortCode> {
-    if handle.slot & SLOT_RO != 0 {
-        return Err(AbortCode::WriteOfReadOnly);
-    }
-    store(d.bytes_mut(), usize::from(handle.slot & (SLOT_RO - 1)), usize::from(handle.size), data)
+) -> Option<Result<(), AbortCode>> {
+    let (bytes, at) = (d.bytes_mut(), usize::from(handle.slot & OFFSET_MASK));
+    Some(match handle.slot >> SIZE_SHIFT {
+        8 => copy_in::<1>(bytes, at, data),
+        9 => copy_in::<2>(bytes, at, data),
+        10 => copy_in::<4>(bytes, at, data),
+        11 => copy_in::<8>(bytes, at, data),
+        12..=15 => Err(AbortCode::WriteOfReadOnly),
+        _ => return None,
+    })
 }
 
 /// `data` (exactly `N` little-endian bytes) stored at `at` in native byte order.
