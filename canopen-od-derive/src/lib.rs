@@ -98,7 +98,7 @@
 //! static as in a firmware): UNSIGNED32 VAR 13.8 B (match arms 51.0, `compact` 17.9), ARRAY of 4 x UNSIGNED16
 //! 9.1 B (190.4, 24.3), RECORD of three 36.9 B (138.8, 49.1), RAM the values alone; python canopen's e35.eds
 //! application 10,668 B (39,608, 23,632; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
-//! expedited download 287 (default layout 291), RPDO to 4 objects 377.5 (381.5), SYNC to 4 TPDOs 223.7 per
+//! expedited download 287 (default layout 291), RPDO to 4 objects 373.5 (381.5), SYNC to 4 TPDOs 220.5 per
 //! bus frame (216.5): PDO handles hold the value's offset and size class, one jump table per value.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,

@@ -38,7 +38,7 @@ mod row;
 pub mod search;
 
 pub use offset::{as_bytes, as_bytes_mut};
-use offset::{offset_slot, read_at, read_offset_slot, write_at, write_offset_slot};
+use offset::{offset_slot, read_at, read_offset_slot, row_slot, slot_row, write_at, write_offset_slot};
 pub use row::{any_checks, Limit, Row};
 
 /// Calls `$m!` with every fixed-size data type: its [`DataType`], its Rust type and the names of its four
@@ -798,14 +798,14 @@ pub fn pdo_resolve<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, dir: PdoDir) 
     };
     let info = SubInfo { data_type: row.data_type, access: row.access(), pdo: row.pdo(), size: 0 };
     if row.data_type.fixed_size() != 0 {
-        return PdoHandle::check(index, sub, &info, dir, offset_slot::<D>(&row, elem).unwrap_or(pos));
+        return PdoHandle::check(index, sub, &info, dir, offset_slot::<D>(&row, elem).unwrap_or(row_slot::<D>(pos)));
     }
     let ok = match dir {
         PdoDir::Tpdo => info.pdo.tpdo() && info.access.readable(),
         PdoDir::Rpdo => info.pdo.rpdo() && info.access.writable(),
     };
     match u8::try_from(d.special_map_size(row.field, elem)) {
-        Ok(size @ 1..=8) if ok => Ok(PdoHandle { index, sub, size, slot: pos }),
+        Ok(size @ 1..=8) if ok => Ok(PdoHandle { index, sub, size, slot: row_slot::<D>(pos) }),
         _ => Err(AbortCode::NotMappable),
     }
 }
@@ -831,7 +831,7 @@ pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -
             return r;
         }
     }
-    match at_slot::<D>(handle.slot, handle.sub) {
+    match at_slot::<D>(slot_row::<D>(handle.slot), handle.sub) {
         Some((row, elem)) => read_value(d, &row, elem, 0, buf),
         None => read(d, handle.index, handle.sub, 0, buf),
     }
@@ -858,9 +858,10 @@ pub fn pdo_write<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8])
             return r;
         }
     }
-    match at_slot::<D>(handle.slot, handle.sub) {
+    let pos = slot_row::<D>(handle.slot);
+    match at_slot::<D>(pos, handle.sub) {
         Some((row, _)) if !row.writable() => Err(AbortCode::WriteOfReadOnly),
-        Some((row, elem)) => write_value(d, handle.slot, &row, elem, handle.sub, data, true),
+        Some((row, elem)) => write_value(d, pos, &row, elem, handle.sub, data, true),
         None => write(d, handle.index, handle.sub, data),
     }
 }

@@ -151,23 +151,21 @@ pub(super) fn write_at<D: OdData + ?Sized>(
     })())
 }
 
-/// A PDO handle's slot that is the value's byte offset in [`OdData::bytes`] (bits 0..11) and its size
-/// class (bits 12..13: 1, 2, 4 or 8 bytes), not a row: [`pdo_read`]/[`pdo_write`] then move the value with
-/// no row at all, dispatched on the two bits (a jump table with no range check). Only for a row without
-/// limits or hooks, at an offset below 4 KiB (a value further in keeps its row slot), and with [`SLOT_RO`]
-/// when SDO may not write it.
-///
-/// [`pdo_read`]: super::pdo_read
-/// [`pdo_write`]: super::pdo_write
-const AT_OFFSET: u16 = 0x8000;
-/// With [`AT_OFFSET`]: the entry is not writable ([`pdo_write`](super::pdo_write) answers 0601 0002h).
+/// A PDO handle's slot in [`OdData::BY_OFFSET`] mode is either the value's byte offset in
+/// [`OdData::bytes`] (bits 0..11) with its size class (bits 12..13: `log2` of 1, 2, 4 or 8 bytes) and
+/// [`SLOT_RO`], or, with this bit, a row position (a value with limits or hooks, or past 4 KiB).
+/// [`pdo_read`](super::pdo_read)/[`pdo_write`](super::pdo_write) dispatch once on the slot's top four
+/// bits: each size, a read-only entry and a row slot are arms of one jump table, and an offset slot moves
+/// its value with no row at all.
+pub(super) const ROW_SLOT: u16 = 0x8000;
+/// In an offset slot: the entry is not writable ([`pdo_write`](super::pdo_write) answers 0601 0002h).
 const SLOT_RO: u16 = 0x4000;
-/// With [`AT_OFFSET`]: where the size class is (`log2` of the size).
+/// In an offset slot: where the size class is.
 const SIZE_SHIFT: u16 = 12;
-/// With [`AT_OFFSET`]: the offset's bits.
+/// In an offset slot: the offset's bits.
 const OFFSET_MASK: u16 = (1 << SIZE_SHIFT) - 1;
 
-/// The offset slot of `row`/`elem` ([`AT_OFFSET`]) in [`OdData::BY_OFFSET`] mode, `None` when the row
+/// The offset slot of `row`/`elem` (see [`ROW_SLOT`]) in [`OdData::BY_OFFSET`] mode, `None` when the row
 /// needs its checks, SDO may not read it, or the offset does not fit.
 pub(super) fn offset_slot<D: OdData + ?Sized>(row: &Row, elem: u8) -> Option<u16> {
     let size = row.data_type.fixed_size();
@@ -181,11 +179,31 @@ pub(super) fn offset_slot<D: OdData + ?Sized>(row: &Row, elem: u8) -> Option<u16
     };
     let ro = if row.writable() { 0 } else { SLOT_RO };
     (D::BY_OFFSET && !row.checks() && row.readable() && at <= usize::from(OFFSET_MASK))
-        .then_some(AT_OFFSET | ro | class << SIZE_SHIFT | at as u16)
+        .then_some(ro | class << SIZE_SHIFT | at as u16)
+}
+
+/// The PDO slot of the row at `pos` when it has no offset slot: marked with [`ROW_SLOT`] in
+/// [`OdData::BY_OFFSET`] mode.
+pub(super) fn row_slot<D: OdData + ?Sized>(pos: u16) -> u16 {
+    if D::BY_OFFSET {
+        pos | ROW_SLOT
+    } else {
+        pos
+    }
+}
+
+/// The row position of a PDO handle's row slot ([`row_slot`]).
+#[inline(always)]
+pub(super) fn slot_row<D: OdData + ?Sized>(slot: u16) -> u16 {
+    if D::BY_OFFSET {
+        slot & !ROW_SLOT
+    } else {
+        slot
+    }
 }
 
 /// [`pdo_read`](super::pdo_read) of an offset slot: the value's bytes from its offset; `None` for a row slot.
-/// One dispatch on the slot's top four bits ([`AT_OFFSET`], [`SLOT_RO`], the size class), so that telling
+/// One dispatch on the slot's top four bits ([`ROW_SLOT`], [`SLOT_RO`], the size class), so that telling
 /// an offset slot from a row slot costs no test of its own.
 #[inline(always)]
 pub(super) fn read_offset_slot<D: OdData + ?Sized>(
@@ -194,12 +212,12 @@ pub(super) fn read_offset_slot<D: OdData + ?Sized>(
     buf: &mut [u8],
 ) -> Option<Result<usize, AbortCode>> {
     let (bytes, at) = (d.bytes(), usize::from(handle.slot & OFFSET_MASK));
-    const _: () = assert!(AT_OFFSET >> SIZE_SHIFT == 8 && SLOT_RO >> SIZE_SHIFT == 4);
+    const _: () = assert!(ROW_SLOT >> SIZE_SHIFT == 8 && SLOT_RO >> SIZE_SHIFT == 4);
     let n = match handle.slot >> SIZE_SHIFT {
-        8 | 12 => copy_out::<1>(bytes, at, buf),
-        9 | 13 => copy_out::<2>(bytes, at, buf),
-        10 | 14 => copy_out::<4>(bytes, at, buf),
-        11 | 15 => copy_out::<8>(bytes, at, buf),
+        0 | 4 => copy_out::<1>(bytes, at, buf),
+        1 | 5 => copy_out::<2>(bytes, at, buf),
+        2 | 6 => copy_out::<4>(bytes, at, buf),
+        3 | 7 => copy_out::<8>(bytes, at, buf),
         _ => return None,
     };
     Some(n.ok_or(AbortCode::ObjectDoesNotExist))
@@ -225,11 +243,11 @@ pub(super) fn write_offset_slot<D: OdData + ?Sized>(
 ) -> Option<Result<(), AbortCode>> {
     let (bytes, at) = (d.bytes_mut(), usize::from(handle.slot & OFFSET_MASK));
     Some(match handle.slot >> SIZE_SHIFT {
-        8 => copy_in::<1>(bytes, at, data),
-        9 => copy_in::<2>(bytes, at, data),
-        10 => copy_in::<4>(bytes, at, data),
-        11 => copy_in::<8>(bytes, at, data),
-        12..=15 => Err(AbortCode::WriteOfReadOnly),
+        0 => copy_in::<1>(bytes, at, data),
+        1 => copy_in::<2>(bytes, at, data),
+        2 => copy_in::<4>(bytes, at, data),
+        3 => copy_in::<8>(bytes, at, data),
+        4..=7 => Err(AbortCode::WriteOfReadOnly),
         _ => return None,
     })
 }
