@@ -88,13 +88,19 @@ fn read_n<const N: usize>(bytes: &[u8], row: &Row, elem: u8, offset: usize, buf:
 }
 
 /// [`read_n`]'s rare case: a part of the value, or a buffer shorter than it (SDO segments of a 64-bit
-/// value).
+/// value). One copy for every size (`src` is 1 to 8 bytes in native order).
 #[cold]
 #[inline(never)]
-fn read_part<const N: usize>(src: &[u8; N], offset: usize, buf: &mut [u8]) -> usize {
-    let mut le = [0u8; N];
-    copy_order(src, &mut le);
-    crate::od::copy_at(&le, offset, buf)
+fn read_part(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
+    let mut le = [0u8; 8];
+    let Some(le) = le.get_mut(..src.len()) else {
+        return 0;
+    };
+    le.copy_from_slice(src);
+    if cfg!(target_endian = "big") {
+        le.reverse();
+    }
+    crate::od::copy_at(le, offset, buf)
 }
 
 /// Where the value of `row`/`elem` starts in [`OdData::bytes`]: the row's offset and the element's.
