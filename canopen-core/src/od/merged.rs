@@ -2,7 +2,7 @@
 //! else), dispatched by index range with one comparison, never by scanning. SDO, PDO mapping and the EDS
 //! writer all see the [`Merged`] dictionary.
 
-use super::{AbortCode, EntryDesc, ObjectDesc, ObjectDictionary, OdDescribe, PdoDir, PdoHandle, SubInfo};
+use super::{EntryDesc, ObjectDictionary, OdDescribe};
 
 /// The communication profile `comm` (1000h–1FFFh) merged with the application dictionary `app`.
 ///
@@ -51,23 +51,140 @@ pub(crate) const fn is_comm_for<A: ObjectDictionary + ?Sized>(index: u16) -> boo
     is_comm(index) && !(A::SERVES_PROGRAM && is_program(index))
 }
 
-macro_rules! route {
-    ($self:ident, $index:expr, $od:ident => $e:expr) => {
-        if is_comm_for::<A>($index) {
-            let $od = &$self.comm;
-            $e
-        } else {
-            let $od = &$self.app;
-            $e
+/// The routed methods of an [`ObjectDictionary`] made of two (every method but the constants,
+/// `restore_defaults` and `write_events`, which a composition decides itself): each access goes to
+/// `self.$first` when `$is_first(index)` holds for its index (a PDO handle's index), else to
+/// `self.$second`, with that one comparison and nothing else. Used inside the `impl` block, by
+/// [`Merged`] (communication profile | application) and by compositions of other crates (a CiA 402 drive's
+/// objects | the application's).
+///
+/// ```
+/// use canopen_core::od::{AbortCode, ObjectDictionary, SubInfo};
+/// # struct Half(u16);
+/// # impl ObjectDictionary for Half {
+/// #     fn info(&self, i: u16, _: u8) -> Result<SubInfo, AbortCode> { Err(AbortCode::ObjectDoesNotExist) }
+/// #     fn read(&self, _: u16, _: u8, _: usize, b: &mut [u8]) -> Result<usize, AbortCode> { b[..2].copy_from_slice(&self.0.to_le_bytes()); Ok(2) }
+/// #     fn write(&mut self, _: u16, _: u8, d: &[u8]) -> Result<(), AbortCode> { self.0 = u16::from(d[0]); Ok(()) }
+/// # }
+/// /// 6000h–67FFh to `low`, everything else to `high`.
+/// struct Two { low: Half, high: Half }
+/// const fn is_low(index: u16) -> bool { index >= 0x6000 && index <= 0x67FF }
+/// impl ObjectDictionary for Two {
+///     canopen_core::route_by_index!(is_low, low, high);
+///     fn restore_defaults(&mut self) {}
+/// }
+/// let mut two = Two { low: Half(1), high: Half(2) };
+/// let mut b = [0u8; 2];
+/// assert_eq!(two.read(0x6000, 0, 0, &mut b), Ok(2));
+/// assert_eq!(b, [1, 0]);
+/// two.write(0x2000, 0, &[9]).unwrap();
+/// assert_eq!((two.low.0, two.high.0), (1, 9));
+/// ```
+#[macro_export]
+macro_rules! route_by_index {
+    ($is_first:expr, $first:ident, $second:ident) => {
+        $crate::route_by_index!(@route $is_first, $first, $second;
+            fn info(&self, index: u16, sub: u8) -> Result<$crate::od::SubInfo, $crate::od::AbortCode> => info(index, sub) @ index;
+            fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, $crate::od::AbortCode>
+                => read(index, sub, offset, buf) @ index;
+            fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), $crate::od::AbortCode>
+                => read_expedited(index, sub, buf) @ index;
+            fn slot(&self, index: u16, sub: u8) -> u16 => slot(index, sub) @ index;
+            fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), $crate::od::AbortCode>
+                => read_slot(index, sub, slot, offset, buf) @ index;
+            fn pdo_resolve(&self, index: u16, sub: u8, dir: $crate::od::PdoDir) -> Result<$crate::od::PdoHandle, $crate::od::AbortCode>
+                => pdo_resolve(index, sub, dir) @ index;
+        );
+        $crate::route_by_index!(@route_mut $is_first, $first, $second;
+            fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), $crate::od::AbortCode> => write(index, sub, data) @ index;
+            fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), $crate::od::AbortCode>
+                => begin_write(index, sub, size) @ index;
+            fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), $crate::od::AbortCode>
+                => write_chunk(index, sub, offset, data) @ index;
+            fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), $crate::od::AbortCode>
+                => end_write(index, sub, total) @ index;
+            fn abort_write(&mut self, index: u16, sub: u8) -> () => abort_write(index, sub) @ index;
+            fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), $crate::od::AbortCode>
+                => write_expedited(index, sub, data, len) @ index;
+        );
+        fn pdo_read(&self, handle: &$crate::od::PdoHandle, buf: &mut [u8]) -> Result<usize, $crate::od::AbortCode> {
+            if ($is_first)(handle.index) {
+                self.$first.pdo_read(handle, buf)
+            } else {
+                self.$second.pdo_read(handle, buf)
+            }
+        }
+        fn pdo_write(&mut self, handle: &$crate::od::PdoHandle, data: &[u8]) -> Result<(), $crate::od::AbortCode> {
+            if ($is_first)(handle.index) {
+                self.$first.pdo_write(handle, data)
+            } else {
+                self.$second.pdo_write(handle, data)
+            }
         }
     };
-    (mut $self:ident, $index:expr, $od:ident => $e:expr) => {
-        if is_comm_for::<A>($index) {
-            let $od = &mut $self.comm;
-            $e
-        } else {
-            let $od = &mut $self.app;
-            $e
+    (@route $is_first:expr, $first:ident, $second:ident;
+        $(fn $m:ident(&self, $($a:ident: $t:ty),*) -> $r:ty => $call:ident($($arg:ident),*) @ $key:ident;)*) => {
+        $(fn $m(&self, $($a: $t),*) -> $r {
+            if ($is_first)($key) {
+                self.$first.$call($($arg),*)
+            } else {
+                self.$second.$call($($arg),*)
+            }
+        })*
+    };
+    (@route_mut $is_first:expr, $first:ident, $second:ident;
+        $(fn $m:ident(&mut self, $($a:ident: $t:ty),*) -> $r:ty => $call:ident($($arg:ident),*) @ $key:ident;)*) => {
+        $(fn $m(&mut self, $($a: $t),*) -> $r {
+            if ($is_first)($key) {
+                self.$first.$call($($arg),*)
+            } else {
+                self.$second.$call($($arg),*)
+            }
+        })*
+    };
+}
+
+/// The listing methods of an [`OdDescribe`] made of two (`object_count`, `object`, `object_index`): the
+/// objects of `self.$first` and `self.$second` (each listed in increasing index order) merged into one
+/// increasing order with [`merge_nth`], no buffer. `entry` routes by index, which the composition writes.
+///
+/// ```
+/// use canopen_core::od::{EntryDesc, ObjectCode, ObjectDesc, OdDescribe};
+/// # struct List(&'static [u16]);
+/// # impl OdDescribe for List {
+/// #     fn object_count(&self) -> usize { self.0.len() }
+/// #     fn object(&self, n: usize) -> Option<ObjectDesc> {
+/// #         let index = *self.0.get(n)?;
+/// #         Some(ObjectDesc { index, name: "x", code: ObjectCode::Var, first: 0, subs: 1 })
+/// #     }
+/// #     fn entry(&self, _: u16, _: u8) -> Option<EntryDesc> { None }
+/// # }
+/// struct Two { a: List, b: List }
+/// impl OdDescribe for Two {
+///     canopen_core::describe_merged!(a, b);
+///     fn entry(&self, _: u16, _: u8) -> Option<EntryDesc> { None }
+/// }
+/// let two = Two { a: List(&[0x1000, 0x6000]), b: List(&[0x2000]) };
+/// let order: Vec<u16> = (0..two.object_count()).filter_map(|n| two.object_index(n)).collect();
+/// assert_eq!(order, [0x1000, 0x2000, 0x6000]);
+/// ```
+#[macro_export]
+macro_rules! describe_merged {
+    ($first:ident, $second:ident) => {
+        fn object_count(&self) -> usize {
+            self.$first.object_count() + self.$second.object_count()
+        }
+        fn object(&self, n: usize) -> Option<$crate::od::ObjectDesc> {
+            match $crate::od::merged_position(&self.$first, &self.$second, n)? {
+                (true, i) => self.$first.object(i),
+                (false, j) => self.$second.object(j),
+            }
+        }
+        fn object_index(&self, n: usize) -> Option<u16> {
+            match $crate::od::merged_position(&self.$first, &self.$second, n)? {
+                (true, i) => self.$first.object_index(i),
+                (false, j) => self.$second.object_index(j),
+            }
         }
     };
 }
@@ -76,48 +193,7 @@ impl<C: ObjectDictionary, A: ObjectDictionary> ObjectDictionary for Merged<C, A>
     const STREAMS: bool = C::STREAMS || A::STREAMS;
     const SEGMENTED_UPLOADS: bool = C::SEGMENTED_UPLOADS || A::SEGMENTED_UPLOADS;
 
-    fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
-        route!(self, index, od => od.info(index, sub))
-    }
-    fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        route!(self, index, od => od.read(index, sub, offset, buf))
-    }
-    fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        route!(mut self, index, od => od.write(index, sub, data))
-    }
-    fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
-        route!(mut self, index, od => od.begin_write(index, sub, size))
-    }
-    fn write_chunk(&mut self, index: u16, sub: u8, offset: usize, data: &[u8]) -> Result<(), AbortCode> {
-        route!(mut self, index, od => od.write_chunk(index, sub, offset, data))
-    }
-    fn end_write(&mut self, index: u16, sub: u8, total: usize) -> Result<(), AbortCode> {
-        route!(mut self, index, od => od.end_write(index, sub, total))
-    }
-    fn abort_write(&mut self, index: u16, sub: u8) {
-        route!(mut self, index, od => od.abort_write(index, sub))
-    }
-    fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
-        route!(self, index, od => od.read_expedited(index, sub, buf))
-    }
-    fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        route!(mut self, index, od => od.write_expedited(index, sub, data, len))
-    }
-    fn slot(&self, index: u16, sub: u8) -> u16 {
-        route!(self, index, od => od.slot(index, sub))
-    }
-    fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> Result<(), AbortCode> {
-        route!(self, index, od => od.read_slot(index, sub, slot, offset, buf))
-    }
-    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
-        route!(self, index, od => od.pdo_resolve(index, sub, dir))
-    }
-    fn pdo_read(&self, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
-        route!(self, handle.index, od => od.pdo_read(handle, buf))
-    }
-    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
-        route!(mut self, handle.index, od => od.pdo_write(handle, data))
-    }
+    crate::route_by_index!(is_comm_for::<A>, comm, app);
     /// Reset Application restores the application's values only (NMT-04: 2000h–9FFFh); the communication
     /// profile is restored by Reset Communication.
     fn restore_defaults(&mut self) {
@@ -166,35 +242,36 @@ pub fn merge_nth(
     Some(if lo < a_len && (j >= b_len || a(lo) < b(j)) { (true, lo) } else { (false, j) })
 }
 
-/// The index of an object a description lists at `n` (`u16::MAX` for a hole, so it sorts last).
-fn index_of<D: OdDescribe + ?Sized>(od: &D, n: usize) -> u16 {
-    od.object_index(n).unwrap_or(u16::MAX)
-}
-
-impl<C: OdDescribe, A: OdDescribe> Merged<C, A> {
-    /// Where the `n`-th object of the merged order is: (true, `comm`'s `i`) or (false, `app`'s `j`).
-    fn locate(&self, n: usize) -> Option<(bool, usize)> {
-        let (c, a) = (&self.comm, &self.app);
-        merge_nth(n, c.object_count(), |i| index_of(c, i), a.object_count(), |j| index_of(a, j))
-    }
+/// Where the `n`-th object of two descriptions merged into one increasing order is: (true, `i`-th of
+/// `a`) or (false, `j`-th of `b`); `None` past the end. What [`describe_merged!`](crate::describe_merged)
+/// lists by (a listing position whose index is missing sorts last).
+///
+/// ```
+/// use canopen_core::od::{merged_position, EntryDesc, ObjectCode, ObjectDesc, OdDescribe};
+/// # struct List(&'static [u16]);
+/// # impl OdDescribe for List {
+/// #     fn object_count(&self) -> usize { self.0.len() }
+/// #     fn object(&self, n: usize) -> Option<ObjectDesc> {
+/// #         let index = *self.0.get(n)?;
+/// #         Some(ObjectDesc { index, name: "x", code: ObjectCode::Var, first: 0, subs: 1 })
+/// #     }
+/// #     fn entry(&self, _: u16, _: u8) -> Option<EntryDesc> { None }
+/// # }
+/// let (a, b) = (List(&[0x1000, 0x6000]), List(&[0x2000]));
+/// assert_eq!(merged_position(&a, &b, 1), Some((false, 0)));
+/// assert_eq!(merged_position(&a, &b, 3), None);
+/// ```
+pub fn merged_position<A: OdDescribe + ?Sized, B: OdDescribe + ?Sized>(
+    a: &A,
+    b: &B,
+    n: usize,
+) -> Option<(bool, usize)> {
+    let (a_index, b_index) = (|i| a.object_index(i).unwrap_or(u16::MAX), |j| b.object_index(j).unwrap_or(u16::MAX));
+    merge_nth(n, a.object_count(), a_index, b.object_count(), b_index)
 }
 
 impl<C: OdDescribe, A: OdDescribe> OdDescribe for Merged<C, A> {
-    fn object_count(&self) -> usize {
-        self.comm.object_count() + self.app.object_count()
-    }
-    fn object(&self, n: usize) -> Option<ObjectDesc> {
-        match self.locate(n)? {
-            (true, i) => self.comm.object(i),
-            (false, j) => self.app.object(j),
-        }
-    }
-    fn object_index(&self, n: usize) -> Option<u16> {
-        match self.locate(n)? {
-            (true, i) => self.comm.object_index(i),
-            (false, j) => self.app.object_index(j),
-        }
-    }
+    crate::describe_merged!(comm, app);
     /// 1F50h–1F57h: the communication profile's entry, else the application's (which serves them when it
     /// is a `program::ProgramDownload`).
     fn entry(&self, index: u16, sub: u8) -> Option<EntryDesc> {

@@ -28,7 +28,7 @@ pub use domain::{Domain, DomainBuf};
 #[cfg(feature = "program-download")]
 pub(crate) use merged::is_program;
 pub(crate) use merged::{is_comm, is_comm_for};
-pub use merged::{merge_nth, Merged};
+pub use merged::{merge_nth, merged_position, Merged};
 pub use string::{OctetString, UnicodeString, VisibleString};
 pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
