@@ -35,7 +35,8 @@ pub enum StructLayout {
     Compact,
     /// `#[od(compact, zerocopy)]`: tables only, each field reached by its offset (the least flash); needs
     /// `zerocopy` with its `derive` feature in the crate that includes the module. Falls back to
-    /// [`Compact`](Self::Compact) when a field is not a plain number.
+    /// [`Compact`](Self::Compact) when a field has no byte view (a string, a DOMAIN, a BOOLEAN, a 24-bit
+    /// integer).
     Zerocopy,
 }
 
@@ -59,6 +60,41 @@ impl core::str::FromStr for StructLayout {
     }
 }
 
+/// The body of a `#[od(compact, zerocopy)]` struct from `body` (fields as `rust_module` writes them: each
+/// field's comments and `#[od(...)]` lines, then its `    pub name: type,` line): the fields ordered by
+/// alignment, largest first, so that none is padded, and a `_pad` field filling the tail up to the
+/// struct's alignment. `Err` says which field has no byte view (a string, a DOMAIN, a `bool`, a 24-bit
+/// integer). What the generated modules and the flash measurement of the layout (`ci/od-cost`) share.
+///
+/// ```
+/// let body = "    #[od(index = 0x2000)]\n    pub flag: u8,\n    #[od(index = 0x2001, sub = 1..=3)]\n    pub pair: [u16; 3],\n    \
+///             #[od(index = 0x2002)]\n    pub speed: u32,";
+/// let ordered = canopen_eds::byte_view_fields(body).unwrap();
+/// // The UNSIGNED32 first, then the UNSIGNED16s, then the byte (4 + 6 + 1): 1 byte of padding to 4.
+/// assert!(ordered.find("pub speed: u32,").unwrap() < ordered.find("pub pair: [u16; 3],").unwrap());
+/// assert!(ordered.find("pub pair: [u16; 3],").unwrap() < ordered.find("pub flag: u8,").unwrap());
+/// assert!(ordered.ends_with("pub _pad: [u8; 1],"));
+/// assert!(canopen_eds::byte_view_fields("    #[od(index = 0x2000)]\n    pub on: bool,").is_err());
+/// ```
+pub fn byte_view_fields(body: &str) -> Result<String, String> {
+    let chunks = fields(body);
+    let aligns = chunks.iter().map(|c| alignment(c)).collect::<Result<Vec<usize>, String>>()?;
+    let mut order: Vec<(usize, String)> = aligns.into_iter().zip(chunks).collect();
+    order.sort_by_key(|(a, _)| core::cmp::Reverse(*a));
+    let size: usize = order.iter().map(|(_, c)| byte_size(c)).sum();
+    let align = order.iter().filter(|(_, c)| field_type(c).is_some()).map(|(a, _)| *a).max().unwrap_or(1);
+    let pad = (align - size % align) % align;
+    let mut chunks: Vec<String> = order.into_iter().map(|(_, c)| c).collect();
+    if pad > 0 || chunks.is_empty() {
+        // A struct without fields would have no bytes to view; one byte keeps the impl the same.
+        let n = if chunks.is_empty() { 1 } else { pad };
+        chunks.push(format!(
+            "    /// Not in the dictionary: the bytes a `repr(C)` struct would pad (zerocopy's byte view has none).\n    pub _pad: [u8; {n}],"
+        ));
+    }
+    Ok(chunks.join("\n"))
+}
+
 /// [`rust_module`] with the struct in `layout`.
 ///
 /// ```
@@ -67,6 +103,7 @@ impl core::str::FromStr for StructLayout {
 /// let g = rust_module_as(&eds, "dev.eds", StructLayout::Zerocopy);
 /// // A VISIBLE_STRING has no byte view: compact, and the reason as a comment.
 /// assert!(g.rust.contains("#[od(compact)]") && g.rust.contains("name_2000: VisibleString<32>"));
+/// assert!(g.rust.contains("has no byte view"));
 /// ```
 pub fn rust_module_as(eds: &Eds, source: &str, layout: StructLayout) -> Generated {
     let mut g = rust_module(eds, source);
@@ -79,25 +116,12 @@ pub fn rust_module_as(eds: &Eds, source: &str, layout: StructLayout) -> Generate
     let Some((body, tail)) = rest.split_once("\n}\n") else {
         return g;
     };
-    let mut chunks = fields(body);
-    let sizes: Result<Vec<usize>, String> = chunks.iter().map(|c| alignment(c)).collect();
     let mut derive = String::from("#[derive(ObjectDictionary, Debug, Default)]\n#[od(compact)]\n");
     let mut after = String::new();
-    match (layout, sizes) {
-        (StructLayout::Zerocopy, Ok(aligns)) => {
-            let mut order: Vec<(usize, String)> = aligns.into_iter().zip(chunks.drain(..)).collect();
-            order.sort_by_key(|(a, _)| core::cmp::Reverse(*a));
-            let size: usize = order.iter().map(|(_, c)| byte_size(c)).sum();
-            let align = order.iter().filter(|(_, c)| field_type(c).is_some()).map(|(a, _)| *a).max().unwrap_or(1);
-            let pad = (align - size % align) % align;
-            chunks = order.into_iter().map(|(_, c)| c).collect();
-            if pad > 0 || chunks.is_empty() {
-                // A struct without fields would have no bytes to view; one byte keeps the impl the same.
-                let n = if chunks.is_empty() { 1 } else { pad };
-                chunks.push(format!(
-                    "    /// Not in the dictionary: the bytes a `repr(C)` struct would pad (zerocopy's byte view has none).\n    pub _pad: [u8; {n}],"
-                ));
-            }
+    let mut fields_text = body.to_string();
+    match (layout, byte_view_fields(body)) {
+        (StructLayout::Zerocopy, Ok(ordered)) => {
+            fields_text = ordered;
             // `Default` zeroes the struct in one `memset` (a derived one stores each field: 4 B of code per
             // UNSIGNED32 on a Cortex-M); the node gives every entry its default at boot (NMT-04) anyway.
             derive = String::from(
@@ -114,7 +138,7 @@ pub fn rust_module_as(eds: &Eds, source: &str, layout: StructLayout) -> Generate
         }
         _ => {}
     }
-    g.rust = format!("{}{derive}pub struct Device {{\n{}\n}}\n{after}{tail}", head, chunks.join("\n"));
+    g.rust = format!("{head}{derive}pub struct Device {{\n{fields_text}\n}}\n{after}{tail}");
     g
 }
 
@@ -145,13 +169,13 @@ fn field_type(chunk: &str) -> Option<&str> {
     Some(line.split_once(": ")?.1.trim_end_matches(','))
 }
 
-/// A plain number type's size (its alignment in `repr(C)` on every target the core builds for).
-fn plain(ty: &str) -> Option<usize> {
+/// The alignment and size of a plain number type in `repr(C)` (on every target the core builds for).
+fn plain(ty: &str) -> Option<(usize, usize)> {
     match ty {
-        "u8" | "i8" => Some(1),
-        "u16" | "i16" => Some(2),
-        "u32" | "i32" | "f32" => Some(4),
-        "u64" | "i64" | "f64" => Some(8),
+        "u8" | "i8" => Some((1, 1)),
+        "u16" | "i16" => Some((2, 2)),
+        "u32" | "i32" | "f32" => Some((4, 4)),
+        "u64" | "i64" | "f64" => Some((8, 8)),
         _ => None,
     }
 }
@@ -171,9 +195,9 @@ fn alignment(chunk: &str) -> Result<usize, String> {
         return Ok(8);
     };
     let (t, _) = element(ty);
-    plain(t).ok_or_else(|| {
+    plain(t).map(|(align, _)| align).ok_or_else(|| {
         let name = chunk.lines().last().unwrap_or("").trim().trim_start_matches("pub ");
-        format!("the field `{}` is not a plain number", name.trim_end_matches(','))
+        format!("the field `{}` has no byte view", name.trim_end_matches(','))
     })
 }
 
@@ -181,6 +205,6 @@ fn alignment(chunk: &str) -> Result<usize, String> {
 fn byte_size(chunk: &str) -> usize {
     field_type(chunk).map_or(0, |ty| {
         let (t, n) = element(ty);
-        plain(t).unwrap_or(0) * n
+        plain(t).map_or(0, |(_, size)| size) * n
     })
 }

@@ -74,7 +74,7 @@ pub use eds::{
     data_type_name, eval_default, eval_typed, no_limit, type_range, Access, DeviceCommissioning, Eds, EdsError, Entry,
     InfoSection, Object, ObjectKind,
 };
-pub use layout::{rust_module_as, StructLayout};
+pub use layout::{byte_view_fields, rust_module_as, StructLayout};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -85,34 +85,12 @@ fn wrap(fields: &str, zerocopy: bool) -> String {
     if !zerocopy {
         return s + "#[derive(ObjectDictionary, Default)]\npub struct Dict {\n" + fields + "}\n";
     }
-    let lines: Vec<&str> = fields.lines().collect();
-    let mut pairs: Vec<(usize, usize, String)> = lines
-        .chunks(2)
-        .map(|p| {
-            let ty = p[1].rsplit(": ").next().unwrap_or("").trim_end_matches(',');
-            let (elem, n) = match ty.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
-                Some(t) => t.split_once("; ").map_or((t, 1), |(e, n)| (e, n.parse().unwrap_or(1))),
-                None => (ty, 1),
-            };
-            let size = match elem { "u8" | "i8" => 1, "u16" | "i16" => 2, "u64" | "i64" => 8, _ => 4 };
-            (size, size * n, p.join("\n"))
-        })
-        .collect();
-    pairs.sort_by_key(|(a, ..)| std::cmp::Reverse(*a));
-    let total: usize = pairs.iter().map(|(_, b, _)| b).sum();
-    let align = pairs.first().map_or(1, |(a, ..)| *a);
+    // Ordered by alignment with the tail padded, as `eds-to-rust --layout zerocopy` writes it.
+    let body = canopen_eds::byte_view_fields(fields.trim_end()).unwrap_or_else(|why| panic!("no byte view: {why}"));
     // Zeroed in one `memset` rather than a store per field (the derived Default): the node gives every
     // entry its default at boot anyway (Reset Application, NMT-04), so this is what such a firmware writes.
     s += "impl Default for Dict {\n    fn default() -> Self {\n        <Self as zerocopy::FromZeros>::new_zeroed()\n    }\n}\n";
     s += "#[derive(ObjectDictionary, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]\n";
     s += "#[repr(C)]\n#[od(compact, zerocopy)]\npub struct Dict {\n";
-    for (.., text) in &pairs {
-        s += text;
-        s += "\n";
-    }
-    let pad = (align - total % align) % align;
-    if pad > 0 {
-        s += &format!("    pub _pad: [u8; {pad}],\n");
-    }
-    s + "}\n"
+    s + &body + "\n}\n"
 }
