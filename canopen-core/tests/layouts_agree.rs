@@ -1,0 +1,241 @@
+//! The three ways the derive serves one struct (match arms, `#[od(compact)]` tables, `#[od(compact,
+//! zerocopy)]` tables reached by offset, issue 41) give the same answer to any sequence of accesses: the
+//! same values, the same abort codes (OD-08/OD-09 access, OD-11 limits, OD-16 unknown index or sub-index,
+//! the length codes), the same hooks run, and the same PDO handles apart from their slot. A proptest drives
+//! random accesses, with random indices, sub-indices, offsets and lengths, through all three and compares;
+//! PDO handles forged with any slot are also fed to the table layouts, which must answer without a panic.
+
+use canopen_core::od::{AbortCode, ObjectDictionary, PdoDir, PdoHandle};
+use canopen_od_derive::ObjectDictionary;
+use proptest::prelude::*;
+
+/// One dictionary with every shape the tables describe: VARs of 1 to 8 bytes, signed and REAL32 limits, an
+/// ARRAY, a RECORD with a gap in its sub-indices, ro/wo/const entries and a field with both hooks. Fields
+/// are ordered by alignment so that the zerocopy layout has no padding.
+macro_rules! dictionary {
+    ($name:ident $(, $attr:meta)*) => {
+        #[derive(ObjectDictionary, Default, Debug, PartialEq)]
+        $(#[$attr])*
+        struct $name {
+            #[od(index = 0x2008, access = "rw", pdo = "both", min = -5000000000, max = 5000000000, default = -3)]
+            wide: i64,
+            #[od(index = 0x2000, access = "rw", pdo = "both", default = 0x0102_0304)]
+            speed: u32,
+            #[od(index = 0x2005, sub = 3, access = "rw", default = 9)]
+            rec_c: u32,
+            #[od(index = 0x2006, access = "rw", pdo = "rpdo", min = -1.5, max = 2.5, default = 0.5)]
+            gain: f32,
+            #[od(index = 0x2007, access = "ro", pdo = "tpdo", default = 77)]
+            actual: u32,
+            #[od(index = 0x2004, sub = 1..=4, access = "rw", pdo = "both", default = 0x1122)]
+            table: [u16; 4],
+            #[od(index = 0x2005, sub = 1, record = "Mixed", access = "rw", count_access = "ro", default = 2)]
+            rec_a: u16,
+            #[od(index = 0x2001, access = "rww", pdo = "both", min = -100, max = 100, check = "not_13", on_write = "count")]
+            offset: i16,
+            #[od(index = 0x2002, access = "wo", pdo = "rpdo")]
+            command: u16,
+            #[od(index = 0x2003, access = "const", default = 5)]
+            version: u8,
+            /// Not in the dictionary: how often `offset` was written (its `on_write`).
+            writes: u8,
+        }
+
+        impl $name {
+            fn not_13(&self, _sub: u8, v: &i16) -> Result<(), AbortCode> {
+                if *v == 13 { Err(AbortCode::InvalidValue) } else { Ok(()) }
+            }
+            fn count(&mut self, _sub: u8) {
+                self.writes = self.writes.wrapping_add(1);
+            }
+        }
+    };
+}
+dictionary!(Code);
+dictionary!(Compact, od(compact));
+dictionary!(
+    Offsets,
+    od(compact, zerocopy),
+    derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable),
+    repr(C)
+);
+
+/// One access, with what it is given.
+#[derive(Debug, Clone)]
+enum Op {
+    Info(u16, u8),
+    Read(u16, u8, usize, usize),
+    Write(u16, u8, Vec<u8>),
+    ReadExpedited(u16, u8),
+    WriteExpedited(u16, u8, [u8; 4], Option<usize>),
+    /// Resolve, then read through the handle.
+    PdoRead(u16, u8),
+    /// Resolve, then write through the handle.
+    PdoWrite(u16, u8, Vec<u8>),
+    /// A handle with any slot: only the table layouts, answered without a panic.
+    Forged(u16, u8, u16, u8, Vec<u8>),
+    Restore,
+}
+
+/// An index near the dictionary's (and a few anywhere), a sub-index of 0..=6.
+fn index() -> impl Strategy<Value = u16> {
+    prop_oneof![4 => 0x1FFFu16..=0x2009, 1 => any::<u16>()]
+}
+
+/// Values at and beside the limits and the hook's refusal (random bytes seldom hit them), in each limited
+/// field's encoding, or random bytes.
+fn data() -> impl Strategy<Value = Vec<u8>> + Clone {
+    let mut edges: Vec<Vec<u8>> = Vec::new();
+    for v in [-101i16, -100, -99, 12, 13, 14, 99, 100, 101] {
+        edges.push(v.to_le_bytes().to_vec());
+    }
+    for v in [-5_000_000_001i64, -5_000_000_000, -4_999_999_999, 4_999_999_999, 5_000_000_000, 5_000_000_001] {
+        edges.push(v.to_le_bytes().to_vec());
+    }
+    let up = |x: f32| f32::from_bits(x.to_bits() + 1);
+    for v in [-1.5f32, up(-1.5), -1.4999999, 2.5, up(2.5), 2.4999998, -0.0, f32::NAN, f32::INFINITY] {
+        edges.push(v.to_le_bytes().to_vec());
+    }
+    prop_oneof![
+        2 => proptest::collection::vec(any::<u8>(), 0..10),
+        1 => proptest::sample::select(edges),
+    ]
+}
+
+fn op() -> impl Strategy<Value = Op> {
+    let sub = 0u8..=6;
+    let data = data();
+    prop_oneof![
+        (index(), sub.clone()).prop_map(|(i, s)| Op::Info(i, s)),
+        (index(), sub.clone(), 0usize..10, 0usize..10).prop_map(|(i, s, o, n)| Op::Read(i, s, o, n)),
+        (index(), sub.clone(), data.clone()).prop_map(|(i, s, d)| Op::Write(i, s, d)),
+        (index(), sub.clone()).prop_map(|(i, s)| Op::ReadExpedited(i, s)),
+        (index(), sub.clone(), data.clone(), proptest::option::of(0usize..=4)).prop_map(|(i, s, d, n)| {
+            let mut four = [0u8; 4];
+            for (b, v) in four.iter_mut().zip(&d) {
+                *b = *v;
+            }
+            Op::WriteExpedited(i, s, four, n)
+        }),
+        (index(), sub.clone()).prop_map(|(i, s)| Op::PdoRead(i, s)),
+        (index(), sub.clone(), data.clone()).prop_map(|(i, s, d)| Op::PdoWrite(i, s, d)),
+        (index(), sub, any::<u16>(), 0u8..=9, data).prop_map(|(i, s, slot, n, d)| Op::Forged(i, s, slot, n, d)),
+        Just(Op::Restore),
+    ]
+}
+
+/// What an access answered, with the handle's slot left out (it is each layout's own).
+#[derive(Debug, PartialEq)]
+enum Answer {
+    Info(Result<canopen_core::od::SubInfo, AbortCode>),
+    Read(Result<(usize, Vec<u8>), AbortCode>),
+    Unit(Result<(), AbortCode>),
+    Expedited(Result<(usize, usize, [u8; 4]), AbortCode>),
+    Pdo(Result<(u8, Result<(usize, Vec<u8>), AbortCode>), AbortCode>),
+    PdoWrite(Result<(u8, Result<(), AbortCode>), AbortCode>),
+    None,
+}
+
+fn apply<D: ObjectDictionary>(d: &mut D, op: &Op, forged: bool) -> Answer {
+    match op {
+        Op::Info(i, s) => Answer::Info(d.info(*i, *s)),
+        Op::Read(i, s, offset, n) => {
+            let mut buf = vec![0u8; *n];
+            Answer::Read(d.read(*i, *s, *offset, &mut buf).map(|k| (k, buf)))
+        }
+        Op::Write(i, s, data) => Answer::Unit(d.write(*i, *s, data)),
+        Op::ReadExpedited(i, s) => {
+            let mut buf = [0u8; 4];
+            Answer::Expedited(d.read_expedited(*i, *s, &mut buf).map(|(a, b)| (a, b, buf)))
+        }
+        Op::WriteExpedited(i, s, data, n) => Answer::Unit(d.write_expedited(*i, *s, data, *n)),
+        Op::PdoRead(i, s) => Answer::Pdo(d.pdo_resolve(*i, *s, PdoDir::Tpdo).map(|h| {
+            let mut buf = [0u8; 8];
+            (h.size, d.pdo_read(&h, &mut buf).map(|n| (n, buf.to_vec())))
+        })),
+        Op::PdoWrite(i, s, data) => {
+            Answer::PdoWrite(d.pdo_resolve(*i, *s, PdoDir::Rpdo).map(|h| (h.size, d.pdo_write(&h, data))))
+        }
+        Op::Forged(index, sub, slot, size, data) => {
+            if forged {
+                let h = PdoHandle { index: *index, sub: *sub, size: *size, slot: *slot };
+                let mut buf = [0u8; 8];
+                let _ = d.pdo_read(&h, &mut buf);
+                let _ = d.pdo_read(&h, &mut buf[..usize::from(*size).min(8)]);
+                let _ = d.pdo_write(&h, data);
+            }
+            Answer::None
+        }
+        Op::Restore => {
+            d.restore_defaults();
+            Answer::None
+        }
+    }
+}
+
+/// Every readable value of the dictionary, as SDO reads it (what the three must hold alike).
+fn state<D: ObjectDictionary>(d: &D) -> Vec<Result<Vec<u8>, AbortCode>> {
+    let mut out = Vec::new();
+    for index in 0x2000..=0x2008u16 {
+        for sub in 0..=4u8 {
+            let mut buf = [0u8; 8];
+            out.push(d.read(index, sub, 0, &mut buf).map(|n| buf[..n].to_vec()));
+        }
+    }
+    out
+}
+
+fn fresh<D: ObjectDictionary + Default>() -> D {
+    let mut d = D::default();
+    d.restore_defaults();
+    d
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    /// The same answers and the same values after every access, in all three layouts.
+    #[test]
+    fn the_three_layouts_answer_alike(ops in proptest::collection::vec(op(), 1..40)) {
+        let (mut code, mut compact, mut offsets) = (fresh::<Code>(), fresh::<Compact>(), fresh::<Offsets>());
+        for op in &ops {
+            let a = apply(&mut code, op, false);
+            // Forged handles: the table layouts (a match-arm dictionary's slot is its own arm number).
+            let b = apply(&mut compact, op, true);
+            let c = apply(&mut offsets, op, true);
+            if !matches!(op, Op::Forged(..)) {
+                prop_assert_eq!(&a, &b, "compact differs on {:?}", op);
+                prop_assert_eq!(&a, &c, "zerocopy differs on {:?}", op);
+                prop_assert_eq!(state(&code), state(&compact), "compact's values after {:?}", op);
+                prop_assert_eq!(state(&code), state(&offsets), "zerocopy's values after {:?}", op);
+                prop_assert_eq!((code.writes, compact.writes), (offsets.writes, offsets.writes), "hooks after {:?}", op);
+            } else {
+                // What a forged handle wrote is not compared; start the table layouts over from the code one.
+                compact = fresh::<Compact>();
+                offsets = fresh::<Offsets>();
+                code = fresh::<Code>();
+            }
+        }
+    }
+}
+
+/// The accesses above reach every kind of answer: a value, each limit, a hook's refusal, the access and
+/// existence codes, so that the proptest compares more than errors.
+#[test]
+fn the_dictionary_answers_each_kind() {
+    let mut d = fresh::<Offsets>();
+    let mut buf = [0u8; 8];
+    assert_eq!(d.read(0x2008, 0, 0, &mut buf), Ok(8));
+    assert_eq!(d.write(0x2008, 0, &(-5_000_000_001i64).to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(d.write(0x2006, 0, &3.0f32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.write(0x2001, 0, &13i16.to_le_bytes()), Err(AbortCode::InvalidValue));
+    assert_eq!(d.write(0x2001, 0, &12i16.to_le_bytes()), Ok(()));
+    assert_eq!(d.writes, 1);
+    assert_eq!(d.read(0x2002, 0, 0, &mut buf), Err(AbortCode::ReadOfWriteOnly));
+    assert_eq!(d.write(0x2003, 0, &[1]), Err(AbortCode::WriteOfReadOnly));
+    assert_eq!(d.read(0x2005, 2, 0, &mut buf), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(d.read(0x2005, 0, 0, &mut buf), Ok(1));
+    assert_eq!(buf[0], 3);
+    assert_eq!(d.read(0x2009, 0, 0, &mut buf), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(d.write(0x2000, 0, &[1, 2]), Err(AbortCode::LengthTooLow));
+}
