@@ -124,14 +124,17 @@ fn op() -> impl Strategy<Value = Op> {
     ]
 }
 
+/// Bytes read: how many, and the buffer.
+type Bytes = Result<(usize, Vec<u8>), AbortCode>;
+
 /// What an access answered, with the handle's slot left out (it is each layout's own).
 #[derive(Debug, PartialEq)]
 enum Answer {
     Info(Result<canopen_core::od::SubInfo, AbortCode>),
-    Read(Result<(usize, Vec<u8>), AbortCode>),
+    Read(Bytes),
     Unit(Result<(), AbortCode>),
     Expedited(Result<(usize, usize, [u8; 4]), AbortCode>),
-    Pdo(Result<(u8, Result<(usize, Vec<u8>), AbortCode>), AbortCode>),
+    Pdo(Result<(u8, Bytes), AbortCode>),
     PdoWrite(Result<(u8, Result<(), AbortCode>), AbortCode>),
     None,
 }
