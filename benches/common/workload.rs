@@ -27,7 +27,11 @@ macro_rules! sdo_app {
         pub struct $name {
             #[od(index = 0x2002, access = "rw")]
             pub value: u32,
-            #[od(index = 0x2004, access = "rw", default = "CANopen test string of exactly sixty-four bytes for SDO uploads.")]
+            #[od(
+                index = 0x2004,
+                access = "rw",
+                default = "CANopen test string of exactly sixty-four bytes for SDO uploads."
+            )]
             pub text: VisibleString<64>,
             #[od(index = 0x2005, domain)]
             pub blob: DomainBuf<BLOCK_LEN>,
