@@ -25,12 +25,8 @@
 //! scenarios on such dictionaries, and `expedited_download@thousand` writes 2002h of a 1,000-VAR one
 //! (`thousand.rs`): the lookup cost as the dictionary grows.
 
-use std::hint::black_box;
-
 use canopen::core::{
     node::Node,
-    od::{DomainBuf, VisibleString},
-    pdo::PdoDefault,
     profile::NodeConfig,
     sdo::client::{ClientEvent, Mode, SdoClient, SliceData},
     sdo::SdoClientParams,
@@ -38,32 +34,6 @@ use canopen::core::{
     CanFrame, Instant, NmtState, NodeId, Sizes,
 };
 use canopen::ObjectDictionary;
-
-const K: usize = 8;
-const BLOCK_LEN: usize = 889 * K;
-
-#[derive(ObjectDictionary, Default)]
-#[od(crate = "canopen::core")]
-struct App {
-    #[od(index = 0x2002, access = "rw")]
-    value: u32,
-    #[od(index = 0x2004, access = "rw", default = "CANopen test string of exactly sixty-four bytes for SDO uploads.")]
-    text: VisibleString<64>,
-    #[od(index = 0x2005, domain)]
-    blob: DomainBuf<BLOCK_LEN>,
-}
-
-/// `App` for an application that takes no write events.
-#[derive(ObjectDictionary, Default)]
-#[od(crate = "canopen::core", write_events = false)]
-struct Quiet {
-    #[od(index = 0x2002, access = "rw")]
-    value: u32,
-    #[od(index = 0x2004, access = "rw", default = "CANopen test string of exactly sixty-four bytes for SDO uploads.")]
-    text: VisibleString<64>,
-    #[od(index = 0x2005, domain)]
-    blob: DomainBuf<BLOCK_LEN>,
-}
 
 /// `App`'s 2002h alone, reached by offset.
 #[derive(ObjectDictionary, Default, zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable)]
@@ -76,6 +46,9 @@ struct ZeroCopyApp {
 
 #[path = "thousand.rs"]
 mod thousand;
+#[path = "common/workload.rs"]
+mod workload;
+use workload::{App, Process, Quiet, BLOCK_LEN, PDO_CFG};
 
 fn new_node() -> Node<App, Sizes> {
     booted(App::default()) // power-on (Reset Application) gives every entry its `default =` value
@@ -89,22 +62,6 @@ fn booted<A: canopen::core::od::ObjectDictionary>(app: A) -> Node<A, Sizes> {
     while node.poll_transmit().is_some() {}
     while node.poll_event().is_some() {}
     node
-}
-
-/// The process data of the PDO scenarios: 4 UNSIGNED16 objects mappable both ways.
-#[derive(ObjectDictionary, Default)]
-#[od(crate = "canopen::core")]
-struct Process {
-    #[od(index = 0x6000, access = "rww", pdo = "both")]
-    a: u16,
-    #[od(index = 0x6001, access = "rww", pdo = "both")]
-    b: u16,
-    #[od(index = 0x6002, access = "rww", pdo = "both")]
-    c: u16,
-    #[od(index = 0x6003, access = "rww", pdo = "both")]
-    d: u16,
-    #[od(index = 0x6010, access = "rw", default = 7)]
-    unmapped: u32,
 }
 
 /// `Process`, reached by offset.
@@ -123,11 +80,6 @@ struct ZeroCopyProcess {
     #[od(index = 0x6003, access = "rww", pdo = "both")]
     d: u16,
 }
-
-const MAP: &[u32] = &[0x6000_0010, 0x6001_0010, 0x6002_0010, 0x6003_0010];
-const RPDO: PdoDefault = PdoDefault { transmission_type: 255, mapping: MAP, ..PdoDefault::EVENT };
-const TPDO: PdoDefault = PdoDefault { transmission_type: 1, mapping: MAP, ..PdoDefault::EVENT };
-const PDO_CFG: NodeConfig = NodeConfig { rpdo: &[RPDO], tpdo: &[TPDO, TPDO, TPDO, TPDO], ..NodeConfig::DEFAULT };
 
 /// A node with one RPDO and four synchronous TPDOs, Operational, queues drained.
 fn pdo_node<P: canopen::core::od::ObjectDictionary + Default>() -> Node<P, Sizes> {
@@ -162,26 +114,15 @@ fn run<A: canopen::core::od::ObjectDictionary + canopen::core::od::OdDescribe>(
     script: &[CanFrame],
     iterations: usize,
 ) -> (usize, usize) {
-    let (mut frames, mut sent) = (0usize, 0usize);
+    let (mut frames, mut sent) = (0usize, 0u64);
     for _ in 0..iterations {
         for f in script {
-            node.handle_frame(Instant::ZERO, black_box(f));
-            // As `driver::run`'s service loop: events first, then each frame is peeked, sent and only then taken
-            // (`transmitted`), so a cancelled send loses nothing.
-            loop {
-                if let Some(e) = node.poll_event() {
-                    black_box(e);
-                    continue;
-                }
-                let Some(out) = node.peek_transmit() else { break };
-                node.transmitted(black_box(&out));
-                sent += 1;
-            }
+            workload::pass(node, f, &mut sent);
             frames += 1;
         }
     }
     assert_eq!(node.tx_dropped(), 0);
-    (frames, sent)
+    (frames, sent as usize)
 }
 
 /// Runs one transfer with our client against a node and records the client's frames.

@@ -6,10 +6,12 @@
 #[path = "qemu-m4/src/device.rs"]
 #[allow(dead_code)] // NODE_ID is the firmware's
 mod device;
+#[path = "common/eds_file.rs"]
+mod eds_file;
 
 use canopen_core::node::SdoRecordsDesc;
 use canopen_core::od::Merged;
-use canopen_core::profile::eds::{write_eds, EdsInfo};
+use canopen_core::profile::eds::EdsInfo;
 use canopen_core::profile::CommProfile;
 
 const HELP: &str = "qemu_m4_eds: writes the EDS (CiA 306 electronic data sheet) of the node that \
@@ -19,13 +21,6 @@ Usage: qemu_m4_eds [FILE]    (stdout without FILE)
 Example: cargo run --example qemu_m4_eds -- qemu-m4.eds";
 
 fn main() {
-    if std::env::args().skip(1).any(|a| a == "--help" || a == "-h") {
-        println!("{HELP}");
-        return;
-    }
-    let mut comm = CommProfile::<device::NodeSizes>::new(device::CONFIG);
-    comm.storage_supported = true; // the firmware saves to RAM (1010h/1011h)
-    let od = SdoRecordsDesc::of::<device::NodeSizes>(Merged { comm, app: device::Device::new() });
     let info = EdsInfo {
         file_name: "qemu-m4.eds",
         description: "canopener node on QEMU mps2-an386 (Cortex-M4), slcan on UART0",
@@ -34,18 +29,9 @@ fn main() {
         order_code: "QEMU-M4",
         ..EdsInfo::DEFAULT
     };
-    let mut text = String::new();
-    if let Err(e) = write_eds(&mut text, &info, &od) {
-        eprintln!("EDS formatting failed: {e}");
-        std::process::exit(1);
-    }
-    match std::env::args().nth(1) {
-        Some(path) => {
-            if let Err(e) = std::fs::write(&path, text) {
-                eprintln!("cannot write {path}: {e}");
-                std::process::exit(1);
-            }
-        }
-        None => print!("{text}"),
-    }
+    eds_file::run(HELP, &info, || {
+        let mut comm = CommProfile::<device::NodeSizes>::new(device::CONFIG);
+        comm.storage_supported = true; // the firmware saves to RAM (1010h/1011h)
+        SdoRecordsDesc::of::<device::NodeSizes>(Merged { comm, app: device::Device::new() })
+    });
 }

@@ -4,9 +4,11 @@
 
 #[path = "../tests/common/all_types.rs"]
 mod all_types;
+#[path = "common/eds_file.rs"]
+mod eds_file;
 
 use canopen_core::node::{SdoRecordsDesc, WithSdoServers};
-use canopen_core::profile::eds::{write_eds, EdsInfo};
+use canopen_core::profile::eds::EdsInfo;
 use canopen_core::Sizes;
 
 const HELP: &str = "write_eds: writes the EDS (CiA 306 electronic data sheet) of the all-types test device, \
@@ -16,12 +18,6 @@ Usage: write_eds [FILE]    (stdout without FILE)
 Example: cargo run --example write_eds -- all_types.eds";
 
 fn main() {
-    if std::env::args().skip(1).any(|a| a == "--help" || a == "-h") {
-        println!("{HELP}");
-        return;
-    }
-    // The records a node of these sizes serves: 1200h, 1201h, 1202h and 1280h (tests/python/test_eds.py).
-    let od = SdoRecordsDesc::of::<WithSdoServers<Sizes, 2, 1>>(all_types::node_od());
     let info = EdsInfo {
         file_name: "all_types.eds",
         description: "canopener test device with every data type",
@@ -30,18 +26,6 @@ fn main() {
         order_code: "AT-1",
         ..EdsInfo::DEFAULT
     };
-    let mut text = String::new();
-    if let Err(e) = write_eds(&mut text, &info, &od) {
-        eprintln!("EDS formatting failed: {e}");
-        std::process::exit(1);
-    }
-    match std::env::args().nth(1) {
-        Some(path) => {
-            if let Err(e) = std::fs::write(&path, text) {
-                eprintln!("cannot write {path}: {e}");
-                std::process::exit(1);
-            }
-        }
-        None => print!("{text}"),
-    }
+    // The records a node of these sizes serves: 1200h, 1201h, 1202h and 1280h (tests/python/test_eds.py).
+    eds_file::run(HELP, &info, || SdoRecordsDesc::of::<WithSdoServers<Sizes, 2, 1>>(all_types::node_od()));
 }

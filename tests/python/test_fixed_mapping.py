@@ -24,6 +24,7 @@ require_vcan(IFACE)
 
 import canopen  # noqa: E402
 from canopen.sdo.exceptions import SdoAbortedError  # noqa: E402
+from helpers import abort_code, check_default_io_module_mappings, wait_until  # noqa: E402
 
 NODE_BIN = os.environ.get("NODE_BIN_FIXED", str(ROOT / "target/debug/examples/node-fixed-mapping"))
 MAPPINGS = (0x1600, 0x1601, 0x1A00, 0x1A01)
@@ -62,12 +63,7 @@ def test_the_eds_says_the_mapping_records_are_const(node):
 
 
 def test_the_pdo_api_reads_the_configured_mapping(node):
-    node.tpdo.read()
-    node.rpdo.read()
-    assert [v.name for v in node.tpdo[1].map] == [f"Digital inputs.Digital inputs {i}" for i in range(1, 9)]
-    assert [v.name for v in node.tpdo[2].map] == [f"Analog inputs.Analog inputs {i}" for i in range(1, 5)]
-    assert [v.name for v in node.rpdo[1].map] == [f"Digital outputs.Digital outputs {i}" for i in range(1, 9)]
-    assert [v.name for v in node.rpdo[2].map] == [f"Analog outputs.Analog outputs {i}" for i in range(1, 5)]
+    check_default_io_module_mappings(node)
 
 
 def test_remapping_is_refused_and_the_mapping_stays(node):
@@ -79,7 +75,7 @@ def test_remapping_is_refused_and_the_mapping_stays(node):
     for sub, data in ((0, b"\x00"), (1, (0x6401_0110).to_bytes(4, "little"))):
         with pytest.raises(SdoAbortedError) as e:
             node.sdo.download(0x1A00, sub, data)
-        assert e.value.code == 0x06010002, f"1A00h:{sub:02X}"
+        assert abort_code(e) == 0x06010002, f"1A00h:{sub:02X}"
     node.sdo.download(0x1800, 1, cob.to_bytes(4, "little"))  # valid again
     assert node.sdo.upload(0x1A00, 0) == b"\x08"
     assert int.from_bytes(node.sdo.upload(0x1A00, 1), "little") == 0x6000_0108
@@ -97,9 +93,7 @@ def test_the_fixed_tpdo_and_rpdo_work(node):
         for i in range(1, 9):
             node.rpdo[1][f"Digital outputs.Digital outputs {i}"].raw = 0x20 + i
         node.rpdo[1].transmit()
-        end = time.time() + 3
-        while node.sdo[0x6200][8].raw != 0x28 and time.time() < end:
-            time.sleep(0.02)
+        wait_until(lambda: node.sdo[0x6200][8].raw == 0x28)
         assert [node.sdo[0x6200][i].raw for i in range(1, 9)] == [0x20 + i for i in range(1, 9)]
     finally:
         node.nmt.state = "PRE-OPERATIONAL"

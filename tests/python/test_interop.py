@@ -30,6 +30,15 @@ require_vcan(IFACE)
 import canopen  # noqa: E402
 from canopen.objectdictionary import ODVariable  # noqa: E402
 from canopen.sdo.exceptions import SdoAbortedError  # noqa: E402
+from helpers import (  # noqa: E402
+    Heartbeats,
+    abort_code,
+    check_default_io_module_mappings,
+    check_nmt_states_seen_in_heartbeats,
+    command_until_boot_up,
+    fast_heartbeat,  # noqa: F401 (a fixture of the tests below)
+    wait_until,
+)
 
 NODE_BIN = os.environ.get("NODE_BIN", str(ROOT / "target/debug/examples/node"))
 
@@ -124,10 +133,6 @@ def node(network, eds_path):
     remote = network.add_node(NODE_ID, eds_path)
     remote.sdo.RESPONSE_TIMEOUT = 3.0  # the VM is slow; a lost response still fails in 3 s
     return remote
-
-
-def abort_code(excinfo):
-    return excinfo.value.code
 
 
 def variables(od):
@@ -334,58 +339,8 @@ def test_program_control_refusals(node):
 
 # ---- NMT and heartbeat -----------------------------------------------------------------------------------
 
-class Heartbeats:
-    """Collects (time, state) of the node's error-control frames."""
-
-    def __init__(self, network):
-        self.network = network
-        self.seen = []
-        self.lock = threading.Lock()
-
-    def __call__(self, can_id, data, timestamp):
-        with self.lock:
-            self.seen.append((timestamp, data[0] & 0x7F))
-
-    def __enter__(self):
-        self.network.subscribe(0x700 + NODE_ID, self)
-        return self
-
-    def __exit__(self, *exc):
-        # INTEROP: pass the callback, or python canopen's own heartbeat tracking is removed too.
-        self.network.unsubscribe(0x700 + NODE_ID, self)
-
-    def wait_for(self, state, timeout=3.0):
-        end = time.time() + timeout
-        while time.time() < end:
-            with self.lock:
-                if any(s == state for _, s in self.seen):
-                    return True
-            time.sleep(0.02)
-        return False
-
-
-@pytest.fixture
-def fast_heartbeat(node):
-    node.sdo[0x1017].raw = 100
-    yield
-    node.sdo[0x1017].raw = 1000
-
-
 def test_nmt_states_seen_in_heartbeats(node, network, fast_heartbeat):
-    with Heartbeats(network) as hb:
-        node.nmt.state = "OPERATIONAL"
-        assert hb.wait_for(0x05), hb.seen
-        node.nmt.state = "STOPPED"
-        assert hb.wait_for(0x04), hb.seen
-        # Stopped: SDO is silent (NMT-18), the python client times out.
-        with pytest.raises(canopen.SdoCommunicationError):
-            node.sdo.RESPONSE_TIMEOUT = 0.5
-            try:
-                node.sdo.upload(0x1000, 0)
-            finally:
-                node.sdo.RESPONSE_TIMEOUT = 3.0
-        node.nmt.state = "PRE-OPERATIONAL"
-        assert hb.wait_for(0x7F), hb.seen
+    check_nmt_states_seen_in_heartbeats(node, network)
     assert node.sdo.upload(0x1000, 0) == (0x000F0191).to_bytes(4, "little")
 
 
@@ -393,11 +348,7 @@ def test_reset_node_boots_and_restores_application_values(node, network):
     node.sdo[0x2001].raw = 77
     node.sdo[0x1017].raw = 100
     node.nmt.state = "OPERATIONAL"
-    with Heartbeats(network) as hb:
-        node.nmt.state = "RESET"
-        # node.nmt.wait_for_bootup() starts listening when called, after the boot-up already went by on a
-        # fast node: collect from before the command instead.
-        assert hb.wait_for(0x00, 5), hb.seen
+    command_until_boot_up(network, node, "RESET")
     assert node.sdo[0x2001].raw == 0          # application back to its default
     assert node.sdo[0x1017].raw == 1000       # communication parameters too
     assert node.nmt.wait_for_heartbeat(3) == "PRE-OPERATIONAL"
@@ -406,9 +357,7 @@ def test_reset_node_boots_and_restores_application_values(node, network):
 def test_reset_communication_keeps_application_values(node, network):
     node.sdo[0x2001].raw = 55
     node.sdo[0x1017].raw = 100
-    with Heartbeats(network) as hb:
-        node.nmt.state = "RESET COMMUNICATION"
-        assert hb.wait_for(0x00, 5), hb.seen
+    command_until_boot_up(network, node, "RESET COMMUNICATION")
     assert node.sdo[0x1017].raw == 1000
     assert node.sdo[0x2001].raw == 55
     node.sdo[0x2001].raw = 0
@@ -417,10 +366,8 @@ def test_reset_communication_keeps_application_values(node, network):
 def test_heartbeat_period_change(node, network):
     def period(ms, count):
         node.sdo[0x1017].raw = ms
-        with Heartbeats(network) as hb:
-            end = time.time() + 10
-            while len(hb.seen) < count + 1 and time.time() < end:
-                time.sleep(0.02)
+        with Heartbeats(network, NODE_ID) as hb:
+            wait_until(lambda: len(hb.seen) >= count + 1, 10)
             stamps = [t for t, _ in hb.seen]
         gaps = [b - a for a, b in zip(stamps, stamps[1:])]
         assert len(gaps) >= count - 1, hb.seen
@@ -429,22 +376,13 @@ def test_heartbeat_period_change(node, network):
     assert 0.15 <= period(200, 6) <= 0.30
     assert 0.04 <= period(50, 10) <= 0.10
     node.sdo[0x1017].raw = 0
-    with Heartbeats(network) as hb:
+    with Heartbeats(network, NODE_ID) as hb:
         time.sleep(0.5)
     assert hb.seen == []
     node.sdo[0x1017].raw = 1000
 
 
 # ---- EMCY through 2100h error injection -------------------------------------------------------------------
-
-def wait_until(predicate, timeout=3.0):
-    end = time.time() + timeout
-    while time.time() < end:
-        if predicate():
-            return True
-        time.sleep(0.02)
-    return predicate()
-
 
 def test_error_injection_raises_an_emcy_and_fills_1003h(node):
     # INTEROP: node.emcy.wait() only sees EMCYs that arrive after it is called: read the log from a mark.
@@ -526,19 +464,12 @@ def operational(node, network):
     node.nmt.state = "OPERATIONAL"
     time.sleep(0.1)
     yield
-    with Heartbeats(network) as hb:
-        node.nmt.state = "RESET"
-        assert hb.wait_for(0x00, 5), hb.seen
+    command_until_boot_up(network, node, "RESET")
     time.sleep(0.2)
 
 
 def test_default_pdo_mappings_read_through_the_pdo_api(node):
-    node.tpdo.read()
-    node.rpdo.read()
-    assert [v.name for v in node.tpdo[1].map] == [f"Digital inputs.Digital inputs {i}" for i in range(1, 9)]
-    assert [v.name for v in node.tpdo[2].map] == [f"Analog inputs.Analog inputs {i}" for i in range(1, 5)]
-    assert [v.name for v in node.rpdo[1].map] == [f"Digital outputs.Digital outputs {i}" for i in range(1, 9)]
-    assert [v.name for v in node.rpdo[2].map] == [f"Analog outputs.Analog outputs {i}" for i in range(1, 5)]
+    check_default_io_module_mappings(node)
     assert node.tpdo[1].cob_id == 0x180 + NODE_ID and node.tpdo[1].enabled
     assert node.tpdo[1].trans_type == 255
     assert node.tpdo[1].inhibit_time == 100
@@ -648,9 +579,7 @@ def test_sdo_client_record_1280h(node, network):
     with pytest.raises(SdoAbortedError) as e:
         record[1].raw = 0x621
     assert abort_code(e) == 0x0609_0030
-    with Heartbeats(network) as hb:
-        node.nmt.state = "RESET COMMUNICATION"
-        assert hb.wait_for(0x00, 5), hb.seen
+    command_until_boot_up(network, node, "RESET COMMUNICATION")
     time.sleep(0.2)
     assert (record[1].raw, record[2].raw) == (0x8000_0000, 0x8000_0000)
 
@@ -683,7 +612,7 @@ def test_rpdo_ignored_in_pre_operational(node):
 
 def restart(node_process, network):
     node_process.stop()
-    with Heartbeats(network) as hb:
+    with Heartbeats(network, NODE_ID) as hb:
         node_process.start()
         assert hb.wait_for(0x00, 5), hb.seen  # boot-up
 

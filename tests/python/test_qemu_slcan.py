@@ -9,8 +9,6 @@ store/restore (RAM-backed, across NMT resets), and the serial link's own bad inp
 """
 
 import os
-import socket
-import threading
 import time
 
 import pytest
@@ -24,6 +22,14 @@ if not SLCAN or not EDS:
 
 import canopen  # noqa: E402
 from canopen.sdo.exceptions import SdoAbortedError  # noqa: E402
+from helpers import (  # noqa: E402
+    Heartbeats,
+    abort_code,
+    check_nmt_states_seen_in_heartbeats,
+    command_until_boot_up,
+    fast_heartbeat,  # noqa: F401 (a fixture of the tests below)
+    wait_until,
+)
 
 
 @pytest.fixture(scope="module")
@@ -50,40 +56,6 @@ def operational(node):
     time.sleep(0.05)
     yield
     node.nmt.state = "PRE-OPERATIONAL"
-
-
-def wait_until(predicate, timeout=3.0):
-    end = time.time() + timeout
-    while time.time() < end:
-        if predicate():
-            return True
-        time.sleep(0.02)
-    return predicate()
-
-
-def abort_code(excinfo):
-    return excinfo.value.code
-
-
-class Heartbeats:
-    """Every heartbeat of the node, with its arrival time, while the context is open."""
-
-    def __init__(self, network):
-        self.network, self.seen, self.lock = network, [], threading.Lock()
-
-    def on(self, can_id, data, timestamp):
-        with self.lock:
-            self.seen.append((time.time(), data[0]))
-
-    def __enter__(self):
-        self.network.subscribe(0x700 + NODE_ID, self.on)
-        return self
-
-    def __exit__(self, *exc):
-        self.network.unsubscribe(0x700 + NODE_ID, self.on)  # INTEROP: pass the callback
-
-    def wait_for(self, state, timeout=3.0):
-        return wait_until(lambda: any(s == state for _, s in self.seen), timeout)
 
 
 # ---- identity and SDO, all three ways ----------------------------------------------------------------------
@@ -138,34 +110,15 @@ def test_block_download_larger_than_the_object_is_refused(node):
 
 # ---- NMT and heartbeat ------------------------------------------------------------------------------------
 
-@pytest.fixture
-def fast_heartbeat(node):
-    node.sdo[0x1017].raw = 100
-    yield
-    node.sdo[0x1017].raw = 1000
-
-
 def test_nmt_states_seen_in_heartbeats(node, network, fast_heartbeat):
-    with Heartbeats(network) as hb:
-        node.nmt.state = "OPERATIONAL"
-        assert hb.wait_for(0x05), hb.seen
-        node.nmt.state = "STOPPED"
-        assert hb.wait_for(0x04), hb.seen
-        node.sdo.RESPONSE_TIMEOUT = 0.5
-        try:
-            with pytest.raises(canopen.SdoCommunicationError):
-                node.sdo.upload(0x1000, 0)  # Stopped: SDO is silent (NMT-18)
-        finally:
-            node.sdo.RESPONSE_TIMEOUT = 2.0
-        node.nmt.state = "PRE-OPERATIONAL"
-        assert hb.wait_for(0x7F), hb.seen
+    check_nmt_states_seen_in_heartbeats(node, network)
 
 
 def test_heartbeat_period_follows_1017h(node, network):
     """HB-03: sent every 1017h ms, timed by the firmware's embassy-time driver in QEMU."""
     node.sdo[0x1017].raw = 200
     try:
-        with Heartbeats(network) as hb:
+        with Heartbeats(network, NODE_ID) as hb:
             assert wait_until(lambda: len(hb.seen) >= 7, 5), hb.seen
             stamps = [t for t, _ in hb.seen]
         gaps = sorted(b - a for a, b in zip(stamps, stamps[1:]))
@@ -176,7 +129,7 @@ def test_heartbeat_period_follows_1017h(node, network):
 
 def test_reset_node_boots_up_and_restores_defaults(node, network):
     node.sdo[0x2001].raw = 77
-    reset_node(network, node)
+    command_until_boot_up(network, node, "RESET")
     assert node.sdo[0x2001].raw == 0
     assert node.nmt.wait_for_heartbeat(3) == "PRE-OPERATIONAL"
 
@@ -256,23 +209,17 @@ def test_short_rpdo_raises_emcy_8210h_and_fills_1003h(node, network, operational
 
 # ---- store/restore in RAM ---------------------------------------------------------------------------------
 
-def reset_node(network, node):
-    with Heartbeats(network) as hb:
-        node.nmt.state = "RESET"
-        assert hb.wait_for(0x00, 5), hb.seen  # boot-up
-
-
 def test_store_survives_reset_node_and_restore_defaults_brings_them_back(node, network):
     node.sdo[0x2001].raw = 321
     node.sdo[0x1017].raw = 500
     node.sdo.download(0x1010, 1, b"save")
     node.sdo[0x2001].raw = 5  # after the save: not stored
-    reset_node(network, node)
+    command_until_boot_up(network, node, "RESET")
     assert node.sdo[0x2001].raw == 321
     assert node.sdo[0x1017].raw == 500
     node.sdo.download(0x1011, 1, b"load")
     assert node.sdo[0x2001].raw == 321  # nothing changes before the reset
-    reset_node(network, node)
+    command_until_boot_up(network, node, "RESET")
     assert node.sdo[0x2001].raw == 0
     assert node.sdo[0x1017].raw == 1000
 

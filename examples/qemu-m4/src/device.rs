@@ -4,10 +4,13 @@
 //! too and writes the EDS python canopen loads (`scripts/test-qemu.sh`).
 
 use canopen_core::od::OctetString;
-use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::Sizes;
 use canopen_od_derive::ObjectDictionary;
+
+#[path = "../../firmware/src/pdo_defaults.rs"]
+mod pdo_defaults;
+use pdo_defaults::{RPDO1, RPDO2, RPDO3, RPDO4, TPDO1, TPDO2, TPDO3, TPDO4};
 
 /// As `examples/firmware`: 4 heartbeat consumers, queues of 8, 4 RPDOs, 4 TPDOs.
 pub type NodeSizes = Sizes<4, 8, 8, 4, 4>;
@@ -75,19 +78,6 @@ impl Default for Device {
         Self::new()
     }
 }
-
-const RPDO1: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x6200_0108], ..PdoDefault::EVENT };
-const RPDO2: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x2001_0010], ..PdoDefault::EVENT };
-const RPDO3: PdoDefault =
-    PdoDefault { transmission_type: 1, mapping: &[0x6200_0108, 0x2001_0010, 0x2002_0010], ..PdoDefault::EVENT };
-const RPDO4: PdoDefault = PdoDefault { mapping: &[0x2002_0010], ..PdoDefault::UNUSED };
-const TPDO1: PdoDefault = PdoDefault { mapping: &[0x6000_0108], ..PdoDefault::EVENT };
-const TPDO2: PdoDefault =
-    PdoDefault { event_timer_ms: 1000, mapping: &[0x2100_0020, 0x2101_0010], ..PdoDefault::EVENT };
-const TPDO3: PdoDefault =
-    PdoDefault { transmission_type: 1, mapping: &[0x6000_0108, 0x2101_0010, 0x2001_0010], ..PdoDefault::EVENT };
-const TPDO4: PdoDefault =
-    PdoDefault { transmission_type: 10, mapping: &[0x2102_0020, 0x2100_0020], ..PdoDefault::EVENT };
 
 /// The node configuration: identity, heartbeat, PDO defaults.
 pub const CONFIG: NodeConfig = NodeConfig {

@@ -1,7 +1,7 @@
 //! The minimal device of issue 13 on the same board as `node.rs`: NMT, heartbeat producer (1017h, 1000 ms),
 //! the SDO server with expedited and segmented transfer (no block transfer), 4 RPDOs and 4 TPDOs with the
-//! fixed mapping configured below (1600h+/1A00h+ are const, PDO-30), the SYNC consumer, and EMCY (1014h) with
-//! the error register 1001h. No heartbeat consumer
+//! fixed mapping of `src/pdo_defaults.rs` but TPDO 4 (1600h+/1A00h+ are const, PDO-30), the SYNC consumer,
+//! and EMCY (1014h) with the error register 1001h. No heartbeat consumer
 //! (1016h has no entries), no SYNC producer, no TPDO remote requests, no LSS, TIME, node guarding, SDO client
 //! or SDO block transfer, PDO mapping of whole objects of whole bytes only (the EDS's Granularity=8, no
 //! bit-granular entries), and none of the objects CiA 301 makes optional for these services: no 1003h error
@@ -33,6 +33,11 @@ use embassy_stm32::gpio::{Input, Level, Output, Pull, Speed};
 use embassy_stm32::peripherals::CAN1;
 use embassy_time::{Duration, Ticker, Timer};
 use static_cell::StaticCell;
+
+#[path = "../pdo_defaults.rs"]
+#[allow(dead_code)] // TPDO4 is `node`'s: this build has no TIME consumer and its own TPDO 4
+mod pdo_defaults;
+use pdo_defaults::{RPDO1, RPDO2, RPDO3, RPDO4, TPDO1, TPDO2, TPDO3};
 
 bind_interrupts!(struct Irqs {
     CAN1_RX0 => Rx0InterruptHandler<CAN1>;
@@ -72,23 +77,6 @@ type DeviceNode = Node<Device, Sizes<0, 8, 8, 4, 4>>;
 const NODE_ID: u8 = 5;
 const BITRATE: u32 = 250_000;
 
-/// RPDO 1 (201h + node): 6200h:01, the outputs, applied at reception (FFh).
-const RPDO1: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x6200_0108], ..PdoDefault::EVENT };
-/// RPDO 2: 2001h set-point.
-const RPDO2: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x2001_0010], ..PdoDefault::EVENT };
-/// RPDO 3: outputs, set-point and blink period, applied at the next SYNC (synchronous, 01h).
-const RPDO3: PdoDefault =
-    PdoDefault { transmission_type: 1, mapping: &[0x6200_0108, 0x2001_0010, 0x2002_0010], ..PdoDefault::EVENT };
-/// RPDO 4: blink period; not valid until a master enables it (1403h sub 01h bit 31).
-const RPDO4: PdoDefault = PdoDefault { mapping: &[0x2002_0010], ..PdoDefault::UNUSED };
-/// TPDO 1 (181h + node): the inputs, event-driven (FEh): triggered by the process task on a change.
-const TPDO1: PdoDefault = PdoDefault { mapping: &[0x6000_0108], ..PdoDefault::EVENT };
-/// TPDO 2: uptime and button presses, every second (event timer).
-const TPDO2: PdoDefault =
-    PdoDefault { event_timer_ms: 1000, mapping: &[0x2100_0020, 0x2101_0010], ..PdoDefault::EVENT };
-/// TPDO 3: inputs, presses and the set-point in force, at every SYNC (01h).
-const TPDO3: PdoDefault =
-    PdoDefault { transmission_type: 1, mapping: &[0x6000_0108, 0x2101_0010, 0x2001_0010], ..PdoDefault::EVENT };
 /// TPDO 4: uptime, every 10th SYNC.
 const TPDO4: PdoDefault = PdoDefault { transmission_type: 10, mapping: &[0x2100_0020], ..PdoDefault::EVENT };
 

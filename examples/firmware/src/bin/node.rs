@@ -1,9 +1,9 @@
 //! A CANopen node on an STM32F446RE (bxCAN CAN1 on PA11/PA12, 250 kbit/s) with embassy: node-ID 5, the
 //! reference feature set of DESIGN.md "Performance": NMT, heartbeat producer (1017h, 1000 ms) and a 4-entry
 //! heartbeat consumer (1016h, configured by SDO), an SDO server with block transfer, 4 RPDOs and 4 TPDOs with
-//! dynamic mapping (defaults below, remappable by SDO through 1600h/1A00h), the SYNC consumer (1005h = 80h),
-//! EMCY with the 1003h error history, the TIME consumer (1012h = 8000_0100h), and the application dictionary
-//! as a derived struct.
+//! dynamic mapping (defaults in `src/pdo_defaults.rs`, remappable by SDO through 1600h/1A00h), the SYNC
+//! consumer (1005h = 80h), EMCY with the 1003h error history, the TIME consumer (1012h = 8000_0100h), and the
+//! application dictionary as a derived struct.
 //!
 //! Two tasks share the node (the glue types come from `canopen-embassy`):
 //!
@@ -29,7 +29,6 @@
 use canopen_core::driver::{self, Shared};
 #[cfg(feature = "store")]
 use canopen_core::lss::LssEvent;
-use canopen_core::pdo::PdoDefault;
 use canopen_core::profile::{Identity, NodeConfig};
 use canopen_core::wire::lss::BitRate;
 use canopen_core::Sizes;
@@ -52,6 +51,10 @@ use embassy_stm32::gpio::{Input, Level, Output, Pull, Speed};
 use embassy_stm32::peripherals::CAN1;
 use embassy_time::{Duration, Ticker, Timer};
 use static_cell::StaticCell;
+
+#[path = "../pdo_defaults.rs"]
+mod pdo_defaults;
+use pdo_defaults::{RPDO1, RPDO2, RPDO3, RPDO4, TPDO1, TPDO2, TPDO3, TPDO4};
 
 bind_interrupts!(struct Irqs {
     CAN1_RX0 => Rx0InterruptHandler<CAN1>;
@@ -163,27 +166,6 @@ const SLOT_B: core::ops::Range<u32> = 0x6_0000..0x8_0000;
 
 const NODE_ID: u8 = 5;
 const BITRATE: u32 = 250_000;
-
-/// RPDO 1 (201h + node): 6200h:01, the outputs, applied at reception (FFh).
-const RPDO1: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x6200_0108], ..PdoDefault::EVENT };
-/// RPDO 2: 2001h set-point.
-const RPDO2: PdoDefault = PdoDefault { transmission_type: 255, mapping: &[0x2001_0010], ..PdoDefault::EVENT };
-/// RPDO 3: outputs, set-point and blink period, applied at the next SYNC (synchronous, 01h).
-const RPDO3: PdoDefault =
-    PdoDefault { transmission_type: 1, mapping: &[0x6200_0108, 0x2001_0010, 0x2002_0010], ..PdoDefault::EVENT };
-/// RPDO 4: blink period; not valid until a master enables it (1403h sub 01h bit 31).
-const RPDO4: PdoDefault = PdoDefault { mapping: &[0x2002_0010], ..PdoDefault::UNUSED };
-/// TPDO 1 (181h + node): the inputs, event-driven (FEh): triggered by the process task on a change.
-const TPDO1: PdoDefault = PdoDefault { mapping: &[0x6000_0108], ..PdoDefault::EVENT };
-/// TPDO 2: uptime and button presses, every second (event timer).
-const TPDO2: PdoDefault =
-    PdoDefault { event_timer_ms: 1000, mapping: &[0x2100_0020, 0x2101_0010], ..PdoDefault::EVENT };
-/// TPDO 3: inputs, presses and the set-point in force, at every SYNC (01h).
-const TPDO3: PdoDefault =
-    PdoDefault { transmission_type: 1, mapping: &[0x6000_0108, 0x2101_0010, 0x2001_0010], ..PdoDefault::EVENT };
-/// TPDO 4: time of day and uptime, every 10th SYNC.
-const TPDO4: PdoDefault =
-    PdoDefault { transmission_type: 10, mapping: &[0x2102_0020, 0x2100_0020], ..PdoDefault::EVENT };
 
 const CONFIG: NodeConfig = NodeConfig {
     device_type: 0x0003_0191, // CiA 401, digital inputs and outputs

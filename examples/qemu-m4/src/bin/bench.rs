@@ -20,64 +20,23 @@
 #![no_main]
 
 use core::fmt::Write;
-use core::hint::black_box;
 
 use canopen_core::node::Node;
-use canopen_core::od::{DomainBuf, ObjectDictionary, OdDescribe, VisibleString};
-use canopen_core::pdo::PdoDefault;
+use canopen_core::od::{ObjectDictionary, OdDescribe};
 use canopen_core::profile::NodeConfig;
 use canopen_core::sdo::client::{ClientEvent, Mode, SdoClient, SliceData};
 use canopen_core::sdo::SdoClientParams;
 use canopen_core::wire::sdo::Multiplexer;
 use canopen_core::{CanFrame, Instant, NmtState, NodeId, Sizes};
-use canopen_od_derive::ObjectDictionary;
 use canopen_qemu_m4::uart::Writer;
 use canopen_qemu_m4::{semihosting, stack, time_driver, uart};
 
-const K: usize = 8;
-const BLOCK_LEN: usize = 889 * K;
+#[path = "../../../../benches/common/workload.rs"]
+mod workload;
+use workload::{App, Process, Quiet, BLOCK_LEN, PDO_CFG};
+
 /// Instructions per TIMER0 cycle under `-icount shift=0` (1 ns each) at 25 MHz.
 const INSNS_PER_CYCLE: u64 = 1_000_000_000 / canopen_qemu_m4::SYSCLK_HZ as u64;
-
-#[derive(ObjectDictionary, Default)]
-struct App {
-    #[od(index = 0x2002, access = "rw")]
-    value: u32,
-    #[od(index = 0x2004, access = "rw", default = "CANopen test string of exactly sixty-four bytes for SDO uploads.")]
-    text: VisibleString<64>,
-    #[od(index = 0x2005, domain)]
-    blob: DomainBuf<BLOCK_LEN>,
-}
-
-#[derive(ObjectDictionary, Default)]
-#[od(write_events = false)]
-struct Quiet {
-    #[od(index = 0x2002, access = "rw")]
-    value: u32,
-    #[od(index = 0x2004, access = "rw", default = "CANopen test string of exactly sixty-four bytes for SDO uploads.")]
-    text: VisibleString<64>,
-    #[od(index = 0x2005, domain)]
-    blob: DomainBuf<BLOCK_LEN>,
-}
-
-#[derive(ObjectDictionary, Default)]
-struct Process {
-    #[od(index = 0x6000, access = "rww", pdo = "both")]
-    a: u16,
-    #[od(index = 0x6001, access = "rww", pdo = "both")]
-    b: u16,
-    #[od(index = 0x6002, access = "rww", pdo = "both")]
-    c: u16,
-    #[od(index = 0x6003, access = "rww", pdo = "both")]
-    d: u16,
-    #[od(index = 0x6010, access = "rw", default = 7)]
-    unmapped: u32,
-}
-
-const MAP: &[u32] = &[0x6000_0010, 0x6001_0010, 0x6002_0010, 0x6003_0010];
-const RPDO: PdoDefault = PdoDefault { transmission_type: 255, mapping: MAP, ..PdoDefault::EVENT };
-const TPDO: PdoDefault = PdoDefault { transmission_type: 1, mapping: MAP, ..PdoDefault::EVENT };
-const PDO_CFG: NodeConfig = NodeConfig { rpdo: &[RPDO], tpdo: &[TPDO, TPDO, TPDO, TPDO], ..NodeConfig::DEFAULT };
 
 /// A recorded client script (block download: ~1,020 frames).
 struct Script {
@@ -161,16 +120,7 @@ fn run<A: ObjectDictionary + OdDescribe>(
     let start = time_driver::cycles();
     while (received as usize) < frames {
         for f in script {
-            node.handle_frame(Instant::ZERO, black_box(f));
-            loop {
-                if let Some(e) = node.poll_event() {
-                    black_box(e);
-                    continue;
-                }
-                let Some(out) = node.peek_transmit() else { break };
-                node.transmitted(black_box(&out));
-                sent += 1;
-            }
+            workload::pass(node, f, &mut sent);
             received += 1;
         }
     }
