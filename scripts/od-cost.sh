@@ -32,7 +32,11 @@ over=0
 verdict() { # figure(x100) target
   if [ -z "$2" ]; then echo ""; elif [ "$1" -le $(($2 * 100)) ]; then echo "ok, target <= $2"; else over=1; echo "OVER target <= $2"; fi
 }
-dec() { printf '%d.%02d' $(($1 / 100)) $(($1 % 100)); }
+dec() { # hundredths -> a decimal (a negative one too: a first 60 that cost less than nothing)
+  local v=$1 sign=
+  [ "$v" -lt 0 ] && { sign=-; v=$((-v)); }
+  printf '%s%d.%02d' "$sign" $((v / 100)) $((v % 100))
+}
 declare -A TARGET=([var]=16 [array]=24 [record]= [string]=)
 declare -A WHAT=([var]="UNSIGNED32 VAR with a default" [array]="ARRAY of 4 x UNSIGNED16" \
   [record]="RECORD of U8 + U16 + U32" [string]="VISIBLE_STRING<16> with a default")

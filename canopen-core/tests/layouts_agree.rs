@@ -242,3 +242,107 @@ fn the_dictionary_answers_each_kind() {
     assert_eq!(d.read(0x2009, 0, 0, &mut buf), Err(AbortCode::ObjectDoesNotExist));
     assert_eq!(d.write(0x2000, 0, &[1, 2]), Err(AbortCode::LengthTooLow));
 }
+
+/// Defaults at the ends of every width (NMT-04): the table layouts keep them compressed (LEB128, zigzag for
+/// the signed types), and restore the same values as the match arms.
+macro_rules! extremes {
+    ($name:ident $(, $attr:meta)*) => {
+        #[derive(ObjectDictionary, Default, Debug, PartialEq)]
+        $(#[$attr])*
+        struct $name {
+            #[od(index = 0x2000, default = -9223372036854775808)]
+            i64_min: i64,
+            #[od(index = 0x2001, default = 18446744073709551615)]
+            u64_max: u64,
+            #[od(index = 0x2002, default = -1)]
+            i64_minus_one: i64,
+            #[od(index = 0x2003, default = 1e300)]
+            real64: f64,
+            #[od(index = 0x2004, default = -2147483648)]
+            i32_min: i32,
+            #[od(index = 0x2005, default = 4294967295)]
+            u32_max: u32,
+            #[od(index = 0x2006, default = -0.5)]
+            real32: f32,
+            #[od(index = 0x2007, sub = 1..=2, default = 300)]
+            u16s: [u16; 2],
+            #[od(index = 0x2008, default = -32768)]
+            i16_min: i16,
+            #[od(index = 0x2009, default = 32767)]
+            i16_max: i16,
+            #[od(index = 0x200A, default = -128)]
+            i8_min: i8,
+            #[od(index = 0x200B, default = 255)]
+            u8_max: u8,
+            /// Not in the dictionary: the tail a `repr(C)` struct would pad.
+            _pad: [u8; 2],
+        }
+    };
+}
+extremes!(ExtremesCode);
+extremes!(ExtremesCompact, od(compact));
+extremes!(
+    ExtremesOffsets,
+    od(compact, zerocopy),
+    derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable),
+    repr(C)
+);
+
+/// The types without a byte view, in the compact layout.
+macro_rules! wide_types {
+    ($name:ident $(, $attr:meta)*) => {
+        #[derive(ObjectDictionary, Default, Debug, PartialEq)]
+        $(#[$attr])*
+        struct $name {
+            #[od(index = 0x2000, default = -8388608)]
+            i24: canopen_core::od::I24,
+            #[od(index = 0x2001, default = 72057594037927935)]
+            u56: canopen_core::od::U56,
+            #[od(index = 0x2002, default = -549755813888)]
+            i40: canopen_core::od::I40,
+            #[od(index = 0x2003, default = true)]
+            flag: bool,
+            #[od(index = 0x2004, default = 1234)]
+            u24: canopen_core::od::U24,
+        }
+    };
+}
+wide_types!(WideCode);
+wide_types!(WideCompact, od(compact));
+
+#[test]
+fn defaults_at_the_ends_of_every_width_restore_alike() {
+    let (code, compact, offsets) = (fresh::<ExtremesCode>(), fresh::<ExtremesCompact>(), fresh::<ExtremesOffsets>());
+    assert_eq!((offsets.i64_min, offsets.u64_max, offsets.i64_minus_one), (i64::MIN, u64::MAX, -1));
+    assert_eq!((offsets.real64, offsets.i32_min, offsets.u32_max, offsets.real32), (1e300, i32::MIN, u32::MAX, -0.5));
+    assert_eq!(
+        (offsets.u16s, offsets.i16_min, offsets.i16_max, offsets.i8_min, offsets.u8_max),
+        ([300; 2], i16::MIN, i16::MAX, -128, 255)
+    );
+    let a = extremes_state(&code);
+    assert_eq!(a, extremes_state(&compact));
+    assert_eq!(a, extremes_state(&offsets));
+    let (code, compact) = (fresh::<WideCode>(), fresh::<WideCompact>());
+    assert!(compact.flag && compact.i24.get() == -8388608 && compact.u56.get() == (1 << 56) - 1);
+    assert_eq!((compact.i40.get(), compact.u24.get()), (-549755813888, 1234));
+    assert_eq!(state_of(&code, 0x2000..=0x2004), state_of(&compact, 0x2000..=0x2004));
+}
+
+/// The values of 2000h..200Bh of the extremes dictionaries (2007h: its first element), as SDO reads them.
+fn extremes_state<D: ObjectDictionary>(d: &D) -> Vec<Result<Vec<u8>, AbortCode>> {
+    let mut out = state_of(d, 0x2000..=0x2006);
+    let mut b = [0u8; 8];
+    out.push(d.read(0x2007, 1, 0, &mut b).map(|n| b[..n].to_vec()));
+    out.extend(state_of(d, 0x2008..=0x200B));
+    out
+}
+
+/// The values of `indices` (sub 00h), as SDO reads them.
+fn state_of<D: ObjectDictionary>(d: &D, indices: core::ops::RangeInclusive<u16>) -> Vec<Result<Vec<u8>, AbortCode>> {
+    indices
+        .map(|i| {
+            let mut b = [0u8; 8];
+            d.read(i, 0, 0, &mut b).map(|n| b[..n].to_vec())
+        })
+        .collect()
+}

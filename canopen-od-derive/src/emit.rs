@@ -126,6 +126,30 @@ fn default_bytes(dt: &str, size: usize, lit: Option<&ConstLit>) -> Vec<u8> {
     wide[..size].to_vec()
 }
 
+/// A default's bytes in `OdData::DEFAULTS` (the core's `od::data::restore_defaults` reads them): LEB128 of
+/// its little-endian bytes `le` read as a number, a signed integer zigzag-encoded first (sign-extended from
+/// its width), so a small default takes one byte whatever the type (a REAL or TIME value: its bits).
+fn encode_default(dt: &str, le: &[u8]) -> Vec<u8> {
+    let mut raw = [0u8; 8];
+    raw[..le.len()].copy_from_slice(le);
+    let mut v = u64::from_le_bytes(raw);
+    if dt.starts_with("Integer") {
+        let shift = 64 - 8 * le.len() as u32;
+        let s = ((v << shift) as i64) >> shift;
+        v = ((s << 1) ^ (s >> 63)) as u64;
+    }
+    let mut out = Vec::new();
+    loop {
+        let b = (v & 0x7F) as u8;
+        v >>= 7;
+        if v == 0 {
+            out.push(b);
+            return out;
+        }
+        out.push(b | 0x80);
+    }
+}
+
 /// The lowest (`high` false) or highest value of a fixed-size data type: the limit of a side without one.
 fn extreme(dt: &str, high: bool) -> ConstLit {
     let bits = size_and_code(dt).0 as u32 * 8;
@@ -245,7 +269,7 @@ pub(crate) fn data_impl(
         let size = size_and_code(f.dt).0;
         let bytes = default_bytes(f.dt, size, f.default.as_ref());
         if bytes.iter().any(|&b| b != 0) {
-            defaults.extend(bytes);
+            defaults.extend(encode_default(f.dt, &bytes));
             defaulted[pos / 8] |= 1 << (pos % 8);
         }
     }

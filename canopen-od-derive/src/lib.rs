@@ -95,9 +95,9 @@
 //! derive says what stands in the way. `eds-to-rust --layout zerocopy` writes such a struct (fields ordered
 //! by alignment, the tail padded). Construct it with `zerocopy::FromZeros::new_zeroed()` (one `memset`): the
 //! node applies the defaults at boot (NMT-04). Flash per further object (`scripts/od-cost.sh`, the node a
-//! static as in a firmware): UNSIGNED32 VAR 13.8 B (match arms 51.0, `compact` 17.9), ARRAY of 4 x UNSIGNED16
-//! 9.1 B (190.4, 24.3), RECORD of three 36.9 B (138.8, 49.1), RAM the values alone; python canopen's e35.eds
-//! application 10,596 B (39,608, 23,632; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! static as in a firmware): UNSIGNED32 VAR 11.0 B (match arms 51.0, `compact` 15.1), ARRAY of 4 x UNSIGNED16
+//! 8.3 B (190.4, 23.5), RECORD of three 33.1 B (138.8, 45.1), RAM the values alone; python canopen's e35.eds
+//! application 10,628 B (39,608, 23,490; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
 //! expedited download 287 (default layout 291), RPDO to 4 objects 373.5 (381.5), SYNC to 4 TPDOs 220.5 per
 //! bus frame (216.5): PDO handles hold the value's offset and size class, one jump table per value.
 //!

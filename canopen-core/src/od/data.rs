@@ -108,8 +108,10 @@ macro_rules! od_data_trait {
             /// One row per VAR, ARRAY and RECORD member, in (index, sub-index) order.
             const ROWS: &'static [Row];
             /// The default values of the fixed-size rows whose default is not zero ([`DEFAULTED`](Self::DEFAULTED)),
-            /// little-endian, in row order: one value per VAR and RECORD member, one per ARRAY (every
-            /// element gets it); strings and DOMAINs have none here.
+            /// in row order: one value per VAR and RECORD member, one per ARRAY (every element gets it);
+            /// strings and DOMAINs have none here. Each as LEB128 of its little-endian bytes read as a
+            /// number, a signed integer zigzag-encoded first: `7` and `-3` take one byte whatever the type's
+            /// width (a REAL or a TIME value is read as its bits).
             const DEFAULTS: &'static [u8];
             /// One bit per row (bit `r % 8` of byte `r / 8`): set when [`DEFAULTS`](Self::DEFAULTS) holds the
             /// row's default, clear when it is zero (no bytes for the most common default).
@@ -694,22 +696,41 @@ pub fn abort_write<D: OdData + ?Sized>(d: &mut D, index: u16, sub: u8) {
 /// assert_eq!((app.a, app.b), ([4; 3], 0));
 /// ```
 pub fn restore_defaults<D: OdData + ?Sized>(d: &mut D) {
-    let mut start = 0;
+    let mut at = 0;
     for (pos, row) in D::ROWS.iter().enumerate() {
         let size = row.data_type.fixed_size();
         if size == 0 {
             continue;
         }
-        let mut default = &[0; 8][..size];
+        let mut value = [0u8; 8];
         if D::DEFAULTED.get(pos / 8).is_some_and(|b| b >> (pos % 8) & 1 != 0) {
-            default = D::DEFAULTS.get(start..start + size).unwrap_or(default);
-            start += size;
+            value = next_default(row.data_type, D::DEFAULTS, &mut at);
         }
+        let default = value.get(..size).unwrap_or(&value);
         for elem in 0..row.n.max(1) {
             let _ = write_value(d, pos as u16, row, elem, row.sub, default, false);
         }
     }
     d.special_restore();
+}
+
+/// The default of a `dt` row at `*at` in [`OdData::DEFAULTS`] (LEB128, zigzag for a signed type), as
+/// little-endian bytes, and `*at` moved past it. Out of line: Reset Application's loop stays small.
+#[inline(never)]
+fn next_default(dt: DataType, defaults: &[u8], at: &mut usize) -> [u8; 8] {
+    let (mut v, mut shift) = (0u64, 0u32);
+    while let Some(&b) = defaults.get(*at) {
+        *at += 1;
+        v |= u64::from(b & 0x7F).checked_shl(shift).unwrap_or(0);
+        shift += 7;
+        if b & 0x80 == 0 {
+            break;
+        }
+    }
+    if limits::class(dt) == limits::SIGNED {
+        v = (v >> 1) ^ (v & 1).wrapping_neg();
+    }
+    v.to_le_bytes()
 }
 
 /// [`ObjectDictionary::slot`](super::ObjectDictionary::slot): the row's position.

@@ -32,7 +32,7 @@ pub fn order_key(dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
     let raw = data.iter().rev().fold(0u64, |acc, &b| acc << 8 | u64::from(b));
     // The value moved to the top of the `u64`: its sign bit is bit 63 whatever its size.
     let top = raw << (64 - 8 * size);
-    Ok(match CLASS[dt as usize & 0x1F] {
+    Ok(match class(dt) {
         SIGNED => top ^ 1 << 63,
         REAL => {
             let infinity = if size == 4 { 0x7F80_0000 << 32 } else { 0x7FF0_0000_0000_0000 };
@@ -49,8 +49,14 @@ pub fn order_key(dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
     })
 }
 
-/// How [`order_key`] orders a type, by type code (the unsigned types and the codes of no fixed-size type:
-/// as the number reads).
+/// The class of a fixed-size type: [`SIGNED`], [`REAL`], [`TIME`], [`BOOLEAN`], or 0 (an unsigned number,
+/// or a code of no fixed-size type). How [`order_key`] orders a value and how
+/// [`OdData::DEFAULTS`](super::OdData::DEFAULTS) holds a default.
+pub(super) const fn class(dt: DataType) -> u8 {
+    CLASS[dt as usize & 0x1F]
+}
+
+/// [`class`] by type code.
 const CLASS: [u8; 32] = {
     let mut t = [0u8; 32];
     t[DataType::Boolean as usize] = BOOLEAN;
@@ -75,10 +81,14 @@ const CLASS: [u8; 32] = {
     t[DataType::TimeDifference as usize] = TIME;
     t
 };
-const BOOLEAN: u8 = 1;
-const SIGNED: u8 = 2;
-const REAL: u8 = 3;
-const TIME: u8 = 4;
+/// [`class`]: BOOLEAN.
+pub(super) const BOOLEAN: u8 = 1;
+/// [`class`]: INTEGER8 … INTEGER64.
+pub(super) const SIGNED: u8 = 2;
+/// [`class`]: REAL32, REAL64.
+pub(super) const REAL: u8 = 3;
+/// [`class`]: TIME_OF_DAY, TIME_DIFFERENCE.
+pub(super) const TIME: u8 = 4;
 
 /// The limits of the row at `pos` ([`OdData::LIMITS`]) checked against `data`, a value of `dt` (exactly its
 /// size), then the application's check ([`OdData::check`]).
