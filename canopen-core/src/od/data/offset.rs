@@ -163,7 +163,7 @@ pub(super) fn write_at<D: OdData + ?Sized>(
 /// [`pdo_read`](super::pdo_read)/[`pdo_write`](super::pdo_write) dispatch once on the slot's top four
 /// bits: each size, a read-only entry and a row slot are arms of one jump table, and an offset slot moves
 /// its value with no row at all.
-pub(super) const ROW_SLOT: u16 = 0x8000;
+const ROW_SLOT: u16 = 0x8000;
 /// In an offset slot: the entry is not writable ([`pdo_write`](super::pdo_write) answers 0601 0002h).
 const SLOT_RO: u16 = 0x4000;
 /// In an offset slot: where the size class is.
