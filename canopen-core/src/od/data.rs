@@ -11,12 +11,14 @@
 //! RECORD member, one `OD_find`): per object there are only bytes, and one function per service reaches
 //! every object.
 //!
-//! - [`OdData::KEYS`]: the object index of each [`Row`], sorted; a binary search finds an object.
+//! - [`OdData::KEYS`]: the object index of each [`Row`], sorted; an interpolated guess, checked, finds an
+//!   object, else a binary search ([`search`]).
 //! - [`OdData::ROWS`]: one 6-byte [`Row`] per VAR, per ARRAY (all its elements) and per RECORD member: the
 //!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number (or offset).
-//! - [`OdData::DEFAULTS`]: the power-on values that are not zero, as little-endian bytes in row order, and
-//!   [`OdData::DEFAULTED`], a bit per row saying which rows have one there.
-//! - [`OdData::LIMITS`]: low/high limits of the rows that have any.
+//! - [`OdData::DEFAULTS`]: the power-on values that are not zero, in row order, each as LEB128 (a small
+//!   default is one byte), and [`OdData::DEFAULTED`], a bit per row saying which rows have one there.
+//! - [`OdData::LIMITS`]: low/high limits of the rows that have any, compared through one order key for
+//!   every type ([`limits`]).
 //!
 //! The only per-field code is the way to the field. With `#[od(compact)]`, for each fixed-size type a
 //! dictionary uses, one accessor of `&self` and one of `&mut self` (`var_unsigned32(f) -> Option<&u32>`,

@@ -1,7 +1,8 @@
 //! The dictionary reached by offset (`#[od(compact, zerocopy)]`, [`OdData::BY_OFFSET`]): a fixed-size value
 //! is its row's byte offset in the struct's bytes, which zerocopy's traits prove sound (no `unsafe` here),
-//! moved in the little-endian encoding (ENC-01); PDO handles carry the offset itself (PDO-11/PDO-12), so a
-//! mapped object is one copy with no row at all. Limits and hooks (OD-11) still go through the row.
+//! moved in the little-endian encoding (ENC-01); PDO handles carry the offset and the size itself
+//! (PDO-11/PDO-12), so a mapped object is one dispatch and one copy with no row at all. Limits and hooks
+//! (OD-11) still go through the row.
 
 use super::{limits, OdData, Row};
 use crate::od::{AbortCode, PdoHandle};
