@@ -50,7 +50,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.comm.params.guard_time_ms,
             self.comm.params.life_time_factor,
         );
-        self.transmit(self.error_control_frame(reply.emit()));
+        self.send_error_control(reply.emit());
         if let Some(ev) = resolved {
             self.push_event(Event::LifeGuarding(ev));
             self.error_control_recovered();
@@ -107,9 +107,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    pub(super) fn error_control_frame(&self, data: [u8; 1]) -> CanFrame {
+    pub(super) fn send_error_control(&mut self, data: [u8; 1]) {
         let mut buf = [0u8; 8];
         buf[0] = data[0];
-        CanFrame::from_parts(FunctionCode::NmtErrorControl.cob_id(self.node_id), buf, 1)
+        self.send(FunctionCode::NmtErrorControl.cob_id(self.node_id), buf, 1)
     }
 }

@@ -348,7 +348,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let b = TimeStamp { days: time.days, ms: time.ms }.emit();
         let mut data = [0u8; 8];
         data[..6].copy_from_slice(&b);
-        self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));
+        self.send(cob.can_id(), data, 6);
         self.comm.optional.time_of_day(time.ms); // 1013h produced with TIME (TIME-06)
         true
     }
