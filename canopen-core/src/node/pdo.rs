@@ -245,7 +245,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             if let Some(data) = self.rpdos[k].take_pending() {
                 let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
                 let n = self.rpdos[k].map.bytes();
-                self.rpdos[k].map.unpack(&mut od, &data[..n]);
+                self.rpdos[k].map.unpack(&mut od, data.get(..n).unwrap_or(&data)); // n <= 8: no panic path
                 self.push_event(Event::RpdoReceived { pdo: k as u16 });
             }
         }
