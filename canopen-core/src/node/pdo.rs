@@ -195,8 +195,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         if t.transmission_type() == 252 {
             if let Some((data, len)) = t.last() {
-                let frame = CanFrame::from_parts(t.can_id(), data, len);
-                self.transmit(frame);
+                let id = t.can_id();
+                self.send(id, data, len);
             }
             return;
         }
