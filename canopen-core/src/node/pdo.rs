@@ -102,6 +102,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.rpdos.as_ref().iter().fold(t, |t, p| t.min(p.deadline()))
     }
 
+    /// The PDO timers that fell due (event timers, inhibit ends, RPDO time-outs). Out of line: inlined into
+    /// `handle_timeout` it was 16 B (node) and 4 B (minimal) more of the firmware's flash.
+    #[inline(never)]
     pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
         if self.nmt.state() != NmtState::Operational {
             return;
