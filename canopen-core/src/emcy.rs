@@ -174,10 +174,12 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
             }
             let info = u32::from(u16::from_le_bytes([manufacturer[0], manufacturer[1]])) << 16;
             // Vec::insert(0, ..) would be a ptr::copy, i.e. the only users of memmove in a firmware with
-            // insert_sorted (1.5 KB of compiler_builtins); push and rotate the (at most HIST) entries instead.
-            if self.history.push(info | u32::from(code)).is_ok() {
-                for i in (1..self.history.len()).rev() {
-                    self.history.swap(i, i - 1);
+            // insert_sorted (1.5 KB of compiler_builtins); one slot more, and the new entry carried through
+            // the (at most HIST) entries instead: no index, so no bounds check and no panic path.
+            if self.history.push(0).is_ok() {
+                let mut carry = info | u32::from(code);
+                for slot in self.history.iter_mut() {
+                    core::mem::swap(slot, &mut carry);
                 }
             }
         }

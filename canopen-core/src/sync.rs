@@ -193,6 +193,8 @@ impl Sync {
     /// s.reconfigure(Instant::ZERO, SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 1000, ..SyncParams::DEFAULT });
     /// assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1)));
     /// ```
+    // Out of line: a configuration change, not a per-frame path (8 B of the minimal firmware's flash).
+    #[inline(never)]
     pub fn reconfigure(&mut self, now: Instant, params: SyncParams) {
         let params = params.supported();
         let old = self.params;

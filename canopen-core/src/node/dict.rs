@@ -55,7 +55,7 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         let dir = if index < 0x1A00 { PdoDir::Rpdo } else { PdoDir::Tpdo };
         let checked = self.check_mapping(index, sub, dir);
         if checked.is_err() {
-            let _ = self.od.comm.load_value(index, sub, &old[..n]);
+            let _ = self.od.comm.load_value(index, sub, old.get(..n).unwrap_or(&old));
         }
         checked
     }

@@ -149,7 +149,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         while self.comm.errors.has_pending() && self.emcy.may_send(now) && !self.tx.is_full() {
             let Some(e) = self.comm.errors.pop_pending() else { break };
-            self.transmit(CanFrame::from_parts(cob.can_id(), e.emit(), 8));
+            self.send(cob.can_id(), e.emit(), 8);
             self.emcy.sent(now);
         }
     }

@@ -102,6 +102,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.rpdos.as_ref().iter().fold(t, |t, p| t.min(p.deadline()))
     }
 
+    /// The PDO timers that fell due (event timers, inhibit ends, RPDO time-outs). Out of line: inlined into
+    /// `handle_timeout` it was 16 B (node) and 4 B (minimal) more of the firmware's flash.
+    #[inline(never)]
     pub(super) fn pdo_handle_timeout(&mut self, now: Instant) {
         if self.nmt.state() != NmtState::Operational {
             return;
@@ -195,8 +198,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         if t.transmission_type() == 252 {
             if let Some((data, len)) = t.last() {
-                let frame = CanFrame::from_parts(t.can_id(), data, len);
-                self.transmit(frame);
+                let id = t.can_id();
+                self.send(id, data, len);
             }
             return;
         }
@@ -245,7 +248,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             if let Some(data) = self.rpdos[k].take_pending() {
                 let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
                 let n = self.rpdos[k].map.bytes();
-                self.rpdos[k].map.unpack(&mut od, &data[..n]);
+                self.rpdos[k].map.unpack(&mut od, data.get(..n).unwrap_or(&data)); // n <= 8: no panic path
                 self.push_event(Event::RpdoReceived { pdo: k as u16 });
             }
         }
@@ -348,7 +351,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let b = TimeStamp { days: time.days, ms: time.ms }.emit();
         let mut data = [0u8; 8];
         data[..6].copy_from_slice(&b);
-        self.transmit(CanFrame::from_parts(cob.can_id(), data, 6));
+        self.send(cob.can_id(), data, 6);
         self.comm.optional.time_of_day(time.ms); // 1013h produced with TIME (TIME-06)
         true
     }

@@ -241,6 +241,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     fn lss_transmit(&mut self, r: LssResponse) {
-        self.transmit(CanFrame::from_parts(LSS_SLAVE_ID, r.emit(), 8));
+        self.send(LSS_SLAVE_ID, r.emit(), 8);
     }
 }
