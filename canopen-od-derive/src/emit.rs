@@ -329,6 +329,12 @@ pub(crate) fn data_impl(
                 ::core::mem::size_of::<#ident>() <= u16::MAX as usize,
                 "#[od(compact, zerocopy)]: a dictionary struct of more than 65,535 bytes"
             );
+            // A PDO handle's row slot is the row's position with bit 15 set, and 7FFFh is what the
+            // slot of no row (FFFFh) leaves: every position must stay below it.
+            const _: () = assert!(
+                <#ident as #core::od::data::OdData>::ROWS.len() < 0x7FFF,
+                "#[od(compact, zerocopy)]: more than 32,766 rows (VARs, ARRAYs and RECORD members)"
+            );
         }
     });
     let hooks = hook_fns(core, &fields);
