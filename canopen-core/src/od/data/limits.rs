@@ -82,13 +82,13 @@ const CLASS: [u8; 32] = {
     t
 };
 /// [`class`]: BOOLEAN.
-pub(super) const BOOLEAN: u8 = 1;
+const BOOLEAN: u8 = 1;
 /// [`class`]: INTEGER8 … INTEGER64.
 pub(super) const SIGNED: u8 = 2;
 /// [`class`]: REAL32, REAL64.
-pub(super) const REAL: u8 = 3;
+const REAL: u8 = 3;
 /// [`class`]: TIME_OF_DAY, TIME_DIFFERENCE.
-pub(super) const TIME: u8 = 4;
+const TIME: u8 = 4;
 
 /// The limits of the row at `pos` ([`OdData::LIMITS`]) checked against `data`, a value of `dt` (exactly its
 /// size), then the application's check ([`OdData::check`]).
