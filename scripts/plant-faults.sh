@@ -48,6 +48,7 @@ FAULTS=(
   'od11-table-low-limit-inclusive @@ od_all_types @@ (code == AbortCode::ValueTooLow && value < l) @@ (code == AbortCode::ValueTooLow && value <= l)'
   'pdo-offset-slot-two-bytes-as-one @@ od_all_types @@ 1 => copy_in::<2>(bytes, at, data), @@ 1 => copy_in::<1>(bytes, at, data),'
   'nmt04-table-default-not-unzigzagged @@ od_all_types @@ v = (v >> 1) ^ (v & 1).wrapping_neg(); @@ v >>= 1;'
+  'od04-record-rows-run-into-the-next-object @@ od_all_types @@ _ => i < end, @@ _ => i <= end,'
 )
 
 # Field n (1-based) of a fault.

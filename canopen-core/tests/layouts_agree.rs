@@ -41,6 +41,12 @@ macro_rules! dictionary {
             writes: u8,
         }
 
+        impl Writes for $name {
+            fn writes(&self) -> u8 {
+                self.writes
+            }
+        }
+
         impl $name {
             fn not_13(&self, _sub: u8, v: &i16) -> Result<(), AbortCode> {
                 if *v == 13 { Err(AbortCode::InvalidValue) } else { Ok(()) }
@@ -59,6 +65,71 @@ dictionary!(
     derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable),
     repr(C)
 );
+
+/// A dictionary of RECORDs with more than two members on average: the derive gives it a key per object and
+/// `FIRST_ROWS` (where each object's rows start) instead of a key per row. Gaps in the sub-indices, a
+/// `ro` count, a hook on a member, and a VAR and an ARRAY between the RECORDs.
+macro_rules! records {
+    ($name:ident $(, $attr:meta)*) => {
+        #[derive(ObjectDictionary, Default, Debug, PartialEq)]
+        $(#[$attr])*
+        struct $name {
+            #[od(index = 0x2000, access = "rw", pdo = "both", default = 0x0102_0304)]
+            speed: u32,
+            #[od(index = 0x2002, sub = 1, record = "Axis", access = "rw", pdo = "both", default = 7)]
+            axis_a: u32,
+            #[od(index = 0x2002, sub = 2, access = "ro", pdo = "tpdo", default = 8)]
+            axis_b: u32,
+            #[od(index = 0x2002, sub = 5, access = "wo", pdo = "rpdo")]
+            axis_e: u32,
+            #[od(index = 0x2004, sub = 1, record = "Limits", access = "rw", count_access = "ro", min = -10, max = 10, on_write = "count")]
+            lim_a: i32,
+            #[od(index = 0x2004, sub = 2, access = "rw", default = -3)]
+            lim_b: i32,
+            #[od(index = 0x2004, sub = 3, access = "const", default = 1)]
+            lim_c: u32,
+            #[od(index = 0x2003, sub = 1..=3, access = "rw", pdo = "both", default = 0x1122)]
+            table: [u16; 3],
+            #[od(index = 0x2006, sub = 2, record = "Pair", access = "rw", default = 5)]
+            pair_b: u16,
+            #[od(index = 0x2006, sub = 4, access = "rw", default = 6)]
+            pair_d: u16,
+            #[od(index = 0x2006, sub = 6, access = "rw")]
+            pair_f: u16,
+            #[od(index = 0x2006, sub = 1, access = "ro", default = 4)]
+            pair_a: u8,
+            /// Not in the dictionary: how often `lim_a` was written (its `on_write`).
+            writes: u8,
+            /// Not in the dictionary: the tail a `repr(C)` struct would pad.
+            spare: [u8; 2],
+        }
+
+        impl Writes for $name {
+            fn writes(&self) -> u8 {
+                self.writes
+            }
+        }
+
+        impl $name {
+            fn count(&mut self, _sub: u8) {
+                self.writes = self.writes.wrapping_add(1);
+            }
+        }
+    };
+}
+records!(CodeRecords);
+records!(CompactRecords, od(compact));
+records!(
+    OffsetRecords,
+    od(compact, zerocopy),
+    derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable),
+    repr(C)
+);
+
+/// What a dictionary's `on_write` hook counted.
+trait Writes {
+    fn writes(&self) -> u8;
+}
 
 /// One access, with what it is given.
 #[derive(Debug, Clone)]
@@ -180,7 +251,7 @@ fn apply<D: ObjectDictionary>(d: &mut D, op: &Op, forged: bool) -> Answer {
 fn state<D: ObjectDictionary>(d: &D) -> Vec<Result<Vec<u8>, AbortCode>> {
     let mut out = Vec::new();
     for index in 0x2000..=0x2008u16 {
-        for sub in 0..=4u8 {
+        for sub in 0..=6u8 {
             let mut buf = [0u8; 8];
             out.push(d.read(index, sub, 0, &mut buf).map(|n| buf[..n].to_vec()));
         }
@@ -194,32 +265,88 @@ fn fresh<D: ObjectDictionary + Default>() -> D {
     d
 }
 
+/// Applies `ops` to the three layouts of one struct and requires the same answers, values and hook runs.
+fn agree<C, P, O>(ops: &[Op]) -> Result<(), TestCaseError>
+where
+    C: ObjectDictionary + Default + Writes,
+    P: ObjectDictionary + Default + Writes,
+    O: ObjectDictionary + Default + Writes,
+{
+    let (mut code, mut compact, mut offsets) = (fresh::<C>(), fresh::<P>(), fresh::<O>());
+    for op in ops {
+        let a = apply(&mut code, op, false);
+        // Forged handles: the table layouts (a match-arm dictionary's slot is its own arm number).
+        let b = apply(&mut compact, op, true);
+        let c = apply(&mut offsets, op, true);
+        if !matches!(op, Op::Forged(..)) {
+            prop_assert_eq!(&a, &b, "compact differs on {:?}", op);
+            prop_assert_eq!(&a, &c, "zerocopy differs on {:?}", op);
+            prop_assert_eq!(state(&code), state(&compact), "compact's values after {:?}", op);
+            prop_assert_eq!(state(&code), state(&offsets), "zerocopy's values after {:?}", op);
+            prop_assert_eq!(
+                (code.writes(), compact.writes()),
+                (offsets.writes(), offsets.writes()),
+                "hooks after {:?}",
+                op
+            );
+        } else {
+            // What a forged handle wrote is not compared; start the table layouts over from the code one.
+            compact = fresh::<P>();
+            offsets = fresh::<O>();
+            code = fresh::<C>();
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
 
     /// The same answers and the same values after every access, in all three layouts.
     #[test]
     fn the_three_layouts_answer_alike(ops in proptest::collection::vec(op(), 1..40)) {
-        let (mut code, mut compact, mut offsets) = (fresh::<Code>(), fresh::<Compact>(), fresh::<Offsets>());
-        for op in &ops {
-            let a = apply(&mut code, op, false);
-            // Forged handles: the table layouts (a match-arm dictionary's slot is its own arm number).
-            let b = apply(&mut compact, op, true);
-            let c = apply(&mut offsets, op, true);
-            if !matches!(op, Op::Forged(..)) {
-                prop_assert_eq!(&a, &b, "compact differs on {:?}", op);
-                prop_assert_eq!(&a, &c, "zerocopy differs on {:?}", op);
-                prop_assert_eq!(state(&code), state(&compact), "compact's values after {:?}", op);
-                prop_assert_eq!(state(&code), state(&offsets), "zerocopy's values after {:?}", op);
-                prop_assert_eq!((code.writes, compact.writes), (offsets.writes, offsets.writes), "hooks after {:?}", op);
-            } else {
-                // What a forged handle wrote is not compared; start the table layouts over from the code one.
-                compact = fresh::<Compact>();
-                offsets = fresh::<Offsets>();
-                code = fresh::<Code>();
-            }
-        }
+        agree::<Code, Compact, Offsets>(&ops)?;
     }
+
+    /// The same with a key per object (OD-01, OD-04, OD-16): RECORD members, their counts and the gaps
+    /// between their sub-indices are found through `FIRST_ROWS`.
+    #[test]
+    fn the_three_layouts_answer_alike_with_a_key_per_object(ops in proptest::collection::vec(op(), 1..40)) {
+        agree::<CodeRecords, CompactRecords, OffsetRecords>(&ops)?;
+    }
+}
+
+/// The record dictionary has a key per object and where each one's rows start (the RECORD at 2002h has
+/// three rows, 2004h three, 2006h four); the one above, whose only RECORD has two members, a key per row.
+#[test]
+fn many_record_members_get_a_key_per_object() {
+    use canopen_core::od::data::OdData;
+    let keys = [0x2000, 0x2002, 0x2003, 0x2004, 0x2006];
+    let first_rows = [0, 1, 4, 5, 8, 12];
+    assert_eq!(
+        (<CompactRecords as OdData>::KEYS, <CompactRecords as OdData>::FIRST_ROWS),
+        (&keys[..], &first_rows[..])
+    );
+    assert_eq!((<OffsetRecords as OdData>::KEYS, <OffsetRecords as OdData>::FIRST_ROWS), (&keys[..], &first_rows[..]));
+    assert_eq!(<Compact as OdData>::KEYS.len(), <Compact as OdData>::ROWS.len());
+    assert!(<Offsets as OdData>::FIRST_ROWS.is_empty());
+    // Each kind of answer through FIRST_ROWS: a member past the first, a gap, the count, the object after.
+    let mut d = fresh::<OffsetRecords>();
+    let mut buf = [0u8; 4];
+    assert_eq!(d.read(0x2006, 4, 0, &mut buf), Ok(2));
+    assert_eq!(buf[..2], 6u16.to_le_bytes());
+    assert_eq!(d.read(0x2006, 3, 0, &mut buf), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(d.read(0x2006, 7, 0, &mut buf), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(d.read(0x2006, 0, 0, &mut buf), Ok(1));
+    assert_eq!(buf[0], 6);
+    assert_eq!(d.read(0x2002, 5, 0, &mut buf), Err(AbortCode::ReadOfWriteOnly));
+    assert_eq!(d.write(0x2004, 1, &11i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.write(0x2004, 1, &(-10i32).to_le_bytes()), Ok(()));
+    assert_eq!(d.writes, 1);
+    assert_eq!(d.read(0x2004, 2, 0, &mut buf), Ok(4));
+    assert_eq!(buf, (-3i32).to_le_bytes());
+    assert_eq!(d.read(0x2005, 0, 0, &mut buf), Err(AbortCode::ObjectDoesNotExist));
+    assert_eq!(d.read(0x2007, 0, 0, &mut buf), Err(AbortCode::ObjectDoesNotExist));
 }
 
 /// The accesses above reach every kind of answer: a value, each limit, a hook's refusal, the access and

@@ -274,7 +274,21 @@ pub(crate) fn data_impl(
         }
     }
 
-    let keys = fields.iter().map(|f| f.index);
+    // A key per row, or a key per object and where its rows start (two u16 per object, and one): whichever
+    // is smaller, so only RECORDs of more than two members on average pay for the second table.
+    let mut keys: Vec<u16> = Vec::new();
+    let mut first_rows: Vec<u16> = Vec::new();
+    for (pos, f) in fields.iter().enumerate() {
+        if keys.last() != Some(&f.index) {
+            keys.push(f.index);
+            first_rows.push(pos as u16);
+        }
+    }
+    first_rows.push(fields.len() as u16);
+    if keys.len() + first_rows.len() >= fields.len() {
+        keys = fields.iter().map(|f| f.index).collect();
+        first_rows.clear();
+    }
     let rows = fields.iter().zip(&number).map(|(f, &num)| {
         let member = &f.member;
         let num = match f.kind {
@@ -345,6 +359,7 @@ pub(crate) fn data_impl(
         impl #core::od::data::OdData for #ident {
             const KEYS: &'static [u16] = &[#(#keys),*];
             const ROWS: &'static [#core::od::data::Row] = &[#(#rows),*];
+            const FIRST_ROWS: &'static [u16] = &[#(#first_rows),*];
             const DEFAULTS: &'static [u8] = &[#(#defaults),*];
             const DEFAULTED: &'static [u8] = &[#(#defaulted),*];
             #by_offset_items
@@ -355,9 +370,10 @@ pub(crate) fn data_impl(
             #(#accessors)*
         }
 
-        const _: () = assert!(
-            <#ident as #core::od::data::OdData>::KEYS.len() == <#ident as #core::od::data::OdData>::ROWS.len()
-        );
+        const _: () = assert!({
+            let d = <#ident as #core::od::data::OdData>::FIRST_ROWS.len();
+            d == 0 || d == <#ident as #core::od::data::OdData>::KEYS.len() + 1
+        });
         #offset_assert
 
         #[automatically_derived]

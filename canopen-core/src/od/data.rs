@@ -12,7 +12,8 @@
 //! every object.
 //!
 //! - [`OdData::KEYS`]: the object index of each [`Row`], sorted; an interpolated guess, checked, finds an
-//!   object, else a binary search ([`search`]).
+//!   object, else a binary search ([`search`]). A dictionary of large RECORDs has a key per object instead,
+//!   and [`OdData::FIRST_ROWS`] to say where each object's rows start.
 //! - [`OdData::ROWS`]: one 6-byte [`Row`] per VAR, per ARRAY (all its elements) and per RECORD member: the
 //!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number (or offset).
 //! - [`OdData::DEFAULTS`]: the power-on values that are not zero, in row order, each as LEB128 (a small
@@ -98,17 +99,24 @@ macro_rules! od_data_trait {
         /// }
         ///
         /// assert_eq!(<App as OdData>::KEYS, &[0x2000, 0x2001]);
+        /// assert!(<App as OdData>::FIRST_ROWS.is_empty()); // a key per row
         /// let mut app = App::default();
         /// app.restore_defaults();
         /// assert_eq!(app.speed, 7);
         /// assert_eq!(app.write(0x2001, 1, &[1, 0]), Err(AbortCode::WriteOfReadOnly));
         /// ```
         pub trait OdData {
-            /// The object index of each row of [`ROWS`](Self::ROWS), in increasing order (the members of
-            /// a RECORD repeat their index).
+            /// The object index of each row of [`ROWS`](Self::ROWS), in increasing order (the members of a
+            /// RECORD repeat their index); or, with [`FIRST_ROWS`](Self::FIRST_ROWS), of each object.
             const KEYS: &'static [u16];
             /// One row per VAR, ARRAY and RECORD member, in (index, sub-index) order.
             const ROWS: &'static [Row];
+            /// Empty, or where each object of [`KEYS`](Self::KEYS) starts in [`ROWS`](Self::ROWS) and after
+            /// them the number of rows: object `k` is rows `FIRST_ROWS[k]..FIRST_ROWS[k + 1]`. The derive
+            /// emits it when RECORDs have so many members that a key per object and this table take fewer
+            /// bytes than a key per row (a drive's dictionary: python canopen's `e35.eds` has 636 rows in
+            /// 178 objects).
+            const FIRST_ROWS: &'static [u16] = &[];
             /// The default values of the fixed-size rows whose default is not zero ([`DEFAULTED`](Self::DEFAULTED)),
             /// in row order: one value per VAR and RECORD member, one per ARRAY (every element gets it);
             /// strings and DOMAINs have none here. Each as LEB128 of its little-endian bytes read as a
@@ -125,8 +133,9 @@ macro_rules! od_data_trait {
             /// The scale of the interpolated first guess of a search of [`KEYS`](Self::KEYS)
             /// ([`search::scale`]), computed at compile time.
             const SCALE: u32 = search::scale(Self::KEYS);
-            /// Whether no index repeats in [`KEYS`](Self::KEYS) (no RECORD; [`search::unique`], computed at
-            /// compile time): a search's hit needs no look at the row before.
+            /// Whether no index repeats in [`KEYS`](Self::KEYS) (no RECORD of more than one member, or a key
+            /// per object; [`search::unique`], computed at compile time): a search's hit needs no look at
+            /// the key before.
             const UNIQUE_KEYS: bool = search::unique(Self::KEYS);
             /// Whether any row has [`Row::CHECKS`] ([`any_checks`], computed at compile time): without, the
             /// path of limits and hooks compiles away.
@@ -329,32 +338,58 @@ enum At {
 /// Finds `index`/`sub` (OD-16: 0602 0000h for no such object, 0609 0011h for no such sub-index).
 #[inline]
 fn find<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
-    let pos = search::locate(D::KEYS, D::SCALE, D::UNIQUE_KEYS, index);
-    let row = match (D::KEYS.get(pos), D::ROWS.get(pos)) {
-        (Some(&k), Some(row)) if k == index => *row,
-        _ => return Err(AbortCode::ObjectDoesNotExist),
+    let key = search::locate(D::KEYS, D::SCALE, D::UNIQUE_KEYS, index);
+    if D::KEYS.get(key) != Some(&index) {
+        return Err(AbortCode::ObjectDoesNotExist);
+    }
+    // With a key per row the key's position is the object's first row, and its rows run while the key
+    // repeats ([`find_member`]); with a key per object, FIRST_ROWS says where they are.
+    let (first, end) = match D::FIRST_ROWS {
+        [] => (key, 0),
+        starts => match (starts.get(key), starts.get(key + 1)) {
+            (Some(&first), Some(&end)) => (usize::from(first), usize::from(end)),
+            _ => return Err(AbortCode::ObjectDoesNotExist),
+        },
+    };
+    let Some(&row) = D::ROWS.get(first) else {
+        return Err(AbortCode::ObjectDoesNotExist);
     };
     let count_ro = row.flags & Row::COUNT_RO != 0;
     if row.n != 0 {
         if row.sub == 0 {
-            return if sub == 0 { Ok(At::Value(pos as u16, row, 0)) } else { Err(AbortCode::SubIndexDoesNotExist) };
+            return if sub == 0 { Ok(At::Value(first as u16, row, 0)) } else { Err(AbortCode::SubIndexDoesNotExist) };
         }
         if sub == 0 {
             return Ok(At::Count(row.sub.wrapping_add(row.n - 1), count_ro));
         }
         let elem = sub.wrapping_sub(row.sub);
-        return if elem < row.n { Ok(At::Value(pos as u16, row, elem)) } else { Err(AbortCode::SubIndexDoesNotExist) };
+        return if elem < row.n {
+            Ok(At::Value(first as u16, row, elem))
+        } else {
+            Err(AbortCode::SubIndexDoesNotExist)
+        };
     }
-    find_member::<D>(index, sub, pos, count_ro)
+    find_member::<D>(index, sub, first, end, count_ro)
 }
 
-/// [`find`] among the members of the RECORD whose first row is at `first`.
+/// [`find`] among the members of the RECORD `index` whose first row is `first`: rows `first..end` with a
+/// key per object, the rows whose key is `index` with a key per row.
 #[inline(never)]
-fn find_member<D: OdData + ?Sized>(index: u16, sub: u8, first: usize, count_ro: bool) -> Result<At, AbortCode> {
+fn find_member<D: OdData + ?Sized>(
+    index: u16,
+    sub: u8,
+    first: usize,
+    end: usize,
+    count_ro: bool,
+) -> Result<At, AbortCode> {
     let mut highest = 0;
     let mut i = first;
-    while let (Some(&k), Some(row)) = (D::KEYS.get(i), D::ROWS.get(i)) {
-        if k != index {
+    while let Some(row) = D::ROWS.get(i) {
+        let member = match D::FIRST_ROWS {
+            [] => D::KEYS.get(i) == Some(&index),
+            _ => i < end,
+        };
+        if !member {
             break;
         }
         if row.sub == sub && sub != 0 {
