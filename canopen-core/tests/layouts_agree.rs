@@ -329,6 +329,10 @@ fn many_record_members_get_a_key_per_object() {
     );
     assert_eq!((<OffsetRecords as OdData>::KEYS, <OffsetRecords as OdData>::FIRST_ROWS), (&keys[..], &first_rows[..]));
     assert_eq!(<Compact as OdData>::KEYS.len(), <Compact as OdData>::ROWS.len());
+    // Rows alike share a shape: the three UNSIGNED16 members of 2006h are one; 12 rows, 10 shapes.
+    assert_eq!((<OffsetRecords as OdData>::ROWS.len(), <OffsetRecords as OdData>::SHAPES.len()), (12, 10));
+    let pair = &<OffsetRecords as OdData>::ROWS[9..12];
+    assert!(pair.iter().all(|r| r.shape == pair[0].shape) && pair.iter().map(|r| r.sub).eq([2, 4, 6]));
     assert!(<Offsets as OdData>::FIRST_ROWS.is_empty());
     // Each kind of answer through FIRST_ROWS: a member past the first, a gap, the count, the object after.
     let mut d = fresh::<OffsetRecords>();

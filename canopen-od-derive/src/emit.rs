@@ -289,7 +289,12 @@ pub(crate) fn data_impl(
         keys = fields.iter().map(|f| f.index).collect();
         first_rows.clear();
     }
-    let rows = fields.iter().zip(&number).map(|(f, &num)| {
+    // Each row's shape (data type, flags, count), listed once in SHAPES in the order first met; a row
+    // names its shape by position.
+    let mut shape_keys: Vec<String> = Vec::new();
+    let mut shapes: Vec<Ts> = Vec::new();
+    let mut rows: Vec<Ts> = Vec::new();
+    for (f, &num) in fields.iter().zip(&number) {
         let member = &f.member;
         let num = match f.kind {
             Kind::Fixed(_) if by_offset => quote!(::core::mem::offset_of!(#ident, #member) as u16),
@@ -304,11 +309,24 @@ pub(crate) fn data_impl(
         if matches!(f.kind, Kind::Fixed(_)) && (f.has_limits() || f.check.is_some() || f.on_write.is_some()) {
             extra.push(quote!(#core::od::data::Row::CHECKS));
         }
-        let with = (!extra.is_empty()).then(|| quote!(.with(#(#extra)|*)));
-        quote! {
-            #core::od::data::Row { field: #num, data_type: #core::od::DataType::#dt, flags: #core::od::data::Row::flags(#access, #pdo), sub: #sub, n: #n } #with
-        }
-    });
+        let flags = quote!(#core::od::data::Row::flags(#access, #pdo) #(| #extra)*);
+        let key = format!("{} {} {}", f.dt, flags, n);
+        let shape = match shape_keys.iter().position(|k| *k == key) {
+            Some(i) => i,
+            None => {
+                shape_keys.push(key);
+                shapes
+                    .push(quote!(#core::od::data::Shape { data_type: #core::od::DataType::#dt, flags: #flags, n: #n }));
+                shapes.len() - 1
+            }
+        };
+        let Ok(shape) = u8::try_from(shape) else {
+            return quote!(::core::compile_error!(
+                "#[od(compact)]: more than 256 shapes of entries (data type, access, PDO mapping, count); use the default layout"
+            ););
+        };
+        rows.push(quote!(#core::od::data::PackedRow { field: #num, shape: #shape, sub: #sub }));
+    }
     let defaults = defaults.iter().map(|b| Literal::u8_unsuffixed(*b));
     let defaulted = defaulted.iter().map(|b| Literal::u8_unsuffixed(*b));
     let mut limit_values: Vec<u8> = Vec::new();
@@ -358,7 +376,8 @@ pub(crate) fn data_impl(
         #[automatically_derived]
         impl #core::od::data::OdData for #ident {
             const KEYS: &'static [u16] = &[#(#keys),*];
-            const ROWS: &'static [#core::od::data::Row] = &[#(#rows),*];
+            const ROWS: &'static [#core::od::data::PackedRow] = &[#(#rows),*];
+            const SHAPES: &'static [#core::od::data::Shape] = &[#(#shapes),*];
             const FIRST_ROWS: &'static [u16] = &[#(#first_rows),*];
             const DEFAULTS: &'static [u8] = &[#(#defaults),*];
             const DEFAULTED: &'static [u8] = &[#(#defaulted),*];
@@ -379,11 +398,11 @@ pub(crate) fn data_impl(
         #[automatically_derived]
         impl #core::od::ObjectDictionary for #ident {
             /// Whether a writable string or DOMAIN takes streamed writes.
-            const STREAMS: bool = #core::od::data::streams(<Self as #core::od::data::OdData>::ROWS);
+            const STREAMS: bool = #core::od::data::streams(<Self as #core::od::data::OdData>::SHAPES);
             /// Whether a readable entry's type has no fixed size of 1..=4 bytes (a string, a DOMAIN, a
             /// 64-bit value), so that an upload of it is segmented.
             const SEGMENTED_UPLOADS: bool =
-                #core::od::data::segmented_uploads(<Self as #core::od::data::OdData>::ROWS);
+                #core::od::data::segmented_uploads(<Self as #core::od::data::OdData>::SHAPES);
 
             #[inline]
             fn info(&self, index: u16, sub: u8) -> ::core::result::Result<#core::od::SubInfo, __AbortCode> {

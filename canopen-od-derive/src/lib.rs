@@ -74,14 +74,15 @@
 //! `#[od(compact)]` for the dictionary as data (below).
 //!
 //! `#[od(compact)]` (issue 41, opt-in for now): instead of match arms per entry, the derive emits
-//! `impl canopen_core::od::data::OdData`: a sorted `u16` index per row, a 6-byte row per VAR, per ARRAY
-//! and per RECORD member, the defaults and limits as bytes, and one arm per field in the accessor of its
+//! `impl canopen_core::od::data::OdData`: a sorted `u16` index per row (or per object, and where its rows
+//! start, when RECORDs are large), a 4-byte row per VAR, per ARRAY and per RECORD member that names one of
+//! the dictionary's shapes (data type, access, PDO mapping, count), the defaults and limits as bytes, and one arm per field in the accessor of its
 //! type (`&self` and `&mut self`); `ObjectDictionary` forwards to the core's one generic path
 //! (`canopen_core::od::data`). Same answers on every SDO path (`canopen-core/tests/derived_access.rs`,
 //! `tests/od_all_types.rs` with the test feature `od-compact-tests`). Flash per object
-//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 18.5 B instead of 50.4 B,
-//! ARRAY of 4 x UNSIGNED16 35.6 B instead of 185.6 B, RECORD of three 65.1 B instead of 134.2 B, python
-//! canopen's e35.eds application 26,620 B instead of 38,260 B. The price: two jump tables per access
+//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 12.3 B instead of 50.0 B,
+//! ARRAY of 4 x UNSIGNED16 22.9 B instead of 192.6 B, RECORD of three 41.3 B instead of 140.5 B, python
+//! canopen's e35.eds application 21,922 B instead of 39,490 B. The price: two jump tables per access
 //! instead of one, so more instructions per frame (x86-64 callgrind, `scripts/bench-node.sh` with the
 //! bench's dictionary compact: expedited download 333 instead of 288, segmented upload 320.5 instead of
 //! 244, RPDO to 4 objects 525.5 instead of 381.5, SYNC to 4 TPDOs 404.5 instead of 216.5 per bus frame),
@@ -95,10 +96,10 @@
 //! derive says what stands in the way. `eds-to-rust --layout zerocopy` writes such a struct (fields ordered
 //! by alignment, the tail padded). Construct it with `zerocopy::FromZeros::new_zeroed()` (one `memset`): the
 //! node applies the defaults at boot (NMT-04). Flash per further object (`scripts/od-cost.sh`, the node a
-//! static as in a firmware): UNSIGNED32 VAR 11.0 B (match arms 51.0, `compact` 15.1), ARRAY of 4 x UNSIGNED16
-//! 8.3 B (190.4, 23.5), RECORD of three 33.1 B (138.8, 45.1), RAM the values alone; python canopen's e35.eds
-//! application 10,628 B (39,608, 23,490; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
-//! expedited download 287 (default layout 291), RPDO to 4 objects 373.5 (381.5), SYNC to 4 TPDOs 220.5 per
+//! static as in a firmware): UNSIGNED32 VAR 7.9 B (match arms 50.0, `compact` 12.3), ARRAY of 4 x UNSIGNED16
+//! 7.5 B (192.6, 22.9), RECORD of three 25.3 B (140.5, 41.3), RAM the values alone; python canopen's e35.eds
+//! application 9,074 B (39,490, 21,922; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! expedited download 287 (default layout 291), RPDO to 4 objects 365.5 (381.5), SYNC to 4 TPDOs 218.9 per
 //! bus frame (216.5): PDO handles hold the value's offset and size class, one jump table per value.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,

@@ -14,7 +14,8 @@
 //! - [`OdData::KEYS`]: the object index of each [`Row`], sorted; an interpolated guess, checked, finds an
 //!   object, else a binary search ([`search`]). A dictionary of large RECORDs has a key per object instead,
 //!   and [`OdData::FIRST_ROWS`] to say where each object's rows start.
-//! - [`OdData::ROWS`]: one 6-byte [`Row`] per VAR, per ARRAY (all its elements) and per RECORD member: the
+//! - [`OdData::ROWS`]: one 4-byte [`PackedRow`] per VAR, per ARRAY (all its elements) and per RECORD member,
+//!   with [`OdData::SHAPES`], the [`Shape`]s its rows share; a whole [`Row`] holds the
 //!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number (or offset).
 //! - [`OdData::DEFAULTS`]: the power-on values that are not zero, in row order, each as LEB128 (a small
 //!   default is one byte), and [`OdData::DEFAULTED`], a bit per row saying which rows have one there.
@@ -42,7 +43,7 @@ pub mod search;
 
 pub use offset::{as_bytes, as_bytes_mut};
 use offset::{offset_slot, read_at, read_offset_slot, row_slot, slot_row, write_at, write_offset_slot};
-pub use row::{any_checks, Limit, Row};
+pub use row::{any_checks, Limit, PackedRow, Row, Shape};
 
 /// Calls `$m!` with every fixed-size data type: its [`DataType`], its Rust type and the names of its four
 /// accessors (VAR `&`/`&mut`, ARRAY `&`/`&mut`).
@@ -110,7 +111,9 @@ macro_rules! od_data_trait {
             /// RECORD repeat their index); or, with [`FIRST_ROWS`](Self::FIRST_ROWS), of each object.
             const KEYS: &'static [u16];
             /// One row per VAR, ARRAY and RECORD member, in (index, sub-index) order.
-            const ROWS: &'static [Row];
+            const ROWS: &'static [PackedRow];
+            /// The shapes of [`ROWS`](Self::ROWS), each once (at most 256).
+            const SHAPES: &'static [Shape];
             /// Empty, or where each object of [`KEYS`](Self::KEYS) starts in [`ROWS`](Self::ROWS) and after
             /// them the number of rows: object `k` is rows `FIRST_ROWS[k]..FIRST_ROWS[k + 1]`. The derive
             /// emits it when RECORDs have so many members that a key per object and this table take fewer
@@ -139,7 +142,7 @@ macro_rules! od_data_trait {
             const UNIQUE_KEYS: bool = search::unique(Self::KEYS);
             /// Whether any row has [`Row::CHECKS`] ([`any_checks`], computed at compile time): without, the
             /// path of limits and hooks compiles away.
-            const CHECKED: bool = any_checks(Self::ROWS);
+            const CHECKED: bool = any_checks(Self::SHAPES);
 
             /// Whether [`Row::field`] of a fixed-size row is the byte offset of its value in
             /// [`bytes`](Self::bytes) (`#[od(compact, zerocopy)]`): no accessor is then generated, every
@@ -351,7 +354,7 @@ fn find<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
             _ => return Err(AbortCode::ObjectDoesNotExist),
         },
     };
-    let Some(&row) = D::ROWS.get(first) else {
+    let Some(row) = row_at::<D>(first) else {
         return Err(AbortCode::ObjectDoesNotExist);
     };
     let count_ro = row.flags & Row::COUNT_RO != 0;
@@ -384,7 +387,7 @@ fn find_member<D: OdData + ?Sized>(
 ) -> Result<At, AbortCode> {
     let mut highest = 0;
     let mut i = first;
-    while let Some(row) = D::ROWS.get(i) {
+    while let Some(row) = row_at::<D>(i) {
         let member = match D::FIRST_ROWS {
             [] => D::KEYS.get(i) == Some(&index),
             _ => i < end,
@@ -393,7 +396,7 @@ fn find_member<D: OdData + ?Sized>(
             break;
         }
         if row.sub == sub && sub != 0 {
-            return Ok(At::Value(i as u16, *row, 0));
+            return Ok(At::Value(i as u16, row, 0));
         }
         highest = row.sub;
         i += 1;
@@ -403,6 +406,12 @@ fn find_member<D: OdData + ?Sized>(
     } else {
         Err(AbortCode::SubIndexDoesNotExist)
     }
+}
+
+/// The row at `pos` of [`OdData::ROWS`], with its shape.
+#[inline(always)]
+fn row_at<D: OdData + ?Sized>(pos: usize) -> Option<Row> {
+    D::ROWS.get(pos)?.unpack(D::SHAPES)
 }
 
 /// What SDO and PDO see of sub 00h of an ARRAY or RECORD.
@@ -734,7 +743,8 @@ pub fn abort_write<D: OdData + ?Sized>(d: &mut D, index: u16, sub: u8) {
 /// ```
 pub fn restore_defaults<D: OdData + ?Sized>(d: &mut D) {
     let mut at = 0;
-    for (pos, row) in D::ROWS.iter().enumerate() {
+    for pos in 0..D::ROWS.len() {
+        let Some(row) = row_at::<D>(pos) else { continue };
         let size = row.data_type.fixed_size();
         if size == 0 {
             continue;
@@ -745,7 +755,7 @@ pub fn restore_defaults<D: OdData + ?Sized>(d: &mut D) {
         }
         let default = value.get(..size).unwrap_or(&value);
         for elem in 0..row.n.max(1) {
-            let _ = write_value(d, pos as u16, row, elem, row.sub, default, false);
+            let _ = write_value(d, pos as u16, &row, elem, row.sub, default, false);
         }
     }
     d.special_restore();
@@ -793,7 +803,7 @@ pub fn slot<D: OdData + ?Sized>(d: &D, index: u16, sub: u8) -> u16 {
 /// position is out of range or names sub 00h.
 #[inline]
 fn at_slot<D: OdData + ?Sized>(slot: u16, sub: u8) -> Option<(Row, u8)> {
-    let row = *D::ROWS.get(usize::from(slot))?;
+    let row = row_at::<D>(usize::from(slot))?;
     if row.is_array() {
         let elem = sub.wrapping_sub(row.sub);
         (elem < row.n).then_some((row, elem))
@@ -888,11 +898,24 @@ pub fn pdo_read<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -
         if let Some(r) = read_offset_slot(d, handle, buf) {
             return r;
         }
+        return pdo_read_row_out_of_line(d, handle, buf);
     }
+    pdo_read_row(d, handle, buf)
+}
+
+/// [`pdo_read`] by the handle's row: the path of the table layout, and the rare one of the offset layout
+/// (a value with limits or hooks), kept out of its offset path's way.
+#[inline(always)]
+fn pdo_read_row<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
     match at_slot::<D>(slot_row::<D>(handle.slot), handle.sub) {
         Some((row, elem)) => read_value(d, &row, elem, 0, buf),
         None => read(d, handle.index, handle.sub, 0, buf),
     }
+}
+
+#[inline(never)]
+fn pdo_read_row_out_of_line<D: OdData + ?Sized>(d: &D, handle: &PdoHandle, buf: &mut [u8]) -> Result<usize, AbortCode> {
+    pdo_read_row(d, handle, buf)
 }
 
 /// [`ObjectDictionary::pdo_write`](super::ObjectDictionary::pdo_write): limits and hooks apply as for
@@ -915,7 +938,14 @@ pub fn pdo_write<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8])
         if let Some(r) = write_offset_slot(d, handle, data) {
             return r;
         }
+        return pdo_write_row_out_of_line(d, handle, data);
     }
+    pdo_write_row(d, handle, data)
+}
+
+/// [`pdo_write`] by the handle's row (see [`pdo_read_row`]).
+#[inline(always)]
+fn pdo_write_row<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
     let pos = slot_row::<D>(handle.slot);
     match at_slot::<D>(pos, handle.sub) {
         Some((row, _)) if !row.writable() => Err(AbortCode::WriteOfReadOnly),
@@ -924,20 +954,26 @@ pub fn pdo_write<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8])
     }
 }
 
-/// Whether a row of `rows` is a writable string or DOMAIN ([`ObjectDictionary::STREAMS`]).
+#[inline(never)]
+fn pdo_write_row_out_of_line<D: OdData + ?Sized>(d: &mut D, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+    pdo_write_row(d, handle, data)
+}
+
+/// Whether a row of one of `shapes` is a writable string or DOMAIN ([`ObjectDictionary::STREAMS`]).
 ///
 /// [`ObjectDictionary::STREAMS`]: super::ObjectDictionary::STREAMS
 ///
 /// ```
-/// use canopen_core::od::{data::{streams, Row}, Access, DataType, PdoMapping};
-/// assert!(!streams(&[Row::var(0, DataType::Unsigned8, Access::Rw, PdoMapping::No)]));
-/// assert!(streams(&[Row::var(0, DataType::VisibleString, Access::Rw, PdoMapping::No)]));
-/// assert!(!streams(&[Row::var(0, DataType::VisibleString, Access::Ro, PdoMapping::No)]));
+/// use canopen_core::od::{data::{streams, Row, Shape}, Access, DataType, PdoMapping};
+/// let var = |dt, a| Shape::of(Row::var(0, dt, a, PdoMapping::No));
+/// assert!(!streams(&[var(DataType::Unsigned8, Access::Rw)]));
+/// assert!(streams(&[var(DataType::VisibleString, Access::Rw)]));
+/// assert!(!streams(&[var(DataType::VisibleString, Access::Ro)]));
 /// ```
-pub const fn streams(rows: &[Row]) -> bool {
+pub const fn streams(shapes: &[Shape]) -> bool {
     let mut i = 0;
-    while i < rows.len() {
-        if rows[i].writable() && rows[i].data_type.fixed_size() == 0 {
+    while i < shapes.len() {
+        if shapes[i].writable() && shapes[i].data_type.fixed_size() == 0 {
             return true;
         }
         i += 1;
@@ -945,22 +981,23 @@ pub const fn streams(rows: &[Row]) -> bool {
     false
 }
 
-/// Whether a readable row of `rows` has no fixed size of 1..=4 bytes, so that an SDO upload of it is
-/// segmented ([`ObjectDictionary::SEGMENTED_UPLOADS`]).
+/// Whether a readable row of one of `shapes` has no fixed size of 1..=4 bytes, so that an SDO upload of it
+/// is segmented ([`ObjectDictionary::SEGMENTED_UPLOADS`]).
 ///
 /// [`ObjectDictionary::SEGMENTED_UPLOADS`]: super::ObjectDictionary::SEGMENTED_UPLOADS
 ///
 /// ```
-/// use canopen_core::od::{data::{segmented_uploads, Row}, Access, DataType, PdoMapping};
-/// assert!(!segmented_uploads(&[Row::var(0, DataType::Unsigned32, Access::Ro, PdoMapping::No)]));
-/// assert!(segmented_uploads(&[Row::var(0, DataType::Unsigned64, Access::Ro, PdoMapping::No)]));
-/// assert!(!segmented_uploads(&[Row::var(0, DataType::Unsigned64, Access::Wo, PdoMapping::No)]));
+/// use canopen_core::od::{data::{segmented_uploads, Row, Shape}, Access, DataType, PdoMapping};
+/// let var = |dt, a| Shape::of(Row::var(0, dt, a, PdoMapping::No));
+/// assert!(!segmented_uploads(&[var(DataType::Unsigned32, Access::Ro)]));
+/// assert!(segmented_uploads(&[var(DataType::Unsigned64, Access::Ro)]));
+/// assert!(!segmented_uploads(&[var(DataType::Unsigned64, Access::Wo)]));
 /// ```
-pub const fn segmented_uploads(rows: &[Row]) -> bool {
+pub const fn segmented_uploads(shapes: &[Shape]) -> bool {
     let mut i = 0;
-    while i < rows.len() {
-        let n = rows[i].data_type.fixed_size();
-        if rows[i].readable() && (n == 0 || n > 4) {
+    while i < shapes.len() {
+        let n = shapes[i].data_type.fixed_size();
+        if shapes[i].readable() && (n == 0 || n > 4) {
             return true;
         }
         i += 1;

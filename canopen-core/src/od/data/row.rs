@@ -1,5 +1,7 @@
 //! The rows of a data dictionary (OD-03, OD-04, OD-08, OD-09, OD-11): what one VAR, ARRAY or RECORD member
-//! is, in six bytes, and where its limits are.
+//! is, and where its limits are. A [`Row`] is stored as a 4-byte [`PackedRow`] (where the value is, its
+//! sub-index) and a [`Shape`] (data type, access, PDO mapping, count) that the rows alike share: a drive's
+//! dictionary has a few dozen shapes for hundreds of rows.
 
 use crate::od::{Access, DataType, PdoMapping};
 
@@ -194,19 +196,99 @@ impl Row {
     }
 }
 
-/// Whether any of `rows` has [`Row::CHECKS`] ([`OdData::CHECKED`](super::OdData::CHECKED), computed at compile
+/// What rows have in common: the data type, the flags ([`Row::READ`] ...) and the number of elements
+/// ([`Row::n`]). A dictionary lists each shape its rows have once ([`OdData::SHAPES`](super::OdData::SHAPES)).
+///
+/// ```
+/// use canopen_core::od::{data::{Row, Shape}, Access, DataType, PdoMapping};
+/// let s = Shape::of(Row::var(7, DataType::Unsigned32, Access::Rw, PdoMapping::Both));
+/// assert_eq!((s.data_type, s.flags, s.n), (DataType::Unsigned32, Row::READ | Row::WRITE | Row::TPDO | Row::RPDO, 1));
+/// assert_eq!(core::mem::size_of::<Shape>(), 3);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shape {
+    /// [`Row::data_type`].
+    pub data_type: DataType,
+    /// [`Row::flags`].
+    pub flags: u8,
+    /// [`Row::n`].
+    pub n: u8,
+}
+
+impl Shape {
+    /// The shape of `row`.
+    /// ```
+    /// use canopen_core::od::{data::{Row, Shape}, Access, DataType, PdoMapping};
+    /// let r = Row::array(3, DataType::Integer16, Access::Ro, PdoMapping::No, 1, 4);
+    /// assert_eq!(Shape::of(r).n, 4);
+    /// ```
+    pub const fn of(row: Row) -> Shape {
+        Shape { data_type: row.data_type, flags: row.flags, n: row.n }
+    }
+
+    /// Whether SDO may read rows of this shape.
+    /// ```
+    /// use canopen_core::od::{data::{Row, Shape}, Access, DataType, PdoMapping};
+    /// assert!(!Shape::of(Row::var(0, DataType::Unsigned8, Access::Wo, PdoMapping::No)).readable());
+    /// ```
+    pub const fn readable(&self) -> bool {
+        self.flags & Row::READ != 0
+    }
+
+    /// Whether SDO may write rows of this shape.
+    /// ```
+    /// use canopen_core::od::{data::{Row, Shape}, Access, DataType, PdoMapping};
+    /// assert!(Shape::of(Row::var(0, DataType::Unsigned8, Access::Rw, PdoMapping::No)).writable());
+    /// ```
+    pub const fn writable(&self) -> bool {
+        self.flags & Row::WRITE != 0
+    }
+}
+
+/// A row as [`OdData::ROWS`](super::OdData::ROWS) stores it: the [`Row::field`], the position of its
+/// [`Shape`] in [`OdData::SHAPES`](super::OdData::SHAPES) and the [`Row::sub`]; four bytes.
+///
+/// ```
+/// use canopen_core::od::{data::{PackedRow, Row, Shape}, Access, DataType, PdoMapping};
+/// let row = Row::member(12, DataType::Unsigned16, Access::Ro, PdoMapping::Tpdo, 2);
+/// let shapes = [Shape::of(row)];
+/// let packed = PackedRow { field: 12, shape: 0, sub: 2 };
+/// assert_eq!(packed.unpack(&shapes), Some(row));
+/// assert_eq!(PackedRow { shape: 1, ..packed }.unpack(&shapes), None);
+/// assert_eq!(core::mem::size_of::<PackedRow>(), 4);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PackedRow {
+    /// [`Row::field`].
+    pub field: u16,
+    /// Its [`Shape`]'s position in [`OdData::SHAPES`](super::OdData::SHAPES).
+    pub shape: u8,
+    /// [`Row::sub`].
+    pub sub: u8,
+}
+
+impl PackedRow {
+    /// The whole row, with its shape from `shapes`; `None` when `shapes` has no such shape.
+    #[inline(always)]
+    pub fn unpack(self, shapes: &[Shape]) -> Option<Row> {
+        let s = shapes.get(usize::from(self.shape))?;
+        Some(Row { field: self.field, data_type: s.data_type, flags: s.flags, sub: self.sub, n: s.n })
+    }
+}
+
+/// Whether any of `shapes` has [`Row::CHECKS`] ([`OdData::CHECKED`](super::OdData::CHECKED), computed at compile
 /// time): without, the limits and hooks of a write compile away.
 ///
 /// ```
-/// use canopen_core::od::{data::{any_checks, Row}, Access, DataType, PdoMapping};
+/// use canopen_core::od::{data::{any_checks, Row, Shape}, Access, DataType, PdoMapping};
 /// let plain = Row::var(0, DataType::Unsigned8, Access::Rw, PdoMapping::No);
-/// assert!(!any_checks(&[plain]));
-/// assert!(any_checks(&[plain, plain.with(Row::CHECKS)]));
+/// assert!(!any_checks(&[Shape::of(plain)]));
+/// assert!(any_checks(&[Shape::of(plain), Shape::of(plain.with(Row::CHECKS))]));
 /// ```
-pub const fn any_checks(rows: &[Row]) -> bool {
+pub const fn any_checks(shapes: &[Shape]) -> bool {
     let mut i = 0;
-    while i < rows.len() {
-        if rows[i].checks() {
+    while i < shapes.len() {
+        if shapes[i].flags & Row::CHECKS != 0 {
             return true;
         }
         i += 1;
