@@ -674,10 +674,17 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// [`sdo_response`](Self::sdo_response) for the paths that are not one request frame (a time-out, the
-    /// block-upload segments): one copy of it beside the inline one of `handle_sdo`.
+    /// block-upload segments), out of line. Neither path completes a download (their events are aborts), so
+    /// every event goes to [`sdo_event`](Self::sdo_event): no copy of the inline path's case for application
+    /// writes.
     #[inline(never)]
     fn sdo_response_out_of_line(&mut self, now: Instant, response: Response, cob: Option<u16>) {
-        self.sdo_response(now, response, cob);
+        if let (Some(data), Some(cob)) = (response.frame, cob) {
+            self.transmit(CanFrame::from_parts(cob, data, 8));
+        }
+        if let Some(event) = response.event {
+            self.sdo_event(now, event);
+        }
     }
 
     #[inline(never)]
