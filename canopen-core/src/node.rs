@@ -558,7 +558,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.lss_timeout(now);
         let response = sdo_dict!(self, |od| self.sdo.handle_timeout(now, od)); // nothing unless its deadline passed
         if response.frame.is_some() || response.event.is_some() {
-            self.sdo_response_out_of_line(now, response, self.sdo.tx_cob_id());
+            self.sdo_response_out_of_line(now, response);
         }
         self.extra_sdo_timeout(now);
         if self.producer.due(now) {
@@ -676,10 +676,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// [`sdo_response`](Self::sdo_response) for the paths that are not one request frame (a time-out, the
     /// block-upload segments), out of line. Neither path completes a download (their events are aborts), so
     /// every event goes to [`sdo_event`](Self::sdo_event): no copy of the inline path's case for application
-    /// writes.
+    /// writes. The frame goes out on the default server's tx COB-ID, the callers' server.
     #[inline(never)]
-    fn sdo_response_out_of_line(&mut self, now: Instant, response: Response, cob: Option<u16>) {
-        if let (Some(data), Some(cob)) = (response.frame, cob) {
+    fn sdo_response_out_of_line(&mut self, now: Instant, response: Response) {
+        if let (Some(data), Some(cob)) = (response.frame, self.sdo.tx_cob_id()) {
             self.transmit(CanFrame::from_parts(cob, data, 8));
         }
         if let Some(event) = response.event {
@@ -731,7 +731,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             let Some(response) = sdo_dict!(self, |od| self.sdo.poll_transmit(now, od)) else {
                 break;
             };
-            self.sdo_response_out_of_line(self.now, response, self.sdo.tx_cob_id());
+            self.sdo_response_out_of_line(self.now, response);
         }
     }
 
