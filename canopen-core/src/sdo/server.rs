@@ -700,8 +700,8 @@ impl SdoServer {
         if self.block_upload_sent(now) {
             return Response::NONE;
         }
-        let mux = self.mux().unwrap_or_default();
-        self.abort(od, mux, AbortCode::SdoTimeout)
+        // a passed deadline means a transfer is under way: its multiplexer
+        self.abort(od, self.mux, AbortCode::SdoTimeout)
     }
 
     /// Handles one frame received on the server's rx COB-ID. `data` is the frame's data field (its length is
@@ -800,9 +800,8 @@ impl SdoServer {
             3 => return self.upload_segment(command & 0x10 != 0, od),
             4 => {
                 // ccs 4 with non-zero reserved bits: still an abort (SDO-02), never answered; it names the
-                // transfer's object.
-                let mux = self.mux().unwrap_or_default();
-                return self.abort_received(mux, b, od);
+                // transfer's object (ignored while idle).
+                return self.abort_received(self.mux, b, od);
             }
             #[cfg(feature = "sdo-block")]
             5 => match command & 0x03 {

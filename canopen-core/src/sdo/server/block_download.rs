@@ -120,9 +120,9 @@ impl SdoServer {
     /// `timeout_at` otherwise.
     pub(super) const fn block_deadline(&self, timeout_at: Instant) -> Instant {
         match &self.state {
+            // `timeout_at` = since + timeout, not saturated (the caller's test): a quarter of it is since + t / 4
             State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => {
-                let t = self.timeout.0;
-                Instant::from_micros(timeout_at.as_micros().saturating_sub(t - t / 4))
+                Instant::from_micros(self.since.0 + self.timeout.0 / 4)
             }
             State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => Instant::from_micros(self.since.0),
             _ => timeout_at,
