@@ -72,7 +72,7 @@ impl SdoServer {
         if b.phase != UploadPhase::Sending {
             return None;
         }
-        let off = b.base.saturating_add(u32::from(b.sent).saturating_mul(7));
+        let off = b.base.saturating_add(u32::from(b.sent) * 7); // sent <= 127: no overflow
         let want = b.size.saturating_sub(off).min(7) as usize;
         let seqno = b.sent.saturating_add(1);
         // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
@@ -83,11 +83,15 @@ impl SdoServer {
             Err(code) => return Some(self.abort(od, mux, code)),
         };
         let end = off + n;
-        if end > b.crc_len && b.crc_on {
-            let skip = b.crc_len.saturating_sub(off) as usize;
-            b.crc.update(segment.get(1 + skip..1 + n as usize).unwrap_or(&[]));
+        // Every segment starts at a multiple of 7 (`base` moves by whole segments) and ends 7 bytes later or
+        // at `size`, and so does `crc_len`, the end of the furthest one sent: a segment past it starts there,
+        // so it is fed whole, and one not past it (sent again after go-back-n) was fed before.
+        if end > b.crc_len {
+            if b.crc_on {
+                b.crc.update(&segment[1..1 + n as usize]);
+            }
+            b.crc_len = end;
         }
-        b.crc_len = b.crc_len.max(end);
         let last = end >= b.size;
         b.sent = seqno;
         segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
