@@ -394,12 +394,11 @@ impl Sink {
     }
 
     /// Commits `total` bytes: the scratch with one atomic [`ObjectDictionary::write`], a stream with `end_write`.
+    /// `total` is what `write` took, so at most the scratch's 8 bytes (`write` refused more).
     #[inline]
     fn finish<O: ObjectDictionary + ?Sized>(&self, mux: Multiplexer, total: u32, od: &mut O) -> Result<(), AbortCode> {
         match self {
-            Sink::Scratch(buf) => {
-                od.write(mux.index, mux.sub, buf.get(..total as usize).ok_or(AbortCode::LengthTooHigh)?)
-            }
+            Sink::Scratch(buf) => od.write(mux.index, mux.sub, &buf[..(total as usize).min(buf.len())]),
             Sink::Stream if O::STREAMS => od.end_write(mux.index, mux.sub, total as usize),
             Sink::Stream => Err(AbortCode::GeneralError), // never built, as in `write`
         }
