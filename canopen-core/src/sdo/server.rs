@@ -664,13 +664,11 @@ impl SdoServer {
         if self.is_idle() {
             return Deadline::NONE;
         }
-        // u64::MAX (none) when the time-out is disabled, or was when this transfer's last frame came
-        let at = self.since.0.saturating_add(self.timeout.0);
+        let after = self.timeout.0; // u64::MAX when disabled: the sum saturates to none
         #[cfg(feature = "sdo-block")]
-        if at != u64::MAX {
-            return Deadline::new(Some(self.block_deadline(Instant::from_micros(at))));
-        }
-        Deadline::new(Some(Instant::from_micros(at)))
+        let after = if after == u64::MAX { after } else { self.block_delay(after) };
+        // u64::MAX (none) when the time-out is disabled, or was when this transfer's last frame came (`since`)
+        Deadline::new(Some(Instant::from_micros(self.since.0.saturating_add(after))))
     }
 
     /// Aborts a transfer whose deadline has passed with 0504 0000h (SDO-31, ABORT-02).

@@ -15,7 +15,6 @@ use super::block_upload::UploadPhase;
 use super::{Response, SdoEvent, SdoServer, Sink, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::Crc16;
-use crate::time::Instant;
 use crate::wire::sdo::{frame, Multiplexer};
 
 /// The state of a block download (the shared [`State`]'s `BlockDownload`).
@@ -113,19 +112,16 @@ impl SdoServer {
         Response::NONE
     }
 
-    /// The deadline to report for the SDO timeout's `timeout_at` in a block transfer: a quarter of the SDO
-    /// timeout after the last frame while a download sub-block has in-order segments but has not ended (then
-    /// [`block_download_stalled`](Self::block_download_stalled) acknowledges them); at once when an upload
-    /// sub-block was handed out (then [`block_upload_sent`](Self::block_upload_sent) starts the time-out);
-    /// `timeout_at` otherwise.
-    pub(super) const fn block_deadline(&self, timeout_at: Instant) -> Instant {
+    /// How long after the last frame (`since`) the deadline is in a block transfer, for the SDO time-out
+    /// `timeout` (µs, not disabled): a quarter of it while a download sub-block has in-order segments but has
+    /// not ended (then [`block_download_stalled`](Self::block_download_stalled) acknowledges them); nothing,
+    /// at once, when an upload sub-block was handed out (then [`block_upload_sent`](Self::block_upload_sent)
+    /// starts the time-out); `timeout` otherwise.
+    pub(super) const fn block_delay(&self, timeout: u64) -> u64 {
         match &self.state {
-            // `timeout_at` = since + timeout, not saturated (the caller's test): a quarter of it is since + t / 4
-            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => {
-                Instant::from_micros(self.since.0 + self.timeout.0 / 4)
-            }
-            State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => Instant::from_micros(self.since.0),
-            _ => timeout_at,
+            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => timeout / 4,
+            State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => 0,
+            _ => timeout,
         }
     }
 

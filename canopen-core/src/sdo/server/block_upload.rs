@@ -96,7 +96,7 @@ impl SdoServer {
         b.sent = seqno;
         segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
         if last || b.sent >= b.blksize {
-            b.phase = UploadPhase::Sent; // the deadline is due at once (block_deadline)
+            b.phase = UploadPhase::Sent; // the deadline is due at once (block_delay)
         }
         self.since = Micros(now.as_micros()); // SDO-31: the time-out runs from the last frame sent
         Some(Response::send(segment))
