@@ -46,11 +46,7 @@ impl SdoServer {
         size: Option<u32>,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        let info = od.info(mux.index, mux.sub)?;
-        if !info.access.writable() {
-            return Err(AbortCode::WriteOfReadOnly);
-        }
-        let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
+        let sink = self.open_sink(mux, size, od)?;
         self.mux = mux;
         self.state = State::BlockDownload(BlockDownload {
             sink,
