@@ -689,7 +689,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     #[inline(never)]
     fn sdo_event(&mut self, now: Instant, event: SdoEvent) {
-        match event {
+        // one push for all three events the application sees
+        let event = match event {
             SdoEvent::Written { index, sub } => {
                 if <Z::ExtraSdo as Slots<SdoServer>>::LEN > 0 && sdo_servers::is_server_record(index) {
                     self.sdo_record_written(index); // a 1201h+ record: its server follows
@@ -697,16 +698,15 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 if index < 0x2000 {
                     self.comm_written(now, index, sub); // only 1000h–1FFFh have side effects here
                 }
-                self.push_event(Event::ObjectWritten { index, sub });
+                Event::ObjectWritten { index, sub }
             }
             SdoEvent::Aborted { index, sub, code } => {
-                self.push_event(Event::SdoAborted { index, sub, code: code.code(), by_client: false })
+                Event::SdoAborted { index, sub, code: code.code(), by_client: false }
             }
-            SdoEvent::AbortReceived { index, sub, code } => {
-                self.push_event(Event::SdoAborted { index, sub, code, by_client: true })
-            }
-            SdoEvent::Uploaded { .. } => {}
-        }
+            SdoEvent::AbortReceived { index, sub, code } => Event::SdoAborted { index, sub, code, by_client: true },
+            SdoEvent::Uploaded { .. } => return,
+        };
+        self.push_event(event);
     }
 
     /// Moves block-upload segments from the SDO server into the transmit queue while it has room, so a
