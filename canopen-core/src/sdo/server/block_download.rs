@@ -152,10 +152,9 @@ impl SdoServer {
             if bd.crc_on && bd.crc.get() != crc {
                 return Err(AbortCode::CrcError); // SDO-50
             }
-            match bd.size {
-                Some(s) if bd.offset > s => return Err(AbortCode::LengthTooHigh),
-                Some(s) if bd.offset < s => return Err(AbortCode::LengthTooLow),
-                _ => {}
+            // short of the announced size: 0607 0013h (past it, 0607 0012h, was refused in flush_held)
+            if bd.size.is_some_and(|s| bd.offset < s) {
+                return Err(AbortCode::LengthTooLow);
             }
             bd.sink.finish(mux, bd.offset, od)
         })();
