@@ -728,10 +728,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     fn pump_sdo_segments(&mut self) {
         while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
             let now = self.now;
-            let Some(response) = sdo_dict!(self, |od| self.sdo.poll_transmit(now, od)) else {
-                break;
-            };
-            self.sdo_response_out_of_line(self.now, response);
+            let response = sdo_dict!(self, |od| self.sdo.next_segment(now, od)); // wants_transmit: there is one
+            self.sdo_response_out_of_line(now, response);
         }
     }
 

@@ -67,11 +67,19 @@ impl SdoServer {
     /// assert!(s.poll_transmit(canopen_core::Instant::ZERO, &mut Empty).is_none());
     /// ```
     pub fn poll_transmit<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Option<Response> {
-        let mux = self.mux;
-        let State::BlockUpload(b) = &mut self.state else { return None };
-        if b.phase != UploadPhase::Sending {
+        if !self.wants_transmit() {
             return None;
         }
+        Some(self.next_segment(now, od))
+    }
+
+    /// The next frame of a sub-block ([`poll_transmit`](Self::poll_transmit)) once
+    /// [`wants_transmit`](Self::wants_transmit) said there is one: for the node's pump, which asks that first,
+    /// without a second test and an `Option` around the response. `Response::NONE` in any other state.
+    #[inline]
+    pub(crate) fn next_segment<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Response {
+        let mux = self.mux;
+        let State::BlockUpload(b) = &mut self.state else { return Response::NONE };
         let off = b.base.saturating_add(u32::from(b.sent) * 7); // sent <= 127: no overflow
         let want = b.size.saturating_sub(off).min(7) as usize;
         let seqno = b.sent.saturating_add(1);
@@ -79,8 +87,8 @@ impl SdoServer {
         let mut segment = [0u8; 8];
         let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
             Ok(n) if n == want => n as u32,
-            Ok(_) => return Some(self.abort(od, mux, AbortCode::LengthMismatch)),
-            Err(code) => return Some(self.abort(od, mux, code)),
+            Ok(_) => return self.abort(od, mux, AbortCode::LengthMismatch),
+            Err(code) => return self.abort(od, mux, code),
         };
         let end = off + n;
         // Every segment starts at a multiple of 7 (`base` moves by whole segments) and ends 7 bytes later or
@@ -99,7 +107,7 @@ impl SdoServer {
             b.phase = UploadPhase::Sent; // the deadline is due at once (block_delay)
         }
         self.since = Micros(now.as_micros()); // SDO-31: the time-out runs from the last frame sent
-        Some(Response::send(segment))
+        Response::send(segment)
     }
 
     pub(super) fn block_upload_initiate<O: ObjectDictionary + ?Sized>(
