@@ -41,10 +41,10 @@
 //!
 //! `dispatch` switches on the command byte (SDO-08) and each handler reads its few fields from the frame; every
 //! response is one [`frame`](crate::wire::sdo::frame) call (command byte, bytes 1–3, bytes 4–7), and upload
-//! segments are read from the OD straight into the response. The error paths (`abort`, `invalid`)
-//! are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~294 instructions per
-//! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~297 (~45 in the
-//! dictionary; ~268 when the application takes no write events, [`ObjectDictionary::write_events`]);
+//! segments are read from the OD straight into the response. The error paths (`abort`, `invalid`,
+//! `abort_received`) are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~294
+//! instructions per frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~297
+//! (~45 in the dictionary; ~268 when the application takes no write events, [`ObjectDictionary::write_events`]);
 //! segmented upload ~259 per frame (the segments read at the slot found once, inlined, no search); block
 //! download ~256 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop (events,
 //! peek and transmitted). The time-out costs a frame one store (the instant it came): the deadline
