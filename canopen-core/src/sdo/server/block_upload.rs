@@ -162,7 +162,7 @@ impl SdoServer {
         bu.blksize = blksize;
         if ackseq >= 1 && bu.base >= bu.size {
             bu.phase = UploadPhase::WaitEnd;
-            let crc = if bu.crc_on { bu.crc.get() } else { 0 };
+            let crc = bu.crc.get(); // 0 without CRC (sc = 0): nothing was fed, it is still Crc16::new()
             let unused = 7 - last_segment_len(bu.size);
             // scs 6, ss 1: n unused bytes of the last segment, the CRC in bytes 1–2 (SDO-47)
             return Response::send(frame(0xC1 | (unused << 2), u32::from(crc), 0));
