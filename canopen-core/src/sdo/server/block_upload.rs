@@ -82,7 +82,7 @@ impl SdoServer {
         let State::BlockUpload(b) = &mut self.state else { return Response::NONE };
         let off = b.base.saturating_add(u32::from(b.sent) * 7); // sent <= 127: no overflow
         let want = b.size.saturating_sub(off).min(7) as usize;
-        let seqno = b.sent.saturating_add(1);
+        let seqno = b.sent + 1; // while Sending, sent < blksize <= 127: a 7-bit seqno, no overflow
         // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
         let mut segment = [0u8; 8];
         let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
@@ -102,7 +102,7 @@ impl SdoServer {
         }
         let last = end >= b.size;
         b.sent = seqno;
-        segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
+        segment[0] = (u8::from(last) << 7) | seqno;
         if last || b.sent >= b.blksize {
             b.phase = UploadPhase::Sent; // the deadline is due at once (block_delay)
         }
