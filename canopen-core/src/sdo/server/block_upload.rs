@@ -81,7 +81,9 @@ impl SdoServer {
         let mux = self.mux;
         let State::BlockUpload(b) = &mut self.state else { return Response::NONE };
         let off = b.base.saturating_add(u32::from(b.sent) * 7); // sent <= 127: no overflow
-        let want = b.size.saturating_sub(off).min(7) as usize;
+        // off <= size while Sending (a sub-block stops at the last segment, the acknowledge of it ends the
+        // upload), as in `upload_segment`: no saturation needed
+        let want = b.size.wrapping_sub(off).min(7) as usize;
         let seqno = b.sent + 1; // while Sending, sent < blksize <= 127: a 7-bit seqno, no overflow
         // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
         let mut segment = [0u8; 8];
