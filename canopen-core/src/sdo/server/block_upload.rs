@@ -80,11 +80,13 @@ impl SdoServer {
     pub(crate) fn next_segment<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Response {
         let mux = self.mux;
         let State::BlockUpload(b) = &mut self.state else { return Response::NONE };
-        let off = b.base.saturating_add(u32::from(b.sent) * 7); // sent <= 127: no overflow
+        // sent <= 127: no overflow in the product
+        let off = b.base.saturating_add(u32::from(b.sent) * 7);
         // off <= size while Sending (a sub-block stops at the last segment, the acknowledge of it ends the
         // upload), as in `upload_segment`: no saturation needed
         let want = b.size.wrapping_sub(off).min(7) as usize;
-        let seqno = b.sent + 1; // while Sending, sent < blksize <= 127: a 7-bit seqno, no overflow
+        // while Sending, sent < blksize <= 127: a 7-bit seqno, no overflow
+        let seqno = b.sent + 1;
         // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
         let mut segment = [0u8; 8];
         let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
