@@ -558,7 +558,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.lss_timeout(now);
         let response = sdo_dict!(self, |od| self.sdo.handle_timeout(now, od)); // nothing unless its deadline passed
         if response.frame.is_some() || response.event.is_some() {
-            self.sdo_response_out_of_line(now, response, self.sdo.tx_cob_id());
+            self.sdo_response_out_of_line(now, response);
         }
         self.extra_sdo_timeout(now);
         if self.producer.due(now) {
@@ -674,15 +674,25 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// [`sdo_response`](Self::sdo_response) for the paths that are not one request frame (a time-out, the
-    /// block-upload segments): one copy of it beside the inline one of `handle_sdo`.
+    /// block-upload segments), out of line. Neither path completes a download (their events are aborts), so
+    /// every event goes to [`sdo_event`](Self::sdo_event): no copy of the inline path's case for application
+    /// writes. The frame goes out on the default server's tx COB-ID, the callers' server. Both paths run
+    /// during a transfer only, which began on a frame received on a valid channel, and new parameters end a
+    /// transfer (`SdoServer::set_params`): the channel is valid, no second validity test (as in `handle_sdo`).
     #[inline(never)]
-    fn sdo_response_out_of_line(&mut self, now: Instant, response: Response, cob: Option<u16>) {
-        self.sdo_response(now, response, cob);
+    fn sdo_response_out_of_line(&mut self, now: Instant, response: Response) {
+        if let Some(data) = response.frame {
+            self.transmit(CanFrame::from_parts(self.sdo.params().cob_tx.can_id(), data, 8));
+        }
+        if let Some(event) = response.event {
+            self.sdo_event(now, event);
+        }
     }
 
     #[inline(never)]
     fn sdo_event(&mut self, now: Instant, event: SdoEvent) {
-        match event {
+        // one push for all three events the application sees
+        let event = match event {
             SdoEvent::Written { index, sub } => {
                 if <Z::ExtraSdo as Slots<SdoServer>>::LEN > 0 && sdo_servers::is_server_record(index) {
                     self.sdo_record_written(index); // a 1201h+ record: its server follows
@@ -690,16 +700,15 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 if index < 0x2000 {
                     self.comm_written(now, index, sub); // only 1000h–1FFFh have side effects here
                 }
-                self.push_event(Event::ObjectWritten { index, sub });
+                Event::ObjectWritten { index, sub }
             }
             SdoEvent::Aborted { index, sub, code } => {
-                self.push_event(Event::SdoAborted { index, sub, code: code.code(), by_client: false })
+                Event::SdoAborted { index, sub, code: code.code(), by_client: false }
             }
-            SdoEvent::AbortReceived { index, sub, code } => {
-                self.push_event(Event::SdoAborted { index, sub, code, by_client: true })
-            }
-            SdoEvent::Uploaded { .. } => {}
-        }
+            SdoEvent::AbortReceived { index, sub, code } => Event::SdoAborted { index, sub, code, by_client: true },
+            SdoEvent::Uploaded { .. } => return,
+        };
+        self.push_event(event);
     }
 
     /// Moves block-upload segments from the SDO server into the transmit queue while it has room, so a
@@ -721,10 +730,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     fn pump_sdo_segments(&mut self) {
         while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
             let now = self.now;
-            let Some(response) = sdo_dict!(self, |od| self.sdo.poll_transmit(now, od)) else {
-                break;
-            };
-            self.sdo_response_out_of_line(self.now, response, self.sdo.tx_cob_id());
+            let response = sdo_dict!(self, |od| self.sdo.next_segment(now, od)); // wants_transmit: there is one
+            self.sdo_response_out_of_line(now, response);
         }
     }
 

@@ -41,10 +41,10 @@
 //!
 //! `dispatch` switches on the command byte (SDO-08) and each handler reads its few fields from the frame; every
 //! response is one [`frame`](crate::wire::sdo::frame) call (command byte, bytes 1–3, bytes 4–7), and upload
-//! segments are read from the OD straight into the response. The error paths (`abort`, `invalid`)
-//! are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~294 instructions per
-//! frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~297 (~45 in the
-//! dictionary; ~268 when the application takes no write events, [`ObjectDictionary::write_events`]);
+//! segments are read from the OD straight into the response. The error paths (`abort`, `invalid`,
+//! `abort_received`) are out of line. `scripts/bench-node.sh` (whole node, x86-64): expedited upload ~294
+//! instructions per frame, of which ~60 are the dictionary's lookup and read of 1000h; expedited download ~297
+//! (~45 in the dictionary; ~268 when the application takes no write events, [`ObjectDictionary::write_events`]);
 //! segmented upload ~259 per frame (the segments read at the slot found once, inlined, no search); block
 //! download ~256 per segment (~55, the streamed write). About 80 to 100 of each are the driver loop (events,
 //! peek and transmitted). The time-out costs a frame one store (the instant it came): the deadline
@@ -394,12 +394,11 @@ impl Sink {
     }
 
     /// Commits `total` bytes: the scratch with one atomic [`ObjectDictionary::write`], a stream with `end_write`.
+    /// `total` is what `write` took, so at most the scratch's 8 bytes (`write` refused more).
     #[inline]
     fn finish<O: ObjectDictionary + ?Sized>(&self, mux: Multiplexer, total: u32, od: &mut O) -> Result<(), AbortCode> {
         match self {
-            Sink::Scratch(buf) => {
-                od.write(mux.index, mux.sub, buf.get(..total as usize).ok_or(AbortCode::LengthTooHigh)?)
-            }
+            Sink::Scratch(buf) => od.write(mux.index, mux.sub, &buf[..(total as usize).min(buf.len())]),
             Sink::Stream if O::STREAMS => od.end_write(mux.index, mux.sub, total as usize),
             Sink::Stream => Err(AbortCode::GeneralError), // never built, as in `write`
         }
@@ -665,13 +664,11 @@ impl SdoServer {
         if self.is_idle() {
             return Deadline::NONE;
         }
-        // u64::MAX (none) when the time-out is disabled, or was when this transfer's last frame came
-        let at = self.since.0.saturating_add(self.timeout.0);
+        let after = self.timeout.0; // u64::MAX when disabled: the sum saturates to none
         #[cfg(feature = "sdo-block")]
-        if at != u64::MAX {
-            return Deadline::new(Some(self.block_deadline(Instant::from_micros(at))));
-        }
-        Deadline::new(Some(Instant::from_micros(at)))
+        let after = if after == u64::MAX { after } else { self.block_delay(after) };
+        // u64::MAX (none) when the time-out is disabled, or was when this transfer's last frame came (`since`)
+        Deadline::new(Some(Instant::from_micros(self.since.0.saturating_add(after))))
     }
 
     /// Aborts a transfer whose deadline has passed with 0504 0000h (SDO-31, ABORT-02).
@@ -700,8 +697,8 @@ impl SdoServer {
         if self.block_upload_sent(now) {
             return Response::NONE;
         }
-        let mux = self.mux().unwrap_or_default();
-        self.abort(od, mux, AbortCode::SdoTimeout)
+        // a passed deadline means a transfer is under way: its multiplexer
+        self.abort(od, self.mux, AbortCode::SdoTimeout)
     }
 
     /// Handles one frame received on the server's rx COB-ID. `data` is the frame's data field (its length is
@@ -800,9 +797,8 @@ impl SdoServer {
             3 => return self.upload_segment(command & 0x10 != 0, od),
             4 => {
                 // ccs 4 with non-zero reserved bits: still an abort (SDO-02), never answered; it names the
-                // transfer's object.
-                let mux = self.mux().unwrap_or_default();
-                return self.abort_received(mux, b, od);
+                // transfer's object (ignored while idle).
+                return self.abort_received(self.mux, b, od);
             }
             #[cfg(feature = "sdo-block")]
             5 => match command & 0x03 {
@@ -837,7 +833,9 @@ impl SdoServer {
         initiated.unwrap_or_else(|code| self.abort(od, mux(), code))
     }
 
-    /// An abort from the client (SDO-33): the transfer ends, nothing is sent; ignored when idle.
+    /// An abort from the client (SDO-33): the transfer ends, nothing is sent; ignored when idle. Out of line:
+    /// two arms of `dispatch` reach it, neither hot.
+    #[inline(never)]
     fn abort_received<O: ObjectDictionary + ?Sized>(&mut self, mux: Multiplexer, b: &[u8; 8], od: &mut O) -> Response {
         if self.is_idle() {
             return Response::NONE;

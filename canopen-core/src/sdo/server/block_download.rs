@@ -15,7 +15,6 @@ use super::block_upload::UploadPhase;
 use super::{Response, SdoEvent, SdoServer, Sink, State};
 use crate::od::{AbortCode, ObjectDictionary};
 use crate::sdo::block::Crc16;
-use crate::time::Instant;
 use crate::wire::sdo::{frame, Multiplexer};
 
 /// The state of a block download (the shared [`State`]'s `BlockDownload`).
@@ -47,11 +46,7 @@ impl SdoServer {
         size: Option<u32>,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        let info = od.info(mux.index, mux.sub)?;
-        if !info.access.writable() {
-            return Err(AbortCode::WriteOfReadOnly);
-        }
-        let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
+        let sink = self.open_sink(mux, size, od)?;
         self.mux = mux;
         self.state = State::BlockDownload(BlockDownload {
             sink,
@@ -113,19 +108,16 @@ impl SdoServer {
         Response::NONE
     }
 
-    /// The deadline to report for the SDO timeout's `timeout_at` in a block transfer: a quarter of the SDO
-    /// timeout after the last frame while a download sub-block has in-order segments but has not ended (then
-    /// [`block_download_stalled`](Self::block_download_stalled) acknowledges them); at once when an upload
-    /// sub-block was handed out (then [`block_upload_sent`](Self::block_upload_sent) starts the time-out);
-    /// `timeout_at` otherwise.
-    pub(super) const fn block_deadline(&self, timeout_at: Instant) -> Instant {
+    /// How long after the last frame (`since`) the deadline is in a block transfer, for the SDO time-out
+    /// `timeout` (µs, not disabled): a quarter of it while a download sub-block has in-order segments but has
+    /// not ended (then [`block_download_stalled`](Self::block_download_stalled) acknowledges them); nothing,
+    /// at once, when an upload sub-block was handed out (then [`block_upload_sent`](Self::block_upload_sent)
+    /// starts the time-out); `timeout` otherwise.
+    pub(super) const fn block_delay(&self, timeout: u64) -> u64 {
         match &self.state {
-            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => {
-                let t = self.timeout.0;
-                Instant::from_micros(timeout_at.as_micros().saturating_sub(t - t / 4))
-            }
-            State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => Instant::from_micros(self.since.0),
-            _ => timeout_at,
+            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => timeout / 4,
+            State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => 0,
+            _ => timeout,
         }
     }
 
@@ -160,10 +152,9 @@ impl SdoServer {
             if bd.crc_on && bd.crc.get() != crc {
                 return Err(AbortCode::CrcError); // SDO-50
             }
-            match bd.size {
-                Some(s) if bd.offset > s => return Err(AbortCode::LengthTooHigh),
-                Some(s) if bd.offset < s => return Err(AbortCode::LengthTooLow),
-                _ => {}
+            // short of the announced size: 0607 0013h (past it, 0607 0012h, was refused in flush_held)
+            if bd.size.is_some_and(|s| bd.offset < s) {
+                return Err(AbortCode::LengthTooLow);
             }
             bd.sink.finish(mux, bd.offset, od)
         })();

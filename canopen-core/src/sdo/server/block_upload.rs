@@ -67,35 +67,51 @@ impl SdoServer {
     /// assert!(s.poll_transmit(canopen_core::Instant::ZERO, &mut Empty).is_none());
     /// ```
     pub fn poll_transmit<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Option<Response> {
-        let mux = self.mux;
-        let State::BlockUpload(b) = &mut self.state else { return None };
-        if b.phase != UploadPhase::Sending {
+        if !self.wants_transmit() {
             return None;
         }
-        let off = b.base.saturating_add(u32::from(b.sent).saturating_mul(7));
-        let want = b.size.saturating_sub(off).min(7) as usize;
-        let seqno = b.sent.saturating_add(1);
+        Some(self.next_segment(now, od))
+    }
+
+    /// The next frame of a sub-block ([`poll_transmit`](Self::poll_transmit)) once
+    /// [`wants_transmit`](Self::wants_transmit) said there is one: for the node's pump, which asks that first,
+    /// without a second test and an `Option` around the response. `Response::NONE` in any other state.
+    #[inline]
+    pub(crate) fn next_segment<O: ObjectDictionary + ?Sized>(&mut self, now: Instant, od: &mut O) -> Response {
+        let mux = self.mux;
+        let State::BlockUpload(b) = &mut self.state else { return Response::NONE };
+        // sent <= 127: no overflow in the product
+        let off = b.base.saturating_add(u32::from(b.sent) * 7);
+        // off <= size while Sending (a sub-block stops at the last segment, the acknowledge of it ends the
+        // upload), as in `upload_segment`: no saturation needed
+        let want = b.size.wrapping_sub(off).min(7) as usize;
+        // while Sending, sent < blksize <= 127: a 7-bit seqno, no overflow
+        let seqno = b.sent + 1;
         // The segment (SDO-37): c ‖ seqno, then the data read from the OD straight into the frame.
         let mut segment = [0u8; 8];
         let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
             Ok(n) if n == want => n as u32,
-            Ok(_) => return Some(self.abort(od, mux, AbortCode::LengthMismatch)),
-            Err(code) => return Some(self.abort(od, mux, code)),
+            Ok(_) => return self.abort(od, mux, AbortCode::LengthMismatch),
+            Err(code) => return self.abort(od, mux, code),
         };
         let end = off + n;
-        if end > b.crc_len && b.crc_on {
-            let skip = b.crc_len.saturating_sub(off) as usize;
-            b.crc.update(segment.get(1 + skip..1 + n as usize).unwrap_or(&[]));
+        // Every segment starts at a multiple of 7 (`base` moves by whole segments) and ends 7 bytes later or
+        // at `size`, and so does `crc_len`, the end of the furthest one sent: a segment past it starts there,
+        // so it is fed whole, and one not past it (sent again after go-back-n) was fed before.
+        if end > b.crc_len {
+            if b.crc_on {
+                b.crc.update(&segment[1..1 + n as usize]);
+            }
+            b.crc_len = end;
         }
-        b.crc_len = b.crc_len.max(end);
         let last = end >= b.size;
         b.sent = seqno;
-        segment[0] = (u8::from(last) << 7) | (seqno & 0x7F);
+        segment[0] = (u8::from(last) << 7) | seqno;
         if last || b.sent >= b.blksize {
-            b.phase = UploadPhase::Sent; // the deadline is due at once (block_deadline)
+            b.phase = UploadPhase::Sent; // the deadline is due at once (block_delay)
         }
         self.since = Micros(now.as_micros()); // SDO-31: the time-out runs from the last frame sent
-        Some(Response::send(segment))
+        Response::send(segment)
     }
 
     pub(super) fn block_upload_initiate<O: ObjectDictionary + ?Sized>(
@@ -150,7 +166,7 @@ impl SdoServer {
         bu.blksize = blksize;
         if ackseq >= 1 && bu.base >= bu.size {
             bu.phase = UploadPhase::WaitEnd;
-            let crc = if bu.crc_on { bu.crc.get() } else { 0 };
+            let crc = bu.crc.get(); // 0 without CRC (sc = 0): nothing was fed, it is still Crc16::new()
             let unused = 7 - last_segment_len(bu.size);
             // scs 6, ss 1: n unused bytes of the last segment, the CRC in bytes 1–2 (SDO-47)
             return Response::send(frame(0xC1 | (unused << 2), u32::from(crc), 0));

@@ -50,32 +50,33 @@ impl SdoServer {
         size: Option<u32>,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        let info = od.info(mux.index, mux.sub)?;
-        if !info.access.writable() {
-            return Err(AbortCode::WriteOfReadOnly);
-        }
-        let sink = self.open_sink(mux, info.data_type.size(), size, od)?;
+        let sink = self.open_sink(mux, size, od)?;
         self.mux = mux;
         self.state = State::Download { toggle: false, offset: 0, size, sink };
         Ok(Response::send(frame(0x60, mux.bits(), 0))) // SDO-17
     }
 
+    /// Where a segmented or block download of `mux` with the announced `size` goes, once the entry was found
+    /// writable (0601 0002h otherwise): a fixed-size entry into the scratch, after its size was checked against
+    /// the announced one; anything else streamed into the OD (`begin_write`). Shared by both initiates.
     pub(super) fn open_sink<O: ObjectDictionary + ?Sized>(
         &mut self,
         mux: Multiplexer,
-        fixed: Option<usize>,
         size: Option<u32>,
         od: &mut O,
     ) -> Result<Sink, AbortCode> {
-        match fixed {
-            Some(n) => {
-                // SDO-18: refuse a wrong announced size before any data moves.
-                match size.map(|s| (s as usize).cmp(&n)) {
-                    Some(core::cmp::Ordering::Greater) => Err(AbortCode::LengthTooHigh),
-                    Some(core::cmp::Ordering::Less) => Err(AbortCode::LengthTooLow),
-                    _ => Ok(Sink::Scratch([0; 8])),
-                }
-            }
+        let info = od.info(mux.index, mux.sub)?;
+        if !info.access.writable() {
+            return Err(AbortCode::WriteOfReadOnly);
+        }
+        match info.data_type.size() {
+            // SDO-18: refuse a wrong announced size before any data moves (two comparisons: an `Ordering`
+            // matched here cost the node firmware 48 B more).
+            Some(n) => match size {
+                Some(s) if s as usize > n => Err(AbortCode::LengthTooHigh),
+                Some(s) if (s as usize) < n => Err(AbortCode::LengthTooLow),
+                _ => Ok(Sink::Scratch([0; 8])),
+            },
             None => {
                 od.begin_write(mux.index, mux.sub, size.map(|s| s as usize))?;
                 if !O::STREAMS {

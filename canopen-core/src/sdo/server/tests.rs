@@ -707,3 +707,60 @@ fn no_stream_for_a_dictionary_without_streams() {
         assert!(s.is_idle());
     }
 }
+
+/// SDO-33, SDO-02: an abort frame with reserved bits set (ccs 4, 81h–9Fh) ends the transfer under way
+/// without an answer and names the transfer's object, not the frame's bytes 1–3; while idle it is ignored.
+#[test]
+fn abort_with_reserved_bits_names_the_transfer() {
+    let mut t = Bench::new();
+    let r = t.ex([0x84, 0x34, 0x12, 0x05, 0x00, 0x00, 0x04, 0x05], None);
+    assert_eq!(r.event, None);
+    t.ex([0x21, 0x00, 0x20, 0x00, 0x09, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    let r = t.ex([0x84, 0x34, 0x12, 0x05, 0x00, 0x00, 0x04, 0x05], None);
+    assert_eq!(r.event, Some(SdoEvent::AbortReceived { index: 0x2000, sub: 0, code: 0x0504_0000 }));
+    assert_eq!(t.od.aborted_writes, 1);
+    assert!(t.s.is_idle());
+}
+
+/// SDO-35, SDO-18: a block download initiate is checked as a segmented one before anything is answered: an
+/// entry that does not exist (0602 0000h), a read-only one (0601 0002h), and for a fixed-size entry an
+/// announced size above (0607 0012h) or below (0607 0013h) its own; without a size it is taken.
+#[test]
+#[cfg(feature = "sdo-block")]
+fn block_download_initiate_refusals() {
+    let mut t = Bench::new();
+    t.ex([0xC6, 0x00, 0x50, 0x00, 4, 0, 0, 0], abort_of(0x5000, 0, AbortCode::ObjectDoesNotExist));
+    t.ex([0xC6, 0x00, 0x10, 0x00, 4, 0, 0, 0], abort_of(0x1000, 0, AbortCode::WriteOfReadOnly));
+    t.ex([0xC6, 0x7A, 0x60, 0x00, 5, 0, 0, 0], abort_of(0x607A, 0, AbortCode::LengthTooHigh));
+    t.ex([0xC6, 0x7A, 0x60, 0x00, 3, 0, 0, 0], abort_of(0x607A, 0, AbortCode::LengthTooLow));
+    assert!(t.s.is_idle());
+    t.ex([0xC4, 0x7A, 0x60, 0x00, 0, 0, 0, 0], Some([0xA4, 0x7A, 0x60, 0x00, 0x7F, 0, 0, 0]));
+    assert_eq!(t.s.state(), ServerState::BlockDownloadSubBlock);
+}
+
+/// SDO-31 with the time-out disabled (zero): no deadline in the block states that otherwise have an early
+/// one, a download sub-block with in-order segments (the stall acknowledge, SDO-40) and an upload sub-block
+/// handed out (due at once), and the time-out's own.
+#[test]
+#[cfg(feature = "sdo-block")]
+fn zero_timeout_gives_no_deadline_in_block_transfers() {
+    let mut t = Bench { s: server().with_timeout(Duration::ZERO).with_block_size(4), od: TestOd::new() };
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 0x04, 0, 0, 0]));
+    t.ex([0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], None);
+    assert_eq!(t.s.poll_timeout(), None);
+    assert_eq!(t.s.handle_timeout(Instant::from_micros(u64::MAX - 1), &mut t.od), Response::NONE);
+    assert_eq!(t.s.state(), ServerState::BlockDownloadSubBlock);
+    t.s.cancel(&mut t.od);
+    t.od.set_domain(b"123456789");
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+    assert_eq!(t.s.state(), ServerState::BlockUploadAck);
+    assert_eq!(t.s.poll_timeout(), None);
+    assert_eq!(t.s.handle_timeout(Instant::from_micros(u64::MAX - 1), &mut t.od), Response::NONE);
+    // with a time-out, the same sub-block handed out is due at once (the time-out then starts)
+    t.s.set_timeout(Duration::from_millis(10));
+    t.ex([0xA2, 0x00, 0x7F, 0, 0, 0, 0, 0], None); // go back to the start: the sub-block again
+    while t.s.poll_transmit(Instant::from_millis(3), &mut t.od).is_some() {}
+    assert_eq!(t.s.poll_timeout(), Some(Instant::from_millis(3)));
+}
