@@ -117,17 +117,15 @@ pub struct ResolvedMap {
     entries: [Mapped; MAX_ENTRIES],
     count: u8,
     bits: u8,
-    /// Not every entry whole bytes of a whole object (the negations, so that [`Self::EMPTY`] is all zero:
-    /// building the node's PDOs clears memory instead of copying a 68-byte constant into each).
-    unaligned: bool,
-    /// Not [`direct`](Self::direct).
+    /// Not [`direct`](Self::direct) (the negation, so that [`Self::EMPTY`] is all zero: building the node's
+    /// PDOs clears memory instead of copying a 68-byte constant into each).
     indirect: bool,
 }
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
     pub const EMPTY: ResolvedMap =
-        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, unaligned: false, indirect: false };
+        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, indirect: false };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
@@ -155,11 +153,13 @@ impl ResolvedMap {
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
             }
-            m.unaligned |= e.bits % 8 != 0 || (!e.is_dummy() && u16::from(e.handle.size) * 8 != u16::from(e.bits));
-            m.indirect |= !e.is_dummy() && (0x1000..=0x1FFF).contains(&e.handle.index);
+            // Not direct: an entry of part of a byte or part of an object, or a communication-profile object.
+            m.indirect |= e.bits % 8 != 0
+                || (!e.is_dummy()
+                    && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
+                        || (0x1000..=0x1FFF).contains(&e.handle.index)));
             *slot = e;
         }
-        m.indirect |= m.unaligned;
         m.count = raw.len() as u8;
         m.bits = total as u8;
         Ok(m)
@@ -207,8 +207,12 @@ impl ResolvedMap {
     /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
     /// read leaves zeros. For a TPDO mapping: those have no dummy entries (PDO-34, [`resolve`] refuses them),
     /// so the byte-aligned path does not test for one.
+    ///
+    /// With the feature `pdo-bit-mapping` every mapping takes the bit-granular path here, which moves whole
+    /// bytes as well (a whole object's `bits` are all its bytes): one path for the merged view, where the
+    /// node routes every mapping that is not [`direct`](Self::direct), instead of two.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
-        if BIT_MAPPING && self.unaligned {
+        if BIT_MAPPING {
             *out = self.pack_bits(od).to_le_bytes();
             return self.bytes();
         }
@@ -244,9 +248,10 @@ impl ResolvedMap {
     }
 
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
-    /// how many writes the dictionary refused (limits, hooks).
+    /// how many writes the dictionary refused (limits, hooks). With the feature `pdo-bit-mapping`, every
+    /// mapping through the bit-granular path, as [`pack`](Self::pack).
     pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
-        if !BIT_MAPPING || !self.unaligned {
+        if !BIT_MAPPING {
             return self.unpack_bytes(od, data);
         }
         let mut refused = 0;
@@ -389,6 +394,25 @@ mod tests {
         let mut rx = Od::default();
         assert_eq!(m.unpack(&mut rx, &out[..7]), 0);
         assert_eq!((rx.a, rx.b, rx.c), (0x11, 0x2233, 0x4455_6677));
+    }
+
+    /// PDO-32, PDO-34: whole-byte entries, a whole-byte dummy and a refused write give through
+    /// `pack`/`unpack` (the merged view's path, bit-granular with `pdo-bit-mapping`) the bytes, the values and
+    /// the refusal count of the byte-aligned path the node takes for a direct mapping.
+    #[test]
+    fn general_path_matches_bytes_path() {
+        let od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
+        let m = ResolvedMap::resolve(&od, &[0x2000_0108, 0x2000_0210, 0x2000_0320], PdoDir::Tpdo).unwrap();
+        let (mut general, mut bytes) = ([0xAAu8; 8], [0u8; 8]);
+        assert_eq!((m.pack(&od, &mut general), m.pack_bytes(&od, &mut bytes)), (7, 7));
+        assert_eq!(general, bytes);
+        let rxm =
+            ResolvedMap::resolve(&od, &[0x2000_0108, 0x0005_0008, 0x2000_0210, 0x2000_0408], PdoDir::Rpdo).unwrap();
+        let data = [0x01, 0xEE, 0x03, 0x04, 0x02]; // 2 is not a BOOLEAN: that write is refused
+        let (mut x, mut y) = (Od::default(), Od::default());
+        assert_eq!((rxm.unpack(&mut x, &data), rxm.unpack_bytes(&mut y, &data)), (1, 1));
+        assert_eq!((x.a, x.b, x.d), (0x01, 0x0403, false));
+        assert_eq!((y.a, y.b, y.d), (0x01, 0x0403, false));
     }
 
     /// Bit granularity: a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits, a dummy of 3 bits, a UNSIGNED16.
