@@ -155,12 +155,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 return;
             }
             RxOutcome::Apply { exceeded } => {
-                if r.map.direct() {
-                    r.map.unpack_bytes(&mut self.app, frame.data());
-                } else {
-                    r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, frame.data());
-                }
-                self.push_event(Event::RpdoReceived { pdo: k as u16 });
+                self.apply_rpdo(k, frame.data());
                 exceeded
             }
             RxOutcome::Buffered { exceeded } => {
@@ -175,6 +170,20 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.clear_error(codes::RPDO_TIMEOUT);
         }
         self.rpdo_length_state(k, exceeded);
+    }
+
+    /// Writes `data`, a frame of RPDO `k` at least as long as its mapping, into the mapped objects (the
+    /// leading bytes, PDO-39) and reports it: the one path of an event-driven RPDO's frame and of a
+    /// synchronous one's at the SYNC. A [`direct`](ResolvedMap::direct) mapping goes to the application
+    /// dictionary alone, byte-aligned; any other through the merged view.
+    fn apply_rpdo(&mut self, k: usize, data: &[u8]) {
+        let Some(r) = self.rpdos.as_ref().get(k) else { return };
+        if r.map.direct() {
+            r.map.unpack_bytes(&mut self.app, data);
+        } else {
+            r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, data);
+        }
+        self.push_event(Event::RpdoReceived { pdo: k as u16 });
     }
 
     /// EMCY 8220h for a long RPDO; both length errors clear with the next frame of the right length.
@@ -246,10 +255,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         for k in 0..Z::RPDO {
             if let Some(data) = self.rpdos[k].take_pending() {
-                let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
-                let n = self.rpdos[k].map.bytes();
-                self.rpdos[k].map.unpack(&mut od, data.get(..n).unwrap_or(&data)); // n <= 8: no panic path
-                self.push_event(Event::RpdoReceived { pdo: k as u16 });
+                self.apply_rpdo(k, &data);
             }
         }
         for k in 0..Z::TPDO {
