@@ -298,28 +298,34 @@ impl Bits {
         Bits { value: u64::from_le_bytes(buf), off: 0 }
     }
 
-    // An entry has 1..=64 bits and the entries total at most 64 (ResolvedMap::resolve), so an entry starts
-    // at bit 0..=63: the shifts below never reach 64.
+    // An entry has 1..=64 bits and the entries total at most 64 (ResolvedMap::resolve): an entry of `bits`
+    // at `off` has off + bits <= 64, so every shift count below is 0..=63 (the `& 63` in `shl_shr` only
+    // spares a panic path).
 
-    /// Appends the low `bits` bits of `v`.
-    #[inline(never)]
+    /// Appends the low `bits` bits of `v`: shifted up to the top (dropping the bits above the entry), then
+    /// down to `off`.
     fn push(&mut self, v: u64, bits: u8) {
-        self.value |= (v & mask(bits)) << (self.off & 63);
+        let free = 64 - u32::from(bits);
+        self.value |= shl_shr(v, free, free.wrapping_sub(self.off));
         self.off += u32::from(bits);
     }
 
-    /// Takes the next `bits` bits (the object's remaining high bits are 0, no sign extension).
-    #[inline(never)]
+    /// Takes the next `bits` bits (the object's remaining high bits are 0, no sign extension): the entry
+    /// shifted up to the top (dropping the entries after it), then down to bit 0.
     fn pop(&mut self, bits: u8) -> u64 {
-        let v = (self.value >> (self.off & 63)) & mask(bits);
+        let free = 64 - u32::from(bits);
+        let v = shl_shr(self.value, free.wrapping_sub(self.off), free);
         self.off += u32::from(bits);
         v
     }
 }
 
-/// The low `bits` (1..=64) bits set.
-const fn mask(bits: u8) -> u64 {
-    u64::MAX >> ((64 - bits as u32) % 64)
+/// `x` shifted left by `l`, then right by `r` (each 0..=63): the one pair of 64-bit shifts (a dozen
+/// instructions each on a 32-bit core) that both puts an entry into a payload and takes one out; masks and
+/// two shift directions per entry were twice the code.
+#[inline(never)]
+fn shl_shr(x: u64, l: u32, r: u32) -> u64 {
+    (x << (l & 63)) >> (r & 63)
 }
 
 #[cfg(test)]
@@ -449,6 +455,27 @@ mod tests {
         let mut rx = Od::default();
         assert_eq!(rxm.unpack(&mut rx, &out[..n]), 0);
         assert_eq!((rx.a, rx.b), (0x11, 0x2233));
+    }
+
+    /// PDO-32: entries packed from bit 0 in order, at the edges of the 64 bits: one 64-bit entry, entries that
+    /// end at bit 64, a 1-bit one first; high bits of a value beyond its entry are dropped and nothing is
+    /// sign-extended on the way out.
+    #[test]
+    fn bits_edges() {
+        let mut b = Bits::default();
+        b.push(0x8123_4567_89AB_CDEF, 64);
+        assert_eq!(b.value, 0x8123_4567_89AB_CDEF);
+        let mut b = Bits::default();
+        b.push(0xFF, 1); // only bit 0 kept
+        b.push(0xFFFF_FFFF_FFFF_FFF0, 3); // bits 1..4 = 000
+        b.push(0x0123_4567_89AB_CDEF, 60); // bits 4..64
+        assert_eq!(b.value, 0x1234_5678_9ABC_DEF1);
+        let mut f = Bits::from_payload(&b.value.to_le_bytes());
+        assert_eq!((f.pop(1), f.pop(3), f.pop(60)), (1, 0, 0x0123_4567_89AB_CDEF));
+        let mut f = Bits::from_payload(&[0xFF; 8]);
+        assert_eq!((f.pop(63), f.pop(1)), (u64::MAX >> 1, 1));
+        let mut f = Bits::from_payload(&[0xA5]); // a short payload reads as zeros above it
+        assert_eq!((f.pop(4), f.pop(4), f.pop(56)), (0x5, 0xA, 0));
     }
 
     /// PDO-36/PDO-37 error codes.
