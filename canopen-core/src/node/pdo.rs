@@ -146,7 +146,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return;
         }
         let in_window = self.sync.in_window(now);
-        let outcome = r.receive(now, frame.data());
+        let outcome = r.receive(now, frame);
         let timed_out = core::mem::take(&mut r.timed_out);
         let length_error = match outcome {
             RxOutcome::TooShort => Some(codes::PDO_LENGTH),
