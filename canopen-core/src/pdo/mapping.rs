@@ -72,28 +72,19 @@ impl Mapped {
 /// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().is_dummy());
 /// ```
 pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
-    let e = match entry(raw, dir)? {
-        Ok(dummy) => return Ok(dummy),
-        Err(e) => e,
-    };
-    checked_len(od.pdo_resolve(e.index, e.sub, dir)?, e.bits)
-}
-
-/// The checks of [`resolve`] that need no dictionary (length, dummy entries): a dummy entry resolved, or the
-/// entry to look up. Not generic, so every dictionary type shares it.
-fn entry(raw: u32, dir: PdoDir) -> Result<Result<Mapped, MappingEntry>, AbortCode> {
     let e = MappingEntry::from_raw(raw);
     if e.bits == 0 || e.bits > 64 {
         return Err(AbortCode::NotMappable);
     }
-    match e.dummy_bits() {
-        None => Ok(Err(e)),
+    let handle = match e.dummy_bits() {
+        None => od.pdo_resolve(e.index, e.sub, dir)?,
         Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits && (BIT_MAPPING || e.bits % 8 == 0) => {
             let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
-            Ok(Ok(Mapped { handle, bits: e.bits }))
+            return Ok(Mapped { handle, bits: e.bits });
         }
-        Some(_) => Err(AbortCode::NotMappable),
-    }
+        Some(_) => return Err(AbortCode::NotMappable),
+    };
+    checked_len(handle, e.bits)
 }
 
 /// The object must hold at least `bits` bits (PDO-36); without `pdo-bit-mapping`, exactly `bits`.
