@@ -145,7 +145,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.handle_mpdo(k, mode, frame);
             return;
         }
-        let in_window = self.sync.in_window(now);
         let outcome = r.receive(now, frame);
         let timed_out = core::mem::take(&mut r.timed_out);
         let length_error = match outcome {
@@ -155,7 +154,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
             }
             RxOutcome::Buffered { exceeded } => {
-                if !in_window {
+                if !self.sync.in_window(now) {
                     r.discard(); // SYNC-09: after the window, discarded until the next SYNC
                 }
                 exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
