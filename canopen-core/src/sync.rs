@@ -171,7 +171,11 @@ impl Sync {
 
     fn schedule(&mut self, now: Instant) {
         let active = self.is_producer() && self.params.period_us != 0;
-        self.next.set(active.then(|| now + Duration::from_micros(u64::from(self.params.period_us))));
+        self.next = if active {
+            Deadline::at(now + Duration::from_micros(u64::from(self.params.period_us)))
+        } else {
+            Deadline::NONE
+        };
     }
 
     /// Writes 1005h (SYNC-02/03, COB-15/16): frame bit refused, ID unchangeable while producing, the gen bit
@@ -260,15 +264,15 @@ impl Sync {
     /// Produces the SYNC due at `now`, if any; the node also acts on its own SYNC (call
     /// [`consume`](Self::consume)-equivalent logic with the returned counter).
     pub fn produce(&mut self, now: Instant) -> Option<crate::CanFrame> {
-        if !PRODUCER {
+        if !PRODUCER || !self.next.passed(now) {
             return None;
         }
-        let next = self.next.get().filter(|&t| t <= now)?;
+        let next = self.next.instant();
         let period = Duration::from_micros(u64::from(self.params.period_us));
         let following = next + period;
-        self.next.set(Some(if following <= now { now + period } else { following }));
+        self.next = Deadline::at(if following <= now { now + period } else { following });
         let counter = self.advance_counter();
-        self.last_sync.set(Some(now));
+        self.last_sync = Deadline::at(now);
         let mut data = [0u8; 8];
         let len = match counter {
             Some(c) => {
@@ -312,11 +316,11 @@ impl Sync {
         let expect_counter = self.counter_overflow() >= 2;
         match (expect_counter, data) {
             (false, []) => {
-                self.last_sync.set(Some(now));
+                self.last_sync = Deadline::at(now);
                 SyncInput::Sync { counter: None }
             }
             (true, [c]) => {
-                self.last_sync.set(Some(now));
+                self.last_sync = Deadline::at(now);
                 SyncInput::Sync { counter: Some(*c) }
             }
             _ => SyncInput::WrongLength,

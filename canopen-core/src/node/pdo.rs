@@ -145,44 +145,50 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.handle_mpdo(k, mode, frame);
             return;
         }
-        let in_window = self.sync.in_window(now);
-        let outcome = r.receive(now, frame.data());
+        let outcome = r.receive(now, frame);
         let timed_out = core::mem::take(&mut r.timed_out);
-        let exceeded = match outcome {
-            RxOutcome::TooShort => {
-                r.length_error = true;
-                self.raise_error(codes::PDO_LENGTH, [rpdo_number(k), 0, 0, 0, 0]);
-                return;
-            }
+        let length_error = match outcome {
+            RxOutcome::TooShort => Some(codes::PDO_LENGTH),
             RxOutcome::Apply { exceeded } => {
-                if r.map.direct() {
-                    r.map.unpack_bytes(&mut self.app, frame.data());
-                } else {
-                    r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, frame.data());
-                }
-                self.push_event(Event::RpdoReceived { pdo: k as u16 });
-                exceeded
+                self.apply_rpdo(k, frame.data());
+                exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
             }
             RxOutcome::Buffered { exceeded } => {
-                if !in_window {
+                if !self.sync.in_window(now) {
                     r.discard(); // SYNC-09: after the window, discarded until the next SYNC
                 }
-                exceeded
+                exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
             }
         };
-        // The cause of 8250h is gone when no RPDO is timed out any more (one code for every RPDO).
-        if timed_out && !self.rpdos.as_ref().iter().any(|r| r.timed_out) {
+        // The cause of 8250h is gone when no RPDO is timed out any more (one code for every RPDO); a frame
+        // too short to apply does not count.
+        if outcome != RxOutcome::TooShort && timed_out && !self.rpdos.as_ref().iter().any(|r| r.timed_out) {
             self.clear_error(codes::RPDO_TIMEOUT);
         }
-        self.rpdo_length_state(k, exceeded);
+        self.rpdo_length_state(k, length_error);
     }
 
-    /// EMCY 8220h for a long RPDO; both length errors clear with the next frame of the right length.
-    fn rpdo_length_state(&mut self, k: usize, exceeded: bool) {
+    /// Writes `data`, a frame of RPDO `k` at least as long as its mapping, into the mapped objects (the
+    /// leading bytes, PDO-39) and reports it: the one path of an event-driven RPDO's frame and of a
+    /// synchronous one's at the SYNC. A [`direct`](ResolvedMap::direct) mapping goes to the application
+    /// dictionary alone, byte-aligned; any other through the merged view.
+    fn apply_rpdo(&mut self, k: usize, data: &[u8]) {
+        let Some(r) = self.rpdos.as_ref().get(k) else { return };
+        if r.map.direct() {
+            r.map.unpack_bytes(&mut self.app, data);
+        } else {
+            r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, data);
+        }
+        self.push_event(Event::RpdoReceived { pdo: k as u16 });
+    }
+
+    /// EMCY 8210h for a short RPDO, 8220h for a long one (`error`: the code, PDO-38/39); both clear with the
+    /// next frame of the right length.
+    fn rpdo_length_state(&mut self, k: usize, error: Option<u16>) {
         let Some(r) = self.rpdos.as_mut().get_mut(k) else { return };
-        if exceeded {
+        if let Some(code) = error {
             r.length_error = true;
-            self.raise_error(codes::PDO_LENGTH_EXCEEDED, [rpdo_number(k), 0, 0, 0, 0]);
+            self.raise_error(code, [rpdo_number(k), 0, 0, 0, 0]);
         } else if core::mem::take(&mut r.length_error) && !self.rpdos.as_ref().iter().any(|r| r.length_error) {
             // The cause is gone when no RPDO's last frame had a wrong length (one code for every RPDO).
             self.clear_error(codes::PDO_LENGTH);
@@ -246,10 +252,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         for k in 0..Z::RPDO {
             if let Some(data) = self.rpdos[k].take_pending() {
-                let mut od = Merged { comm: &mut self.comm, app: &mut self.app };
-                let n = self.rpdos[k].map.bytes();
-                self.rpdos[k].map.unpack(&mut od, data.get(..n).unwrap_or(&data)); // n <= 8: no panic path
-                self.push_event(Event::RpdoReceived { pdo: k as u16 });
+                self.apply_rpdo(k, &data);
             }
         }
         for k in 0..Z::TPDO {

@@ -72,28 +72,19 @@ impl Mapped {
 /// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().is_dummy());
 /// ```
 pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
-    let e = match entry(raw, dir)? {
-        Ok(dummy) => return Ok(dummy),
-        Err(e) => e,
-    };
-    checked_len(od.pdo_resolve(e.index, e.sub, dir)?, e.bits)
-}
-
-/// The checks of [`resolve`] that need no dictionary (length, dummy entries): a dummy entry resolved, or the
-/// entry to look up. Not generic, so every dictionary type shares it.
-fn entry(raw: u32, dir: PdoDir) -> Result<Result<Mapped, MappingEntry>, AbortCode> {
     let e = MappingEntry::from_raw(raw);
     if e.bits == 0 || e.bits > 64 {
         return Err(AbortCode::NotMappable);
     }
-    match e.dummy_bits() {
-        None => Ok(Err(e)),
+    let handle = match e.dummy_bits() {
+        None => od.pdo_resolve(e.index, e.sub, dir)?,
         Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits && (BIT_MAPPING || e.bits % 8 == 0) => {
             let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
-            Ok(Ok(Mapped { handle, bits: e.bits }))
+            return Ok(Mapped { handle, bits: e.bits });
         }
-        Some(_) => Err(AbortCode::NotMappable),
-    }
+        Some(_) => return Err(AbortCode::NotMappable),
+    };
+    checked_len(handle, e.bits)
 }
 
 /// The object must hold at least `bits` bits (PDO-36); without `pdo-bit-mapping`, exactly `bits`.
@@ -117,17 +108,15 @@ pub struct ResolvedMap {
     entries: [Mapped; MAX_ENTRIES],
     count: u8,
     bits: u8,
-    /// Not every entry whole bytes of a whole object (the negations, so that [`Self::EMPTY`] is all zero:
-    /// building the node's PDOs clears memory instead of copying a 68-byte constant into each).
-    unaligned: bool,
-    /// Not [`direct`](Self::direct).
+    /// Not [`direct`](Self::direct) (the negation, so that [`Self::EMPTY`] is all zero: building the node's
+    /// PDOs clears memory instead of copying a 68-byte constant into each).
     indirect: bool,
 }
 
 impl ResolvedMap {
     /// No entries (mapping disabled).
     pub const EMPTY: ResolvedMap =
-        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, unaligned: false, indirect: false };
+        ResolvedMap { entries: [Mapped::NONE; MAX_ENTRIES], count: 0, bits: 0, indirect: false };
 
     /// Resolves entries `raw` in `dir` (PDO-37: more than 64 bits or more than [`MAX_ENTRIES`] → 0604 0042h;
     /// a bad entry → its [`resolve`] error).
@@ -155,11 +144,13 @@ impl ResolvedMap {
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
             }
-            m.unaligned |= e.bits % 8 != 0 || (!e.is_dummy() && u16::from(e.handle.size) * 8 != u16::from(e.bits));
-            m.indirect |= !e.is_dummy() && (0x1000..=0x1FFF).contains(&e.handle.index);
+            // Not direct: an entry of part of a byte or part of an object, or a communication-profile object.
+            m.indirect |= e.bits % 8 != 0
+                || (!e.is_dummy()
+                    && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
+                        || (0x1000..=0x1FFF).contains(&e.handle.index)));
             *slot = e;
         }
-        m.indirect |= m.unaligned;
         m.count = raw.len() as u8;
         m.bits = total as u8;
         Ok(m)
@@ -207,8 +198,12 @@ impl ResolvedMap {
     /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
     /// read leaves zeros. For a TPDO mapping: those have no dummy entries (PDO-34, [`resolve`] refuses them),
     /// so the byte-aligned path does not test for one.
+    ///
+    /// With the feature `pdo-bit-mapping` every mapping takes the bit-granular path here, which moves whole
+    /// bytes as well (a whole object's `bits` are all its bytes): one path for the merged view, where the
+    /// node routes every mapping that is not [`direct`](Self::direct), instead of two.
     pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
-        if BIT_MAPPING && self.unaligned {
+        if BIT_MAPPING {
             *out = self.pack_bits(od).to_le_bytes();
             return self.bytes();
         }
@@ -244,9 +239,10 @@ impl ResolvedMap {
     }
 
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
-    /// how many writes the dictionary refused (limits, hooks).
+    /// how many writes the dictionary refused (limits, hooks). With the feature `pdo-bit-mapping`, every
+    /// mapping through the bit-granular path, as [`pack`](Self::pack).
     pub fn unpack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, data: &[u8]) -> usize {
-        if !BIT_MAPPING || !self.unaligned {
+        if !BIT_MAPPING {
             return self.unpack_bytes(od, data);
         }
         let mut refused = 0;
@@ -293,28 +289,34 @@ impl Bits {
         Bits { value: u64::from_le_bytes(buf), off: 0 }
     }
 
-    // An entry has 1..=64 bits and the entries total at most 64 (ResolvedMap::resolve), so an entry starts
-    // at bit 0..=63: the shifts below never reach 64.
+    // An entry has 1..=64 bits and the entries total at most 64 (ResolvedMap::resolve): an entry of `bits`
+    // at `off` has off + bits <= 64, so every shift count below is 0..=63 (the `& 63` in `shl_shr` only
+    // spares a panic path).
 
-    /// Appends the low `bits` bits of `v`.
-    #[inline(never)]
+    /// Appends the low `bits` bits of `v`: shifted up to the top (dropping the bits above the entry), then
+    /// down to `off`.
     fn push(&mut self, v: u64, bits: u8) {
-        self.value |= (v & mask(bits)) << (self.off & 63);
+        let free = 64 - u32::from(bits);
+        self.value |= shl_shr(v, free, free.wrapping_sub(self.off));
         self.off += u32::from(bits);
     }
 
-    /// Takes the next `bits` bits (the object's remaining high bits are 0, no sign extension).
-    #[inline(never)]
+    /// Takes the next `bits` bits (the object's remaining high bits are 0, no sign extension): the entry
+    /// shifted up to the top (dropping the entries after it), then down to bit 0.
     fn pop(&mut self, bits: u8) -> u64 {
-        let v = (self.value >> (self.off & 63)) & mask(bits);
+        let free = 64 - u32::from(bits);
+        let v = shl_shr(self.value, free.wrapping_sub(self.off), free);
         self.off += u32::from(bits);
         v
     }
 }
 
-/// The low `bits` (1..=64) bits set.
-const fn mask(bits: u8) -> u64 {
-    u64::MAX >> ((64 - bits as u32) % 64)
+/// `x` shifted left by `l`, then right by `r` (each 0..=63): the one pair of 64-bit shifts (a dozen
+/// instructions each on a 32-bit core) that both puts an entry into a payload and takes one out; masks and
+/// two shift directions per entry were twice the code.
+#[inline(never)]
+fn shl_shr(x: u64, l: u32, r: u32) -> u64 {
+    (x << (l & 63)) >> (r & 63)
 }
 
 #[cfg(test)]
@@ -391,6 +393,25 @@ mod tests {
         assert_eq!((rx.a, rx.b, rx.c), (0x11, 0x2233, 0x4455_6677));
     }
 
+    /// PDO-32, PDO-34: whole-byte entries, a whole-byte dummy and a refused write give through
+    /// `pack`/`unpack` (the merged view's path, bit-granular with `pdo-bit-mapping`) the bytes, the values and
+    /// the refusal count of the byte-aligned path the node takes for a direct mapping.
+    #[test]
+    fn general_path_matches_bytes_path() {
+        let od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
+        let m = ResolvedMap::resolve(&od, &[0x2000_0108, 0x2000_0210, 0x2000_0320], PdoDir::Tpdo).unwrap();
+        let (mut general, mut bytes) = ([0xAAu8; 8], [0u8; 8]);
+        assert_eq!((m.pack(&od, &mut general), m.pack_bytes(&od, &mut bytes)), (7, 7));
+        assert_eq!(general, bytes);
+        let rxm =
+            ResolvedMap::resolve(&od, &[0x2000_0108, 0x0005_0008, 0x2000_0210, 0x2000_0408], PdoDir::Rpdo).unwrap();
+        let data = [0x01, 0xEE, 0x03, 0x04, 0x02]; // 2 is not a BOOLEAN: that write is refused
+        let (mut x, mut y) = (Od::default(), Od::default());
+        assert_eq!((rxm.unpack(&mut x, &data), rxm.unpack_bytes(&mut y, &data)), (1, 1));
+        assert_eq!((x.a, x.b, x.d), (0x01, 0x0403, false));
+        assert_eq!((y.a, y.b, y.d), (0x01, 0x0403, false));
+    }
+
     /// Bit granularity: a BOOLEAN as 1 bit, a UNSIGNED8 as 4 bits, a dummy of 3 bits, a UNSIGNED16.
     #[test]
     #[cfg(feature = "pdo-bit-mapping")]
@@ -425,6 +446,27 @@ mod tests {
         let mut rx = Od::default();
         assert_eq!(rxm.unpack(&mut rx, &out[..n]), 0);
         assert_eq!((rx.a, rx.b), (0x11, 0x2233));
+    }
+
+    /// PDO-32: entries packed from bit 0 in order, at the edges of the 64 bits: one 64-bit entry, entries that
+    /// end at bit 64, a 1-bit one first; high bits of a value beyond its entry are dropped and nothing is
+    /// sign-extended on the way out.
+    #[test]
+    fn bits_edges() {
+        let mut b = Bits::default();
+        b.push(0x8123_4567_89AB_CDEF, 64);
+        assert_eq!(b.value, 0x8123_4567_89AB_CDEF);
+        let mut b = Bits::default();
+        b.push(0xFF, 1); // only bit 0 kept
+        b.push(0xFFFF_FFFF_FFFF_FFF0, 3); // bits 1..4 = 000
+        b.push(0x0123_4567_89AB_CDEF, 60); // bits 4..64
+        assert_eq!(b.value, 0x1234_5678_9ABC_DEF1);
+        let mut f = Bits::from_payload(&b.value.to_le_bytes());
+        assert_eq!((f.pop(1), f.pop(3), f.pop(60)), (1, 0, 0x0123_4567_89AB_CDEF));
+        let mut f = Bits::from_payload(&[0xFF; 8]);
+        assert_eq!((f.pop(63), f.pop(1)), (u64::MAX >> 1, 1));
+        let mut f = Bits::from_payload(&[0xA5]); // a short payload reads as zeros above it
+        assert_eq!((f.pop(4), f.pop(4), f.pop(56)), (0x5, 0xA, 0));
     }
 
     /// PDO-36/PDO-37 error codes.

@@ -12,6 +12,7 @@
 use super::mapping::ResolvedMap;
 use super::PdoComm;
 use crate::cob::CobIdEntry;
+use crate::frame::CanFrame;
 use crate::time::{Deadline, Duration, Instant};
 
 /// What to do with a received RPDO frame.
@@ -39,9 +40,10 @@ pub enum RxOutcome {
 /// One RPDO.
 ///
 /// ```
-/// use canopen_core::{pdo::{rpdo::{Rpdo, RxOutcome}, PdoComm, mapping::ResolvedMap}, Instant};
+/// use canopen_core::{pdo::{rpdo::{Rpdo, RxOutcome}, PdoComm, mapping::ResolvedMap}, CanFrame, Instant};
 /// let mut r = Rpdo::new(&PdoComm { cob_id: 0x201, transmission_type: 255, ..PdoComm::default() }, ResolvedMap::EMPTY);
-/// assert_eq!(r.receive(Instant::ZERO, &[1]), RxOutcome::Apply { exceeded: true });
+/// let frame = CanFrame::new(0x201, &[1]).unwrap();
+/// assert_eq!(r.receive(Instant::ZERO, &frame), RxOutcome::Apply { exceeded: true });
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Rpdo {
@@ -117,8 +119,10 @@ impl Rpdo {
         self.ttype <= 240
     }
 
-    /// A frame arrived at `now` (in Operational).
-    pub fn receive(&mut self, now: Instant, data: &[u8]) -> RxOutcome {
+    /// A frame arrived at `now` (in Operational). A synchronous RPDO keeps the frame's data as the frame
+    /// holds it, zero-padded to 8 bytes ([`CanFrame::padded`]).
+    pub fn receive(&mut self, now: Instant, frame: &CanFrame) -> RxOutcome {
+        let data = frame.data();
         let need = self.map.bytes();
         if data.len() < need {
             return RxOutcome::TooShort;
@@ -128,10 +132,7 @@ impl Rpdo {
             self.deadline = Deadline::at(now + Duration::from_millis(self.event_timer_ms.into()));
         }
         if self.is_synchronous() {
-            let mut buf = [0u8; 8];
-            let n = data.len().min(8);
-            buf[..n].copy_from_slice(&data[..n]);
-            self.pending = Some(buf);
+            self.pending = Some(frame.padded());
             RxOutcome::Buffered { exceeded }
         } else {
             RxOutcome::Apply { exceeded }

@@ -313,11 +313,9 @@ impl Tpdo {
 
     /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
     pub(crate) fn deadline(&self) -> Deadline {
-        if self.pending && self.event_driven() {
-            self.timer.min(self.inhibit)
-        } else {
-            self.timer
-        }
+        // A held-back event waits for the end of the inhibit time (one `min` either way).
+        let held = if self.pending && self.event_driven() { self.inhibit } else { Deadline::NONE };
+        self.timer.min(held)
     }
 
     /// Time passed: returns whether to send now (a held-back event at the end of the inhibit time, or the

@@ -59,7 +59,7 @@ impl MappingEntry {
     /// assert!(!MappingEntry::from_raw(0x0008_0020).is_dummy()); // REAL32 is not a dummy type
     /// ```
     pub const fn is_dummy(self) -> bool {
-        self.sub == 0 && matches!(self.index, 0x0001..=0x0007 | 0x0010 | 0x0012..=0x0016 | 0x0018..=0x001B)
+        self.dummy_bits().is_some()
     }
 
     /// The size in bits of the dummy data type (`None` if not a dummy entry).
@@ -70,22 +70,26 @@ impl MappingEntry {
     /// assert_eq!(MappingEntry::from_raw(0x0001_0001).dummy_bits(), Some(1));
     /// ```
     pub const fn dummy_bits(self) -> Option<u8> {
-        if !self.is_dummy() {
+        let i = self.index as usize;
+        if self.sub != 0 || i >= DUMMY_BITS.len() {
             return None;
         }
-        Some(match self.index {
-            0x0001 => 1, // BOOLEAN: one bit in a PDO
-            0x0002 | 0x0005 => 8,
-            0x0003 | 0x0006 => 16,
-            0x0010 | 0x0016 => 24,
-            0x0004 | 0x0007 => 32,
-            0x0012 | 0x0018 => 40,
-            0x0013 | 0x0019 => 48,
-            0x0014 | 0x001A => 56,
-            _ => 64,
-        })
+        match DUMMY_BITS[i] {
+            0 => None,
+            bits => Some(bits),
+        }
     }
 }
+
+/// The size in bits of each static data type 0000h–001Bh that a dummy entry may name (PDO-34; CiA 301
+/// table 44), 0 for the others (0000h, the REAL, string, DOMAIN and TIME types, 0011h REAL64, 0017h): one
+/// table where a match per type was twice the code.
+const DUMMY_BITS: [u8; 0x1C] = [
+    0, 1, 8, 16, 32, 8, 16, 32, // 00h; 01h BOOLEAN (one bit in a PDO); INTEGER8/16/32; UNSIGNED8/16/32
+    0, 0, 0, 0, 0, 0, 0, 0, // 08h-0Fh: REAL32, strings, DOMAIN, TIME types: not dummies
+    24, 0, 40, 48, 56, 64, 24, 0, // 10h INTEGER24, 11h REAL64, INTEGER40/48/56/64, 16h UNSIGNED24, 17h
+    40, 48, 56, 64, // 18h-1Bh UNSIGNED40/48/56/64
+];
 
 #[cfg(test)]
 mod tests {
@@ -111,5 +115,29 @@ mod tests {
         assert_eq!(MappingEntry::parse(&[1, 2, 3]), Err(WireError::Length));
         assert!(!MappingEntry::from_raw(0x0005_0108).is_dummy());
         assert_eq!(MappingEntry::from_raw(0x0008_0020).dummy_bits(), None);
+    }
+
+    /// PDO-34: the dummy data types and their sizes, type by type as CiA 301 lists them, against the table;
+    /// sub-index 0 only.
+    #[test]
+    fn dummy_types() {
+        for index in 0u16..=0x40 {
+            let expect = match index {
+                0x0001 => Some(1),
+                0x0002 | 0x0005 => Some(8),
+                0x0003 | 0x0006 => Some(16),
+                0x0010 | 0x0016 => Some(24),
+                0x0004 | 0x0007 => Some(32),
+                0x0012 | 0x0018 => Some(40),
+                0x0013 | 0x0019 => Some(48),
+                0x0014 | 0x001A => Some(56),
+                0x0015 | 0x001B => Some(64),
+                _ => None,
+            };
+            let e = MappingEntry { index, sub: 0, bits: 8 };
+            assert_eq!((e.dummy_bits(), e.is_dummy()), (expect, expect.is_some()), "{index:04X}h");
+            assert_eq!(MappingEntry { sub: 1, ..e }.dummy_bits(), None, "{index:04X}h sub 1");
+        }
+        assert_eq!(MappingEntry { index: 0x1005, sub: 0, bits: 8 }.dummy_bits(), None);
     }
 }
