@@ -49,6 +49,7 @@ FAULTS=(
   'pdo-offset-slot-two-bytes-as-one @@ od_all_types @@ 1 => copy_in::<2>(bytes, at, data), @@ 1 => copy_in::<1>(bytes, at, data),'
   'nmt04-table-default-not-unzigzagged @@ od_all_types @@ v = (v >> 1) ^ (v & 1).wrapping_neg(); @@ v >>= 1;'
   'od04-record-rows-run-into-the-next-object @@ od_all_types @@ _ => i < end, @@ _ => i <= end,'
+  'pdo12-short-frame-ends-the-time-out @@ pdo_sync_emcy @@ let recovered = outcome != RxOutcome::TooShort && core::mem::take(&mut r.timed_out); @@ let recovered = core::mem::take(&mut r.timed_out) && outcome != RxOutcome::TooShort;'
   'od03-array-length-not-from-its-shape @@ od_all_types @@ sub: self.sub, n: s.n }) @@ sub: self.sub, n: s.n.min(1) })'
 )
 

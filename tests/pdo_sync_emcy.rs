@@ -330,6 +330,25 @@ fn event_driven_inhibit_event_timer_and_rtr() {
     assert_eq!(on(&bus, 0x484).len(), 1);
 }
 
+/// PDO-12 with PDO-39: a frame too short for an RPDO's mapping is not the reception that ends its time-out.
+/// It raises 8210h and leaves 8250h standing; the next frame of the right length ends both, so the last
+/// EMCY says no error is left (EMCY-07, ERR-02).
+#[test]
+fn a_short_frame_after_an_rpdo_time_out_leaves_8250h_to_the_next_good_one() {
+    const RPDOS: &[PdoDefault] = &[PdoDefault { event_timer_ms: 100, mapping: &[0x2002_0010], ..PdoDefault::EVENT }];
+    let mut bus = Bus::booted(vec![node_with(3, NodeConfig { rpdo: RPDOS, ..NodeConfig::DEFAULT })]);
+    bus.inject(frame("000 [2] 01 00"));
+    bus.inject(frame("203 [2] 05 00"));
+    bus.run_for_ms(150);
+    assert_eq!(on(&bus, 0x083).last().unwrap().1, [0x50, 0x82, 0x11, 0x01, 0, 0, 0, 0]);
+    bus.inject(frame("203 [1] 06"));
+    assert_eq!(on(&bus, 0x083).last().unwrap().1, [0x10, 0x82, 0x11, 0x01, 0, 0, 0, 0]);
+    assert_eq!(bus.stations[0].app().limited, 5); // not applied
+    bus.inject(frame("203 [2] 06 00"));
+    assert_eq!(bus.stations[0].app().limited, 6);
+    assert_eq!(on(&bus, 0x083).last().unwrap().1, [0; 8]);
+}
+
 /// Synchronous RPDOs (PDO-09): applied at the next SYNC, not before; the event timer (PDO-12) raises EMCY
 /// 8250h; the SYNC window (SYNC-09, PDO-40) discards late synchronous data; SYNC-14 (a SYNC with a counter
 /// while 1019h = 0).

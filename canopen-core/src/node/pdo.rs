@@ -146,7 +146,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return;
         }
         let outcome = r.receive(now, frame);
-        let timed_out = core::mem::take(&mut r.timed_out);
+        // A frame too short to apply is not a reception: the RPDO stays timed out (PDO-12, PDO-39).
+        let recovered = outcome != RxOutcome::TooShort && core::mem::take(&mut r.timed_out);
         let length_error = match outcome {
             RxOutcome::TooShort => Some(codes::PDO_LENGTH),
             RxOutcome::Apply { exceeded } => {
@@ -160,9 +161,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
                 exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
             }
         };
-        // The cause of 8250h is gone when no RPDO is timed out any more (one code for every RPDO); a frame
-        // too short to apply does not count.
-        if outcome != RxOutcome::TooShort && timed_out && !self.rpdos.as_ref().iter().any(|r| r.timed_out) {
+        // The cause of 8250h is gone when no RPDO is timed out any more (one code for every RPDO).
+        if recovered && !self.rpdos.as_ref().iter().any(|r| r.timed_out) {
             self.clear_error(codes::RPDO_TIMEOUT);
         }
         self.rpdo_length_state(k, length_error);
