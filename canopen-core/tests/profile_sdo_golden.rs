@@ -122,7 +122,7 @@ fn transcripts() -> Vec<(u16, String)> {
             for sub in 0..=9u8 {
                 for v in VALUES {
                     for (cs, n) in COMMANDS {
-                        t = t + canopen_core::Duration::from_millis(1);
+                        t += canopen_core::Duration::from_millis(1);
                         let [b0, b1, b2, b3] = v.to_le_bytes();
                         let mut req = [cs, i0, i1, sub, b0, b1, b2, b3];
                         req[4 + n..].fill(0);
@@ -141,7 +141,7 @@ fn transcripts() -> Vec<(u16, String)> {
             }
             // NMT reset communication (NMT-05/06): the defaults, then what 1010h stored; the boot-up, the
             // services' deadlines and the object's values after it.
-            t = t + canopen_core::Duration::from_millis(1);
+            t += canopen_core::Duration::from_millis(1);
             node.handle_frame(t, &CanFrame::new(0x000, &[0x82, 5]).unwrap_or_else(|| unreachable!()));
             out.push_str("reset:");
             record(&mut node, &mut out);
