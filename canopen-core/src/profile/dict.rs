@@ -46,14 +46,17 @@ use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 /// own objects). Without the optional objects' features it is exactly `Self::find(index, sub)?`: the
 /// match with a constant-false guard still cost the minimal firmware 240 B of flash.
 macro_rules! find_or_optional {
-    ($index:expr, $sub:expr, $optional:expr) => {{
+    ($index:expr, $sub:expr, $optional:expr) => {
+        find_or_optional!(find, $index, $sub, $optional)
+    };
+    ($find:ident, $index:expr, $sub:expr, $optional:expr) => {{
         #[cfg(any(
             feature = "manufacturer-status",
             feature = "high-res-time",
             feature = "verify-config",
             feature = "emcy-consumer"
         ))]
-        let f = match Self::find($index, $sub) {
+        let f = match Self::$find($index, $sub) {
             Ok(f) => f,
             Err(e) => return cold(|| if optional::serves($index) { $optional } else { Err(e) }),
         };
@@ -63,7 +66,7 @@ macro_rules! find_or_optional {
             feature = "verify-config",
             feature = "emcy-consumer"
         )))]
-        let f = Self::find($index, $sub)?;
+        let f = Self::$find($index, $sub)?;
         f
     }};
 }
@@ -260,8 +263,16 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     const COUNTS: Counts = Counts::new(Z::HB, Z::RPDO, Z::TPDO);
 
-    /// Where a sub-entry is, from the table of `table` (one walk; OD-16 abort codes).
+    /// Where a sub-entry is, from the table of `table` (one walk; OD-16 abort codes). One call: the cold
+    /// paths (writes, `info`, segmented reads) share the walk.
     fn find(index: u16, sub: u8) -> Result<Found, AbortCode> {
+        table::walk(index, sub, Self::COUNTS)
+    }
+
+    /// [`find`](Self::find) with a VAR of 1000h–101Fh found inline, for the expedited upload (the hot read:
+    /// bench-node.sh expedited_upload).
+    #[inline]
+    fn find_fast(index: u16, sub: u8) -> Result<Found, AbortCode> {
         table::find(index, sub, Self::COUNTS)
     }
 
@@ -642,7 +653,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
 
     /// One table walk; every entry here is readable.
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
-        let f = find_or_optional!(index, sub, self.optional.read_expedited(index, sub, buf));
+        let f = find_or_optional!(find_fast, index, sub, self.optional.read_expedited(index, sub, buf));
         if let Some(text) = self.text(f.slot) {
             return Ok(text_expedited(text, buf));
         }

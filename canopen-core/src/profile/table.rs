@@ -379,7 +379,7 @@ pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
 
 /// [`find`] for the objects of more than one sub-entry and those outside 1000h–101Fh.
 #[inline(never)]
-fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
+pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     let (runs, k) = object(index, c).ok_or(AbortCode::ObjectDoesNotExist)?;
     let last = |r: &Run| if r.last == HB { c.hb() } else { r.last };
     for r in runs {
