@@ -71,6 +71,12 @@ macro_rules! find_or_optional {
     }};
 }
 
+/// What a write of 1010h/1011h with the right signature answers (0606 0000h: this dictionary cannot save or
+/// restore by itself). The node's dictionary (`node::dict`) takes it as the go-ahead of its store command:
+/// the profile has then checked the entry, its access, its length and the signature (STORE-04/09).
+#[cfg(feature = "store-restore")]
+pub(crate) const STORE_GO_AHEAD: AbortCode = AbortCode::HardwareError;
+
 /// Runs `f` out of line, as the unlikely path: the optional objects' fallback kept the SDO upload of the
 /// profile's own objects 4 instructions slower when it was inline (bench-node.sh expedited_upload).
 #[cfg(any(
@@ -391,7 +397,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::Store | Slot::Restore if rules => {
                 let sig = if f.slot == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
                 // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
-                return Err(if v != sig { AbortCode::CannotStore } else { AbortCode::HardwareError });
+                return Err(if v != sig { AbortCode::CannotStore } else { STORE_GO_AHEAD });
             }
             #[cfg(feature = "store-restore")]
             Slot::Store | Slot::Restore => {}
