@@ -36,6 +36,8 @@ use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, SubInfo};
 use crate::od::{Access, DataType, PdoMapping};
 #[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::mapping::MAX_ENTRIES;
+#[cfg(feature = "pdo-dynamic-mapping")]
+use crate::pdo::PdoDefault;
 use crate::pdo::{rpdo_type_ok, tpdo_type_ok, PdoComm, PdoMapParams};
 use crate::sizes::Sizes;
 #[cfg(feature = "store-restore")]
@@ -440,7 +442,6 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     /// A PDO communication record's entry, or (feature `pdo-dynamic-mapping`) a mapping record's.
     fn set_pdo(&mut self, f: &Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
-        let d = if f.tx() { self.config.tpdo_default(f.k()) } else { self.config.rpdo_default(f.k()) };
         let p = &mut self.params;
         let (comm, map) = if f.tx() {
             (p.tpdo_comm.as_mut().get_mut(f.k()), p.tpdo_map.as_mut().get_mut(f.k()))
@@ -452,10 +453,15 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         };
         let valid = comm.is_valid();
         #[cfg(not(feature = "pdo-dynamic-mapping"))]
-        let _ = (map, d, sub); // a fixed mapping is const: `write_found` refuses it before this
+        let _ = (map, sub); // a fixed mapping is const: `write_found` refuses it before this
         match f.slot {
             #[cfg(feature = "pdo-dynamic-mapping")]
-            Slot::MapCount | Slot::MapEntry => return set_map(comm, map, sub, v, rules, d.max_mapped),
+            Slot::MapCount | Slot::MapEntry => {
+                // Only the highest count of the PDO's default (`PdoDefault::max_mapped`), not a copy of it.
+                let defaults = if f.tx() { self.config.tpdo } else { self.config.rpdo };
+                let max = defaults.get(f.k()).unwrap_or(&PdoDefault::UNUSED).max_mapped;
+                return set_map(comm, map, sub, v, rules, max);
+            }
             Slot::PdoCob => {
                 if f.tx() {
                     crate::pdo::check_tpdo_rtr(v)?; // a build without TPDO remote requests: bit 30 stays set

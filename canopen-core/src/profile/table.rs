@@ -70,19 +70,20 @@ pub(super) enum Slot {
 }
 
 /// Data type and access of a run of sub-entries (the profile uses these eight at most). The discriminant
-/// holds the encoded size (bits 0–2: 1, 2 or 4; 0 for a string) and whether SDO may write it ([`WRITABLE`]),
-/// so [`Ty::size`] and [`Ty::writable`] are a mask each, not a match at every caller.
+/// holds the encoded size (bits 0–2: 1, 2 or 4; 0 for a string), the access (bits 4–5: 0 const, 1 ro, 2 rw)
+/// and whether SDO may write it ([`WRITABLE`]), so [`Ty::size`], [`Ty::writable`] and [`Ty::parts`] are a
+/// mask or a small lookup each, not a match on the eight types at every caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(u8)]
 pub(super) enum Ty {
     U8Const = 0x01,
     U8Ro = 0x11,
     U8Rw = 0x21 | WRITABLE,
-    U16Rw = 0x02 | WRITABLE,
-    U32Ro = 0x04,
-    U32Rw = 0x14 | WRITABLE,
+    U16Rw = 0x22 | WRITABLE,
+    U32Ro = 0x14,
+    U32Rw = 0x24 | WRITABLE,
     #[cfg(not(feature = "pdo-dynamic-mapping"))]
-    U32Const = 0x24,
+    U32Const = 0x04,
     #[cfg(feature = "manufacturer-strings")]
     StrConst = 0x00,
 }
@@ -91,20 +92,20 @@ pub(super) enum Ty {
 const WRITABLE: u8 = 0x80;
 
 impl Ty {
-    /// The data type and access it stands for.
+    /// The data type and access it stands for: the data type from the size bits, the access from bits 4–5.
     pub(super) const fn parts(self) -> (DataType, Access) {
-        match self {
-            Ty::U8Const => (DataType::Unsigned8, Access::Const),
-            Ty::U8Ro => (DataType::Unsigned8, Access::Ro),
-            Ty::U8Rw => (DataType::Unsigned8, Access::Rw),
-            Ty::U16Rw => (DataType::Unsigned16, Access::Rw),
-            Ty::U32Ro => (DataType::Unsigned32, Access::Ro),
-            Ty::U32Rw => (DataType::Unsigned32, Access::Rw),
-            #[cfg(not(feature = "pdo-dynamic-mapping"))]
-            Ty::U32Const => (DataType::Unsigned32, Access::Const),
-            #[cfg(feature = "manufacturer-strings")]
-            Ty::StrConst => (DataType::VisibleString, Access::Const),
-        }
+        let dt = match self.size() {
+            1 => DataType::Unsigned8,
+            2 => DataType::Unsigned16,
+            4 => DataType::Unsigned32,
+            _ => DataType::VisibleString,
+        };
+        let access = match (self as u8 >> 4) & 3 {
+            0 => Access::Const,
+            1 => Access::Ro,
+            _ => Access::Rw,
+        };
+        (dt, access)
     }
 
     /// Whether SDO may write it.
@@ -412,6 +413,22 @@ mod tests {
             #[cfg(feature = "manufacturer-strings")]
             Ty::StrConst,
         ];
+        use crate::od::{Access, DataType};
+        let intended = [
+            (DataType::Unsigned8, Access::Const),
+            (DataType::Unsigned8, Access::Ro),
+            (DataType::Unsigned8, Access::Rw),
+            (DataType::Unsigned16, Access::Rw),
+            (DataType::Unsigned32, Access::Ro),
+            (DataType::Unsigned32, Access::Rw),
+            #[cfg(not(feature = "pdo-dynamic-mapping"))]
+            (DataType::Unsigned32, Access::Const),
+            #[cfg(feature = "manufacturer-strings")]
+            (DataType::VisibleString, Access::Const),
+        ];
+        for (ty, parts) in all.into_iter().zip(intended) {
+            assert_eq!(ty.parts(), parts, "{ty:?}: the name says the data type and access");
+        }
         for ty in all {
             let (dt, access) = ty.parts();
             assert_eq!(ty.size(), dt.size().unwrap_or(0), "{ty:?}");
