@@ -43,23 +43,29 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         NodeDict { od: Merged { comm, app }, storage, save }
     }
 
+    /// A write of a mapping record (PDO-36/37), undone when its entries do not resolve: the record as it
+    /// was is kept aside (one copy of the struct) and put back, so nothing changes.
     #[cfg(feature = "pdo-dynamic-mapping")]
     fn write_mapping(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        let comm = &mut *self.od.comm;
-        let mut old = [0u8; 4];
-        let n = comm.read(index, sub, 0, &mut old)?;
-        comm.write(index, sub, data)?;
         let dir = if index < 0x1A00 { PdoDir::Rpdo } else { PdoDir::Tpdo };
-        let checked = self.check_mapping(index, sub, dir);
-        if checked.is_err() {
-            let _ = self.od.comm.load_value(index, sub, old.get(..n).unwrap_or(&old));
+        let k = usize::from(index & 0x1FF);
+        let saved = self.map_mut(dir, k).map(|m| *m);
+        self.od.comm.write(index, sub, data)?; // a PDO this node has not: 0602 0000h, as any write
+        let checked = self.check_mapping(sub, k, dir);
+        if let (Err(_), Some(saved), Some(map)) = (checked, saved, self.map_mut(dir, k)) {
+            *map = saved;
         }
         checked
     }
 
     #[cfg(feature = "pdo-dynamic-mapping")]
-    fn check_mapping(&self, index: u16, sub: u8, dir: PdoDir) -> Result<(), AbortCode> {
-        let k = usize::from(index & 0x1FF);
+    fn map_mut(&mut self, dir: PdoDir, k: usize) -> Option<&mut crate::pdo::PdoMapParams> {
+        let p = &mut self.od.comm.params;
+        if dir == PdoDir::Rpdo { p.rpdo_map.as_mut() } else { p.tpdo_map.as_mut() }.get_mut(k)
+    }
+
+    #[cfg(feature = "pdo-dynamic-mapping")]
+    fn check_mapping(&self, sub: u8, k: usize, dir: PdoDir) -> Result<(), AbortCode> {
         let p = &self.od.comm.params;
         let map = if dir == PdoDir::Rpdo { p.rpdo_map.as_ref().get(k) } else { p.tpdo_map.as_ref().get(k) };
         let Some(map) = map else { return Ok(()) };
