@@ -288,6 +288,7 @@ pub(super) struct Found {
 
 /// The bit of [`Found::n`] that marks a TPDO object.
 const TX: u16 = 0x8000;
+const _: () = assert!(TX == 1 << 15, "walk sets TX as bit 15");
 
 impl Found {
     /// A TPDO object (1800h/1A00h range).
@@ -334,11 +335,9 @@ pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
             if k >= c.pdos(tx) {
                 return Err(AbortCode::ObjectDoesNotExist);
             }
-            match index & 0xFE00 {
-                0x1800 => (0x1800, 0x1400, k | TX),
-                0x1A00 => (0x1600, 0x1600, k | TX),
-                base => (base, base, k),
-            }
+            // A mapping record reads 1600h's rows, a communication record 1400h's (and a TPDO's 1800h's).
+            let (key, alt) = if index & 0x200 != 0 { (0x1600, 0x1600) } else { (index & 0xFE00, 0x1400) };
+            (key, alt, k | u16::from(tx) << 15)
         }
         0x1016 if c.hb() == 0 => return Err(AbortCode::ObjectDoesNotExist),
         _ => (index, index, 0),
