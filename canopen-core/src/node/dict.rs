@@ -17,10 +17,7 @@ use crate::pdo::mapping::ResolvedMap;
 use crate::profile::{CommProfile, ProfileSizes};
 use crate::storage::{Groups, Storage, StorageError};
 #[cfg(feature = "store-restore")]
-use crate::{
-    od::OdValue,
-    storage::{abort_of, LOAD_SIGNATURE, SAVE_SIGNATURE},
-};
+use crate::{profile::STORE_GO_AHEAD, storage::abort_of};
 
 /// Writes a new record (`storage::update`): the groups to save (1010h), the groups to drop (1011h), with the
 /// application's description where the node has it. One function for both, so one copy of the record code.
@@ -46,23 +43,29 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         NodeDict { od: Merged { comm, app }, storage, save }
     }
 
+    /// A write of a mapping record (PDO-36/37), undone when its entries do not resolve: the record as it
+    /// was is kept aside (one copy of the struct) and put back, so nothing changes.
     #[cfg(feature = "pdo-dynamic-mapping")]
     fn write_mapping(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        let comm = &mut *self.od.comm;
-        let mut old = [0u8; 4];
-        let n = comm.read(index, sub, 0, &mut old)?;
-        comm.write(index, sub, data)?;
         let dir = if index < 0x1A00 { PdoDir::Rpdo } else { PdoDir::Tpdo };
-        let checked = self.check_mapping(index, sub, dir);
-        if checked.is_err() {
-            let _ = self.od.comm.load_value(index, sub, old.get(..n).unwrap_or(&old));
+        let k = usize::from(index & 0x1FF);
+        let saved = self.map_mut(dir, k).map(|m| *m);
+        self.od.comm.write(index, sub, data)?; // a PDO this node has not: 0602 0000h, as any write
+        let checked = self.check_mapping(sub, k, dir);
+        if let (Err(_), Some(saved), Some(map)) = (checked, saved, self.map_mut(dir, k)) {
+            *map = saved;
         }
         checked
     }
 
     #[cfg(feature = "pdo-dynamic-mapping")]
-    fn check_mapping(&self, index: u16, sub: u8, dir: PdoDir) -> Result<(), AbortCode> {
-        let k = usize::from(index & 0x1FF);
+    fn map_mut(&mut self, dir: PdoDir, k: usize) -> Option<&mut crate::pdo::PdoMapParams> {
+        let p = &mut self.od.comm.params;
+        if dir == PdoDir::Rpdo { p.rpdo_map.as_mut() } else { p.tpdo_map.as_mut() }.get_mut(k)
+    }
+
+    #[cfg(feature = "pdo-dynamic-mapping")]
+    fn check_mapping(&self, sub: u8, k: usize, dir: PdoDir) -> Result<(), AbortCode> {
         let p = &self.od.comm.params;
         let map = if dir == PdoDir::Rpdo { p.rpdo_map.as_ref().get(k) } else { p.tpdo_map.as_ref().get(k) };
         let Some(map) = map else { return Ok(()) };
@@ -94,21 +97,23 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         len: Option<usize>,
     ) -> Result<(), AbortCode> {
         if intercepted(index) {
-            crate::od::expedited_download(self, index, sub, data, len)
+            // Every entry of 1010h/1011h and of a mapping record is numeric: sub 00h UNSIGNED8, the others
+            // UNSIGNED32, so a size not indicated is 1 or 4 bytes (SDO-13); `write` finds and checks the entry.
+            let n = len.unwrap_or(if sub == 0 { 1 } else { 4 });
+            self.write(index, sub, data.get(..n).unwrap_or(data))
         } else {
             self.od.comm.write_expedited(index, sub, data, len)
         }
     }
 
+    /// 1010h "save" / 1011h "load" (STORE-04, STORE-08..10): the profile checks the entry, access, length
+    /// and signature as for any write (0602 0000h, 0609 0011h, 0601 0002h, 0607 0012h/0013h, 0800 0020h) and
+    /// answers a right signature with [`STORE_GO_AHEAD`]; then the record is written.
     #[cfg(feature = "store-restore")]
     fn store_command(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        if !self.od.comm.info(index, sub)?.access.writable() {
-            return Err(AbortCode::WriteOfReadOnly);
-        }
-        let v = u32::decode(data)?;
-        let sig = if index == 0x1010 { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
-        if v != sig {
-            return Err(AbortCode::CannotStore); // STORE-04/09: a wrong signature is 0800 0020h
+        match self.od.comm.write(index, sub, data) {
+            Err(STORE_GO_AHEAD) => {}
+            other => return other,
         }
         let groups = Groups::from_sub(sub).ok_or(AbortCode::SubIndexDoesNotExist)?;
         let (save, drop) = if index == 0x1010 { (groups, Groups::NONE) } else { (Groups::NONE, groups) };

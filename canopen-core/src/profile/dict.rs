@@ -36,6 +36,8 @@ use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, SubInfo};
 use crate::od::{Access, DataType, PdoMapping};
 #[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::mapping::MAX_ENTRIES;
+#[cfg(feature = "pdo-dynamic-mapping")]
+use crate::pdo::PdoDefault;
 use crate::pdo::{rpdo_type_ok, tpdo_type_ok, PdoComm, PdoMapParams};
 use crate::sizes::Sizes;
 #[cfg(feature = "store-restore")]
@@ -46,14 +48,17 @@ use crate::storage::{LOAD_SIGNATURE, SAVE_SIGNATURE};
 /// own objects). Without the optional objects' features it is exactly `Self::find(index, sub)?`: the
 /// match with a constant-false guard still cost the minimal firmware 240 B of flash.
 macro_rules! find_or_optional {
-    ($index:expr, $sub:expr, $optional:expr) => {{
+    ($index:expr, $sub:expr, $optional:expr) => {
+        find_or_optional!(find, $index, $sub, $optional)
+    };
+    ($find:ident, $index:expr, $sub:expr, $optional:expr) => {{
         #[cfg(any(
             feature = "manufacturer-status",
             feature = "high-res-time",
             feature = "verify-config",
             feature = "emcy-consumer"
         ))]
-        let f = match Self::find($index, $sub) {
+        let f = match Self::$find($index, $sub) {
             Ok(f) => f,
             Err(e) => return cold(|| if optional::serves($index) { $optional } else { Err(e) }),
         };
@@ -63,10 +68,16 @@ macro_rules! find_or_optional {
             feature = "verify-config",
             feature = "emcy-consumer"
         )))]
-        let f = Self::find($index, $sub)?;
+        let f = Self::$find($index, $sub)?;
         f
     }};
 }
+
+/// What a write of 1010h/1011h with the right signature answers (0606 0000h: this dictionary cannot save or
+/// restore by itself). The node's dictionary (`node::dict`) takes it as the go-ahead of its store command:
+/// the profile has then checked the entry, its access, its length and the signature (STORE-04/09).
+#[cfg(feature = "store-restore")]
+pub(crate) const STORE_GO_AHEAD: AbortCode = AbortCode::HardwareError;
 
 /// Runs `f` out of line, as the unlikely path: the optional objects' fallback kept the SDO upload of the
 /// profile's own objects 4 instructions slower when it was inline (bench-node.sh expedited_upload).
@@ -260,8 +271,16 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     const COUNTS: Counts = Counts::new(Z::HB, Z::RPDO, Z::TPDO);
 
-    /// Where a sub-entry is, from the table of `table` (one walk; OD-16 abort codes).
+    /// Where a sub-entry is, from the table of `table` (one walk; OD-16 abort codes). One call: the cold
+    /// paths (writes, `info`, segmented reads) share the walk.
     fn find(index: u16, sub: u8) -> Result<Found, AbortCode> {
+        table::walk(index, sub, Self::COUNTS)
+    }
+
+    /// [`find`](Self::find) with a VAR of 1000h–101Fh found inline, for the expedited upload (the hot read:
+    /// bench-node.sh expedited_upload).
+    #[inline]
+    fn find_fast(index: u16, sub: u8) -> Result<Found, AbortCode> {
         table::find(index, sub, Self::COUNTS)
     }
 
@@ -380,7 +399,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::Store | Slot::Restore if rules => {
                 let sig = if f.slot == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
                 // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
-                return Err(if v != sig { AbortCode::CannotStore } else { AbortCode::HardwareError });
+                return Err(if v != sig { AbortCode::CannotStore } else { STORE_GO_AHEAD });
             }
             #[cfg(feature = "store-restore")]
             Slot::Store | Slot::Restore => {}
@@ -423,7 +442,6 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     /// A PDO communication record's entry, or (feature `pdo-dynamic-mapping`) a mapping record's.
     fn set_pdo(&mut self, f: &Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
-        let d = if f.tx() { self.config.tpdo_default(f.k()) } else { self.config.rpdo_default(f.k()) };
         let p = &mut self.params;
         let (comm, map) = if f.tx() {
             (p.tpdo_comm.as_mut().get_mut(f.k()), p.tpdo_map.as_mut().get_mut(f.k()))
@@ -435,10 +453,15 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         };
         let valid = comm.is_valid();
         #[cfg(not(feature = "pdo-dynamic-mapping"))]
-        let _ = (map, d, sub); // a fixed mapping is const: `write_found` refuses it before this
+        let _ = (map, sub); // a fixed mapping is const: `write_found` refuses it before this
         match f.slot {
             #[cfg(feature = "pdo-dynamic-mapping")]
-            Slot::MapCount | Slot::MapEntry => return set_map(comm, map, sub, v, rules, d.max_mapped),
+            Slot::MapCount | Slot::MapEntry => {
+                // Only the highest count of the PDO's default (`PdoDefault::max_mapped`), not a copy of it.
+                let defaults = if f.tx() { self.config.tpdo } else { self.config.rpdo };
+                let max = defaults.get(f.k()).unwrap_or(&PdoDefault::UNUSED).max_mapped;
+                return set_map(comm, map, sub, v, rules, max);
+            }
             Slot::PdoCob => {
                 if f.tx() {
                     crate::pdo::check_tpdo_rtr(v)?; // a build without TPDO remote requests: bit 30 stays set
@@ -642,7 +665,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
 
     /// One table walk; every entry here is readable.
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
-        let f = find_or_optional!(index, sub, self.optional.read_expedited(index, sub, buf));
+        let f = find_or_optional!(find_fast, index, sub, self.optional.read_expedited(index, sub, buf));
         if let Some(text) = self.text(f.slot) {
             return Ok(text_expedited(text, buf));
         }

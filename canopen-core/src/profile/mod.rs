@@ -21,6 +21,8 @@ mod table;
 
 pub use crate::heartbeat::ConsumerEntry;
 pub use crate::lss::Identity;
+#[cfg(feature = "store-restore")]
+pub(crate) use dict::STORE_GO_AHEAD;
 pub use dict::{CommProfile, Unchecked};
 
 use crate::abort::AbortCode;

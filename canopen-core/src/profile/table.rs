@@ -4,16 +4,15 @@
 //! `match` on the slot number, so an object costs a few bytes of table instead of an arm in each of
 //! `meta`, `value` and `set`.
 //!
-//! The source is [`ROWS`]: (index, run) pairs, one object's runs together. Everything the lookup uses is
-//! computed from it at compile time: [`RUNS`] (the runs alone, 4 bytes each, the only table in flash),
-//! [`FIXED`] (where the runs of 1000h–101Fh start) and the spans of the other objects. A device that leaves
-//! an object out (a Cargo feature) puts `#[cfg(feature = "...")]` on its rows and nothing else changes
-//! here (its `desc` arm in dict.rs goes too: the test `meta_agrees_with_desc` checks the table against
-//! the EDS descriptions of every index and sub-index).
+//! The table is [`ROWS`] (6 bytes a row): each object's runs of sub-indices, tagged with its index, one
+//! object's rows together. A device that leaves an object out (a Cargo feature) puts
+//! `#[cfg(feature = "...")]` on its rows and nothing else changes here (its `desc` arm in dict.rs goes too:
+//! the test `meta_agrees_with_desc` checks the table against the EDS descriptions of every index and
+//! sub-index).
 //!
-//! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): 1000h–101Fh index a 32-entry
-//! array directly (a VAR there is found without a walk: [`FIXED_VAR`]), the PDO ranges 1400h–1BFFh are computed from the index (PDO-02: PDO `k` at base + k),
-//! 1029h and 1F80h are compared; the object's runs of sub-indices are then scanned (at most 6).
+//! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): one scan of the rows ([`walk`]); the PDO ranges 1400h–1BFFh read their template's rows (PDO-02: PDO
+//! `k` at base + k). A VAR of 1000h–101Fh is found without the scan by the expedited upload ([`find`],
+//! [`FIXED_VAR`], computed from the rows at compile time).
 
 #[cfg(feature = "error-history")]
 use crate::emcy::HISTORY;
@@ -70,19 +69,20 @@ pub(super) enum Slot {
 }
 
 /// Data type and access of a run of sub-entries (the profile uses these eight at most). The discriminant
-/// holds the encoded size (bits 0–2: 1, 2 or 4; 0 for a string) and whether SDO may write it ([`WRITABLE`]),
-/// so [`Ty::size`] and [`Ty::writable`] are a mask each, not a match at every caller.
+/// holds the encoded size (bits 0–2: 1, 2 or 4; 0 for a string), the access (bits 4–5: 0 const, 1 ro, 2 rw)
+/// and whether SDO may write it ([`WRITABLE`]), so [`Ty::size`], [`Ty::writable`] and [`Ty::parts`] are a
+/// mask or a small lookup each, not a match on the eight types at every caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(u8)]
 pub(super) enum Ty {
     U8Const = 0x01,
     U8Ro = 0x11,
     U8Rw = 0x21 | WRITABLE,
-    U16Rw = 0x02 | WRITABLE,
-    U32Ro = 0x04,
-    U32Rw = 0x14 | WRITABLE,
+    U16Rw = 0x22 | WRITABLE,
+    U32Ro = 0x14,
+    U32Rw = 0x24 | WRITABLE,
     #[cfg(not(feature = "pdo-dynamic-mapping"))]
-    U32Const = 0x24,
+    U32Const = 0x04,
     #[cfg(feature = "manufacturer-strings")]
     StrConst = 0x00,
 }
@@ -91,20 +91,20 @@ pub(super) enum Ty {
 const WRITABLE: u8 = 0x80;
 
 impl Ty {
-    /// The data type and access it stands for.
+    /// The data type and access it stands for: the data type from the size bits, the access from bits 4–5.
     pub(super) const fn parts(self) -> (DataType, Access) {
-        match self {
-            Ty::U8Const => (DataType::Unsigned8, Access::Const),
-            Ty::U8Ro => (DataType::Unsigned8, Access::Ro),
-            Ty::U8Rw => (DataType::Unsigned8, Access::Rw),
-            Ty::U16Rw => (DataType::Unsigned16, Access::Rw),
-            Ty::U32Ro => (DataType::Unsigned32, Access::Ro),
-            Ty::U32Rw => (DataType::Unsigned32, Access::Rw),
-            #[cfg(not(feature = "pdo-dynamic-mapping"))]
-            Ty::U32Const => (DataType::Unsigned32, Access::Const),
-            #[cfg(feature = "manufacturer-strings")]
-            Ty::StrConst => (DataType::VisibleString, Access::Const),
-        }
+        let dt = match self.size() {
+            1 => DataType::Unsigned8,
+            2 => DataType::Unsigned16,
+            4 => DataType::Unsigned32,
+            _ => DataType::VisibleString,
+        };
+        let access = match (self as u8 >> 4) & 3 {
+            0 => Access::Const,
+            1 => Access::Ro,
+            _ => Access::Rw,
+        };
+        (dt, access)
     }
 
     /// Whether SDO may write it.
@@ -129,11 +129,12 @@ const MAP_COUNT: Ty = Ty::U8Const;
 #[cfg(not(feature = "pdo-dynamic-mapping"))]
 const MAP_ENTRY: Ty = Ty::U32Const;
 
-/// Sub-indices `first..=last` of one object: type, access and value slot. `last == HB` stands for the
-/// node's number of heartbeat consumers (1016h). An object's count run (sub 00h) comes first, its highest
-/// sub-index last.
+/// Sub-indices `first..=last` of object `index`: type, access and value slot. `last == HB` stands for the
+/// node's number of heartbeat consumers (1016h). An object's rows are together, its count row (sub 00h)
+/// first, its highest sub-index last.
 #[derive(Debug, Clone, Copy)]
-struct Run {
+struct Row {
+    index: u16,
     first: u8,
     last: u8,
     ty: Ty,
@@ -142,145 +143,114 @@ struct Run {
 
 const HB: u8 = 0xFF;
 
-const fn run(first: u8, last: u8, ty: Ty, slot: Slot) -> Run {
-    Run { first, last, ty, slot }
+const fn run(index: u16, first: u8, last: u8, ty: Ty, slot: Slot) -> Row {
+    Row { index, first, last, ty, slot }
 }
 
-const fn var(ty: Ty, slot: Slot) -> Run {
-    run(0, 0, ty, slot)
+const fn var(index: u16, ty: Ty, slot: Slot) -> Row {
+    run(index, 0, 0, ty, slot)
 }
 
-/// Sub 00h of an ARRAY/RECORD: the highest sub-index, the `last` of the object's final run.
-const fn count() -> Run {
-    var(Ty::U8Const, Slot::Count)
+/// Sub 00h of an ARRAY/RECORD: the highest sub-index, the `last` of the object's final row.
+const fn count(index: u16) -> Row {
+    var(index, Ty::U8Const, Slot::Count)
 }
 
-/// Every object of the profile as runs, tagged with their index, one object's runs together (a count run
-/// first). The PDO records are templates: 1400h holds the communication record of every PDO (an RPDO has
+/// Every object of the profile, one object's rows together (a count row first), in increasing index
+/// order. The PDO records are templates: 1400h holds the communication record of every PDO (an RPDO has
 /// subs 00h–05h), 1800h adds the TPDO's sub 06h right after it, 1600h is the mapping record of both.
-const ROWS: &[(u16, Run)] = &[
-    (0x1000, var(Ty::U32Ro, Slot::DeviceType)),   // DEV-01
-    (0x1001, var(Ty::U8Ro, Slot::ErrorRegister)), // ERR-01
+const ROWS: &[Row] = &[
+    var(0x1000, Ty::U32Ro, Slot::DeviceType),   // DEV-01
+    var(0x1001, Ty::U8Ro, Slot::ErrorRegister), // ERR-01
     #[cfg(feature = "error-history")]
-    (0x1003, var(Ty::U8Rw, Slot::History)), // ERR-04..09
+    var(0x1003, Ty::U8Rw, Slot::History), // ERR-04..09
     #[cfg(feature = "error-history")]
-    (0x1003, run(1, HISTORY as u8, Ty::U32Ro, Slot::History)),
-    (0x1005, var(Ty::U32Rw, Slot::SyncCob)),    // SYNC-01..08
-    (0x1006, var(Ty::U32Rw, Slot::SyncPeriod)), //
+    run(0x1003, 1, HISTORY as u8, Ty::U32Ro, Slot::History),
+    var(0x1005, Ty::U32Rw, Slot::SyncCob),    // SYNC-01..08
+    var(0x1006, Ty::U32Rw, Slot::SyncPeriod), //
     #[cfg(feature = "sync-window")]
-    (0x1007, var(Ty::U32Rw, Slot::SyncWindow)), // SYNC-08/09
+    var(0x1007, Ty::U32Rw, Slot::SyncWindow), // SYNC-08/09
     #[cfg(feature = "manufacturer-strings")]
-    (0x1008, var(Ty::StrConst, Slot::DeviceName)), // DEV-04
+    var(0x1008, Ty::StrConst, Slot::DeviceName), // DEV-04
     #[cfg(feature = "manufacturer-strings")]
-    (0x1009, var(Ty::StrConst, Slot::HardwareVersion)),
+    var(0x1009, Ty::StrConst, Slot::HardwareVersion),
     #[cfg(feature = "manufacturer-strings")]
-    (0x100A, var(Ty::StrConst, Slot::SoftwareVersion)),
+    var(0x100A, Ty::StrConst, Slot::SoftwareVersion),
     #[cfg(feature = "guarding")]
-    (0x100C, var(Ty::U16Rw, Slot::GuardTime)), // GUARD-02
+    var(0x100C, Ty::U16Rw, Slot::GuardTime), // GUARD-02
     #[cfg(feature = "guarding")]
-    (0x100D, var(Ty::U8Rw, Slot::LifeTimeFactor)), // GUARD-03
+    var(0x100D, Ty::U8Rw, Slot::LifeTimeFactor), // GUARD-03
     #[cfg(feature = "store-restore")]
-    (0x1010, count()), // STORE-01..05
+    count(0x1010), // STORE-01..05
     #[cfg(feature = "store-restore")]
-    (0x1010, run(1, 3, Ty::U32Rw, Slot::Store)),
+    run(0x1010, 1, 3, Ty::U32Rw, Slot::Store),
     #[cfg(feature = "store-restore")]
-    (0x1011, count()), // STORE-08..11
+    count(0x1011), // STORE-08..11
     #[cfg(feature = "store-restore")]
-    (0x1011, run(1, 3, Ty::U32Rw, Slot::Restore)),
+    run(0x1011, 1, 3, Ty::U32Rw, Slot::Restore),
     #[cfg(feature = "time")]
-    (0x1012, var(Ty::U32Rw, Slot::TimeCob)), // TIME-01..03
-    (0x1014, var(Ty::U32Rw, Slot::EmcyCob)), // EMCY-02/03
+    var(0x1012, Ty::U32Rw, Slot::TimeCob), // TIME-01..03
+    var(0x1014, Ty::U32Rw, Slot::EmcyCob), // EMCY-02/03
     #[cfg(feature = "emcy-inhibit")]
-    (0x1015, var(Ty::U16Rw, Slot::EmcyInhibit)), // EMCY-09
-    (0x1016, count()),                       // HB-06..09
-    (0x1016, run(1, HB, Ty::U32Rw, Slot::Consumer)), //
-    (0x1017, var(Ty::U16Rw, Slot::HeartbeatTime)), // HB-01
-    (0x1018, count()),                       // DEV-03
-    (0x1018, run(1, 4, Ty::U32Ro, Slot::Identity)), //
+    var(0x1015, Ty::U16Rw, Slot::EmcyInhibit), // EMCY-09
+    count(0x1016),                         // HB-06..09
+    run(0x1016, 1, HB, Ty::U32Rw, Slot::Consumer), //
+    var(0x1017, Ty::U16Rw, Slot::HeartbeatTime), // HB-01
+    count(0x1018),                         // DEV-03
+    run(0x1018, 1, 4, Ty::U32Ro, Slot::Identity), //
     #[cfg(feature = "sync-counter")]
-    (0x1019, var(Ty::U8Rw, Slot::SyncOverflow)), // SYNC-10/12
+    var(0x1019, Ty::U8Rw, Slot::SyncOverflow), // SYNC-10/12
     #[cfg(feature = "error-behaviour")]
-    (0x1029, count()), // ERR-10/11
+    count(0x1029), // ERR-10/11
     #[cfg(feature = "error-behaviour")]
-    (0x1029, run(1, 1, Ty::U8Rw, Slot::ErrorBehaviour)),
-    (0x1400, count()),                                              // PDO-06..18
-    (0x1400, run(1, 1, Ty::U32Rw, Slot::PdoCob)),                   //
-    (0x1400, run(2, 2, Ty::U8Rw, Slot::PdoType)),                   //
-    (0x1400, run(3, 3, Ty::U16Rw, Slot::PdoInhibit)),               //
-    (0x1400, run(5, 5, Ty::U16Rw, Slot::PdoEventTimer)),            //
-    (0x1800, run(6, 6, Ty::U8Rw, Slot::PdoSyncStart)),              // PDO-26
-    (0x1600, var(MAP_COUNT, Slot::MapCount)),                       // PDO-30..37
-    (0x1600, run(1, MAX_ENTRIES as u8, MAP_ENTRY, Slot::MapEntry)), //
-    (0x1F80, var(Ty::U32Rw, Slot::NmtStartup)),                     // NMT-27
+    run(0x1029, 1, 1, Ty::U8Rw, Slot::ErrorBehaviour),
+    count(0x1400),                                                // PDO-06..18
+    run(0x1400, 1, 1, Ty::U32Rw, Slot::PdoCob),                   //
+    run(0x1400, 2, 2, Ty::U8Rw, Slot::PdoType),                   //
+    run(0x1400, 3, 3, Ty::U16Rw, Slot::PdoInhibit),               //
+    run(0x1400, 5, 5, Ty::U16Rw, Slot::PdoEventTimer),            //
+    run(0x1800, 6, 6, Ty::U8Rw, Slot::PdoSyncStart),              // PDO-26
+    var(0x1600, MAP_COUNT, Slot::MapCount),                       // PDO-30..37
+    run(0x1600, 1, MAX_ENTRIES as u8, MAP_ENTRY, Slot::MapEntry), //
+    var(0x1F80, Ty::U32Rw, Slot::NmtStartup),                     // NMT-27
 ];
 
-/// The runs of [`ROWS`] without their tags: the table `find` walks.
-const RUNS: [Run; ROWS.len()] = {
-    let mut runs = [count(); ROWS.len()];
-    let mut i = 0;
+/// The rows of one object are together, in increasing sub-index order without overlap, and 1800h's row
+/// follows 1400h's (checked at compile time: [`walk`] takes the one row that holds a sub-index, and the
+/// final row of an object, a TPDO's 1800h row after 1400h's, for its highest sub-index).
+const _: () = {
+    let mut i = 1;
     while i < ROWS.len() {
-        runs[i] = ROWS[i].1;
-        i += 1;
-    }
-    runs
-};
-
-/// (first run, number of runs) of the rows tagged `index`; (0, 0) when there are none. The rows of one
-/// object must be together (checked at compile time).
-const fn span(index: u16) -> (u8, u8) {
-    let (mut first, mut n, mut i) = (0, 0, 0);
-    while i < ROWS.len() {
-        if ROWS[i].0 == index {
-            if n == 0 {
-                first = i;
+        let (prev, cur) = (ROWS[i - 1], ROWS[i]);
+        if prev.index != cur.index {
+            let mut j = 0;
+            while j < i {
+                assert!(ROWS[j].index != cur.index, "the rows of one object are together");
+                j += 1;
             }
-            assert!(first + n == i, "the rows of one object are together");
-            n += 1;
         }
+        let same = prev.index == cur.index || (prev.index == 0x1400 && cur.index == 0x1800);
+        assert!(!same || (prev.last != HB && cur.first > prev.last), "an object's rows go up without overlap");
+        assert!(cur.index != 0x1800 || prev.index == 0x1400, "1800h's row follows 1400h's");
         i += 1;
     }
-    assert!(ROWS.len() <= u8::MAX as usize);
-    (first as u8, n as u8)
-}
-
-/// 1000h–101Fh: [`span`] of each index; 0 runs = no such object.
-const FIXED: [(u8, u8); 32] = {
-    let mut t = [(0u8, 0u8); 32];
-    let mut i = 0;
-    while i < 32 {
-        t[i] = span(0x1000 + i as u16);
-        i += 1;
-    }
-    t
 };
 
-/// 1000h–101Fh: the entry of an object that is one VAR (a single run of sub 00h alone), found without a
+/// 1000h–101Fh: the entry of an object that is one VAR (a single row of sub 00h alone), found without a
 /// walk: the device type, error register and the other VARs the SDO paths read most.
 const FIXED_VAR: [Option<(Ty, Slot)>; 32] = {
     let mut t = [None; 32];
     let mut i = 0;
-    while i < 32 {
-        let (first, n) = FIXED[i];
-        let r = RUNS[first as usize];
-        if n == 1 && r.first == 0 && r.last == 0 {
-            t[i] = Some((r.ty, r.slot));
+    while i < ROWS.len() {
+        let r = ROWS[i];
+        let alone = (i == 0 || ROWS[i - 1].index != r.index) && (i + 1 == ROWS.len() || ROWS[i + 1].index != r.index);
+        if alone && r.index >= 0x1000 && r.index <= 0x101F && r.first == 0 && r.last == 0 {
+            t[(r.index - 0x1000) as usize] = Some((r.ty, r.slot));
         }
         i += 1;
     }
     t
 };
-
-const ERROR_BEHAVIOUR: (u8, u8) = span(0x1029);
-const NMT_STARTUP: (u8, u8) = span(0x1F80);
-const PDO_COMM: (u8, u8) = span(0x1400);
-const TPDO_SYNC_START: (u8, u8) = span(0x1800);
-const PDO_MAP: (u8, u8) = span(0x1600);
-const _: () = assert!(TPDO_SYNC_START.0 == PDO_COMM.0 + PDO_COMM.1, "1800h's row follows 1400h's");
-
-/// The runs `first..first + n` of [`RUNS`].
-fn runs((first, n): (u8, u8)) -> Option<&'static [Run]> {
-    RUNS.get(usize::from(first)..usize::from(first) + usize::from(n))
-}
 
 /// The capacities the table depends on (from `ProfileSizes`), packed in one `u32` so that [`find`] is
 /// not generic and gets them in a register: heartbeat consumers (bits 0–7; no 1016h when 0), RPDOs (bits
@@ -318,6 +288,7 @@ pub(super) struct Found {
 
 /// The bit of [`Found::n`] that marks a TPDO object.
 const TX: u16 = 0x8000;
+const _: () = assert!(TX == 1 << 15, "walk sets TX as bit 15");
 
 impl Found {
     /// A TPDO object (1800h/1A00h range).
@@ -338,33 +309,6 @@ impl Found {
     }
 }
 
-/// The runs of object `index` and the PDO number (0 for the others; with [`TX`] for a TPDO object).
-fn object(index: u16, c: Counts) -> Option<(&'static [Run], u16)> {
-    let span = match index {
-        0x1000..=0x101F => FIXED[usize::from(index & 0x1F)],
-        0x1029 => ERROR_BEHAVIOUR,
-        0x1F80 => NMT_STARTUP,
-        0x1400..=0x1BFF => {
-            // PDO-02: PDO k at base + k; the runs of a communication or mapping record.
-            let (k, tx) = (index & 0x1FF, index >= 0x1800);
-            if k >= c.pdos(tx) {
-                return None;
-            }
-            let span = match (index & 0x200 != 0, tx) {
-                (true, _) => PDO_MAP,
-                (false, false) => PDO_COMM,
-                (false, true) => (PDO_COMM.0, PDO_COMM.1 + TPDO_SYNC_START.1),
-            };
-            return Some((runs(span)?, if tx { k | TX } else { k }));
-        }
-        _ => return None,
-    };
-    if span.1 == 0 || (index == 0x1016 && c.hb() == 0) {
-        return None;
-    }
-    Some((runs(span)?, 0))
-}
-
 /// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
 /// Inline: a VAR of 1000h–101Fh is an array read and a compare at the caller, the rest one call.
 #[inline]
@@ -377,19 +321,40 @@ pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     walk(index, sub, c)
 }
 
-/// [`find`] for the objects of more than one sub-entry and those outside 1000h–101Fh.
+/// [`find`] by one scan of [`ROWS`] (all of them: a loop that stops after the object's rows cost 44 B of
+/// flash in the node, for a path no SDO service depends on for speed): the rows tagged with the object's
+/// index (PDO-02: PDO `k` of a range at base + k reads its template's rows; a TPDO's communication record
+/// 1400h's and 1800h's). An object
+/// without rows does not exist (0602 0000h), a sub-index outside its rows neither (0609 0011h); a count
+/// (sub 00h) is the highest sub-index, the `last` of the object's final row.
 #[inline(never)]
-fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
-    let (runs, k) = object(index, c).ok_or(AbortCode::ObjectDoesNotExist)?;
-    let last = |r: &Run| if r.last == HB { c.hb() } else { r.last };
-    for r in runs {
-        if sub >= r.first && sub <= last(r) {
-            // A count (sub 00h) is the highest sub-index: the `last` of the object's final run.
-            let n = if matches!(r.slot, Slot::Count) { runs.last().map_or(0, |f| last(f).into()) } else { k };
-            return Ok(Found { ty: r.ty, slot: r.slot, n });
+pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
+    let (key, alt, k) = match index {
+        0x1400..=0x1BFF => {
+            let (k, tx) = (index & 0x1FF, index >= 0x1800);
+            if k >= c.pdos(tx) {
+                return Err(AbortCode::ObjectDoesNotExist);
+            }
+            // A mapping record reads 1600h's rows, a communication record 1400h's (and a TPDO's 1800h's).
+            let (key, alt) = if index & 0x200 != 0 { (0x1600, 0x1600) } else { (index & 0xFE00, 0x1400) };
+            (key, alt, k | u16::from(tx) << 15)
         }
+        0x1016 if c.hb() == 0 => return Err(AbortCode::ObjectDoesNotExist),
+        _ => (index, index, 0),
+    };
+    // The runs of an object do not overlap: at most one holds `sub`.
+    let (mut found, mut highest) = (None, None);
+    for r in ROWS.iter().filter(|r| r.index == key || r.index == alt) {
+        let last = if r.last == HB { c.hb() } else { r.last };
+        if sub >= r.first && sub <= last {
+            found = Some(r);
+        }
+        highest = Some(last);
     }
-    Err(AbortCode::SubIndexDoesNotExist)
+    let highest = highest.ok_or(AbortCode::ObjectDoesNotExist)?;
+    let r = found.ok_or(AbortCode::SubIndexDoesNotExist)?;
+    let n = if matches!(r.slot, Slot::Count) { highest.into() } else { k };
+    Ok(Found { ty: r.ty, slot: r.slot, n })
 }
 
 #[cfg(test)]
@@ -412,6 +377,22 @@ mod tests {
             #[cfg(feature = "manufacturer-strings")]
             Ty::StrConst,
         ];
+        use crate::od::{Access, DataType};
+        let intended = [
+            (DataType::Unsigned8, Access::Const),
+            (DataType::Unsigned8, Access::Ro),
+            (DataType::Unsigned8, Access::Rw),
+            (DataType::Unsigned16, Access::Rw),
+            (DataType::Unsigned32, Access::Ro),
+            (DataType::Unsigned32, Access::Rw),
+            #[cfg(not(feature = "pdo-dynamic-mapping"))]
+            (DataType::Unsigned32, Access::Const),
+            #[cfg(feature = "manufacturer-strings")]
+            (DataType::VisibleString, Access::Const),
+        ];
+        for (ty, parts) in all.into_iter().zip(intended) {
+            assert_eq!(ty.parts(), parts, "{ty:?}: the name says the data type and access");
+        }
         for ty in all {
             let (dt, access) = ty.parts();
             assert_eq!(ty.size(), dt.size().unwrap_or(0), "{ty:?}");
