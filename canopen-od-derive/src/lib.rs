@@ -99,8 +99,8 @@
 //! static as in a firmware): UNSIGNED32 VAR 7.9 B (match arms 50.0, `compact` 12.3), ARRAY of 4 x UNSIGNED16
 //! 7.5 B (192.6, 22.9), RECORD of three 25.3 B (140.5, 41.3), RAM the values alone; python canopen's e35.eds
 //! application 9,074 B (39,490, 21,922; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
-//! expedited download 287 (default layout 291), RPDO to 4 objects 365.5 (381.5), SYNC to 4 TPDOs 218.9 per
-//! bus frame (216.5): PDO handles hold the value's offset and size class, one jump table per value.
+//! expedited download 287 (default layout 291), RPDO to 4 objects 351.5 (367.5), SYNC to 4 TPDOs 220.5 per
+//! bus frame (218.1): PDO handles hold the value's offset and size class, one jump table per value.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
 //! `f32`, `f64`, `I24`, `I40`, `I48`, `I56`, `U24`, `U40`, `U48`, `U56`, `TimeOfDay`, `TimeDifference`,
