@@ -626,11 +626,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         };
         match function {
             FunctionCode::Nmt if node == 0 && !frame.is_rtr() => self.handle_node_control(now, frame),
-            #[cfg(feature = "guarding")]
-            FunctionCode::NmtErrorControl if node == self.node_id.get() => self.handle_guarding(now, frame),
-            #[cfg(not(feature = "guarding"))]
-            FunctionCode::NmtErrorControl if node == self.node_id.get() => {}
-            FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
+            FunctionCode::NmtErrorControl if node != 0 => self.handle_error_control(now, node, frame),
             #[cfg(not(feature = "emcy-consumer"))]
             FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),
             _ => {}
