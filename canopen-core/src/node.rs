@@ -878,9 +878,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if from == NmtState::Operational {
             self.stop_pdos();
         }
-        if from == NmtState::Stopped && to == NmtState::PreOperational {
-            self.sync.restart_counter(); // SYNC-11
-        }
         if to == NmtState::Operational {
             self.start_pdos(self.now);
         }
@@ -890,6 +887,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.cancel_extra_sdo();
         }
         if from == NmtState::Stopped {
+            // Leaving Stopped: one test for SYNC-11 and NMT-22 (towards Pre-operational no PDO starts above,
+            // so the counter restarts in the same order as before).
+            if to == NmtState::PreOperational {
+                self.sync.restart_counter(); // SYNC-11
+            }
             self.pump_emcy(self.now); // NMT-22: the most recent pending EMCY goes out now
         }
     }
