@@ -813,14 +813,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.now = self.now.max(now);
         self.comm.optional.set_now(self.now); // 1013h runs on the node's clock (nothing without the feature)
         if self.boot_pending {
-            self.boot_pending = false;
-            self.reset(now, true);
+            self.reset(now, true); // clears boot_pending: one store in `reset`, not one per inlined copy of this
         }
     }
 
     /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05),
     /// each loading the stored values of its group after the defaults (NMT-06).
     fn reset(&mut self, now: Instant, application: bool) {
+        self.boot_pending = false; // the power-on boot is this reset (`ensure_booted`); later ones find it false
         self.cob_ids_may_change(); // reset communication, an LSS node-ID
         if application {
             self.app.restore_defaults();
