@@ -862,11 +862,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.sync.start(now);
         self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
         self.sync_length_error = false;
-        for k in 0..Z::RPDO {
-            self.configure_pdo(false, k);
-        }
-        for k in 0..Z::TPDO {
-            self.configure_pdo(true, k);
+        // Every RPDO, then every TPDO: one loop over both.
+        for i in 0..Z::RPDO + Z::TPDO {
+            let tx = i >= Z::RPDO;
+            self.configure_pdo(tx, if tx { i - Z::RPDO } else { i });
         }
     }
 
