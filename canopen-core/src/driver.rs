@@ -268,16 +268,18 @@ where
             let mut app = pin!(wake.wait());
             poll_fn(|cx| poll_woken(cx, frame.as_mut(), sleep.as_mut(), app.as_mut())).await
         };
+        // A frame and a controller state share one clock read and one lock: they differ only in the call.
         match woken {
-            Woken::Frame(Ok(Received::Frame(frame))) => {
+            Woken::Frame(Ok(received)) => {
                 #[cfg(any(feature = "defmt", feature = "log"))]
-                crate::trace::frame("rx", &frame);
+                if let Received::Frame(frame) = &received {
+                    crate::trace::frame("rx", frame);
+                }
                 let now = timer.now();
-                shared.lock(|n| n.handle_frame(now, &frame));
-            }
-            Woken::Frame(Ok(Received::Bus(state))) => {
-                let now = timer.now();
-                shared.lock(|n| n.handle_bus_state(now, state));
+                shared.lock(|n| match received {
+                    Received::Frame(frame) => n.handle_frame(now, &frame),
+                    Received::Bus(state) => n.handle_bus_state(now, state),
+                });
             }
             Woken::Frame(Err(e)) => {
                 crate::trace::driver_error(true);

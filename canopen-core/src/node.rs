@@ -626,11 +626,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         };
         match function {
             FunctionCode::Nmt if node == 0 && !frame.is_rtr() => self.handle_node_control(now, frame),
-            #[cfg(feature = "guarding")]
-            FunctionCode::NmtErrorControl if node == self.node_id.get() => self.handle_guarding(now, frame),
-            #[cfg(not(feature = "guarding"))]
-            FunctionCode::NmtErrorControl if node == self.node_id.get() => {}
-            FunctionCode::NmtErrorControl if node != 0 => self.handle_remote_heartbeat(now, node, frame),
+            FunctionCode::NmtErrorControl if node != 0 => self.handle_error_control(now, node, frame),
             #[cfg(not(feature = "emcy-consumer"))]
             FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),
             _ => {}
@@ -817,14 +813,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.now = self.now.max(now);
         self.comm.optional.set_now(self.now); // 1013h runs on the node's clock (nothing without the feature)
         if self.boot_pending {
-            self.boot_pending = false;
-            self.reset(now, true);
+            self.reset(now, true); // clears boot_pending: one store in `reset`, not one per inlined copy of this
         }
     }
 
     /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05),
     /// each loading the stored values of its group after the defaults (NMT-06).
     fn reset(&mut self, now: Instant, application: bool) {
+        self.boot_pending = false; // the power-on boot is this reset (`ensure_booted`); later ones find it false
         self.cob_ids_may_change(); // reset communication, an LSS node-ID
         if application {
             self.app.restore_defaults();
@@ -866,11 +862,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.sync.start(now);
         self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
         self.sync_length_error = false;
-        for k in 0..Z::RPDO {
-            self.configure_pdo(false, k);
-        }
-        for k in 0..Z::TPDO {
-            self.configure_pdo(true, k);
+        // Every RPDO, then every TPDO: one loop over both.
+        for i in 0..Z::RPDO + Z::TPDO {
+            let tx = i >= Z::RPDO;
+            self.configure_pdo(tx, if tx { i - Z::RPDO } else { i });
         }
     }
 
@@ -882,9 +877,6 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if from == NmtState::Operational {
             self.stop_pdos();
         }
-        if from == NmtState::Stopped && to == NmtState::PreOperational {
-            self.sync.restart_counter(); // SYNC-11
-        }
         if to == NmtState::Operational {
             self.start_pdos(self.now);
         }
@@ -894,6 +886,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             self.cancel_extra_sdo();
         }
         if from == NmtState::Stopped {
+            // Leaving Stopped: one test for SYNC-11 and NMT-22 (towards Pre-operational no PDO starts above,
+            // so the counter restarts in the same order as before).
+            if to == NmtState::PreOperational {
+                self.sync.restart_counter(); // SYNC-11
+            }
             self.pump_emcy(self.now); // NMT-22: the most recent pending EMCY goes out now
         }
     }

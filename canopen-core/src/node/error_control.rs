@@ -41,36 +41,48 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    #[cfg(feature = "guarding")]
-    pub(super) fn handle_guarding(&mut self, now: Instant, frame: &CanFrame) {
-        // GUARD-05: the request is an RTR; HB-05: no guarding while the heartbeat producer runs.
-        if !frame.is_rtr() || self.producer.is_active() || !self.nmt.state().allows(Service::ErrorControl) {
+    /// An NMT error-control frame (701h..77Fh) of node `node`, one path with one exit for both services:
+    /// on the node's own ID it is a node-guarding request, answered as the NMT slave (GUARD-05: an RTR;
+    /// HB-05: only while the heartbeat producer is off; GUARD-11: a guarding master heard again after a
+    /// life-guarding time-out resolves it), on another ID a remote heartbeat fed to the consumer (HB-10,
+    /// HB-11: a node heard again after its time-out resumes). Both only where NMT allows error control;
+    /// an event that resolves a loss clears 8130h once no other loss remains.
+    pub(super) fn handle_error_control(&mut self, now: Instant, node: u8, frame: &CanFrame) {
+        if !self.nmt.state().allows(Service::ErrorControl) {
             return;
         }
-        let (reply, resolved) = self.guarding.handle_request(
-            now,
-            self.nmt.state().state_code(),
-            self.comm.params.guard_time_ms,
-            self.comm.params.life_time_factor,
-        );
-        self.send_error_control(reply.emit());
-        if let Some(ev) = resolved {
-            self.push_event(Event::LifeGuarding(ev));
-            self.error_control_recovered();
-        }
-    }
-
-    pub(super) fn handle_remote_heartbeat(&mut self, now: Instant, node: u8, frame: &CanFrame) {
-        if frame.is_rtr() || !self.nmt.state().allows(Service::ErrorControl) {
+        // (event, whether it resolves an error-control loss)
+        let outcome = if node == self.node_id.get() {
+            #[cfg(not(feature = "guarding"))]
             return;
-        }
-        let Ok(Heartbeat(state)) = Heartbeat::parse(frame.data()) else {
-            return;
+            #[cfg(feature = "guarding")]
+            {
+                if !frame.is_rtr() || self.producer.is_active() {
+                    return;
+                }
+                let (reply, resolved) = self.guarding.handle_request(
+                    now,
+                    self.nmt.state().state_code(),
+                    self.comm.params.guard_time_ms,
+                    self.comm.params.life_time_factor,
+                );
+                self.send_error_control(reply.emit());
+                resolved.map(|ev| (Event::LifeGuarding(ev), true))
+            }
+        } else {
+            if frame.is_rtr() {
+                return;
+            }
+            let Ok(Heartbeat(state)) = Heartbeat::parse(frame.data()) else {
+                return;
+            };
+            self.consumer
+                .handle_heartbeat(now, node, state)
+                .map(|ev| (Event::Heartbeat(ev), matches!(ev, ConsumerEvent::Resumed { .. })))
         };
-        if let Some(ev) = self.consumer.handle_heartbeat(now, node, state) {
-            let resumed = matches!(ev, ConsumerEvent::Resumed { .. });
-            self.push_event(Event::Heartbeat(ev));
-            if resumed {
+        if let Some((event, resolves)) = outcome {
+            self.push_event(event);
+            if resolves {
                 self.error_control_recovered();
             }
         }
@@ -117,5 +129,47 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let mut buf = [0u8; 8];
         buf[0] = data[0];
         self.send(FunctionCode::NmtErrorControl.cob_id(self.node_id), buf, 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::node::{NoApplication, Node};
+    use crate::profile::NodeConfig;
+    use crate::{CanFrame, Instant, NodeId};
+    use std::vec::Vec;
+
+    fn drain(n: &mut Node<NoApplication>) -> Vec<CanFrame> {
+        core::iter::from_fn(|| n.poll_transmit()).collect()
+    }
+
+    /// The one error-control path's branches (GUARD-05, HB-05, HB-10): on the node's own ID only an RTR is
+    /// a guarding request and only while the producer is off; on another ID only a data frame is a
+    /// heartbeat; 700h (node 0) is neither.
+    #[test]
+    fn error_control_frames_are_told_apart_guard_05_hb_05_hb_10() {
+        let cfg = NodeConfig { guard_time_ms: 100, life_time_factor: 3, ..NodeConfig::DEFAULT };
+        let mut n: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), cfg, NoApplication);
+        n.handle_timeout(Instant::ZERO);
+        drain(&mut n);
+        while n.poll_event().is_some() {}
+        let t = Instant::from_millis(10);
+        // Own ID, data frame: not a guarding request.
+        n.handle_frame(t, &CanFrame::new(0x705, &[0x7F]).unwrap());
+        // Node 0 and a remote RTR: nothing.
+        n.handle_frame(t, &CanFrame::new_rtr(0x700, 1).unwrap());
+        n.handle_frame(t, &CanFrame::new_rtr(0x706, 1).unwrap());
+        assert_eq!(drain(&mut n), []);
+        // A remote heartbeat 1016h does not monitor: no event.
+        n.handle_frame(t, &CanFrame::new(0x706, &[0x05]).unwrap());
+        assert_eq!(n.poll_event(), None);
+        // Own ID, RTR, producer off: answered with toggle 0 and state 7Fh.
+        n.handle_frame(t, &CanFrame::new_rtr(0x705, 1).unwrap());
+        assert_eq!(drain(&mut n), [CanFrame::new(0x705, &[0x7F]).unwrap()]);
+        // HB-05: with the producer on, a guarding request is not answered.
+        n.set_heartbeat_time(t, 100);
+        n.handle_frame(t, &CanFrame::new_rtr(0x705, 1).unwrap());
+        assert_eq!(drain(&mut n), []);
     }
 }

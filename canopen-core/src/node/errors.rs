@@ -147,7 +147,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             NmtState::Initialising => return,
             _ => {}
         }
-        while self.comm.errors.has_pending() && self.emcy.may_send(now) && !self.tx.is_full() {
+        // No `has_pending` test here: `pop_pending` answers it (the other two tests have no side effect).
+        while self.emcy.may_send(now) && !self.tx.is_full() {
             let Some(e) = self.comm.errors.pop_pending() else { break };
             self.send(cob.can_id(), e.emit(), 8);
             self.emcy.sent(now);
