@@ -4,7 +4,7 @@ use super::Identity;
 use crate::cob::NodeId;
 use crate::time::{Duration, Instant};
 use crate::wire::lss::{
-    cs, BitRate, IdentityField, LssMode, LssResponse, Status, FASTSCAN_CONFIRM, UNCONFIGURED_NODE_ID,
+    cs, frame_u32, BitRate, IdentityField, LssMode, LssResponse, Status, FASTSCAN_CONFIRM, UNCONFIGURED_NODE_ID,
 };
 
 /// Something the LSS slave tells the application (inside `Event::Lss`).
@@ -147,6 +147,27 @@ pub struct LssOutput {
     /// The node got its first node-ID and left LSS configuration: run NMT reset communication now.
     pub reset_communication: bool,
 }
+
+/// What one request produced, before typing: the response as its command specifier (0 = none) and the
+/// value in bytes 1-4 (for a status: error code, then the implementation-specific error).
+#[derive(Debug, Default)]
+pub(crate) struct Served {
+    pub(crate) cs: u8,
+    pub(crate) value: u32,
+    pub(crate) event: Option<LssEvent>,
+    pub(crate) reset_communication: bool,
+}
+
+impl Served {
+    fn respond(&mut self, cs: u8, value: u32) {
+        self.cs = cs;
+        self.value = value;
+    }
+}
+
+/// The status values of a configure/store response in [`Served::value`].
+const SUCCESS: u32 = 0;
+const NOT_SUPPORTED: u32 = 1;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct BitSwitch {
@@ -364,7 +385,16 @@ impl LssSlave {
     /// assert_eq!(out.response, Some(LssResponse::IdentifyNonConfiguredSlave));
     /// ```
     pub fn handle_request(&mut self, now: Instant, data: &[u8]) -> LssOutput {
-        let mut out = LssOutput::default();
+        let s = self.serve(now, data);
+        // The typed response is the frame read back: the node sends the frame and never builds the enum.
+        let response = if s.cs == 0 { None } else { LssResponse::parse(&frame_u32(s.cs, s.value)).ok() };
+        LssOutput { response, event: s.event, reset_communication: s.reset_communication }
+    }
+
+    /// [`handle_request`](Self::handle_request) with the response as its frame's command specifier and
+    /// value (what the node sends on 7E4h), so that no typed response is built and emitted on the way.
+    pub(crate) fn serve(&mut self, now: Instant, data: &[u8]) -> Served {
+        let mut out = Served::default();
         // Every LSS request is 8 bytes (CAN-07: anything else is ignored).
         let Ok(d) = <&[u8; 8]>::try_from(data) else { return out };
         let command = d[0];
@@ -394,7 +424,7 @@ impl LssSlave {
                     cs::SWITCH_STATE_SELECTIVE_VENDOR
                 };
                 if self.selective_next == cs::SWITCH_STATE_SELECTIVE_RESPONSE {
-                    out.response = Some(LssResponse::SwitchStateSelective);
+                    out.respond(cs::SWITCH_STATE_SELECTIVE_RESPONSE, 0);
                     out.event = self.enter(LssMode::Configuration); // restarts the sequence
                 }
             }
@@ -408,11 +438,11 @@ impl LssSlave {
                 };
                 if self.identify_next == cs::IDENTIFY_NON_CONFIGURED_REMOTE {
                     self.identify_next = cs::IDENTIFY_REMOTE_VENDOR;
-                    out.response = Some(LssResponse::IdentifySlave);
+                    out.respond(cs::IDENTIFY_SLAVE, 0);
                 }
             }
             cs::IDENTIFY_NON_CONFIGURED_REMOTE if self.is_unconfigured() => {
-                out.response = Some(LssResponse::IdentifyNonConfiguredSlave);
+                out.respond(cs::IDENTIFY_NON_CONFIGURED_SLAVE, 0);
             }
             cs::FASTSCAN if !configuration && self.is_unconfigured() => {
                 if let (Some(sub), Some(next)) = (IdentityField::from_index(d[6]), IdentityField::from_index(d[7])) {
@@ -424,11 +454,11 @@ impl LssSlave {
                 let status = if NodeId::new(id).is_some() || id == UNCONFIGURED_NODE_ID {
                     self.pending = id;
                     out.event = Some(LssEvent::NodeIdConfigured { pending: id });
-                    Status::SUCCESS
+                    SUCCESS
                 } else {
-                    Status::NOT_SUPPORTED
+                    NOT_SUPPORTED
                 };
-                out.response = Some(LssResponse::NodeIdConfigured(status));
+                out.respond(cs::CONFIGURE_NODE_ID, status);
             }
             cs::CONFIGURE_BIT_TIMING if configuration => {
                 // Byte 1 the table selector (0 only), byte 2 the index.
@@ -437,11 +467,11 @@ impl LssSlave {
                     Some(r) => {
                         self.pending_bit_rate = r;
                         out.event = Some(LssEvent::BitRateConfigured(r));
-                        Status::SUCCESS
+                        SUCCESS
                     }
-                    None => Status::NOT_SUPPORTED,
+                    None => NOT_SUPPORTED,
                 };
-                out.response = Some(LssResponse::BitTimingConfigured(status));
+                out.respond(cs::CONFIGURE_BIT_TIMING, status);
             }
             cs::ACTIVATE_BIT_TIMING if configuration => {
                 let switch_delay_ms = u16::from_le_bytes([d[1], d[2]]);
@@ -458,16 +488,15 @@ impl LssSlave {
                     out.event =
                         Some(LssEvent::StoreRequested { node_id: self.pending, bit_rate: self.pending_bit_rate });
                 } else {
-                    out.response = Some(LssResponse::Stored(Status::NOT_SUPPORTED));
+                    out.respond(cs::STORE_CONFIGURATION, NOT_SUPPORTED);
                 }
             }
             cs::INQUIRE_VENDOR..=0x5D if configuration => {
-                let field = command - cs::INQUIRE_VENDOR;
-                if let Some(f) = IdentityField::from_index(field) {
-                    out.response = Some(LssResponse::Identity(f, self.address[usize::from(field)]));
+                if let Some(&v) = self.address.get(usize::from(command - cs::INQUIRE_VENDOR)) {
+                    out.respond(command, v);
                 }
             }
-            cs::INQUIRE_NODE_ID if configuration => out.response = Some(LssResponse::NodeId(self.active)),
+            cs::INQUIRE_NODE_ID if configuration => out.respond(command, u32::from(self.active)),
             _ => {}
         }
         out
@@ -561,11 +590,11 @@ impl LssSlave {
     }
 
     /// One fastscan step (CANopenNode/lely rule; see the module docs).
-    fn fastscan(&mut self, id_number: u32, bit_check: u8, sub: IdentityField, next: IdentityField) -> LssOutput {
-        let mut out = LssOutput::default();
+    fn fastscan(&mut self, id_number: u32, bit_check: u8, sub: IdentityField, next: IdentityField) -> Served {
+        let mut out = Served::default();
         if bit_check == FASTSCAN_CONFIRM {
             self.fastscan_pos = 0;
-            out.response = Some(LssResponse::IdentifySlave);
+            out.respond(cs::IDENTIFY_SLAVE, 0);
             return out;
         }
         // BitCheck is 0..=31 or 80h; a slave ignores any other value.
@@ -577,7 +606,7 @@ impl LssSlave {
             return out;
         }
         self.fastscan_pos = next.index();
-        out.response = Some(LssResponse::IdentifySlave);
+        out.respond(cs::IDENTIFY_SLAVE, 0);
         if bit_check == 0 && next.index() < sub.index() {
             out.event = self.enter(LssMode::Configuration);
         }
