@@ -802,6 +802,53 @@ mod tests {
         assert_eq!(req(&mut s, LssRequest::IdentifyRemoteSlave(IdentifyPart::SerialHigh, 100)).response, None);
     }
 
+    /// Switch state selective and identify remote slave keep separate positions (one interleaved with the
+    /// other does not restart it), an identify part out of order restarts identify, and a first part
+    /// restarts a sequence that is under way.
+    #[test]
+    fn selective_and_identify_sequences_are_independent() {
+        use IdentifyPart::*;
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        let sel = |f, v| LssRequest::SwitchStateSelective(f, v);
+        let idr = |p, v| LssRequest::IdentifyRemoteSlave(p, v);
+        // Identify with a part skipped (revision high missing): no answer, and the sequence restarts.
+        for (p, v) in [(VendorId, 0x123), (ProductCode, 0x42), (RevisionLow, 0), (SerialLow, 0)] {
+            assert_eq!(req(&mut s, idr(p, v)).response, None);
+        }
+        assert_eq!(req(&mut s, idr(SerialHigh, u32::MAX)).response, None);
+        // Interleaved: selective vendor, identify vendor, selective product, ... each completes.
+        req(&mut s, sel(IdentityField::VendorId, 0x123));
+        req(&mut s, idr(VendorId, 0x123));
+        req(&mut s, idr(VendorId, 0x123)); // a repeated first part restarts identify at its start
+        req(&mut s, sel(IdentityField::ProductCode, 0x42));
+        req(&mut s, idr(ProductCode, 0x42));
+        req(&mut s, sel(IdentityField::Revision, 0x0001_0002));
+        for (p, v) in [(RevisionLow, 0), (RevisionHigh, u32::MAX), (SerialLow, 0)] {
+            assert_eq!(req(&mut s, idr(p, v)).response, None);
+        }
+        assert_eq!(req(&mut s, idr(SerialHigh, u32::MAX)).response, Some(LssResponse::IdentifySlave));
+        // The identify answer did not disturb selective: its last part completes it.
+        let out = req(&mut s, sel(IdentityField::Serial, 77));
+        assert_eq!(out.response, Some(LssResponse::SwitchStateSelective));
+        assert_eq!(s.mode(), LssMode::Configuration);
+        // A selective part in configuration is ignored and does not touch identify's position.
+        req(&mut s, idr(VendorId, 0x123));
+        req(&mut s, sel(IdentityField::VendorId, 0x123));
+        req(&mut s, idr(ProductCode, 0x42));
+        for (p, v) in [(RevisionLow, 0), (RevisionHigh, u32::MAX), (SerialLow, 0)] {
+            req(&mut s, idr(p, v));
+        }
+        assert_eq!(req(&mut s, idr(SerialHigh, u32::MAX)).response, Some(LssResponse::IdentifySlave));
+        // Back in waiting, a selective sequence is interrupted by a wrong part and restarts from its vendor-ID.
+        req(&mut s, LssRequest::SwitchStateGlobal(LssMode::Waiting));
+        req(&mut s, sel(IdentityField::VendorId, 0x123));
+        req(&mut s, sel(IdentityField::ProductCode, 0x42));
+        req(&mut s, sel(IdentityField::VendorId, 0x123)); // first part again: restart, still in order
+        req(&mut s, sel(IdentityField::ProductCode, 0x42));
+        req(&mut s, sel(IdentityField::Revision, 0x0001_0002));
+        assert_eq!(req(&mut s, sel(IdentityField::Serial, 77)).response, Some(LssResponse::SwitchStateSelective));
+    }
+
     #[test]
     fn identify_non_configured() {
         let r = LssRequest::IdentifyNonConfiguredRemoteSlave;
