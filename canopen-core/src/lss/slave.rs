@@ -213,10 +213,9 @@ pub struct LssSlave {
     supported: u16,
     store_supported: bool,
     store_pending: bool,
-    /// The command specifier of the next expected switch-selective part (40h..43h).
-    selective_next: u8,
-    /// The command specifier of the next expected identify-remote-slave part (46h..4Bh).
-    identify_next: u8,
+    /// The command specifier of the next expected part: of switch state selective (40h..43h), of identify
+    /// remote slave (46h..4Bh).
+    sequence_next: [u8; 2],
     /// Fastscan LSSPos (0–3).
     fastscan_pos: u8,
     switch: Option<BitSwitch>,
@@ -244,8 +243,7 @@ impl LssSlave {
             supported: CIA301_BIT_RATES,
             store_supported: false,
             store_pending: false,
-            selective_next: 0x40,
-            identify_next: 0x46,
+            sequence_next: [cs::SWITCH_STATE_SELECTIVE_VENDOR, cs::IDENTIFY_REMOTE_VENDOR],
             fastscan_pos: 0,
             switch: None,
         }
@@ -414,31 +412,29 @@ impl LssSlave {
                 Some(LssMode::Configuration) => out.event = self.enter(LssMode::Configuration),
                 None => {}
             },
-            // 40h-43h: switch state selective, the parts in order (an out-of-order or wrong part restarts).
-            cs::SWITCH_STATE_SELECTIVE_VENDOR..=cs::SWITCH_STATE_SELECTIVE_SERIAL if !configuration => {
-                let part = command - cs::SWITCH_STATE_SELECTIVE_VENDOR;
-                let in_order = command == cs::SWITCH_STATE_SELECTIVE_VENDOR || command == self.selective_next;
-                self.selective_next = if in_order && value == self.address[usize::from(part)] {
-                    command + 1
+            // 40h-43h switch state selective (LSS waiting only) and 46h-4Bh identify remote slave: one rule for
+            // both, the parts in order (an out-of-order or wrong part restarts), each with its own position.
+            cs::SWITCH_STATE_SELECTIVE_VENDOR..=cs::IDENTIFY_REMOTE_SERIAL_HIGH
+                if command & 0xFE != cs::SWITCH_STATE_SELECTIVE_RESPONSE
+                    && (command >= cs::IDENTIFY_REMOTE_VENDOR || !configuration) =>
+            {
+                let identify = command >= cs::IDENTIFY_REMOTE_VENDOR;
+                let first = if identify { cs::IDENTIFY_REMOTE_VENDOR } else { cs::SWITCH_STATE_SELECTIVE_VENDOR };
+                let matches = self.part_matches(command - cs::SWITCH_STATE_SELECTIVE_VENDOR, value);
+                let next = &mut self.sequence_next[usize::from(identify)];
+                let in_order = command == first || command == *next;
+                *next = first;
+                if !(in_order && matches) {
+                    // restarted
+                } else if command == first + if identify { 5 } else { 3 } {
+                    if identify {
+                        out.respond(cs::IDENTIFY_SLAVE, 0);
+                    } else {
+                        out.respond(cs::SWITCH_STATE_SELECTIVE_RESPONSE, 0);
+                        out.event = self.enter(LssMode::Configuration);
+                    }
                 } else {
-                    cs::SWITCH_STATE_SELECTIVE_VENDOR
-                };
-                if self.selective_next == cs::SWITCH_STATE_SELECTIVE_RESPONSE {
-                    out.respond(cs::SWITCH_STATE_SELECTIVE_RESPONSE, 0);
-                    out.event = self.enter(LssMode::Configuration); // restarts the sequence
-                }
-            }
-            // 46h-4Bh: identify remote slave, the same in-order rule.
-            cs::IDENTIFY_REMOTE_VENDOR..=cs::IDENTIFY_REMOTE_SERIAL_HIGH => {
-                let in_order = command == cs::IDENTIFY_REMOTE_VENDOR || command == self.identify_next;
-                self.identify_next = if in_order && self.identify_matches(command, value) {
-                    command + 1
-                } else {
-                    cs::IDENTIFY_REMOTE_VENDOR
-                };
-                if self.identify_next == cs::IDENTIFY_NON_CONFIGURED_REMOTE {
-                    self.identify_next = cs::IDENTIFY_REMOTE_VENDOR;
-                    out.respond(cs::IDENTIFY_SLAVE, 0);
+                    *next = command + 1;
                 }
             }
             cs::IDENTIFY_NON_CONFIGURED_REMOTE if self.is_unconfigured() => {
@@ -567,7 +563,7 @@ impl LssSlave {
     /// requests enter a mode, none of them hot.
     #[inline(never)]
     fn enter(&mut self, mode: LssMode) -> Option<LssEvent> {
-        self.selective_next = 0x40;
+        self.sequence_next[0] = cs::SWITCH_STATE_SELECTIVE_VENDOR;
         if self.mode == mode {
             return None;
         }
@@ -575,17 +571,14 @@ impl LssSlave {
         Some(LssEvent::ModeChanged(mode))
     }
 
-    /// Whether `value` matches the part of identify remote slave that `command` (46h-4Bh) names: 46h vendor-ID
-    /// and 47h product code exactly (`<=` and `>=`), 48h/4Ah the low bound of the revision/serial number
-    /// (`value <= own`), 49h/4Bh the high bound (`value >= own`).
-    fn identify_matches(&self, command: u8, value: u32) -> bool {
-        const PART: [u8; 6] = [0, 1, 2, 2, 3, 3]; // the LSS address part of 46h..4Bh
-        const LOW: u8 = 0b01_0111; // the parts that need `value <= own`
-        const HIGH: u8 = 0b10_1011; // the parts that need `value >= own`
-        let i = command.wrapping_sub(cs::IDENTIFY_REMOTE_VENDOR);
-        let Some(&own) = PART.get(usize::from(i)).and_then(|&p| self.address.get(usize::from(p))) else {
-            return false;
-        };
+    /// Whether `value` matches the sequence part `i` = command specifier - 40h: 40h-43h (switch state
+    /// selective), 46h vendor-ID and 47h product code exactly (`<=` and `>=`), 48h/4Ah the low bound of the
+    /// revision/serial number (`value <= own`), 49h/4Bh the high bound (`value >= own`).
+    fn part_matches(&self, i: u8, value: u32) -> bool {
+        const PART: u32 = 0b11_11_10_10_01_00_00_00_11_10_01_00; // the LSS address part of 40h..4Bh, 2 bits each
+        const LOW: u16 = 0b0101_1100_1111; // the parts that need `value <= own`
+        const HIGH: u16 = 0b1010_1100_1111; // the parts that need `value >= own`
+        let own = self.address[(PART >> (2 * i) & 3) as usize];
         (LOW >> i & 1 == 0 || value <= own) && (HIGH >> i & 1 == 0 || value >= own)
     }
 
