@@ -287,7 +287,8 @@ impl LssSlave {
     /// assert!(LssSlave::new(&Identity::default(), None).is_unconfigured());
     /// ```
     pub const fn is_unconfigured(&self) -> bool {
-        self.active == UNCONFIGURED_NODE_ID && self.pending == UNCONFIGURED_NODE_ID
+        // Each is 1-127 or FFh, so both are FFh exactly when their AND is.
+        self.active & self.pending == UNCONFIGURED_NODE_ID
     }
 
     /// The active bit rate as far as LSS knows (what the application set, or the last activated one).
