@@ -488,12 +488,11 @@ impl LssSlave {
                     out.respond(cs::STORE_CONFIGURATION, NOT_SUPPORTED);
                 }
             }
-            cs::INQUIRE_VENDOR..=0x5D if configuration => {
-                if let Some(&v) = self.address.get(usize::from(command - cs::INQUIRE_VENDOR)) {
-                    out.respond(command, v);
-                }
+            // 5Ah-5Dh the LSS address parts, 5Eh the active node-ID.
+            cs::INQUIRE_VENDOR..=cs::INQUIRE_NODE_ID if configuration => {
+                let v = self.address.get(usize::from(command - cs::INQUIRE_VENDOR)).copied();
+                out.respond(command, v.unwrap_or(u32::from(self.active)));
             }
-            cs::INQUIRE_NODE_ID if configuration => out.respond(command, u32::from(self.active)),
             _ => {}
         }
         out
