@@ -741,6 +741,33 @@ mod tests {
         assert_eq!(req(&mut s, bt(0, 3)).response, Some(LssResponse::BitTimingConfigured(Status::NOT_SUPPORTED)));
     }
 
+    /// Activate bit timing again while a switch is under way restarts both periods from the new request,
+    /// and a late timer call reports one event per call (the switch, then the resume).
+    #[test]
+    fn activate_again_restarts_the_switch() {
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        config(&mut s);
+        let act = |s: &mut LssSlave, t: u64, d: u16| {
+            s.handle_request(Instant::from_millis(t), &LssRequest::ActivateBitTiming { switch_delay_ms: d }.emit())
+        };
+        act(&mut s, 0, 100);
+        assert_eq!(s.handle_timeout(Instant::from_millis(100)), Some(LssEvent::SwitchBitRate(BitRate::K125)));
+        assert!(s.holds_transmit(Instant::from_millis(150)));
+        act(&mut s, 150, 10);
+        assert!(!s.holds_transmit(Instant::from_millis(150)));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(160)));
+        assert!(s.holds_transmit(Instant::from_millis(165)));
+        assert!(!s.holds_transmit(Instant::from_millis(170)));
+        // Late: both instants have passed, one event per call.
+        let late = Instant::from_millis(1000);
+        assert_eq!(s.handle_timeout(late), Some(LssEvent::SwitchBitRate(BitRate::K125)));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(170)));
+        assert_eq!(s.handle_timeout(late), Some(LssEvent::TransmitResumed));
+        assert_eq!(s.handle_timeout(late), None);
+        assert_eq!(s.poll_timeout(), None);
+        assert!(!s.holds_transmit(Instant::from_millis(165)));
+    }
+
     #[test]
     fn store_deferred_and_not_supported() {
         let mut s = LssSlave::new(&ID, None);
