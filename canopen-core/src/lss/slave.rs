@@ -169,14 +169,6 @@ impl Served {
 const SUCCESS: u32 = 0;
 const NOT_SUPPORTED: u32 = 1;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct BitSwitch {
-    bit_rate: BitRate,
-    switch_at: Instant,
-    resume_at: Instant,
-    switched: bool,
-}
-
 /// Bit mask of the CiA 301 table rates (indices 0–4, 6–8), the default set of supported bit rates.
 ///
 /// ```
@@ -218,8 +210,17 @@ pub struct LssSlave {
     sequence_next: [u8; 2],
     /// Fastscan LSSPos (0–3).
     fastscan_pos: u8,
-    switch: Option<BitSwitch>,
+    /// Activate bit timing: the end of the first switch delay (the bit rate switches) and of the second
+    /// (transmission resumes).
+    switch_at: [Instant; 2],
+    /// Which of `switch_at` is next: 0 or 1, [`SWITCH_IDLE`] when no switch is under way.
+    switch_phase: u8,
+    /// The bit rate activate bit timing switches to.
+    switch_rate: BitRate,
 }
+
+/// `LssSlave::switch_phase` with no switch under way.
+const SWITCH_IDLE: u8 = 2;
 
 impl LssSlave {
     /// A slave in LSS waiting with the LSS address `identity` (1018h) and active node-ID `node_id`
@@ -245,7 +246,9 @@ impl LssSlave {
             store_pending: false,
             sequence_next: [cs::SWITCH_STATE_SELECTIVE_VENDOR, cs::IDENTIFY_REMOTE_VENDOR],
             fastscan_pos: 0,
-            switch: None,
+            switch_at: [Instant::ZERO; 2],
+            switch_phase: SWITCH_IDLE,
+            switch_rate: BitRate::K125,
         }
     }
 
@@ -475,8 +478,9 @@ impl LssSlave {
                 let delay = Duration::from_millis(u64::from(switch_delay_ms));
                 let switch_at = now + delay;
                 let resume_at = switch_at + delay;
-                self.switch =
-                    Some(BitSwitch { bit_rate: self.pending_bit_rate, switch_at, resume_at, switched: false });
+                self.switch_at = [switch_at, resume_at];
+                self.switch_phase = 0;
+                self.switch_rate = self.pending_bit_rate;
                 out.event = Some(LssEvent::BitRateActivation { bit_rate: self.pending_bit_rate, switch_delay_ms });
             }
             cs::STORE_CONFIGURATION if configuration => {
@@ -520,7 +524,7 @@ impl LssSlave {
     /// assert_eq!(LssSlave::new(&Identity::default(), None).poll_timeout(), None);
     /// ```
     pub fn poll_timeout(&self) -> Option<Instant> {
-        self.switch.map(|s| if s.switched { s.resume_at } else { s.switch_at })
+        self.switch_at.get(usize::from(self.switch_phase)).copied()
     }
 
     /// Acts on the time that passed: reports [`LssEvent::SwitchBitRate`] at the end of the first delay and
@@ -535,17 +539,16 @@ impl LssSlave {
     /// assert_eq!(s.handle_timeout(Instant::from_millis(20)), Some(LssEvent::TransmitResumed));
     /// ```
     pub fn handle_timeout(&mut self, now: Instant) -> Option<LssEvent> {
-        let s = self.switch.as_mut()?;
-        if !s.switched && now >= s.switch_at {
-            s.switched = true;
-            self.bit_rate = s.bit_rate;
-            return Some(LssEvent::SwitchBitRate(s.bit_rate));
+        let phase = self.switch_phase;
+        if now < *self.switch_at.get(usize::from(phase))? {
+            return None;
         }
-        if s.switched && now >= s.resume_at {
-            self.switch = None;
-            return Some(LssEvent::TransmitResumed);
+        self.switch_phase = phase + 1; // after the second period: SWITCH_IDLE
+        if phase == 0 {
+            self.bit_rate = self.switch_rate;
+            return Some(LssEvent::SwitchBitRate(self.switch_rate));
         }
-        None
+        Some(LssEvent::TransmitResumed)
     }
 
     /// Whether the node must not transmit at `now` (between the bit-rate switch and the end of the second
@@ -556,7 +559,7 @@ impl LssSlave {
     /// assert!(!LssSlave::new(&Identity::default(), None).holds_transmit(Instant::ZERO));
     /// ```
     pub fn holds_transmit(&self, now: Instant) -> bool {
-        self.switch.is_some_and(|s| now >= s.switch_at && now < s.resume_at)
+        self.switch_phase != SWITCH_IDLE && now >= self.switch_at[0] && now < self.switch_at[1]
     }
 
     /// Enters `mode` (restarting switch state selective); the event when the mode changed. Out of line: four
