@@ -406,16 +406,16 @@ impl LssSlave {
         // the frame (the layouts are `wire::lss`'s table). Unknown specifiers, out-of-range fields and
         // requests the current state does not serve fall through to silence.
         match command {
-            cs::SWITCH_STATE_GLOBAL => match LssMode::from_u8(d[1]) {
-                Some(LssMode::Waiting) => {
-                    // CANopenNode CO_LSSslave.c: an unconfigured node that got a node-ID resets communication.
-                    out.reset_communication =
-                        configuration && self.active == UNCONFIGURED_NODE_ID && self.pending != UNCONFIGURED_NODE_ID;
-                    out.event = self.enter(LssMode::Waiting);
-                }
-                Some(LssMode::Configuration) => out.event = self.enter(LssMode::Configuration),
-                None => {}
-            },
+            // Byte 1 the mode: 0 waiting, 1 configuration.
+            cs::SWITCH_STATE_GLOBAL if d[1] < 2 => {
+                let to_configuration = d[1] != 0;
+                // CANopenNode CO_LSSslave.c: an unconfigured node that got a node-ID resets communication.
+                out.reset_communication = configuration
+                    && !to_configuration
+                    && self.active == UNCONFIGURED_NODE_ID
+                    && self.pending != UNCONFIGURED_NODE_ID;
+                out.event = self.enter(if to_configuration { LssMode::Configuration } else { LssMode::Waiting });
+            }
             // 40h-43h switch state selective (LSS waiting only) and 46h-4Bh identify remote slave: one rule for
             // both, the parts in order (an out-of-order or wrong part restarts), each with its own position.
             cs::SWITCH_STATE_SELECTIVE_VENDOR..=cs::IDENTIFY_REMOTE_SERIAL_HIGH
