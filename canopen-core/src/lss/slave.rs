@@ -399,8 +399,10 @@ impl LssSlave {
         let mut out = Served::default();
         // Every LSS request is 8 bytes (CAN-07: anything else is ignored).
         let Ok(d) = <&[u8; 8]>::try_from(data) else { return out };
-        let command = d[0];
-        let value = u32::from_le_bytes([d[1], d[2], d[3], d[4]]);
+        // The whole frame as one number: the command specifier and the value in bytes 1-4 are shifts of it.
+        let raw = u64::from_le_bytes(*d);
+        let command = raw as u8;
+        let value = (raw >> 8) as u32;
         let configuration = self.mode == LssMode::Configuration;
         // Dispatched on the command specifier: no request enum in between, each arm reads its fields from
         // the frame (the layouts are `wire::lss`'s table). Unknown specifiers, out-of-range fields and
