@@ -584,7 +584,15 @@ impl LssSlave {
         const LOW: u16 = 0b0101_1100_1111; // the parts that need `value <= own`
         const HIGH: u16 = 0b1010_1100_1111; // the parts that need `value >= own`
         let own = self.address[(PART >> (2 * i) & 3) as usize];
-        (LOW >> i & 1 == 0 || value <= own) && (HIGH >> i & 1 == 0 || value >= own)
+        // The bound that `value` is on the wrong side of, if any, must not be one this part checks.
+        let violated = if value < own {
+            HIGH
+        } else if value > own {
+            LOW
+        } else {
+            0
+        };
+        violated >> i & 1 == 0
     }
 
     /// One fastscan step (CANopenNode/lely rule; see the module docs).
