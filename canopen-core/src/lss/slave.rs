@@ -477,7 +477,8 @@ impl LssSlave {
             }
             cs::ACTIVATE_BIT_TIMING if configuration => {
                 let switch_delay_ms = u16::from_le_bytes([d[1], d[2]]);
-                let delay = Duration::from_millis(u64::from(switch_delay_ms));
+                // At most 65,535,000 µs: a 32-bit product, no 64-bit saturating multiply.
+                let delay = Duration::from_micros(u64::from(u32::from(switch_delay_ms) * 1000));
                 let switch_at = now + delay;
                 let resume_at = switch_at + delay;
                 self.switch_at = [switch_at, resume_at];
@@ -779,6 +780,11 @@ mod tests {
         assert_eq!(s.handle_timeout(late), None);
         assert_eq!(s.poll_timeout(), None);
         assert!(!s.holds_transmit(Instant::from_millis(165)));
+        // The longest switch delay, 65,535 ms, each period.
+        act(&mut s, 1000, u16::MAX);
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1000 + 65_535)));
+        s.handle_timeout(Instant::from_millis(1000 + 65_535));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1000 + 2 * 65_535)));
     }
 
     #[test]
