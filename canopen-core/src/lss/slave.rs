@@ -155,7 +155,6 @@ pub(crate) struct Served {
     pub(crate) cs: u8,
     pub(crate) value: u32,
     pub(crate) event: Option<LssEvent>,
-    pub(crate) reset_communication: bool,
 }
 
 impl Served {
@@ -390,7 +389,7 @@ impl LssSlave {
         let s = self.serve(now, data);
         // The typed response is the frame read back: the node sends the frame and never builds the enum.
         let response = if s.cs == 0 { None } else { LssResponse::parse(&frame_u32(s.cs, s.value)).ok() };
-        LssOutput { response, event: s.event, reset_communication: s.reset_communication }
+        LssOutput { response, event: s.event, reset_communication: self.resets_communication(s.event) }
     }
 
     /// [`handle_request`](Self::handle_request) with the response as its frame's command specifier and
@@ -410,13 +409,8 @@ impl LssSlave {
         match command {
             // Byte 1 the mode: 0 waiting, 1 configuration.
             cs::SWITCH_STATE_GLOBAL if d[1] < 2 => {
-                let to_configuration = d[1] != 0;
-                // CANopenNode CO_LSSslave.c: an unconfigured node that got a node-ID resets communication.
-                out.reset_communication = configuration
-                    && !to_configuration
-                    && self.active == UNCONFIGURED_NODE_ID
-                    && self.pending != UNCONFIGURED_NODE_ID;
-                out.event = self.enter(if to_configuration { LssMode::Configuration } else { LssMode::Waiting });
+                let mode = if d[1] != 0 { LssMode::Configuration } else { LssMode::Waiting };
+                out.event = self.enter(mode);
             }
             // 40h-43h switch state selective (LSS waiting only) and 46h-4Bh identify remote slave: one rule for
             // both, the parts in order (an out-of-order or wrong part restarts), each with its own position.
@@ -503,6 +497,15 @@ impl LssSlave {
             _ => {}
         }
         out
+    }
+
+    /// Whether `event`, just reported by [`serve`](Self::serve), means reset communication: CANopenNode
+    /// CO_LSSslave.c, an unconfigured node that got a node-ID and is switched from LSS configuration back to
+    /// waiting resets communication (switch state global leaves both node-IDs as they were).
+    pub(crate) fn resets_communication(&self, event: Option<LssEvent>) -> bool {
+        event == Some(LssEvent::ModeChanged(LssMode::Waiting))
+            && self.active == UNCONFIGURED_NODE_ID
+            && self.pending != UNCONFIGURED_NODE_ID
     }
 
     /// The answer to a pending store request, once the application has stored (or failed to); `None` if
