@@ -389,7 +389,11 @@ impl LssSlave {
         let s = self.serve(now, data);
         // The typed response is the frame read back: the node sends the frame and never builds the enum.
         let response = if s.cs == 0 { None } else { LssResponse::parse(&frame_u32(s.cs, s.value)).ok() };
-        LssOutput { response, event: s.event, reset_communication: self.resets_communication(s.event) }
+        LssOutput {
+            response,
+            event: s.event,
+            reset_communication: s.event.is_some_and(|e| self.resets_communication(e)),
+        }
     }
 
     /// [`handle_request`](Self::handle_request) with the response as its frame's command specifier and
@@ -502,8 +506,8 @@ impl LssSlave {
     /// Whether `event`, just reported by [`serve`](Self::serve), means reset communication: CANopenNode
     /// CO_LSSslave.c, an unconfigured node that got a node-ID and is switched from LSS configuration back to
     /// waiting resets communication (switch state global leaves both node-IDs as they were).
-    pub(crate) fn resets_communication(&self, event: Option<LssEvent>) -> bool {
-        event == Some(LssEvent::ModeChanged(LssMode::Waiting))
+    pub(crate) fn resets_communication(&self, event: LssEvent) -> bool {
+        event == LssEvent::ModeChanged(LssMode::Waiting)
             && self.active == UNCONFIGURED_NODE_ID
             && self.pending != UNCONFIGURED_NODE_ID
     }

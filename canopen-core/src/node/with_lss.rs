@@ -212,9 +212,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
         if let Some(e) = out.event {
             self.push_event(Event::Lss(e));
-        }
-        if self.lss.resets_communication(out.event) {
-            self.reset(now, false);
+            if self.lss.resets_communication(e) {
+                self.reset(now, false);
+            }
         }
     }
 
