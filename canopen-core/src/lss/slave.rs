@@ -4,7 +4,7 @@ use super::Identity;
 use crate::cob::NodeId;
 use crate::time::{Duration, Instant};
 use crate::wire::lss::{
-    cs, BitRate, IdentityField, LssMode, LssResponse, Status, FASTSCAN_CONFIRM, UNCONFIGURED_NODE_ID,
+    cs, frame_u32, BitRate, IdentityField, LssMode, LssResponse, Status, FASTSCAN_CONFIRM, UNCONFIGURED_NODE_ID,
 };
 
 /// Something the LSS slave tells the application (inside `Event::Lss`).
@@ -148,13 +148,25 @@ pub struct LssOutput {
     pub reset_communication: bool,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct BitSwitch {
-    bit_rate: BitRate,
-    switch_at: Instant,
-    resume_at: Instant,
-    switched: bool,
+/// What one request produced, before typing: the response as its command specifier (0 = none) and the
+/// value in bytes 1-4 (for a status: error code, then the implementation-specific error).
+#[derive(Debug, Default)]
+pub(crate) struct Served {
+    pub(crate) cs: u8,
+    pub(crate) value: u32,
+    pub(crate) event: Option<LssEvent>,
 }
+
+impl Served {
+    fn respond(&mut self, cs: u8, value: u32) {
+        self.cs = cs;
+        self.value = value;
+    }
+}
+
+/// The status values of a configure/store response in [`Served::value`].
+const SUCCESS: u32 = 0;
+const NOT_SUPPORTED: u32 = 1;
 
 /// Bit mask of the CiA 301 table rates (indices 0–4, 6–8), the default set of supported bit rates.
 ///
@@ -192,14 +204,22 @@ pub struct LssSlave {
     supported: u16,
     store_supported: bool,
     store_pending: bool,
-    /// The command specifier of the next expected switch-selective part (40h..43h).
-    selective_next: u8,
-    /// The command specifier of the next expected identify-remote-slave part (46h..4Bh).
-    identify_next: u8,
+    /// The command specifier of the next expected part: of switch state selective (40h..43h), of identify
+    /// remote slave (46h..4Bh).
+    sequence_next: [u8; 2],
     /// Fastscan LSSPos (0–3).
     fastscan_pos: u8,
-    switch: Option<BitSwitch>,
+    /// Activate bit timing: the end of the first switch delay (the bit rate switches) and of the second
+    /// (transmission resumes).
+    switch_at: [Instant; 2],
+    /// Which of `switch_at` is next: 0 or 1, [`SWITCH_IDLE`] when no switch is under way.
+    switch_phase: u8,
+    /// The bit rate activate bit timing switches to.
+    switch_rate: BitRate,
 }
+
+/// `LssSlave::switch_phase` with no switch under way.
+const SWITCH_IDLE: u8 = 2;
 
 impl LssSlave {
     /// A slave in LSS waiting with the LSS address `identity` (1018h) and active node-ID `node_id`
@@ -223,10 +243,11 @@ impl LssSlave {
             supported: CIA301_BIT_RATES,
             store_supported: false,
             store_pending: false,
-            selective_next: 0x40,
-            identify_next: 0x46,
+            sequence_next: [cs::SWITCH_STATE_SELECTIVE_VENDOR, cs::IDENTIFY_REMOTE_VENDOR],
             fastscan_pos: 0,
-            switch: None,
+            switch_at: [Instant::ZERO; 2],
+            switch_phase: SWITCH_IDLE,
+            switch_rate: BitRate::K125,
         }
     }
 
@@ -268,7 +289,8 @@ impl LssSlave {
     /// assert!(LssSlave::new(&Identity::default(), None).is_unconfigured());
     /// ```
     pub const fn is_unconfigured(&self) -> bool {
-        self.active == UNCONFIGURED_NODE_ID && self.pending == UNCONFIGURED_NODE_ID
+        // Each is 1-127 or FFh, so both are FFh exactly when their AND is.
+        self.active & self.pending == UNCONFIGURED_NODE_ID
     }
 
     /// The active bit rate as far as LSS knows (what the application set, or the last activated one).
@@ -364,55 +386,63 @@ impl LssSlave {
     /// assert_eq!(out.response, Some(LssResponse::IdentifyNonConfiguredSlave));
     /// ```
     pub fn handle_request(&mut self, now: Instant, data: &[u8]) -> LssOutput {
-        let mut out = LssOutput::default();
+        let s = self.serve(now, data);
+        // The typed response is the frame read back: the node sends the frame and never builds the enum.
+        let response = if s.cs == 0 { None } else { LssResponse::parse(&frame_u32(s.cs, s.value)).ok() };
+        LssOutput {
+            response,
+            event: s.event,
+            reset_communication: s.event.is_some_and(|e| self.resets_communication(e)),
+        }
+    }
+
+    /// [`handle_request`](Self::handle_request) with the response as its frame's command specifier and
+    /// value (what the node sends on 7E4h), so that no typed response is built and emitted on the way.
+    pub(crate) fn serve(&mut self, now: Instant, data: &[u8]) -> Served {
+        let mut out = Served::default();
         // Every LSS request is 8 bytes (CAN-07: anything else is ignored).
         let Ok(d) = <&[u8; 8]>::try_from(data) else { return out };
-        let command = d[0];
-        let value = u32::from_le_bytes([d[1], d[2], d[3], d[4]]);
+        // The whole frame as one number: the command specifier and the value in bytes 1-4 are shifts of it.
+        let raw = u64::from_le_bytes(*d);
+        let command = raw as u8;
+        let value = (raw >> 8) as u32;
         let configuration = self.mode == LssMode::Configuration;
         // Dispatched on the command specifier: no request enum in between, each arm reads its fields from
         // the frame (the layouts are `wire::lss`'s table). Unknown specifiers, out-of-range fields and
         // requests the current state does not serve fall through to silence.
         match command {
-            cs::SWITCH_STATE_GLOBAL => match LssMode::from_u8(d[1]) {
-                Some(LssMode::Waiting) => {
-                    // CANopenNode CO_LSSslave.c: an unconfigured node that got a node-ID resets communication.
-                    out.reset_communication =
-                        configuration && self.active == UNCONFIGURED_NODE_ID && self.pending != UNCONFIGURED_NODE_ID;
-                    out.event = self.enter(LssMode::Waiting);
-                }
-                Some(LssMode::Configuration) => out.event = self.enter(LssMode::Configuration),
-                None => {}
-            },
-            // 40h-43h: switch state selective, the parts in order (an out-of-order or wrong part restarts).
-            cs::SWITCH_STATE_SELECTIVE_VENDOR..=cs::SWITCH_STATE_SELECTIVE_SERIAL if !configuration => {
-                let part = command - cs::SWITCH_STATE_SELECTIVE_VENDOR;
-                let in_order = command == cs::SWITCH_STATE_SELECTIVE_VENDOR || command == self.selective_next;
-                self.selective_next = if in_order && value == self.address[usize::from(part)] {
-                    command + 1
-                } else {
-                    cs::SWITCH_STATE_SELECTIVE_VENDOR
-                };
-                if self.selective_next == cs::SWITCH_STATE_SELECTIVE_RESPONSE {
-                    out.response = Some(LssResponse::SwitchStateSelective);
-                    out.event = self.enter(LssMode::Configuration); // restarts the sequence
-                }
+            // Byte 1 the mode: 0 waiting, 1 configuration.
+            cs::SWITCH_STATE_GLOBAL if d[1] < 2 => {
+                let mode = if d[1] != 0 { LssMode::Configuration } else { LssMode::Waiting };
+                out.event = self.enter(mode);
             }
-            // 46h-4Bh: identify remote slave, the same in-order rule.
-            cs::IDENTIFY_REMOTE_VENDOR..=cs::IDENTIFY_REMOTE_SERIAL_HIGH => {
-                let in_order = command == cs::IDENTIFY_REMOTE_VENDOR || command == self.identify_next;
-                self.identify_next = if in_order && self.identify_matches(command, value) {
-                    command + 1
+            // 40h-43h switch state selective (LSS waiting only) and 46h-4Bh identify remote slave: one rule for
+            // both, the parts in order (an out-of-order or wrong part restarts), each with its own position.
+            cs::SWITCH_STATE_SELECTIVE_VENDOR..=cs::IDENTIFY_REMOTE_SERIAL_HIGH
+                if command & 0xFE != cs::SWITCH_STATE_SELECTIVE_RESPONSE
+                    && (command >= cs::IDENTIFY_REMOTE_VENDOR || !configuration) =>
+            {
+                let identify = command >= cs::IDENTIFY_REMOTE_VENDOR;
+                let first = if identify { cs::IDENTIFY_REMOTE_VENDOR } else { cs::SWITCH_STATE_SELECTIVE_VENDOR };
+                let matches = self.part_matches(command - cs::SWITCH_STATE_SELECTIVE_VENDOR, value);
+                let next = &mut self.sequence_next[usize::from(identify)];
+                let in_order = command == first || command == *next;
+                *next = first;
+                if !(in_order && matches) {
+                    // restarted
+                } else if command == first + if identify { 5 } else { 3 } {
+                    if identify {
+                        out.respond(cs::IDENTIFY_SLAVE, 0);
+                    } else {
+                        out.respond(cs::SWITCH_STATE_SELECTIVE_RESPONSE, 0);
+                        out.event = self.enter(LssMode::Configuration);
+                    }
                 } else {
-                    cs::IDENTIFY_REMOTE_VENDOR
-                };
-                if self.identify_next == cs::IDENTIFY_NON_CONFIGURED_REMOTE {
-                    self.identify_next = cs::IDENTIFY_REMOTE_VENDOR;
-                    out.response = Some(LssResponse::IdentifySlave);
+                    *next = command + 1;
                 }
             }
             cs::IDENTIFY_NON_CONFIGURED_REMOTE if self.is_unconfigured() => {
-                out.response = Some(LssResponse::IdentifyNonConfiguredSlave);
+                out.respond(cs::IDENTIFY_NON_CONFIGURED_SLAVE, 0);
             }
             cs::FASTSCAN if !configuration && self.is_unconfigured() => {
                 if let (Some(sub), Some(next)) = (IdentityField::from_index(d[6]), IdentityField::from_index(d[7])) {
@@ -424,11 +454,11 @@ impl LssSlave {
                 let status = if NodeId::new(id).is_some() || id == UNCONFIGURED_NODE_ID {
                     self.pending = id;
                     out.event = Some(LssEvent::NodeIdConfigured { pending: id });
-                    Status::SUCCESS
+                    SUCCESS
                 } else {
-                    Status::NOT_SUPPORTED
+                    NOT_SUPPORTED
                 };
-                out.response = Some(LssResponse::NodeIdConfigured(status));
+                out.respond(cs::CONFIGURE_NODE_ID, status);
             }
             cs::CONFIGURE_BIT_TIMING if configuration => {
                 // Byte 1 the table selector (0 only), byte 2 the index.
@@ -437,19 +467,21 @@ impl LssSlave {
                     Some(r) => {
                         self.pending_bit_rate = r;
                         out.event = Some(LssEvent::BitRateConfigured(r));
-                        Status::SUCCESS
+                        SUCCESS
                     }
-                    None => Status::NOT_SUPPORTED,
+                    None => NOT_SUPPORTED,
                 };
-                out.response = Some(LssResponse::BitTimingConfigured(status));
+                out.respond(cs::CONFIGURE_BIT_TIMING, status);
             }
             cs::ACTIVATE_BIT_TIMING if configuration => {
                 let switch_delay_ms = u16::from_le_bytes([d[1], d[2]]);
-                let delay = Duration::from_millis(u64::from(switch_delay_ms));
+                // At most 65,535,000 µs: a 32-bit product, no 64-bit saturating multiply.
+                let delay = Duration::from_micros(u64::from(u32::from(switch_delay_ms) * 1000));
                 let switch_at = now + delay;
                 let resume_at = switch_at + delay;
-                self.switch =
-                    Some(BitSwitch { bit_rate: self.pending_bit_rate, switch_at, resume_at, switched: false });
+                self.switch_at = [switch_at, resume_at];
+                self.switch_phase = 0;
+                self.switch_rate = self.pending_bit_rate;
                 out.event = Some(LssEvent::BitRateActivation { bit_rate: self.pending_bit_rate, switch_delay_ms });
             }
             cs::STORE_CONFIGURATION if configuration => {
@@ -458,19 +490,26 @@ impl LssSlave {
                     out.event =
                         Some(LssEvent::StoreRequested { node_id: self.pending, bit_rate: self.pending_bit_rate });
                 } else {
-                    out.response = Some(LssResponse::Stored(Status::NOT_SUPPORTED));
+                    out.respond(cs::STORE_CONFIGURATION, NOT_SUPPORTED);
                 }
             }
-            cs::INQUIRE_VENDOR..=0x5D if configuration => {
-                let field = command - cs::INQUIRE_VENDOR;
-                if let Some(f) = IdentityField::from_index(field) {
-                    out.response = Some(LssResponse::Identity(f, self.address[usize::from(field)]));
-                }
+            // 5Ah-5Dh the LSS address parts, 5Eh the active node-ID.
+            cs::INQUIRE_VENDOR..=cs::INQUIRE_NODE_ID if configuration => {
+                let v = self.address.get(usize::from(command - cs::INQUIRE_VENDOR)).copied();
+                out.respond(command, v.unwrap_or(u32::from(self.active)));
             }
-            cs::INQUIRE_NODE_ID if configuration => out.response = Some(LssResponse::NodeId(self.active)),
             _ => {}
         }
         out
+    }
+
+    /// Whether `event`, just reported by [`serve`](Self::serve), means reset communication: CANopenNode
+    /// CO_LSSslave.c, an unconfigured node that got a node-ID and is switched from LSS configuration back to
+    /// waiting resets communication (switch state global leaves both node-IDs as they were).
+    pub(crate) fn resets_communication(&self, event: LssEvent) -> bool {
+        event == LssEvent::ModeChanged(LssMode::Waiting)
+            && self.active == UNCONFIGURED_NODE_ID
+            && self.pending != UNCONFIGURED_NODE_ID
     }
 
     /// The answer to a pending store request, once the application has stored (or failed to); `None` if
@@ -495,7 +534,7 @@ impl LssSlave {
     /// assert_eq!(LssSlave::new(&Identity::default(), None).poll_timeout(), None);
     /// ```
     pub fn poll_timeout(&self) -> Option<Instant> {
-        self.switch.map(|s| if s.switched { s.resume_at } else { s.switch_at })
+        self.switch_at.get(usize::from(self.switch_phase)).copied()
     }
 
     /// Acts on the time that passed: reports [`LssEvent::SwitchBitRate`] at the end of the first delay and
@@ -510,17 +549,16 @@ impl LssSlave {
     /// assert_eq!(s.handle_timeout(Instant::from_millis(20)), Some(LssEvent::TransmitResumed));
     /// ```
     pub fn handle_timeout(&mut self, now: Instant) -> Option<LssEvent> {
-        let s = self.switch.as_mut()?;
-        if !s.switched && now >= s.switch_at {
-            s.switched = true;
-            self.bit_rate = s.bit_rate;
-            return Some(LssEvent::SwitchBitRate(s.bit_rate));
+        let phase = self.switch_phase;
+        if now < *self.switch_at.get(usize::from(phase))? {
+            return None;
         }
-        if s.switched && now >= s.resume_at {
-            self.switch = None;
-            return Some(LssEvent::TransmitResumed);
+        self.switch_phase = phase + 1; // after the second period: SWITCH_IDLE
+        if phase == 0 {
+            self.bit_rate = self.switch_rate;
+            return Some(LssEvent::SwitchBitRate(self.switch_rate));
         }
-        None
+        Some(LssEvent::TransmitResumed)
     }
 
     /// Whether the node must not transmit at `now` (between the bit-rate switch and the end of the second
@@ -531,14 +569,14 @@ impl LssSlave {
     /// assert!(!LssSlave::new(&Identity::default(), None).holds_transmit(Instant::ZERO));
     /// ```
     pub fn holds_transmit(&self, now: Instant) -> bool {
-        self.switch.is_some_and(|s| now >= s.switch_at && now < s.resume_at)
+        self.switch_phase != SWITCH_IDLE && now >= self.switch_at[0] && now < self.switch_at[1]
     }
 
     /// Enters `mode` (restarting switch state selective); the event when the mode changed. Out of line: four
     /// requests enter a mode, none of them hot.
     #[inline(never)]
     fn enter(&mut self, mode: LssMode) -> Option<LssEvent> {
-        self.selective_next = 0x40;
+        self.sequence_next[0] = cs::SWITCH_STATE_SELECTIVE_VENDOR;
         if self.mode == mode {
             return None;
         }
@@ -546,26 +584,31 @@ impl LssSlave {
         Some(LssEvent::ModeChanged(mode))
     }
 
-    /// Whether `value` matches the part of identify remote slave that `command` (46h-4Bh) names: 46h vendor-ID
-    /// and 47h product code exactly (`<=` and `>=`), 48h/4Ah the low bound of the revision/serial number
-    /// (`value <= own`), 49h/4Bh the high bound (`value >= own`).
-    fn identify_matches(&self, command: u8, value: u32) -> bool {
-        const PART: [u8; 6] = [0, 1, 2, 2, 3, 3]; // the LSS address part of 46h..4Bh
-        const LOW: u8 = 0b01_0111; // the parts that need `value <= own`
-        const HIGH: u8 = 0b10_1011; // the parts that need `value >= own`
-        let i = command.wrapping_sub(cs::IDENTIFY_REMOTE_VENDOR);
-        let Some(&own) = PART.get(usize::from(i)).and_then(|&p| self.address.get(usize::from(p))) else {
-            return false;
+    /// Whether `value` matches the sequence part `i` = command specifier - 40h: 40h-43h (switch state
+    /// selective), 46h vendor-ID and 47h product code exactly (`<=` and `>=`), 48h/4Ah the low bound of the
+    /// revision/serial number (`value <= own`), 49h/4Bh the high bound (`value >= own`).
+    fn part_matches(&self, i: u8, value: u32) -> bool {
+        const PART: u32 = 0b11_11_10_10_01_00_00_00_11_10_01_00; // the LSS address part of 40h..4Bh, 2 bits each
+        const LOW: u16 = 0b0101_1100_1111; // the parts that need `value <= own`
+        const HIGH: u16 = 0b1010_1100_1111; // the parts that need `value >= own`
+        let own = self.address[(PART >> (2 * i) & 3) as usize];
+        // The bound that `value` is on the wrong side of, if any, must not be one this part checks.
+        let violated = if value < own {
+            HIGH
+        } else if value > own {
+            LOW
+        } else {
+            0
         };
-        (LOW >> i & 1 == 0 || value <= own) && (HIGH >> i & 1 == 0 || value >= own)
+        violated >> i & 1 == 0
     }
 
     /// One fastscan step (CANopenNode/lely rule; see the module docs).
-    fn fastscan(&mut self, id_number: u32, bit_check: u8, sub: IdentityField, next: IdentityField) -> LssOutput {
-        let mut out = LssOutput::default();
+    fn fastscan(&mut self, id_number: u32, bit_check: u8, sub: IdentityField, next: IdentityField) -> Served {
+        let mut out = Served::default();
         if bit_check == FASTSCAN_CONFIRM {
             self.fastscan_pos = 0;
-            out.response = Some(LssResponse::IdentifySlave);
+            out.respond(cs::IDENTIFY_SLAVE, 0);
             return out;
         }
         // BitCheck is 0..=31 or 80h; a slave ignores any other value.
@@ -577,7 +620,7 @@ impl LssSlave {
             return out;
         }
         self.fastscan_pos = next.index();
-        out.response = Some(LssResponse::IdentifySlave);
+        out.respond(cs::IDENTIFY_SLAVE, 0);
         if bit_check == 0 && next.index() < sub.index() {
             out.event = self.enter(LssMode::Configuration);
         }
@@ -719,6 +762,38 @@ mod tests {
         assert_eq!(req(&mut s, bt(0, 3)).response, Some(LssResponse::BitTimingConfigured(Status::NOT_SUPPORTED)));
     }
 
+    /// Activate bit timing again while a switch is under way restarts both periods from the new request,
+    /// and a late timer call reports one event per call (the switch, then the resume).
+    #[test]
+    fn activate_again_restarts_the_switch() {
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        config(&mut s);
+        let act = |s: &mut LssSlave, t: u64, d: u16| {
+            s.handle_request(Instant::from_millis(t), &LssRequest::ActivateBitTiming { switch_delay_ms: d }.emit())
+        };
+        act(&mut s, 0, 100);
+        assert_eq!(s.handle_timeout(Instant::from_millis(100)), Some(LssEvent::SwitchBitRate(BitRate::K125)));
+        assert!(s.holds_transmit(Instant::from_millis(150)));
+        act(&mut s, 150, 10);
+        assert!(!s.holds_transmit(Instant::from_millis(150)));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(160)));
+        assert!(s.holds_transmit(Instant::from_millis(165)));
+        assert!(!s.holds_transmit(Instant::from_millis(170)));
+        // Late: both instants have passed, one event per call.
+        let late = Instant::from_millis(1000);
+        assert_eq!(s.handle_timeout(late), Some(LssEvent::SwitchBitRate(BitRate::K125)));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(170)));
+        assert_eq!(s.handle_timeout(late), Some(LssEvent::TransmitResumed));
+        assert_eq!(s.handle_timeout(late), None);
+        assert_eq!(s.poll_timeout(), None);
+        assert!(!s.holds_transmit(Instant::from_millis(165)));
+        // The longest switch delay, 65,535 ms, each period.
+        act(&mut s, 1000, u16::MAX);
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1000 + 65_535)));
+        s.handle_timeout(Instant::from_millis(1000 + 65_535));
+        assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1000 + 2 * 65_535)));
+    }
+
     #[test]
     fn store_deferred_and_not_supported() {
         let mut s = LssSlave::new(&ID, None);
@@ -771,6 +846,53 @@ mod tests {
         assert_eq!(run(&mut s, 0x123, 0x42, 0, u32::MAX, 0, u32::MAX), Some(LssResponse::IdentifySlave));
         // Only the last part on its own: nothing.
         assert_eq!(req(&mut s, LssRequest::IdentifyRemoteSlave(IdentifyPart::SerialHigh, 100)).response, None);
+    }
+
+    /// Switch state selective and identify remote slave keep separate positions (one interleaved with the
+    /// other does not restart it), an identify part out of order restarts identify, and a first part
+    /// restarts a sequence that is under way.
+    #[test]
+    fn selective_and_identify_sequences_are_independent() {
+        use IdentifyPart::*;
+        let mut s = LssSlave::new(&ID, NodeId::new(5));
+        let sel = |f, v| LssRequest::SwitchStateSelective(f, v);
+        let idr = |p, v| LssRequest::IdentifyRemoteSlave(p, v);
+        // Identify with a part skipped (revision high missing): no answer, and the sequence restarts.
+        for (p, v) in [(VendorId, 0x123), (ProductCode, 0x42), (RevisionLow, 0), (SerialLow, 0)] {
+            assert_eq!(req(&mut s, idr(p, v)).response, None);
+        }
+        assert_eq!(req(&mut s, idr(SerialHigh, u32::MAX)).response, None);
+        // Interleaved: selective vendor, identify vendor, selective product, ... each completes.
+        req(&mut s, sel(IdentityField::VendorId, 0x123));
+        req(&mut s, idr(VendorId, 0x123));
+        req(&mut s, idr(VendorId, 0x123)); // a repeated first part restarts identify at its start
+        req(&mut s, sel(IdentityField::ProductCode, 0x42));
+        req(&mut s, idr(ProductCode, 0x42));
+        req(&mut s, sel(IdentityField::Revision, 0x0001_0002));
+        for (p, v) in [(RevisionLow, 0), (RevisionHigh, u32::MAX), (SerialLow, 0)] {
+            assert_eq!(req(&mut s, idr(p, v)).response, None);
+        }
+        assert_eq!(req(&mut s, idr(SerialHigh, u32::MAX)).response, Some(LssResponse::IdentifySlave));
+        // The identify answer did not disturb selective: its last part completes it.
+        let out = req(&mut s, sel(IdentityField::Serial, 77));
+        assert_eq!(out.response, Some(LssResponse::SwitchStateSelective));
+        assert_eq!(s.mode(), LssMode::Configuration);
+        // A selective part in configuration is ignored and does not touch identify's position.
+        req(&mut s, idr(VendorId, 0x123));
+        req(&mut s, sel(IdentityField::VendorId, 0x123));
+        req(&mut s, idr(ProductCode, 0x42));
+        for (p, v) in [(RevisionLow, 0), (RevisionHigh, u32::MAX), (SerialLow, 0)] {
+            req(&mut s, idr(p, v));
+        }
+        assert_eq!(req(&mut s, idr(SerialHigh, u32::MAX)).response, Some(LssResponse::IdentifySlave));
+        // Back in waiting, a selective sequence is interrupted by a wrong part and restarts from its vendor-ID.
+        req(&mut s, LssRequest::SwitchStateGlobal(LssMode::Waiting));
+        req(&mut s, sel(IdentityField::VendorId, 0x123));
+        req(&mut s, sel(IdentityField::ProductCode, 0x42));
+        req(&mut s, sel(IdentityField::VendorId, 0x123)); // first part again: restart, still in order
+        req(&mut s, sel(IdentityField::ProductCode, 0x42));
+        req(&mut s, sel(IdentityField::Revision, 0x0001_0002));
+        assert_eq!(req(&mut s, sel(IdentityField::Serial, 77)).response, Some(LssResponse::SwitchStateSelective));
     }
 
     #[test]

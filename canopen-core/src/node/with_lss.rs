@@ -16,7 +16,7 @@ use crate::od::ObjectDictionary;
 use crate::profile::NodeConfig;
 use crate::storage::{NoStorage, Storage};
 use crate::time::Instant;
-use crate::wire::lss::{LssResponse, UNCONFIGURED_NODE_ID};
+use crate::wire::lss::{frame_u32, LssResponse, UNCONFIGURED_NODE_ID};
 
 impl<A: ObjectDictionary, Z: NodeSizes> Node<A, Z, NoStorage> {
     /// A node without a node-ID (FFh): after power-on it waits in Initialisation, serving LSS only, until
@@ -206,15 +206,15 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if frame.is_rtr() {
             return;
         }
-        let out = self.lss.handle_request(now, frame.data());
-        if let Some(r) = out.response {
-            self.lss_transmit(r);
+        let out = self.lss.serve(now, frame.data());
+        if out.cs != 0 {
+            self.send(LSS_SLAVE_ID, frame_u32(out.cs, out.value), 8);
         }
         if let Some(e) = out.event {
             self.push_event(Event::Lss(e));
-        }
-        if out.reset_communication {
-            self.reset(now, false);
+            if self.lss.resets_communication(e) {
+                self.reset(now, false);
+            }
         }
     }
 

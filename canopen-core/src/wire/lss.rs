@@ -517,7 +517,7 @@ fn frame(cs: u8) -> [u8; 8] {
     f
 }
 
-fn frame_u32(cs: u8, v: u32) -> [u8; 8] {
+pub(crate) fn frame_u32(cs: u8, v: u32) -> [u8; 8] {
     let mut f = frame(cs);
     f[1..5].copy_from_slice(&v.to_le_bytes());
     f
