@@ -393,6 +393,11 @@ pub(crate) fn data_impl(
             let d = <#ident as #core::od::data::OdData>::FIRST_ROWS.len();
             d == 0 || d == <#ident as #core::od::data::OdData>::KEYS.len() + 1
         });
+        // Row positions are u16 (FIRST_ROWS, the positions `find` and PDO handles carry).
+        const _: () = assert!(
+            <#ident as #core::od::data::OdData>::ROWS.len() <= u16::MAX as usize,
+            "#[od(compact)]: more than 65,535 rows (VARs, ARRAYs and RECORD members)"
+        );
         #offset_assert
 
         #[automatically_derived]
