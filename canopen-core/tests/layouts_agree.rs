@@ -126,6 +126,122 @@ records!(
     repr(C)
 );
 
+/// Regularly numbered dictionaries (a VAR at sub 00h, ARRAYs from 01h, RECORD members 01h, 02h... in
+/// order): the derive stores no sub-index (`SUBS` is empty) and the tables infer it from a row's shape and
+/// place. Here a key per row (one RECORD of two members), in `regular_records!` a key per object; an ARRAY
+/// of one element beside a VAR, a hooked and limited member, and PDO-mappable members reached through
+/// their handles.
+macro_rules! regular {
+    ($name:ident $(, $attr:meta)*) => {
+        #[derive(ObjectDictionary, Default, Debug, PartialEq)]
+        $(#[$attr])*
+        struct $name {
+            #[od(index = 0x2000, access = "rw", pdo = "both", default = 0x0102_0304)]
+            speed: u32,
+            #[od(index = 0x2001, sub = 1..=1, access = "rw", pdo = "both", default = 3)]
+            single: [u32; 1],
+            #[od(index = 0x2002, sub = 1, record = "Axis", access = "rw", pdo = "both", min = -10, max = 10, on_write = "count")]
+            axis_a: i32,
+            #[od(index = 0x2002, sub = 2, access = "ro", pdo = "tpdo", default = 8)]
+            axis_b: u32,
+            #[od(index = 0x2003, sub = 1..=3, access = "rw", pdo = "both", default = 0x1122)]
+            table: [u16; 3],
+            #[od(index = 0x2008, access = "wo", pdo = "rpdo")]
+            command: u16,
+            /// Not in the dictionary: how often `axis_a` was written (its `on_write`).
+            writes: u8,
+            /// Not in the dictionary: the tail a `repr(C)` struct would pad.
+            spare: [u8; 3],
+        }
+
+        impl Writes for $name {
+            fn writes(&self) -> u8 {
+                self.writes
+            }
+        }
+
+        impl $name {
+            fn count(&mut self, _sub: u8) {
+                self.writes = self.writes.wrapping_add(1);
+            }
+        }
+    };
+}
+/// [`regular!`] with the RECORDs that give it a key per object (written out: the code the derive writes
+/// for a field must see the struct's own tokens, so fields cannot be handed from one macro to another).
+macro_rules! regular_records {
+    ($name:ident $(, $attr:meta)*) => {
+        #[derive(ObjectDictionary, Default, Debug, PartialEq)]
+        $(#[$attr])*
+        struct $name {
+            #[od(index = 0x2000, access = "rw", pdo = "both", default = 0x0102_0304)]
+            speed: u32,
+            #[od(index = 0x2001, sub = 1..=1, access = "rw", pdo = "both", default = 3)]
+            single: [u32; 1],
+            #[od(index = 0x2002, sub = 1, record = "Axis", access = "rw", pdo = "both", min = -10, max = 10, on_write = "count")]
+            axis_a: i32,
+            #[od(index = 0x2002, sub = 2, access = "ro", pdo = "tpdo", default = 8)]
+            axis_b: u32,
+            #[od(index = 0x2004, sub = 1, record = "Limits", access = "rw", count_access = "ro", pdo = "both")]
+            lim_a: i32,
+            #[od(index = 0x2004, sub = 2, access = "rw", pdo = "rpdo", default = -3)]
+            lim_b: i32,
+            #[od(index = 0x2004, sub = 3, access = "const", default = 1)]
+            lim_c: u32,
+            #[od(index = 0x2006, sub = 1, record = "Seven", access = "ro", pdo = "tpdo", default = 4)]
+            seven_a: u32,
+            #[od(index = 0x2006, sub = 2, access = "wo", pdo = "rpdo")]
+            seven_b: u32,
+            #[od(index = 0x2006, sub = 3, access = "rw", default = 6)]
+            seven_c: u32,
+            #[od(index = 0x2006, sub = 4, access = "rw", pdo = "both", default = 9)]
+            seven_d: u32,
+            #[od(index = 0x2006, sub = 5, access = "rw", pdo = "both")]
+            seven_e: u32,
+            #[od(index = 0x2006, sub = 6, access = "ro", default = 12)]
+            seven_f: u32,
+            #[od(index = 0x2006, sub = 7, access = "rw", default = 13)]
+            seven_g: u32,
+            #[od(index = 0x2003, sub = 1..=3, access = "rw", pdo = "both", default = 0x1122)]
+            table: [u16; 3],
+            #[od(index = 0x2008, access = "wo", pdo = "rpdo")]
+            command: u16,
+            /// Not in the dictionary: how often `axis_a` was written (its `on_write`).
+            writes: u8,
+            /// Not in the dictionary: the tail a `repr(C)` struct would pad.
+            spare: [u8; 3],
+        }
+
+        impl Writes for $name {
+            fn writes(&self) -> u8 {
+                self.writes
+            }
+        }
+
+        impl $name {
+            fn count(&mut self, _sub: u8) {
+                self.writes = self.writes.wrapping_add(1);
+            }
+        }
+    };
+}
+regular!(CodeRegular);
+regular!(CompactRegular, od(compact));
+regular!(
+    OffsetRegular,
+    od(compact, zerocopy),
+    derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable),
+    repr(C)
+);
+regular_records!(CodeRegularRecords);
+regular_records!(CompactRegularRecords, od(compact));
+regular_records!(
+    OffsetRegularRecords,
+    od(compact, zerocopy),
+    derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable),
+    repr(C)
+);
+
 /// What a dictionary's `on_write` hook counted.
 trait Writes {
     fn writes(&self) -> u8;
@@ -314,6 +430,50 @@ proptest! {
     fn the_three_layouts_answer_alike_with_a_key_per_object(ops in proptest::collection::vec(op(), 1..40)) {
         agree::<CodeRecords, CompactRecords, OffsetRecords>(&ops)?;
     }
+
+    /// The same for regularly numbered dictionaries, whose tables hold no sub-index (OD-03, OD-04, OD-16):
+    /// with a key per row and with a key per object.
+    #[test]
+    fn the_three_layouts_answer_alike_without_stored_sub_indices(ops in proptest::collection::vec(op(), 1..40)) {
+        agree::<CodeRegular, CompactRegular, OffsetRegular>(&ops)?;
+        agree::<CodeRegularRecords, CompactRegularRecords, OffsetRegularRecords>(&ops)?;
+    }
+}
+
+/// Only an irregular numbering stores sub-indices (OD-03, OD-04): the dictionaries above with gaps (and a RECORD whose
+/// members are not in order) have one per row; the regular ones none, a key per row or per object alike.
+#[test]
+fn sub_indices_are_stored_only_when_irregular() {
+    use canopen_core::od::data::OdData;
+    assert_eq!(<OffsetRecords as OdData>::SUBS, &[0, 1, 2, 5, 1, 1, 2, 3, 1, 2, 4, 6]);
+    assert_eq!(<Compact as OdData>::SUBS.len(), <Compact as OdData>::ROWS.len());
+    assert!(<CompactRegular as OdData>::SUBS.is_empty() && <CompactRegular as OdData>::FIRST_ROWS.is_empty());
+    assert!(<OffsetRegular as OdData>::SUBS.is_empty());
+    assert!(<CompactRegularRecords as OdData>::SUBS.is_empty());
+    assert!(
+        !<OffsetRegularRecords as OdData>::FIRST_ROWS.is_empty() && <OffsetRegularRecords as OdData>::SUBS.is_empty()
+    );
+    // The ARRAY of one element is an ARRAY (sub 01h, a count at 00h), the VAR before it a VAR.
+    let mut d = fresh::<OffsetRegularRecords>();
+    let mut buf = [0u8; 4];
+    assert_eq!((d.read(0x2001, 0, 0, &mut buf), buf[0]), (Ok(1), 1));
+    assert_eq!((d.read(0x2001, 1, 0, &mut buf), buf), (Ok(4), 3u32.to_le_bytes()));
+    assert_eq!(d.read(0x2001, 2, 0, &mut buf), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(d.read(0x2000, 1, 0, &mut buf), Err(AbortCode::SubIndexDoesNotExist));
+    // Members by their place: the fourth of 2006h, the count, one past the last.
+    assert_eq!((d.read(0x2006, 4, 0, &mut buf), buf), (Ok(4), 9u32.to_le_bytes()));
+    assert_eq!((d.read(0x2006, 6, 0, &mut buf), buf), (Ok(4), 12u32.to_le_bytes()));
+    assert_eq!((d.read(0x2006, 0, 0, &mut buf), buf[0]), (Ok(1), 7));
+    assert_eq!(d.read(0x2006, 8, 0, &mut buf), Err(AbortCode::SubIndexDoesNotExist));
+    assert_eq!(d.read(0x2006, 2, 0, &mut buf), Err(AbortCode::ReadOfWriteOnly));
+    // A member's PDO handle reaches it by position: the hook and the limit apply (OD-11).
+    let h = d.pdo_resolve(0x2002, 1, PdoDir::Rpdo).unwrap();
+    assert_eq!(d.pdo_write(&h, &11i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.pdo_write(&h, &(-7i32).to_le_bytes()), Ok(()));
+    assert_eq!((d.axis_a, d.writes), (-7, 1));
+    let h = d.pdo_resolve(0x2006, 4, PdoDir::Tpdo).unwrap();
+    let mut out = [0u8; 8];
+    assert_eq!((d.pdo_read(&h, &mut out), &out[..4]), (Ok(4), &9u32.to_le_bytes()[..]));
 }
 
 /// The record dictionary has a key per object and where each one's rows start (the RECORD at 2002h has
@@ -332,7 +492,7 @@ fn many_record_members_get_a_key_per_object() {
     // Rows alike share a shape: the three UNSIGNED16 members of 2006h are one; 12 rows, 10 shapes.
     assert_eq!((<OffsetRecords as OdData>::ROWS.len(), <OffsetRecords as OdData>::SHAPES.len()), (12, 10));
     let pair = &<OffsetRecords as OdData>::ROWS[9..12];
-    assert!(pair.iter().all(|r| r.shape == pair[0].shape) && pair.iter().map(|r| r.sub).eq([2, 4, 6]));
+    assert!(pair.iter().all(|r| r.shape == pair[0].shape) && <OffsetRecords as OdData>::SUBS[9..12] == [2, 4, 6]);
     assert!(<Offsets as OdData>::FIRST_ROWS.is_empty());
     // Each kind of answer through FIRST_ROWS: a member past the first, a gap, the count, the object after.
     let mut d = fresh::<OffsetRecords>();

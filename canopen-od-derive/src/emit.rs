@@ -289,6 +289,18 @@ pub(crate) fn data_impl(
         keys = fields.iter().map(|f| f.index).collect();
         first_rows.clear();
     }
+    // The sub-indices: none when the numbering is regular (what `PackedRow::unpack` and `find_member`
+    // infer: a VAR at 0, an ARRAY from 1, a RECORD's members 1, 2, 3... in order),
+    // else one per row.
+    let regular = fields.iter().enumerate().all(|(pos, f)| {
+        let place = fields[..pos].iter().rev().take_while(|g| g.index == f.index).count();
+        match (f.sub, f.n) {
+            (_, 0) => usize::from(f.sub) == place + 1,
+            (0, _) => true,
+            (first, _) => first == 1,
+        }
+    });
+    let subs: Vec<u8> = if regular { Vec::new() } else { fields.iter().map(|f| f.sub).collect() };
     // Each row's shape (data type, flags, count), listed once in SHAPES in the order first met; a row
     // names its shape by position.
     let mut shape_keys: Vec<String> = Vec::new();
@@ -301,7 +313,9 @@ pub(crate) fn data_impl(
             _ => quote!(#num),
         };
         let dt = Ident::new(f.dt, Span::call_site());
-        let (access, pdo, sub, n) = (&f.access, &f.pdo, f.sub, f.n);
+        let (access, pdo) = (&f.access, &f.pdo);
+        // Shape::n: a VAR is FFh (no ARRAY has 255 elements), so its shape tells it from an ARRAY of one.
+        let n = if f.sub == 0 && f.n == 1 { 0xFF } else { f.n };
         let mut extra = Vec::new();
         if f.count_ro {
             extra.push(quote!(#core::od::data::Row::COUNT_RO));
@@ -325,7 +339,7 @@ pub(crate) fn data_impl(
                 "#[od(compact)]: more than 256 shapes of entries (data type, access, PDO mapping, count); use the default layout"
             ););
         };
-        rows.push(quote!(#core::od::data::PackedRow { field: #num, shape: #shape, sub: #sub }));
+        rows.push(quote!(#core::od::data::PackedRow { field: #num, shape: #shape }));
     }
     let defaults = defaults.iter().map(|b| Literal::u8_unsuffixed(*b));
     let defaulted = defaulted.iter().map(|b| Literal::u8_unsuffixed(*b));
@@ -379,6 +393,7 @@ pub(crate) fn data_impl(
             const ROWS: &'static [#core::od::data::PackedRow] = &[#(#rows),*];
             const SHAPES: &'static [#core::od::data::Shape] = &[#(#shapes),*];
             const FIRST_ROWS: &'static [u16] = &[#(#first_rows),*];
+            const SUBS: &'static [u8] = &[#(#subs),*];
             const DEFAULTS: &'static [u8] = &[#(#defaults),*];
             const DEFAULTED: &'static [u8] = &[#(#defaulted),*];
             #by_offset_items
@@ -392,6 +407,10 @@ pub(crate) fn data_impl(
         const _: () = assert!({
             let d = <#ident as #core::od::data::OdData>::FIRST_ROWS.len();
             d == 0 || d == <#ident as #core::od::data::OdData>::KEYS.len() + 1
+        });
+        const _: () = assert!({
+            let s = <#ident as #core::od::data::OdData>::SUBS.len();
+            s == 0 || s == <#ident as #core::od::data::OdData>::ROWS.len()
         });
         // Row positions are u16 (FIRST_ROWS, the positions `find` and PDO handles carry).
         const _: () = assert!(

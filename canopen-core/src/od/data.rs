@@ -14,7 +14,7 @@
 //! - [`OdData::KEYS`]: the object index of each [`Row`], sorted; an interpolated guess, checked, finds an
 //!   object, else a binary search ([`search`]). A dictionary of large RECORDs has a key per object instead,
 //!   and [`OdData::FIRST_ROWS`] to say where each object's rows start.
-//! - [`OdData::ROWS`]: one 4-byte [`PackedRow`] per VAR, per ARRAY (all its elements) and per RECORD member,
+//! - [`OdData::ROWS`]: one 3-byte [`PackedRow`] per VAR, per ARRAY (all its elements) and per RECORD member,
 //!   with [`OdData::SHAPES`], the [`Shape`]s its rows share; a whole [`Row`] holds the
 //!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number (or offset).
 //! - [`OdData::DEFAULTS`]: the power-on values that are not zero, in row order, each as LEB128 (a small
@@ -120,6 +120,11 @@ macro_rules! od_data_trait {
             /// bytes than a key per row (a drive's dictionary: python canopen's `e35.eds` has 636 rows in
             /// 178 objects).
             const FIRST_ROWS: &'static [u16] = &[];
+            /// Empty when the dictionary numbers its entries the regular way (a VAR at sub 00h, each ARRAY
+            /// from sub 01h, each RECORD's members 01h, 02h... in order): a row's
+            /// sub-index then follows from its shape and its place in its object ([`PackedRow`]). Otherwise
+            /// the sub-index of each row of [`ROWS`](Self::ROWS) (a VAR's 0, an ARRAY's first element's).
+            const SUBS: &'static [u8] = &[];
             /// The default values of the fixed-size rows whose default is not zero ([`DEFAULTED`](Self::DEFAULTED)),
             /// in row order: one value per VAR and RECORD member, one per ARRAY (every element gets it);
             /// strings and DOMAINs have none here. Each as LEB128 of its little-endian bytes read as a
@@ -395,10 +400,15 @@ fn find_member<D: OdData + ?Sized>(
         if !member {
             break;
         }
-        if row.sub == sub && sub != 0 {
-            return Ok(At::Value(i as u16, row, 0));
+        // A regularly numbered RECORD's members are 01h, 02h... from its first row.
+        let member_sub = match D::SUBS {
+            [] => (i - first + 1) as u8,
+            _ => row.sub,
+        };
+        if member_sub == sub && sub != 0 {
+            return Ok(At::Value(i as u16, Row { sub, ..row }, 0));
         }
-        highest = row.sub;
+        highest = member_sub;
         i += 1;
     }
     if sub == 0 {
@@ -408,10 +418,15 @@ fn find_member<D: OdData + ?Sized>(
     }
 }
 
-/// The row at `pos` of [`OdData::ROWS`], with its shape.
+/// The row at `pos` of [`OdData::ROWS`], with its shape and, from [`OdData::SUBS`] when the numbering
+/// is not regular, its sub-index (a member of a regular RECORD has 0 here: [`find_member`] knows its place).
 #[inline(always)]
 fn row_at<D: OdData + ?Sized>(pos: usize) -> Option<Row> {
-    D::ROWS.get(pos)?.unpack(D::SHAPES)
+    let row = D::ROWS.get(pos)?.unpack(D::SHAPES)?;
+    match D::SUBS {
+        [] => Some(row),
+        subs => Some(Row { sub: *subs.get(pos)?, ..row }),
+    }
 }
 
 /// What SDO and PDO see of sub 00h of an ARRAY or RECORD.
@@ -800,13 +815,16 @@ pub fn slot<D: OdData + ?Sized>(d: &D, index: u16, sub: u8) -> u16 {
 }
 
 /// The value at a row position and sub-index that [`slot`] (or a PDO handle) gave: `None` when the
-/// position is out of range or names sub 00h.
+/// position is out of range or names sub 00h. A member of a regularly numbered RECORD is taken at its
+/// position, as the handle's slot says (its sub-index was checked when [`slot`] or [`pdo_resolve`] gave it).
 #[inline]
 fn at_slot<D: OdData + ?Sized>(slot: u16, sub: u8) -> Option<(Row, u8)> {
     let row = row_at::<D>(usize::from(slot))?;
     if row.is_array() {
         let elem = sub.wrapping_sub(row.sub);
         (elem < row.n).then_some((row, elem))
+    } else if row.n == 0 && D::SUBS.is_empty() {
+        (sub != 0).then_some((Row { sub, ..row }, 0))
     } else {
         (sub == row.sub).then_some((row, 0))
     }

@@ -1,6 +1,6 @@
 //! The rows of a data dictionary (OD-03, OD-04, OD-08, OD-09, OD-11): what one VAR, ARRAY or RECORD member
-//! is, and where its limits are. A [`Row`] is stored as a 4-byte [`PackedRow`] (where the value is, its
-//! sub-index) and a [`Shape`] (data type, access, PDO mapping, count) that the rows alike share: a drive's
+//! is, and where its limits are. A [`Row`] is stored as a 3-byte [`PackedRow`] (where the value is; the
+//! sub-index follows from the row's place, or from a table when the numbering is not regular) and a [`Shape`] (data type, access, PDO mapping, count) that the rows alike share: a drive's
 //! dictionary has a few dozen shapes for hundreds of rows.
 
 use crate::od::{Access, DataType, PdoMapping};
@@ -35,7 +35,9 @@ pub struct Row {
     pub data_type: DataType,
     /// Access, PDO mapping and the other bits ([`Row::READ`] ...).
     pub flags: u8,
-    /// VAR: 0; ARRAY: the first element's sub-index; RECORD member: its sub-index.
+    /// VAR: 0; ARRAY: the first element's sub-index; RECORD member: its sub-index. (A row reached by its
+    /// position alone, as a PDO handle reaches it, has 0 for a member of a regularly numbered dictionary:
+    /// see [`PackedRow`].)
     pub sub: u8,
     /// ARRAY: the number of elements; VAR: 1; RECORD member: 0.
     pub n: u8,
@@ -196,13 +198,14 @@ impl Row {
     }
 }
 
-/// What rows have in common: the data type, the flags ([`Row::READ`] ...) and the number of elements
-/// ([`Row::n`]). A dictionary lists each shape its rows have once ([`OdData::SHAPES`](super::OdData::SHAPES)).
+/// What rows have in common: the data type, the flags ([`Row::READ`] ...) and what kind of row it is (a
+/// VAR, an ARRAY of so many elements, a RECORD member). A dictionary lists each shape its rows have once
+/// ([`OdData::SHAPES`](super::OdData::SHAPES)).
 ///
 /// ```
 /// use canopen_core::od::{data::{Row, Shape}, Access, DataType, PdoMapping};
 /// let s = Shape::of(Row::var(7, DataType::Unsigned32, Access::Rw, PdoMapping::Both));
-/// assert_eq!((s.data_type, s.flags, s.n), (DataType::Unsigned32, Row::READ | Row::WRITE | Row::TPDO | Row::RPDO, 1));
+/// assert_eq!((s.data_type, s.flags, s.n), (DataType::Unsigned32, Row::READ | Row::WRITE | Row::TPDO | Row::RPDO, Shape::VAR));
 /// assert_eq!(core::mem::size_of::<Shape>(), 3);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -211,19 +214,26 @@ pub struct Shape {
     pub data_type: DataType,
     /// [`Row::flags`].
     pub flags: u8,
-    /// [`Row::n`].
+    /// An ARRAY's number of elements (1 to 254), [`Shape::VAR`] for a VAR, 0 for a RECORD member: unlike
+    /// [`Row::n`] it tells a VAR from an ARRAY of one element without the sub-index.
     pub n: u8,
 }
 
 impl Shape {
+    /// [`Shape::n`] of a VAR (no ARRAY has 255 elements: sub-index FFh is not an element).
+    pub const VAR: u8 = 0xFF;
+
     /// The shape of `row`.
     /// ```
     /// use canopen_core::od::{data::{Row, Shape}, Access, DataType, PdoMapping};
     /// let r = Row::array(3, DataType::Integer16, Access::Ro, PdoMapping::No, 1, 4);
     /// assert_eq!(Shape::of(r).n, 4);
+    /// let one = Row::array(3, DataType::Integer16, Access::Ro, PdoMapping::No, 1, 1);
+    /// assert_eq!(Shape::of(one).n, 1);
     /// ```
     pub const fn of(row: Row) -> Shape {
-        Shape { data_type: row.data_type, flags: row.flags, n: row.n }
+        let n = if row.sub == 0 && row.n == 1 { Self::VAR } else { row.n };
+        Shape { data_type: row.data_type, flags: row.flags, n }
     }
 
     /// Whether SDO may read rows of this shape.
@@ -245,34 +255,45 @@ impl Shape {
     }
 }
 
-/// A row as [`OdData::ROWS`](super::OdData::ROWS) stores it: the [`Row::field`], the position of its
-/// [`Shape`] in [`OdData::SHAPES`](super::OdData::SHAPES) and the [`Row::sub`]; four bytes.
+/// A row as [`OdData::ROWS`](super::OdData::ROWS) stores it: the [`Row::field`] and the position of its
+/// [`Shape`] in [`OdData::SHAPES`](super::OdData::SHAPES); three bytes (packed: a drive's dictionary has
+/// hundreds of rows).
+///
+/// The sub-index is not stored here. Most dictionaries number their entries the regular way: a VAR at
+/// sub 00h, an ARRAY's elements from sub 01h, a RECORD's members 01h, 02h, 03h... in order. Then a row's
+/// sub-index follows from its shape and its place in its object, and [`OdData::SUBS`](super::OdData::SUBS)
+/// is empty. Otherwise `SUBS` holds every row's.
 ///
 /// ```
 /// use canopen_core::od::{data::{PackedRow, Row, Shape}, Access, DataType, PdoMapping};
-/// let row = Row::member(12, DataType::Unsigned16, Access::Ro, PdoMapping::Tpdo, 2);
+/// let row = Row::array(12, DataType::Unsigned16, Access::Ro, PdoMapping::Tpdo, 1, 4);
 /// let shapes = [Shape::of(row)];
-/// let packed = PackedRow { field: 12, shape: 0, sub: 2 };
-/// assert_eq!(packed.unpack(&shapes), Some(row));
+/// let packed = PackedRow { field: 12, shape: 0 };
+/// assert_eq!(packed.unpack(&shapes), Some(row)); // an ARRAY of more than one element: from sub 01h
 /// assert_eq!(PackedRow { shape: 1, ..packed }.unpack(&shapes), None);
-/// assert_eq!(core::mem::size_of::<PackedRow>(), 4);
+/// assert_eq!(core::mem::size_of::<PackedRow>(), 3);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C, packed)]
 pub struct PackedRow {
     /// [`Row::field`].
     pub field: u16,
     /// Its [`Shape`]'s position in [`OdData::SHAPES`](super::OdData::SHAPES).
     pub shape: u8,
-    /// [`Row::sub`].
-    pub sub: u8,
 }
 
 impl PackedRow {
-    /// The whole row, with its shape from `shapes`; `None` when `shapes` has no such shape.
+    /// The whole row, with its shape from `shapes` and the sub-index a regularly numbered dictionary gives
+    /// it: 00h for a VAR, 01h for an ARRAY, and for a RECORD member 00h, which the caller replaces by the
+    /// member's place ([`Row::sub`]); `None` when `shapes` has no such shape.
     #[inline(always)]
     pub fn unpack(self, shapes: &[Shape]) -> Option<Row> {
         let s = shapes.get(usize::from(self.shape))?;
-        Some(Row { field: self.field, data_type: s.data_type, flags: s.flags, sub: self.sub, n: s.n })
+        let (sub, n) = match s.n {
+            Shape::VAR => (0, 1),
+            n => (u8::from(n != 0), n),
+        };
+        Some(Row { field: self.field, data_type: s.data_type, flags: s.flags, sub, n })
     }
 }
 
