@@ -482,7 +482,8 @@ fn sub_indices_are_stored_only_when_irregular() {
 fn many_record_members_get_a_key_per_object() {
     use canopen_core::od::data::OdData;
     let keys = [0x2000, 0x2002, 0x2003, 0x2004, 0x2006];
-    let first_rows = [0, 1, 4, 5, 8, 12];
+    // Where each starts (rows 0, 1, 4, 5, 8, and 12 rows), less one row per object before it.
+    let first_rows = [0, 0, 2, 2, 4, 7];
     assert_eq!(
         (<CompactRecords as OdData>::KEYS, <CompactRecords as OdData>::FIRST_ROWS),
         (&keys[..], &first_rows[..])

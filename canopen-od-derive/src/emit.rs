@@ -274,20 +274,31 @@ pub(crate) fn data_impl(
         }
     }
 
-    // A key per row, or a key per object and where its rows start (two u16 per object, and one): whichever
-    // is smaller, so only RECORDs of more than two members on average pay for the second table.
+    // A key per row, or a key per object and where its rows start: one byte per object (and one), the rows
+    // before it beyond one per object modulo 256, and the objects where that passes a multiple of 256
+    // (`canopen_core::od::data::search::first_row`). Whichever is smaller, so only RECORDs of more than
+    // two members on average pay for the second table.
     let mut keys: Vec<u16> = Vec::new();
-    let mut first_rows: Vec<u16> = Vec::new();
+    let mut first_rows: Vec<u8> = Vec::new();
+    let mut wraps: Vec<u16> = Vec::new();
+    let mut start = |k: usize, pos: usize, first_rows: &mut Vec<u8>| {
+        let extra = pos - k;
+        while wraps.len() < extra / 256 {
+            wraps.push(k as u16);
+        }
+        first_rows.push((extra % 256) as u8);
+    };
     for (pos, f) in fields.iter().enumerate() {
         if keys.last() != Some(&f.index) {
+            start(keys.len(), pos, &mut first_rows);
             keys.push(f.index);
-            first_rows.push(pos as u16);
         }
     }
-    first_rows.push(fields.len() as u16);
-    if keys.len() + first_rows.len() >= fields.len() {
+    start(keys.len(), fields.len(), &mut first_rows);
+    if 2 * keys.len() + first_rows.len() + 2 * wraps.len() >= 2 * fields.len() {
         keys = fields.iter().map(|f| f.index).collect();
         first_rows.clear();
+        wraps.clear();
     }
     // The sub-indices: none when the numbering is regular (what `PackedRow::unpack` and `find_member`
     // infer: a VAR at 0, an ARRAY from 1, a RECORD's members 1, 2, 3... in order),
@@ -392,7 +403,8 @@ pub(crate) fn data_impl(
             const KEYS: &'static [u16] = &[#(#keys),*];
             const ROWS: &'static [#core::od::data::PackedRow] = &[#(#rows),*];
             const SHAPES: &'static [#core::od::data::Shape] = &[#(#shapes),*];
-            const FIRST_ROWS: &'static [u16] = &[#(#first_rows),*];
+            const FIRST_ROWS: &'static [u8] = &[#(#first_rows),*];
+            const FIRST_ROW_WRAPS: &'static [u16] = &[#(#wraps),*];
             const SUBS: &'static [u8] = &[#(#subs),*];
             const DEFAULTS: &'static [u8] = &[#(#defaults),*];
             const DEFAULTED: &'static [u8] = &[#(#defaulted),*];

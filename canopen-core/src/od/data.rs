@@ -114,12 +114,17 @@ macro_rules! od_data_trait {
             const ROWS: &'static [PackedRow];
             /// The shapes of [`ROWS`](Self::ROWS), each once (at most 256).
             const SHAPES: &'static [Shape];
-            /// Empty, or where each object of [`KEYS`](Self::KEYS) starts in [`ROWS`](Self::ROWS) and after
-            /// them the number of rows: object `k` is rows `FIRST_ROWS[k]..FIRST_ROWS[k + 1]`. The derive
-            /// emits it when RECORDs have so many members that a key per object and this table take fewer
-            /// bytes than a key per row (a drive's dictionary: python canopen's `e35.eds` has 636 rows in
-            /// 178 objects).
-            const FIRST_ROWS: &'static [u16] = &[];
+            /// Empty, or where each object of [`KEYS`](Self::KEYS) starts in [`ROWS`](Self::ROWS), and after
+            /// them the end of the rows, as one byte each that [`search::first_row`] reads with
+            /// [`FIRST_ROW_WRAPS`](Self::FIRST_ROW_WRAPS): object `k` is rows `first_row(k)..first_row(k + 1)`.
+            /// The derive emits it when RECORDs have so many members that a key per object and this table
+            /// take fewer bytes than a key per row (a drive's dictionary: python canopen's `e35.eds` has 636
+            /// rows in 178 objects).
+            const FIRST_ROWS: &'static [u8] = &[];
+            /// With [`FIRST_ROWS`](Self::FIRST_ROWS): the objects from which its bytes count 256 more rows
+            /// again ([`search::first_row`]); empty in a dictionary of fewer than 256 RECORD members beyond
+            /// the first of each.
+            const FIRST_ROW_WRAPS: &'static [u16] = &[];
             /// Empty when the dictionary numbers its entries the regular way (a VAR at sub 00h, each ARRAY
             /// from sub 01h, each RECORD's members 01h, 02h... in order): a row's
             /// sub-index then follows from its shape and its place in its object ([`PackedRow`]). Otherwise
@@ -354,10 +359,13 @@ fn find<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
     // repeats ([`find_member`]); with a key per object, FIRST_ROWS says where they are.
     let (first, end) = match D::FIRST_ROWS {
         [] => (key, 0),
-        starts => match (starts.get(key), starts.get(key + 1)) {
-            (Some(&first), Some(&end)) => (usize::from(first), usize::from(end)),
-            _ => return Err(AbortCode::ObjectDoesNotExist),
-        },
+        low => {
+            match (search::first_row(low, D::FIRST_ROW_WRAPS, key), search::first_row(low, D::FIRST_ROW_WRAPS, key + 1))
+            {
+                (Some(first), Some(end)) => (first, end),
+                _ => return Err(AbortCode::ObjectDoesNotExist),
+            }
+        }
     };
     let Some(row) = row_at::<D>(first) else {
         return Err(AbortCode::ObjectDoesNotExist);

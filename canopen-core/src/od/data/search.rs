@@ -68,12 +68,59 @@ pub fn locate(keys: &[u16], scale: u32, unique: bool, index: u16) -> usize {
     keys.partition_point(|&k| k < index)
 }
 
+/// Where object `k` of a dictionary with a key per object starts among its rows, from
+/// [`OdData::FIRST_ROWS`](super::OdData::FIRST_ROWS) (`low`) and
+/// [`OdData::FIRST_ROW_WRAPS`](super::OdData::FIRST_ROW_WRAPS) (`wraps`): object `k` starts at row
+/// `k + e`, where `e`, the rows before it beyond one per object, is `low[k]` plus 256 for each entry of
+/// `wraps` up to `k` (the objects where `e` passed a multiple of 256). One byte per object instead of
+/// two; `None` past the table.
+///
+/// ```
+/// use canopen_core::od::data::search::first_row;
+/// // Objects of 1, 200, 100, 1 and 1 rows start at rows 0, 1, 201, 301 and 302: e = 0, 0, 199, 298, 298.
+/// let (low, wraps) = ([0u8, 0, 199, 42, 42, 42], [3u16]);
+/// let starts: Vec<_> = (0..6).map(|k| first_row(&low, &wraps, k)).collect();
+/// assert_eq!(starts, [Some(0), Some(1), Some(201), Some(301), Some(302), Some(303)]);
+/// assert_eq!(first_row(&low, &wraps, 6), None);
+/// ```
+#[inline]
+pub fn first_row(low: &[u8], wraps: &[u16], k: usize) -> Option<usize> {
+    let e = usize::from(*low.get(k)?) + 256 * wraps.partition_point(|&w| usize::from(w) <= k);
+    Some(k + e)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+    extern crate std;
+    use std::vec;
+    use std::vec::Vec;
 
     proptest! {
+        /// [`first_row`] gives back the start of every object, whatever their sizes (1 to 254 rows: an
+        /// ARRAY or VAR is one, a RECORD up to 254 members), encoded as the derive does.
+        #[test]
+        fn first_row_gives_every_start(sizes in proptest::collection::vec(prop_oneof![3 => 1usize..4, 1 => 1usize..=254], 0..400)) {
+            let mut starts = vec![0usize];
+            for s in &sizes {
+                starts.push(starts.last().unwrap() + s);
+            }
+            let mut low = Vec::new();
+            let mut wraps = Vec::new();
+            for (k, &start) in starts.iter().enumerate() {
+                let e = start - k;
+                while wraps.len() < e / 256 {
+                    wraps.push(k as u16);
+                }
+                low.push((e % 256) as u8);
+            }
+            for (k, &start) in starts.iter().enumerate() {
+                prop_assert_eq!(first_row(&low, &wraps, k), Some(start));
+            }
+            prop_assert_eq!(first_row(&low, &wraps, starts.len()), None);
+        }
+
         /// The same answer as a binary search, for any sorted keys (repeats, gaps) and any index.
         #[test]
         fn locate_is_partition_point(mut keys in proptest::collection::vec(any::<u16>(), 0..300), index in any::<u16>(), near in 0usize..300) {
