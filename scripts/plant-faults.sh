@@ -50,7 +50,9 @@ FAULTS=(
   'nmt04-table-default-not-unzigzagged @@ od_all_types @@ v = (v >> 1) ^ (v & 1).wrapping_neg(); @@ v >>= 1;'
   'od04-record-rows-run-into-the-next-object @@ od_all_types @@ _ => i < end, @@ _ => i <= end,'
   'pdo12-short-frame-ends-the-time-out @@ pdo_sync_emcy @@ let recovered = outcome != RxOutcome::TooShort && core::mem::take(&mut r.timed_out); @@ let recovered = core::mem::take(&mut r.timed_out) && outcome != RxOutcome::TooShort;'
-  'od03-array-length-not-from-its-shape @@ od_all_types @@ sub: self.sub, n: s.n }) @@ sub: self.sub, n: s.n.min(1) })'
+  'od03-array-length-not-from-its-shape @@ od_all_types @@ n => (u8::from(n != 0), n), @@ n => (u8::from(n != 0), n.min(1)),'
+  'od04-member-sub-from-its-place-off-by-one @@ eds_real @@ [] => (i - first + 1) as u8, @@ [] => (i - first + 2) as u8,'
+  'od01-first-row-wraps-miscounted @@ eds_real @@ + 256 * wraps.partition_point @@ + 255 * wraps.partition_point'
 )
 
 # Field n (1-based) of a fault.

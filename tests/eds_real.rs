@@ -10,6 +10,11 @@
 //!    program writes the EDS of each module's dictionary;
 //! 3. each EDS written back equals the original on every entry, except exactly what was listed as left out.
 //!
+//! Each file goes through all three layouts `eds-to-rust` writes (`--layout code|compact|zerocopy`): the
+//! EDS written back reads every default and every access rule through that layout's path (issue 41: the
+//! tables of a real drive's dictionary, e35.eds, with a key per object, rows without sub-indices and
+//! FIRST_ROWS past 256, answer as the match arms do).
+//!
 //! No files: a counted skip (printed), or a failure when `CANOPEN_REQUIRE_REAL_EDS=1` (.ci/run sets it
 //! after running scripts/fetch-eds.sh).
 
@@ -19,7 +24,7 @@ mod eds_compare;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use canopen_eds::{rust_module, Dropped, Eds};
+use canopen_eds::{rust_module_as, Dropped, Eds, StructLayout};
 
 fn eds_files(dir: &Path, out: &mut Vec<PathBuf>) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
@@ -41,7 +46,8 @@ fn write_check_crate(dir: &Path, mods: &[(String, String)]) {
     std::fs::create_dir_all(&src).unwrap();
     let manifest = format!(
         "[package]\nname = \"real-eds-check\"\nversion = \"0.0.0\"\nedition = \"2021\"\npublish = false\n\n\
-         [dependencies]\ncanopen-core = {{ path = {:?} }}\ncanopen-od-derive = {{ path = {:?} }}\n\n[workspace]\n",
+         [dependencies]\ncanopen-core = {{ path = {:?} }}\ncanopen-od-derive = {{ path = {:?} }}\n\
+         zerocopy = {{ version = \"0.8\", features = [\"derive\"] }}\n\n[workspace]\n",
         root.join("canopen-core"),
         root.join("canopen-od-derive"),
     );
@@ -56,7 +62,8 @@ fn write_check_crate(dir: &Path, mods: &[(String, String)]) {
     main += "\nfn main() {\n    let out = std::path::PathBuf::from(std::env::args().nth(1).unwrap());\n";
     for (name, _) in mods {
         main += &format!(
-            "    std::fs::write(out.join(\"{name}.eds\"), eds_of::eds_of({name}::Device::default(), {name}::CONFIG)).unwrap();\n"
+            "    std::fs::write(out.join(\"{name}.eds\"), eds_of::eds_of({name}::Device::default(), {name}::CONFIG)).unwrap();\n\
+             std::fs::write(out.join(\"{name}.answers\"), eds_of::answers({name}::Device::default())).unwrap();\n"
         );
     }
     main += "}\n";
@@ -92,12 +99,16 @@ fn real_eds_files_import_generate_compile_and_round_trip() {
             .chars()
             .map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' })
             .collect();
-        let g = rust_module(&eds, &file);
+        let layouts =
+            [("", StructLayout::Code), ("_compact", StructLayout::Compact), ("_zerocopy", StructLayout::Zerocopy)];
+        let generated: Vec<_> = layouts.iter().map(|&(tail, l)| (tail, rust_module_as(&eds, &file, l))).collect();
         // The writer (canopen-eds): what it writes parses to the same description.
         let written = eds.to_string();
         assert!(Eds::parse(&written).as_ref() == Ok(&eds), "{file}: written and parsed again differs:\n{written}");
         assert!(eds.objects.len() > 5, "{file}: only {} objects parsed", eds.objects.len());
-        parsed.push((format!("m_{name}"), file, eds, g));
+        for (tail, g) in generated {
+            parsed.push((format!("m_{name}{tail}"), file.clone(), eds.clone(), g));
+        }
     }
 
     // 2. Compile the modules and write their dictionaries' EDS.
@@ -124,7 +135,7 @@ fn real_eds_files_import_generate_compile_and_round_trip() {
         let n = eds_compare::compare(file, eds, &back, &g.left_out);
         let entries = g.left_out.iter().filter(|l| l.dropped == Dropped::Entry).count();
         eprintln!(
-            "{file}: {n} entries equal after EDS -> Rust -> EDS; {} left out: {entries} objects/entries, {} attributes",
+            "{file} ({m}): {n} entries equal after EDS -> Rust -> EDS; {} left out: {entries} objects/entries, {} attributes",
             g.left_out.len(),
             g.left_out.len() - entries
         );
@@ -138,5 +149,20 @@ fn real_eds_files_import_generate_compile_and_round_trip() {
             );
         }
         assert!(n > 10, "{file}: only {n} entries compared");
+    }
+
+    // 4. The three layouts of each file answer alike, entry by entry.
+    for (m, file, ..) in parsed.iter().filter(|(m, ..)| !m.ends_with("_compact") && !m.ends_with("_zerocopy")) {
+        let code = std::fs::read_to_string(out.join(format!("{m}.answers"))).unwrap();
+        assert!(code.lines().count() >= 256 * 5, "{file}: too few answers");
+        for tail in ["_compact", "_zerocopy"] {
+            let other = std::fs::read_to_string(out.join(format!("{m}{tail}.answers"))).unwrap();
+            let first = code.lines().zip(other.lines()).find(|(a, b)| a != b);
+            assert!(
+                first.is_none() && code.lines().count() == other.lines().count(),
+                "{file}: the {tail} layout answers otherwise than match arms: {first:?}"
+            );
+        }
+        eprintln!("{file}: the three layouts give the same {} answers", code.lines().count());
     }
 }
