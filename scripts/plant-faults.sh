@@ -52,6 +52,7 @@ FAULTS=(
   'pdo12-short-frame-ends-the-time-out @@ pdo_sync_emcy @@ let recovered = outcome != RxOutcome::TooShort && core::mem::take(&mut r.timed_out); @@ let recovered = core::mem::take(&mut r.timed_out) && outcome != RxOutcome::TooShort;'
   'od03-array-length-not-from-its-shape @@ od_all_types @@ n => (u8::from(n != 0), n), @@ n => (u8::from(n != 0), n.min(1)),'
   'od04-member-sub-from-its-place-off-by-one @@ eds_real @@ [] => (i - first + 1) as u8, @@ [] => (i - first + 2) as u8,'
+  'od11-limits-of-another-shape @@ od_all_types @@ let Some(&at) = D::LIMITS.get(shape) else { @@ let Some(&at) = D::LIMITS.get(shape ^ 1) else {'
   'od01-first-row-wraps-miscounted @@ eds_real @@ + 256 * wraps.partition_point @@ + 255 * wraps.partition_point'
 )
 

@@ -182,13 +182,13 @@ macro_rules! regular_records {
             axis_a: i32,
             #[od(index = 0x2002, sub = 2, access = "ro", pdo = "tpdo", default = 8)]
             axis_b: u32,
-            #[od(index = 0x2004, sub = 1, record = "Limits", access = "rw", count_access = "ro", pdo = "both")]
+            #[od(index = 0x2004, sub = 1, record = "Limits", access = "rw", pdo = "both", min = -10, max = 10)]
             lim_a: i32,
-            #[od(index = 0x2004, sub = 2, access = "rw", pdo = "rpdo", default = -3)]
+            #[od(index = 0x2004, sub = 2, access = "rw", pdo = "both", min = -3, max = 3, default = -3)]
             lim_b: i32,
             #[od(index = 0x2004, sub = 3, access = "const", default = 1)]
             lim_c: u32,
-            #[od(index = 0x2006, sub = 1, record = "Seven", access = "ro", pdo = "tpdo", default = 4)]
+            #[od(index = 0x2006, sub = 1, record = "Seven", access = "ro", count_access = "ro", pdo = "tpdo", default = 4)]
             seven_a: u32,
             #[od(index = 0x2006, sub = 2, access = "wo", pdo = "rpdo")]
             seven_b: u32,
@@ -274,6 +274,9 @@ fn index() -> impl Strategy<Value = u16> {
 fn data() -> impl Strategy<Value = Vec<u8>> + Clone {
     let mut edges: Vec<Vec<u8>> = Vec::new();
     for v in [-101i16, -100, -99, 12, 13, 14, 99, 100, 101] {
+        edges.push(v.to_le_bytes().to_vec());
+    }
+    for v in [-11i32, -10, -4, -3, 3, 4, 10, 11] {
         edges.push(v.to_le_bytes().to_vec());
     }
     for v in [-5_000_000_001i64, -5_000_000_000, -4_999_999_999, 4_999_999_999, 5_000_000_000, 5_000_000_001] {
@@ -471,6 +474,15 @@ fn sub_indices_are_stored_only_when_irregular() {
     assert_eq!(d.pdo_write(&h, &11i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
     assert_eq!(d.pdo_write(&h, &(-7i32).to_le_bytes()), Ok(()));
     assert_eq!((d.axis_a, d.writes), (-7, 1));
+    // Limits belong to shapes: 2002h sub 1 and 2004h sub 1 (same type, access, mapping and limits) share
+    // one, 2004h sub 2 (other limits) has its own; the limited shapes come first.
+    let shape = |pos: usize| <OffsetRegularRecords as OdData>::ROWS[pos].shape;
+    assert_eq!((shape(2), shape(5), shape(6)), (0, 0, 1));
+    assert_eq!(<OffsetRegularRecords as OdData>::LIMITS, &[0, 8]);
+    assert_eq!(d.write(0x2004, 2, &4i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.write(0x2004, 1, &4i32.to_le_bytes()), Ok(()));
+    assert_eq!(d.write(0x2004, 1, &11i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.write(0x2004, 2, &(-4i32).to_le_bytes()), Err(AbortCode::ValueTooLow));
     let h = d.pdo_resolve(0x2006, 4, PdoDir::Tpdo).unwrap();
     let mut out = [0u8; 8];
     assert_eq!((d.pdo_read(&h, &mut out), &out[..4]), (Ok(4), &9u32.to_le_bytes()[..]));

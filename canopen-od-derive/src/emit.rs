@@ -276,7 +276,7 @@ pub(crate) fn data_impl(
 
     // A key per row, or a key per object and where its rows start: one byte per object (and one), the rows
     // before it beyond one per object modulo 256, and the objects where that passes a multiple of 256
-    // (`canopen_core::od::data::search::first_row`). Whichever is smaller, so only RECORDs of more than
+    // (`canopen_core::od::data::search::rows_of`). Whichever is smaller, so only RECORDs of more than
     // two members on average pay for the second table.
     let mut keys: Vec<u16> = Vec::new();
     let mut first_rows: Vec<u8> = Vec::new();
@@ -312,17 +312,17 @@ pub(crate) fn data_impl(
         }
     });
     let subs: Vec<u8> = if regular { Vec::new() } else { fields.iter().map(|f| f.sub).collect() };
-    // Each row's shape (data type, flags, count), listed once in SHAPES in the order first met; a row
-    // names its shape by position.
-    let mut shape_keys: Vec<String> = Vec::new();
-    let mut shapes: Vec<Ts> = Vec::new();
-    let mut rows: Vec<Ts> = Vec::new();
-    for (f, &num) in fields.iter().zip(&number) {
-        let member = &f.member;
-        let num = match f.kind {
-            Kind::Fixed(_) if by_offset => quote!(::core::mem::offset_of!(#ident, #member) as u16),
-            _ => quote!(#num),
-        };
+    // Each row's shape (data type, flags, count and, for a fixed-size value with limits, its limit values),
+    // listed once in SHAPES: first the shapes with limits, then the others, each in the order first met; a
+    // row names its shape by position, and LIMITS says where each limited shape's values start.
+    struct ShapeOf {
+        key: String,
+        shape: Ts,
+        limits: Option<Vec<u8>>,
+    }
+    let mut found: Vec<ShapeOf> = Vec::new();
+    let mut row_shape: Vec<usize> = Vec::new();
+    for f in &fields {
         let dt = Ident::new(f.dt, Span::call_site());
         let (access, pdo) = (&f.access, &f.pdo);
         // Shape::n: a VAR is FFh (no ARRAY has 255 elements), so its shape tells it from an ARRAY of one.
@@ -334,35 +334,51 @@ pub(crate) fn data_impl(
         if matches!(f.kind, Kind::Fixed(_)) && (f.has_limits() || f.check.is_some() || f.on_write.is_some()) {
             extra.push(quote!(#core::od::data::Row::CHECKS));
         }
+        let limits = (f.has_limits() && matches!(f.kind, Kind::Fixed(_))).then(|| {
+            let size = size_and_code(f.dt).0;
+            let mut v = default_bytes(f.dt, size, Some(f.min.as_ref().unwrap_or(&extreme(f.dt, false))));
+            v.extend(default_bytes(f.dt, size, Some(f.max.as_ref().unwrap_or(&extreme(f.dt, true)))));
+            v
+        });
         let flags = quote!(#core::od::data::Row::flags(#access, #pdo) #(| #extra)*);
-        let key = format!("{} {} {}", f.dt, flags, n);
-        let shape = match shape_keys.iter().position(|k| *k == key) {
-            Some(i) => i,
-            None => {
-                shape_keys.push(key);
-                shapes
-                    .push(quote!(#core::od::data::Shape { data_type: #core::od::DataType::#dt, flags: #flags, n: #n }));
-                shapes.len() - 1
-            }
+        let key = format!("{} {} {} {:?}", f.dt, flags, n, limits);
+        let i = found.iter().position(|s| s.key == key).unwrap_or_else(|| {
+            let shape = quote!(#core::od::data::Shape { data_type: #core::od::DataType::#dt, flags: #flags, n: #n });
+            found.push(ShapeOf { key, shape, limits });
+            found.len() - 1
+        });
+        row_shape.push(i);
+    }
+    let mut order: Vec<usize> = (0..found.len()).collect();
+    order.sort_by_key(|&i| found[i].limits.is_none()); // stable: first met within each group
+    let mut place = vec![0usize; found.len()];
+    for (to, &from) in order.iter().enumerate() {
+        place[from] = to;
+    }
+    let shapes: Vec<&Ts> = order.iter().map(|&i| &found[i].shape).collect();
+    let mut limit_values: Vec<u8> = Vec::new();
+    let mut limits: Vec<u16> = Vec::new();
+    for v in order.iter().filter_map(|&i| found[i].limits.as_ref()) {
+        limits.push(limit_values.len() as u16);
+        limit_values.extend(v);
+    }
+    if shapes.len() > 256 {
+        return quote!(::core::compile_error!(
+            "#[od(compact)]: more than 256 shapes of entries (data type, access, PDO mapping, count, limits); use the default layout"
+        ););
+    }
+    let mut rows: Vec<Ts> = Vec::new();
+    for ((f, &num), &shape) in fields.iter().zip(&number).zip(&row_shape) {
+        let member = &f.member;
+        let num = match f.kind {
+            Kind::Fixed(_) if by_offset => quote!(::core::mem::offset_of!(#ident, #member) as u16),
+            _ => quote!(#num),
         };
-        let Ok(shape) = u8::try_from(shape) else {
-            return quote!(::core::compile_error!(
-                "#[od(compact)]: more than 256 shapes of entries (data type, access, PDO mapping, count); use the default layout"
-            ););
-        };
+        let shape = place[shape] as u8;
         rows.push(quote!(#core::od::data::PackedRow { field: #num, shape: #shape }));
     }
     let defaults = defaults.iter().map(|b| Literal::u8_unsuffixed(*b));
     let defaulted = defaulted.iter().map(|b| Literal::u8_unsuffixed(*b));
-    let mut limit_values: Vec<u8> = Vec::new();
-    let mut limits = Vec::new();
-    for (pos, f) in fields.iter().enumerate().filter(|(_, f)| f.has_limits() && matches!(f.kind, Kind::Fixed(_))) {
-        let (pos, at) = (pos as u16, limit_values.len() as u16);
-        let size = size_and_code(f.dt).0;
-        limit_values.extend(default_bytes(f.dt, size, Some(f.min.as_ref().unwrap_or(&extreme(f.dt, false)))));
-        limit_values.extend(default_bytes(f.dt, size, Some(f.max.as_ref().unwrap_or(&extreme(f.dt, true)))));
-        limits.push(quote!(#core::od::data::Limit { row: #pos, at: #at }));
-    }
     let limit_values = limit_values.iter().map(|b| Literal::u8_unsuffixed(*b));
 
     // The byte view: zerocopy's traits on the struct (the user derives them) prove it sound, and offsets
@@ -409,7 +425,7 @@ pub(crate) fn data_impl(
             const DEFAULTS: &'static [u8] = &[#(#defaults),*];
             const DEFAULTED: &'static [u8] = &[#(#defaulted),*];
             #by_offset_items
-            const LIMITS: &'static [#core::od::data::Limit] = &[#(#limits),*];
+            const LIMITS: &'static [u16] = &[#(#limits),*];
             const LIMIT_VALUES: &'static [u8] = &[#(#limit_values),*];
             #hooks
             #specials

@@ -19,8 +19,8 @@
 //!   data type, access, PDO mapping, where sub 00h's count comes from, and the field's number (or offset).
 //! - [`OdData::DEFAULTS`]: the power-on values that are not zero, in row order, each as LEB128 (a small
 //!   default is one byte), and [`OdData::DEFAULTED`], a bit per row saying which rows have one there.
-//! - [`OdData::LIMITS`]: low/high limits of the rows that have any, compared through one order key for
-//!   every type ([`limits`]).
+//! - [`OdData::LIMITS`]: low/high limits of the shapes that have any (rows alike with the same limits
+//!   share them), compared through one order key for every type ([`limits`]).
 //!
 //! The only per-field code is the way to the field. With `#[od(compact)]`, for each fixed-size type a
 //! dictionary uses, one accessor of `&self` and one of `&mut self` (`var_unsigned32(f) -> Option<&u32>`,
@@ -43,7 +43,7 @@ pub mod search;
 
 pub use offset::{as_bytes, as_bytes_mut};
 use offset::{offset_slot, read_at, read_offset_slot, row_slot, slot_row, write_at, write_offset_slot};
-pub use row::{any_checks, Limit, PackedRow, Row, Shape};
+pub use row::{any_checks, PackedRow, Row, Shape};
 
 /// Calls `$m!` with every fixed-size data type: its [`DataType`], its Rust type and the names of its four
 /// accessors (VAR `&`/`&mut`, ARRAY `&`/`&mut`).
@@ -115,14 +115,14 @@ macro_rules! od_data_trait {
             /// The shapes of [`ROWS`](Self::ROWS), each once (at most 256).
             const SHAPES: &'static [Shape];
             /// Empty, or where each object of [`KEYS`](Self::KEYS) starts in [`ROWS`](Self::ROWS), and after
-            /// them the end of the rows, as one byte each that [`search::first_row`] reads with
-            /// [`FIRST_ROW_WRAPS`](Self::FIRST_ROW_WRAPS): object `k` is rows `first_row(k)..first_row(k + 1)`.
+            /// them the end of the rows, as one byte each that [`search::rows_of`] reads with
+            /// [`FIRST_ROW_WRAPS`](Self::FIRST_ROW_WRAPS): object `k` is rows `rows_of(k)`.
             /// The derive emits it when RECORDs have so many members that a key per object and this table
             /// take fewer bytes than a key per row (a drive's dictionary: python canopen's `e35.eds` has 636
             /// rows in 178 objects).
             const FIRST_ROWS: &'static [u8] = &[];
             /// With [`FIRST_ROWS`](Self::FIRST_ROWS): the objects from which its bytes count 256 more rows
-            /// again ([`search::first_row`]); empty in a dictionary of fewer than 256 RECORD members beyond
+            /// again ([`search::rows_of`]); empty in a dictionary of fewer than 256 RECORD members beyond
             /// the first of each.
             const FIRST_ROW_WRAPS: &'static [u16] = &[];
             /// Empty when the dictionary numbers its entries the regular way (a VAR at sub 00h, each ARRAY
@@ -139,9 +139,13 @@ macro_rules! od_data_trait {
             /// One bit per row (bit `r % 8` of byte `r / 8`): set when [`DEFAULTS`](Self::DEFAULTS) holds the
             /// row's default, clear when it is zero (no bytes for the most common default).
             const DEFAULTED: &'static [u8];
-            /// The limits of the rows that have any, by increasing row.
-            const LIMITS: &'static [Limit];
-            /// The limit values [`Limit::at`] points into.
+            /// Where the limits of each shape that has any start in [`LIMIT_VALUES`](Self::LIMIT_VALUES):
+            /// those shapes come first in [`SHAPES`](Self::SHAPES), so shape `s` has limits when `s <
+            /// LIMITS.len()` (rows of one data type, access and mapping but other limits have other shapes).
+            const LIMITS: &'static [u16];
+            /// The limit values [`LIMITS`](Self::LIMITS) points into: per limited shape the low limit, then
+            /// the high one, each encoded in the shape's data type (a side without a limit holds the type's
+            /// extreme).
             const LIMIT_VALUES: &'static [u8];
             /// The scale of the interpolated first guess of a search of [`KEYS`](Self::KEYS)
             /// ([`search::scale`]), computed at compile time.
@@ -359,13 +363,10 @@ fn find<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
     // repeats ([`find_member`]); with a key per object, FIRST_ROWS says where they are.
     let (first, end) = match D::FIRST_ROWS {
         [] => (key, 0),
-        low => {
-            match (search::first_row(low, D::FIRST_ROW_WRAPS, key), search::first_row(low, D::FIRST_ROW_WRAPS, key + 1))
-            {
-                (Some(first), Some(end)) => (first, end),
-                _ => return Err(AbortCode::ObjectDoesNotExist),
-            }
-        }
+        low => match search::rows_of(low, D::FIRST_ROW_WRAPS, key) {
+            Some(rows) => rows,
+            None => return Err(AbortCode::ObjectDoesNotExist),
+        },
     };
     let Some(row) = row_at::<D>(first) else {
         return Err(AbortCode::ObjectDoesNotExist);

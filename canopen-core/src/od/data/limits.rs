@@ -90,7 +90,7 @@ const REAL: u8 = 3;
 /// [`class`]: TIME_OF_DAY, TIME_DIFFERENCE.
 const TIME: u8 = 4;
 
-/// The limits of the row at `pos` ([`OdData::LIMITS`]) checked against `data`, a value of `dt` (exactly its
+/// The limits of the row at `pos` (its shape's, [`OdData::LIMITS`]) checked against `data`, a value of `dt` (exactly its
 /// size), then the application's check ([`OdData::check`]).
 ///
 /// ```
@@ -114,16 +114,18 @@ pub fn check<D: OdData + ?Sized>(d: &D, pos: u16, dt: DataType, sub: u8, data: &
     d.check(pos, sub, data)
 }
 
-/// [`check`]'s limits of the row at `pos`: the low one, then the high one, each compared by its key; a value
-/// that has none (a NaN) is 0609 0030h when the row has limits; a limit that has none is no limit.
+/// [`check`]'s limits of the row at `pos`, those of its shape: the low one, then the high one, each compared
+/// by its key; a value that has none (a NaN) is 0609 0030h when the row has limits; a limit that has none is
+/// no limit.
 #[inline(never)]
 fn within<D: OdData + ?Sized>(pos: u16, dt: DataType, data: &[u8]) -> Result<(), AbortCode> {
     let size = dt.fixed_size();
-    let Some(limit) = D::LIMITS.binary_search_by_key(&pos, |l| l.row).ok().and_then(|i| D::LIMITS.get(i)) else {
+    let shape = D::ROWS.get(usize::from(pos)).map_or(usize::MAX, |r| usize::from(r.shape));
+    let Some(&at) = D::LIMITS.get(shape) else {
         return check_len(data, size);
     };
     let value = order_key(dt, data)?;
-    let mut from = usize::from(limit.at);
+    let mut from = usize::from(at);
     for code in [AbortCode::ValueTooLow, AbortCode::ValueTooHigh] {
         if let Some(Ok(l)) = D::LIMIT_VALUES.get(from..from + size).map(|b| order_key(dt, b)) {
             if (code == AbortCode::ValueTooLow && value < l) || (code == AbortCode::ValueTooHigh && value > l) {

@@ -58,7 +58,7 @@ impl Row {
     pub const RPDO: u8 = 1 << 5;
     /// Sub-index 00h of this ARRAY (or of the RECORD whose first member this is) is `ro`, not `const`.
     pub const COUNT_RO: u8 = 1 << 6;
-    /// A write goes through [`OdData::LIMITS`](super::OdData::LIMITS) and the application's hooks ([`OdData::check`](super::OdData::check),
+    /// A write goes through the shape's limits ([`OdData::LIMITS`](super::OdData::LIMITS)) and the application's hooks ([`OdData::check`](super::OdData::check),
     /// [`OdData::on_write`](super::OdData::on_write)).
     pub const CHECKS: u8 = 1 << 7;
 
@@ -315,24 +315,4 @@ pub const fn any_checks(shapes: &[Shape]) -> bool {
         i += 1;
     }
     false
-}
-
-/// Where the low and high limits of one row are (OD-11): a write outside them is 0609 0032h / 0609 0031h,
-/// and a value that does not compare (a NaN) 0609 0030h.
-///
-/// The limits are in [`OdData::LIMIT_VALUES`](super::OdData::LIMIT_VALUES) from `at`: the low one, then the high one, each encoded in
-/// the row's data type (a side without a limit holds the type's extreme). Compared in the type itself, so
-/// a firmware links no conversion to a wider number or to floating point for them.
-///
-/// ```
-/// use canopen_core::od::data::Limit;
-/// const L: Limit = Limit { row: 3, at: 0 };
-/// assert_eq!(core::mem::size_of::<Limit>(), 4);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Limit {
-    /// The row's position in [`OdData::ROWS`](super::OdData::ROWS).
-    pub row: u16,
-    /// Where its low limit starts in [`OdData::LIMIT_VALUES`](super::OdData::LIMIT_VALUES).
-    pub at: u16,
 }

@@ -68,25 +68,26 @@ pub fn locate(keys: &[u16], scale: u32, unique: bool, index: u16) -> usize {
     keys.partition_point(|&k| k < index)
 }
 
-/// Where object `k` of a dictionary with a key per object starts among its rows, from
+/// Where the rows of object `k` of a dictionary with a key per object are, from
 /// [`OdData::FIRST_ROWS`](super::OdData::FIRST_ROWS) (`low`) and
-/// [`OdData::FIRST_ROW_WRAPS`](super::OdData::FIRST_ROW_WRAPS) (`wraps`): object `k` starts at row
-/// `k + e`, where `e`, the rows before it beyond one per object, is `low[k]` plus 256 for each entry of
-/// `wraps` up to `k` (the objects where `e` passed a multiple of 256). One byte per object instead of
-/// two; `None` past the table.
+/// [`OdData::FIRST_ROW_WRAPS`](super::OdData::FIRST_ROW_WRAPS) (`wraps`): object `k` starts at row `k + e`,
+/// where `e`, the rows before it beyond one per object, is `low[k]` plus 256 for each entry of `wraps` up to
+/// `k` (the objects where `e` passed a multiple of 256); it has `1 + (low[k + 1] - low[k]) mod 256` rows
+/// (an object has at most 255). One byte per object instead of two; `None` past the table.
 ///
 /// ```
-/// use canopen_core::od::data::search::first_row;
-/// // Objects of 1, 200, 100, 1 and 1 rows start at rows 0, 1, 201, 301 and 302: e = 0, 0, 199, 298, 298.
+/// use canopen_core::od::data::search::rows_of;
+/// // Objects of 1, 200, 100, 1 and 1 rows start at rows 0, 1, 201, 301 and 302: e = 0, 0, 199, 298, 298,
+/// // and the rows end at 303: e = 298 there too.
 /// let (low, wraps) = ([0u8, 0, 199, 42, 42, 42], [3u16]);
-/// let starts: Vec<_> = (0..6).map(|k| first_row(&low, &wraps, k)).collect();
-/// assert_eq!(starts, [Some(0), Some(1), Some(201), Some(301), Some(302), Some(303)]);
-/// assert_eq!(first_row(&low, &wraps, 6), None);
+/// let rows: Vec<_> = (0..6).map(|k| rows_of(&low, &wraps, k)).collect();
+/// assert_eq!(rows, [Some((0, 1)), Some((1, 201)), Some((201, 301)), Some((301, 302)), Some((302, 303)), None]);
 /// ```
 #[inline]
-pub fn first_row(low: &[u8], wraps: &[u16], k: usize) -> Option<usize> {
-    let e = usize::from(*low.get(k)?) + 256 * wraps.partition_point(|&w| usize::from(w) <= k);
-    Some(k + e)
+pub fn rows_of(low: &[u8], wraps: &[u16], k: usize) -> Option<(usize, usize)> {
+    let (&here, &next) = (low.get(k)?, low.get(k + 1)?);
+    let first = k + usize::from(here) + 256 * wraps.partition_point(|&w| usize::from(w) <= k);
+    Some((first, first + 1 + usize::from(next.wrapping_sub(here))))
 }
 
 #[cfg(test)]
@@ -98,10 +99,10 @@ mod tests {
     use std::vec::Vec;
 
     proptest! {
-        /// [`first_row`] gives back the start of every object, whatever their sizes (1 to 254 rows: an
+        /// [`rows_of`] gives back the rows of every object, whatever their sizes (1 to 254 rows: an
         /// ARRAY or VAR is one, a RECORD up to 254 members), encoded as the derive does.
         #[test]
-        fn first_row_gives_every_start(sizes in proptest::collection::vec(prop_oneof![3 => 1usize..4, 1 => 1usize..=254], 0..400)) {
+        fn rows_of_gives_every_object_its_rows(sizes in proptest::collection::vec(prop_oneof![3 => 1usize..4, 1 => 1usize..=254], 0..400)) {
             let mut starts = vec![0usize];
             for s in &sizes {
                 starts.push(starts.last().unwrap() + s);
@@ -115,10 +116,10 @@ mod tests {
                 }
                 low.push((e % 256) as u8);
             }
-            for (k, &start) in starts.iter().enumerate() {
-                prop_assert_eq!(first_row(&low, &wraps, k), Some(start));
+            for (k, pair) in starts.windows(2).enumerate() {
+                prop_assert_eq!(rows_of(&low, &wraps, k), Some((pair[0], pair[1])));
             }
-            prop_assert_eq!(first_row(&low, &wraps, starts.len()), None);
+            prop_assert_eq!(rows_of(&low, &wraps, sizes.len()), None);
         }
 
         /// The same answer as a binary search, for any sorted keys (repeats, gaps) and any index.
