@@ -75,14 +75,15 @@
 //!
 //! `#[od(compact)]` (issue 41, opt-in for now): instead of match arms per entry, the derive emits
 //! `impl canopen_core::od::data::OdData`: a sorted `u16` index per row (or per object, and where its rows
-//! start, when RECORDs are large), a 4-byte row per VAR, per ARRAY and per RECORD member that names one of
-//! the dictionary's shapes (data type, access, PDO mapping, count), the defaults and limits as bytes, and one arm per field in the accessor of its
+//! start, when RECORDs are large), a 3-byte row per VAR, per ARRAY and per RECORD member that names one of
+//! the dictionary's shapes (data type, access, PDO mapping, count, limits; the sub-index follows from the
+//! row's place when the numbering is regular), the defaults and limit values as bytes, and one arm per field in the accessor of its
 //! type (`&self` and `&mut self`); `ObjectDictionary` forwards to the core's one generic path
 //! (`canopen_core::od::data`). Same answers on every SDO path (`canopen-core/tests/derived_access.rs`,
 //! `tests/od_all_types.rs` with the test feature `od-compact-tests`). Flash per object
-//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 12.3 B instead of 45.8 B,
-//! ARRAY of 4 x UNSIGNED16 29.5 B instead of 202.4 B, RECORD of three 44.8 B instead of 149.6 B, python
-//! canopen's e35.eds application 21,556 B instead of 39,704 B. The price: two jump tables per access
+//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 11.4 B instead of 45.9 B,
+//! ARRAY of 4 x UNSIGNED16 29.8 B instead of 203.3 B, RECORD of three 41.6 B instead of 150.3 B, python
+//! canopen's e35.eds application 20,784 B instead of 39,684 B. The price: two jump tables per access
 //! instead of one, so more instructions per frame (x86-64 callgrind, `scripts/bench-node.sh` with the
 //! bench's dictionary compact: expedited download 333 instead of 288, segmented upload 320.5 instead of
 //! 244, RPDO to 4 objects 525.5 instead of 381.5, SYNC to 4 TPDOs 404.5 instead of 216.5 per bus frame),
@@ -96,9 +97,9 @@
 //! derive says what stands in the way. `eds-to-rust --layout zerocopy` writes such a struct (fields ordered
 //! by alignment, the tail padded). Construct it with `zerocopy::FromZeros::new_zeroed()` (one `memset`): the
 //! node applies the defaults at boot (NMT-04). Flash per further object (`scripts/od-cost.sh`, the node a
-//! static as in a firmware): UNSIGNED32 VAR 8.0 B (match arms 45.8, `compact` 12.3), ARRAY of 4 x UNSIGNED16
-//! 9.8 B (202.4, 29.5), RECORD of three 23.8 B (149.6, 44.8), RAM the values alone; python canopen's e35.eds
-//! application 8,804 B (39,704, 21,556; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! static as in a firmware): UNSIGNED32 VAR 7.0 B (match arms 45.9, `compact` 11.4), ARRAY of 4 x UNSIGNED16
+//! 9.8 B (203.3, 29.8), RECORD of three 19.3 B (150.3, 41.6), RAM the values alone; python canopen's e35.eds
+//! application 7,964 B (39,684, 20,784; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
 //! expedited download 287 (default layout 291), RPDO to 4 objects 351.5 (367.5), SYNC to 4 TPDOs 220.5 per
 //! bus frame (218.1): PDO handles hold the value's offset and size class, one jump table per value.
 //!
