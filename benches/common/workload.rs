@@ -23,6 +23,7 @@ pub const BLOCK_LEN: usize = 889 * K;
 macro_rules! sdo_app {
     ($(#[$attr:meta])* $name:ident) => {
         #[derive(canopen_od_derive::ObjectDictionary, Default)]
+        #[cfg_attr(feature = "od-compact-tests", od(compact))]
         $(#[$attr])*
         pub struct $name {
             #[od(index = 0x2002, access = "rw")]
@@ -49,8 +50,11 @@ sdo_app!(
     Quiet
 );
 
-/// The process data of the PDO scenarios: 4 UNSIGNED16 objects mappable both ways.
+/// The process data of the PDO scenarios: 4 UNSIGNED16 objects mappable both ways. (With the root
+/// package's test feature `od-compact-tests` these dictionaries are `#[od(compact)]`: the instructions of
+/// that layout, `BENCH_NODE_BIN=<the bench built with it> bash scripts/bench-node.sh`.)
 #[derive(canopen_od_derive::ObjectDictionary, Default)]
+#[cfg_attr(feature = "od-compact-tests", od(compact))]
 pub struct Process {
     #[od(index = 0x6000, access = "rww", pdo = "both")]
     pub a: u16,
