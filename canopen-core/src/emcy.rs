@@ -414,6 +414,44 @@ mod tests {
         assert!(!e.raise(0, [0; 5]));
     }
 
+    /// EMCY-05/EMCY-07 with more distinct errors than the active set holds: the extra error still gets its
+    /// EMCY and its 1003h entry (ERR-06), is not tracked (not active, its bits not in the register, clearing
+    /// it sends nothing), and raising it again sends it again; a freed place takes the next new error.
+    /// Code 0000h is never active. ERR-05/EMCY-07: a reset leaves the history, writing 1003h:00 = 0 empties
+    /// it (ERR-08).
+    #[test]
+    fn full_active_set_code_zero_and_history_lifetime() {
+        let mut e: ErrorState<2, 4, 8> = ErrorState::new();
+        assert!(!e.is_active(0) && !e.clear(0));
+        assert!(e.raise(0x2310, [0; 5]) && e.raise(0x3120, [0; 5]));
+        assert!(e.raise(0x4210, [0; 5])); // a third: EMCY and history, not tracked
+        assert!(!e.is_active(0x4210) && !e.clear(0x4210));
+        assert_eq!(e.register(), 0x01 | 0x02 | 0x04);
+        assert!(e.raise(0x4210, [0; 5])); // not active, so a new error event again
+        assert_eq!(e.read_history(0), Ok(4));
+        assert_eq!(e.history(), &[0x4210, 0x4210, 0x3120, 0x2310]);
+        assert!(!e.is_active(0) && !e.clear(0));
+        assert!(e.clear(0x2310));
+        assert!(e.raise(0x4210, [0; 5])); // the freed place tracks it now
+        assert!(e.is_active(0x4210) && e.is_active(0x3120));
+        assert_eq!(e.register(), 0x01 | 0x04 | 0x08);
+        let codes: std::vec::Vec<(u16, u8)> =
+            core::iter::from_fn(|| e.pop_pending()).map(|f| (f.code, f.register)).collect();
+        assert_eq!(
+            codes,
+            [(0x2310, 0x03), (0x3120, 0x07), (0x4210, 0x07), (0x4210, 0x07), (0x0000, 0x05), (0x4210, 0x0D)]
+        );
+        e.reset();
+        assert_eq!((e.register(), e.is_active(0x4210), e.read_history(0)), (0, false, Ok(4)));
+        assert_eq!(e.history(), &[0x4210, 0x4210, 0x4210, 0x3120]); // the oldest fell out at depth 4
+        assert!(e.raise(0x3120, [0; 5]) && e.clear(0x3120));
+        assert_eq!(e.write_history_count(0), Ok(()));
+        assert_eq!((e.read_history(0), e.read_history(1)), (Ok(0), Err(AbortCode::NoDataAvailable)));
+        assert_eq!(e.history(), &[] as &[u32]);
+        assert!(e.raise(0x5000, [0x34, 0x12, 0, 0, 0]));
+        assert_eq!(e.history(), &[0x1234_5000]);
+    }
+
     /// A full queue drops the oldest and counts it; keep_most_recent keeps the last (NMT-22).
     #[test]
     fn queue_bounds() {

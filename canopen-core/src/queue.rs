@@ -7,6 +7,16 @@
 //! `heapless::Deque` there: the Cortex-M4 firmware's node is 164 B of flash and 24 B of RAM smaller, and
 //! the EMCY pump that every `poll_transmit` runs 3 to 6 instructions cheaper (`scripts/bench-node.sh`).
 //!
+//! The node's transmit and event queues (`heapless::Deque`) and the active errors and 1003h history of
+//! [`ErrorState`](crate::emcy::ErrorState) (`heapless::Vec`) stay on `heapless`: as this ring (initialised
+//! slots, with or without an `Option` niche) or as plain arrays with a count they measured larger in both
+//! firmware builds of `scripts/footprint.sh` (node +184 to +464 B, minimal -8 to +264 B; the arrays, with
+//! `ErrorState` padded to its old size so that the node's layout stays, node +16/+80 B, minimal +16 B).
+//! `heapless` keeps its slots uninitialised, so building the node writes nothing there, where a safe ring
+//! has to fill every slot, and its operations were no larger than this ring's. Part of each figure is
+//! layout alone: an unused 4-byte field added to `ErrorState` costs node 64 B, minimal 24 B, in SDO and
+//! driver code that never reads it, so compare a container change with the node's layout held fixed too.
+//!
 //! ```
 //! use canopen_core::queue::Queue;
 //! let mut q: Queue<u8, [u8; 2]> = Queue::new([0; 2]);
