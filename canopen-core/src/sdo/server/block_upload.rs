@@ -5,7 +5,7 @@
 
 use super::{Micros, Response, SdoEvent, SdoServer, State};
 use crate::od::{AbortCode, ObjectDictionary};
-use crate::sdo::block::{last_segment_len, Crc16};
+use crate::sdo::block::Crc16;
 use crate::time::Instant;
 use crate::wire::sdo::{frame, Multiplexer, MAX_BLKSIZE};
 
@@ -167,7 +167,9 @@ impl SdoServer {
         if ackseq >= 1 && bu.base >= bu.size {
             bu.phase = UploadPhase::WaitEnd;
             let crc = bu.crc.get(); // 0 without CRC (sc = 0): nothing was fed, it is still Crc16::new()
-            let unused = 7 - last_segment_len(bu.size);
+                                    // `base` moved by whole segments to the end of the last one, 7 × segments (at least one, SDO-51):
+                                    // past `size` by the last segment's unused bytes, 7 for an empty data set. No division by 7.
+            let unused = (bu.base - bu.size) as u8;
             // scs 6, ss 1: n unused bytes of the last segment, the CRC in bytes 1–2 (SDO-47)
             return Response::send(frame(0xC1 | (unused << 2), u32::from(crc), 0));
         }
