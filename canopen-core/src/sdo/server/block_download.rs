@@ -73,37 +73,32 @@ impl SdoServer {
         if seqno == 0 || seqno > blksize {
             return self.abort(od, mux, AbortCode::InvalidSequenceNumber); // SDO-50
         }
-        if seqno != bd.expected {
-            if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) || bd.is_repeated_initiate(b, mux) {
-                // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
-                // has that sequence number already; a second acknowledge would read as one for the next
-                // sub-block and make the client skip segments
-                return Response::NONE;
+        if seqno == bd.expected {
+            if bd.held_seqno != 0 {
+                if let Err(code) = bd.flush_held(mux, 7, od) {
+                    return self.abort(od, mux, code);
+                }
             }
-            // out of order: discard; acknowledge the last in-order segment at the sub-block's end (SDO-40)
-            if last || seqno == blksize {
-                let ackseq = bd.expected - 1;
-                bd.expected = 1;
-                bd.acked = b[0];
-                return Response::send(ack(ackseq, blksize));
-            }
+            let [_, data @ ..] = b;
+            bd.held = *data;
+            bd.held_seqno = seqno;
+            bd.expected = seqno + 1;
+            bd.acked = 0;
+            bd.ending = last;
+        } else if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) || bd.is_repeated_initiate(b, mux)
+        {
+            // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
+            // has that sequence number already; a second acknowledge would read as one for the next
+            // sub-block and make the client skip segments
             return Response::NONE;
         }
-        if bd.held_seqno != 0 {
-            if let Err(code) = bd.flush_held(mux, 7, od) {
-                return self.abort(od, mux, code);
-            }
-        }
-        let [_, data @ ..] = b;
-        bd.held = *data;
-        bd.held_seqno = seqno;
-        bd.expected = seqno + 1;
-        bd.acked = 0;
+        // Out of order: discarded. The sub-block's end, in order or not, is acknowledged up to the last
+        // in-order segment (SDO-39, SDO-40): `expected - 1`, the segment itself when it was in order.
         if last || seqno == blksize {
+            let ackseq = bd.expected - 1;
             bd.expected = 1;
-            bd.ending = last;
             bd.acked = b[0];
-            return Response::send(ack(seqno, blksize));
+            return Response::send(ack(ackseq, blksize));
         }
         Response::NONE
     }
