@@ -107,10 +107,12 @@ impl SdoServer {
     /// `timeout` (µs, not disabled): a quarter of it while a download sub-block has in-order segments but has
     /// not ended (then [`block_download_stalled`](Self::block_download_stalled) acknowledges them); nothing,
     /// at once, when an upload sub-block was handed out (then [`block_upload_sent`](Self::block_upload_sent)
-    /// starts the time-out); `timeout` otherwise.
+    /// starts the time-out); `timeout` otherwise. `expected > 1` alone says "in-order segments, not ended":
+    /// a sub-block's end (also the one that leaves the server waiting for the end frame) resets `expected`
+    /// to 1.
     pub(super) const fn block_delay(&self, timeout: u64) -> u64 {
         match &self.state {
-            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => timeout / 4,
+            State::BlockDownload(bd) if bd.expected > 1 => timeout / 4,
             State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => 0,
             _ => timeout,
         }
@@ -123,8 +125,8 @@ impl SdoServer {
     pub(super) fn block_download_stalled(&mut self) -> Option<Response> {
         let blksize = self.block_size;
         let State::BlockDownload(bd) = &mut self.state else { return None };
-        if bd.ending || bd.expected <= 1 {
-            return None;
+        if bd.expected <= 1 {
+            return None; // nothing in order since the last acknowledge, or waiting for the end frame
         }
         let ackseq = bd.expected - 1;
         bd.expected = 1;

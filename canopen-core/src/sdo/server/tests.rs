@@ -650,6 +650,10 @@ fn stalled_sub_block_is_acknowledged_after_a_quarter_of_the_timeout() {
     // the client resends "OP" as segment 1 of the next sub-block, last
     let r = s.handle_request(t(30), &[0x81, 0x4F, 0x50, 0, 0, 0, 0, 0], &mut od);
     assert_eq!(r.frame, Some([0xA2, 0x01, 0x04, 0, 0, 0, 0, 0]));
+    // waiting for the end frame (SDO-41): no early acknowledge, the SDO timeout from that segment
+    assert_eq!(s.state(), ServerState::BlockDownloadEnd);
+    assert_eq!(s.poll_timeout(), Some(t(130)));
+    assert_eq!(s.handle_timeout(t(129), &mut od), Response::NONE);
     let r = s.handle_request(t(31), &[0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], &mut od);
     assert_eq!(r.frame, Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
     assert_eq!(od.domain(), b"ABCDEFGHIJKLMNOP");
