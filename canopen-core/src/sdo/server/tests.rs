@@ -871,3 +871,41 @@ fn client_abort_in_the_middle_of_an_upload_sub_block() {
     assert!(t.s.is_idle() && !t.s.wants_transmit() && t.s.poll_timeout().is_none());
     assert!(t.s.poll_transmit(T0, &mut t.od).is_none());
 }
+
+/// SDO-09 in a block upload: start (A3h) is valid only before the first sub-block, an acknowledge (A2h) only
+/// once a sub-block is going out or was sent, the end response (A1h) only after the end frame; any other of
+/// the three is 0504 0001h for the transfer's object, and the server is idle after it.
+#[test]
+#[cfg(feature = "sdo-block")]
+fn block_upload_requests_out_of_phase() {
+    // (requests to reach the phase, then the requests that are out of place there)
+    let to_start: &[[u8; 8]] = &[];
+    let to_sending: &[[u8; 8]] = &[[0xA3, 0, 0, 0, 0, 0, 0, 0]];
+    let cases: [(&[[u8; 8]], bool, &[u8]); 4] = [
+        (to_start, false, &[0xA2, 0xA1]),
+        (to_sending, false, &[0xA3, 0xA1]),
+        (to_sending, true, &[0xA3, 0xA1]), // the sub-block handed out (Sent), and its time-out started
+        (&[[0xA3, 0, 0, 0, 0, 0, 0, 0], [0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0]], false, &[0xA3, 0xA2]),
+    ];
+    for (to_phase, drain, bad) in cases {
+        for &b0 in bad {
+            let mut t = Bench::new();
+            t.od.set_domain(b"123456789");
+            t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));
+            for &req in to_phase {
+                if req[0] == 0xA2 {
+                    while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+                }
+                t.s.handle_request(T0, &req, &mut t.od);
+            }
+            if drain {
+                while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+                assert_eq!(t.s.handle_timeout(T0, &mut t.od), Response::NONE);
+                assert_eq!(t.s.state(), ServerState::BlockUploadAck);
+            }
+            let r = t.ex([b0, 0x01, 0x7F, 0, 0, 0, 0, 0], abort_of(0x2000, 0, AbortCode::InvalidCommandSpecifier));
+            assert!(matches!(r.event, Some(SdoEvent::Aborted { .. })), "{b0:02X}");
+            assert!(t.s.is_idle(), "{b0:02X}");
+        }
+    }
+}
