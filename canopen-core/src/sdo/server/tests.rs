@@ -881,7 +881,8 @@ fn block_upload_requests_out_of_phase() {
     // (requests to reach the phase, then the requests that are out of place there)
     let to_start: &[[u8; 8]] = &[];
     let to_sending: &[[u8; 8]] = &[[0xA3, 0, 0, 0, 0, 0, 0, 0]];
-    let cases: [(&[[u8; 8]], bool, &[u8]); 4] = [
+    type Case<'a> = (&'a [[u8; 8]], bool, &'a [u8]);
+    let cases: [Case; 4] = [
         (to_start, false, &[0xA2, 0xA1]),
         (to_sending, false, &[0xA3, 0xA1]),
         (to_sending, true, &[0xA3, 0xA1]), // the sub-block handed out (Sent), and its time-out started
