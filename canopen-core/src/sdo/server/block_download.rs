@@ -73,7 +73,8 @@ impl SdoServer {
         if seqno == 0 || seqno > blksize {
             return self.abort(od, mux, AbortCode::InvalidSequenceNumber); // SDO-50
         }
-        if seqno == bd.expected {
+        let in_order = seqno == bd.expected;
+        if in_order {
             if bd.held_seqno != 0 {
                 if let Err(code) = bd.flush_held(mux, 7, od) {
                     return self.abort(od, mux, code);
@@ -84,7 +85,6 @@ impl SdoServer {
             bd.held_seqno = seqno;
             bd.expected = seqno + 1;
             bd.acked = 0;
-            bd.ending = last;
         } else if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) || bd.is_repeated_initiate(b, mux)
         {
             // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
@@ -98,6 +98,7 @@ impl SdoServer {
             let ackseq = bd.expected - 1;
             bd.expected = 1;
             bd.acked = b[0];
+            bd.ending = last && in_order; // the last segment taken: the end frame comes next (SDO-41)
             return Response::send(ack(ackseq, blksize));
         }
         Response::NONE
