@@ -806,9 +806,7 @@ impl SdoServer {
                     self.reset(od);
                     self.block_upload_initiate(mux(), command & 0x04 != 0, b[4], b[5], od)
                 }
-                1 => return self.block_upload_end(od),
-                2 => return self.block_upload_ack(b[1], b[2], od),
-                _ => return self.block_upload_start(od),
+                _ => return self.block_upload_request(b, od), // end, acknowledge, start
             },
             #[cfg(feature = "sdo-block")]
             6 if command & 0x01 == 0 => {

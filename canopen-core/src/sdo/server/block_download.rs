@@ -73,37 +73,33 @@ impl SdoServer {
         if seqno == 0 || seqno > blksize {
             return self.abort(od, mux, AbortCode::InvalidSequenceNumber); // SDO-50
         }
-        if seqno != bd.expected {
-            if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) || bd.is_repeated_initiate(b, mux) {
-                // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
-                // has that sequence number already; a second acknowledge would read as one for the next
-                // sub-block and make the client skip segments
-                return Response::NONE;
+        let in_order = seqno == bd.expected;
+        if in_order {
+            if bd.held_seqno != 0 {
+                if let Err(code) = bd.flush_held(mux, 7, od) {
+                    return self.abort(od, mux, code);
+                }
             }
-            // out of order: discard; acknowledge the last in-order segment at the sub-block's end (SDO-40)
-            if last || seqno == blksize {
-                let ackseq = bd.expected - 1;
-                bd.expected = 1;
-                bd.acked = b[0];
-                return Response::send(ack(ackseq, blksize));
-            }
+            let [_, data @ ..] = b;
+            bd.held = *data;
+            bd.held_seqno = seqno;
+            bd.expected = seqno + 1;
+            bd.acked = 0;
+        } else if b[0] == bd.acked || (bd.held_seqno == seqno && b[1..8] == bd.held) || bd.is_repeated_initiate(b, mux)
+        {
+            // a repeat of the segment just acknowledged or just accepted (a CAN-level duplicate): the server
+            // has that sequence number already; a second acknowledge would read as one for the next
+            // sub-block and make the client skip segments
             return Response::NONE;
         }
-        if bd.held_seqno != 0 {
-            if let Err(code) = bd.flush_held(mux, 7, od) {
-                return self.abort(od, mux, code);
-            }
-        }
-        let [_, data @ ..] = b;
-        bd.held = *data;
-        bd.held_seqno = seqno;
-        bd.expected = seqno + 1;
-        bd.acked = 0;
+        // Out of order: discarded. The sub-block's end, in order or not, is acknowledged up to the last
+        // in-order segment (SDO-39, SDO-40): `expected - 1`, the segment itself when it was in order.
         if last || seqno == blksize {
+            let ackseq = bd.expected - 1;
             bd.expected = 1;
-            bd.ending = last;
             bd.acked = b[0];
-            return Response::send(ack(seqno, blksize));
+            bd.ending = last && in_order; // the last segment taken: the end frame comes next (SDO-41)
+            return Response::send(ack(ackseq, blksize));
         }
         Response::NONE
     }
@@ -112,10 +108,12 @@ impl SdoServer {
     /// `timeout` (µs, not disabled): a quarter of it while a download sub-block has in-order segments but has
     /// not ended (then [`block_download_stalled`](Self::block_download_stalled) acknowledges them); nothing,
     /// at once, when an upload sub-block was handed out (then [`block_upload_sent`](Self::block_upload_sent)
-    /// starts the time-out); `timeout` otherwise.
+    /// starts the time-out); `timeout` otherwise. `expected > 1` alone says "in-order segments, not ended":
+    /// a sub-block's end (also the one that leaves the server waiting for the end frame) resets `expected`
+    /// to 1.
     pub(super) const fn block_delay(&self, timeout: u64) -> u64 {
         match &self.state {
-            State::BlockDownload(bd) if !bd.ending && bd.expected > 1 => timeout / 4,
+            State::BlockDownload(bd) if bd.expected > 1 => timeout / 4,
             State::BlockUpload(bu) if matches!(bu.phase, UploadPhase::Sent) => 0,
             _ => timeout,
         }
@@ -128,8 +126,8 @@ impl SdoServer {
     pub(super) fn block_download_stalled(&mut self) -> Option<Response> {
         let blksize = self.block_size;
         let State::BlockDownload(bd) = &mut self.state else { return None };
-        if bd.ending || bd.expected <= 1 {
-            return None;
+        if bd.expected <= 1 {
+            return None; // nothing in order since the last acknowledge, or waiting for the end frame
         }
         let ackseq = bd.expected - 1;
         bd.expected = 1;

@@ -5,12 +5,13 @@
 
 use super::{Micros, Response, SdoEvent, SdoServer, State};
 use crate::od::{AbortCode, ObjectDictionary};
-use crate::sdo::block::{last_segment_len, Crc16};
+use crate::sdo::block::Crc16;
 use crate::time::Instant;
 use crate::wire::sdo::{frame, Multiplexer, MAX_BLKSIZE};
 
 /// Where a block upload is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
 pub(super) enum UploadPhase {
     Start,
     Sending,
@@ -144,37 +145,6 @@ impl SdoServer {
         Ok(Response::send(frame(0xC2 | (u8::from(crc) << 2), mux.bits(), size)))
     }
 
-    pub(super) fn block_upload_ack<O: ObjectDictionary + ?Sized>(
-        &mut self,
-        ackseq: u8,
-        blksize: u8,
-        od: &mut O,
-    ) -> Response {
-        let mux = self.mux;
-        let State::BlockUpload(bu) = &mut self.state else { return self.invalid(od) };
-        if !matches!(bu.phase, UploadPhase::Sending | UploadPhase::Sent | UploadPhase::WaitAck) {
-            return self.invalid(od);
-        }
-        if ackseq > bu.sent {
-            return self.abort(od, mux, AbortCode::InvalidSequenceNumber);
-        }
-        if blksize == 0 || blksize > MAX_BLKSIZE {
-            return self.abort(od, mux, AbortCode::InvalidBlockSize);
-        }
-        bu.base = bu.base.saturating_add(u32::from(ackseq) * 7);
-        bu.sent = 0;
-        bu.blksize = blksize;
-        if ackseq >= 1 && bu.base >= bu.size {
-            bu.phase = UploadPhase::WaitEnd;
-            let crc = bu.crc.get(); // 0 without CRC (sc = 0): nothing was fed, it is still Crc16::new()
-            let unused = 7 - last_segment_len(bu.size);
-            // scs 6, ss 1: n unused bytes of the last segment, the CRC in bytes 1–2 (SDO-47)
-            return Response::send(frame(0xC1 | (unused << 2), u32::from(crc), 0));
-        }
-        bu.phase = UploadPhase::Sending;
-        Response::NONE
-    }
-
     /// At the first time-out check after a sub-block was handed out ([`UploadPhase::Sent`]): its last
     /// segment has gone out by now, so the time-out starts from `now` (SDO-31). Whether it was that case.
     pub(super) fn block_upload_sent(&mut self, now: Instant) -> bool {
@@ -188,28 +158,57 @@ impl SdoServer {
         }
     }
 
-    /// "Start upload" (A3h, SDO-37): the first sub-block may go out.
-    pub(super) fn block_upload_start<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) -> Response {
-        match &mut self.state {
-            State::BlockUpload(bu) if bu.phase == UploadPhase::Start => {
-                bu.phase = UploadPhase::Sending;
-                Response::NONE
-            }
-            _ => self.invalid(od),
+    /// The client's requests of a block upload, ccs 5 with cs = 1..3 (`b` is the frame): end (A1h, SDO-47:
+    /// the transfer is complete), acknowledge (A2h, SDO-46: ackseq in byte 1, the next blksize in byte 2,
+    /// go-back-n as SDO-40) and start (A3h, SDO-45: the first sub-block may go out). One test of the state and
+    /// phase for the three ([`VALID_IN`]), one exit for a request out of state (0504 0001h).
+    pub(super) fn block_upload_request<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
+        let (mux, cs) = (self.mux, b[0] & 0x03);
+        let State::BlockUpload(bu) = &mut self.state else { return self.invalid(od) };
+        if VALID_IN[usize::from(cs)] >> (bu.phase as u8) & 1 == 0 {
+            return self.invalid(od);
         }
-    }
-
-    /// "End block upload" response (A1h, SDO-47): the transfer is complete.
-    pub(super) fn block_upload_end<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) -> Response {
-        match self.state {
-            State::BlockUpload(bu) if bu.phase == UploadPhase::WaitEnd => {
-                self.state = State::Idle;
-                Response { frame: None, event: Some(SdoEvent::Uploaded { index: self.mux.index, sub: self.mux.sub }) }
-            }
-            _ => self.invalid(od),
+        if cs == 1 {
+            self.state = State::Idle;
+            return Response { frame: None, event: Some(SdoEvent::Uploaded { index: mux.index, sub: mux.sub }) };
         }
+        if cs == 2 {
+            let (ackseq, blksize) = (b[1], b[2]);
+            if ackseq > bu.sent {
+                return self.abort(od, mux, AbortCode::InvalidSequenceNumber);
+            }
+            if blksize == 0 || blksize > MAX_BLKSIZE {
+                return self.abort(od, mux, AbortCode::InvalidBlockSize);
+            }
+            bu.base = bu.base.saturating_add(u32::from(ackseq) * 7);
+            bu.sent = 0;
+            bu.blksize = blksize;
+            if ackseq >= 1 && bu.base >= bu.size {
+                bu.phase = UploadPhase::WaitEnd;
+                // 0 without CRC (sc = 0): nothing was fed, it is still Crc16::new()
+                let crc = bu.crc.get();
+                // `base` moved by whole segments to the end of the last one, 7 × segments (at least one,
+                // SDO-51): past `size` by the last segment's unused bytes, 7 for an empty data set. No
+                // division by 7.
+                let unused = (bu.base - bu.size) as u8;
+                // scs 6, ss 1: n unused bytes of the last segment, the CRC in bytes 1–2 (SDO-47)
+                return Response::send(frame(0xC1 | (unused << 2), u32::from(crc), 0));
+            }
+        }
+        // start, or an acknowledge with more to send: the (next) sub-block goes out
+        bu.phase = UploadPhase::Sending;
+        Response::NONE
     }
 }
+
+/// The phases each client request of a block upload is valid in, by cs (1 end, 2 acknowledge, 3 start): a
+/// bit per [`UploadPhase`] (`1 << phase`).
+const VALID_IN: [u8; 4] = [
+    0,
+    1 << UploadPhase::WaitEnd as u8,
+    (1 << UploadPhase::Sending as u8) | (1 << UploadPhase::Sent as u8) | (1 << UploadPhase::WaitAck as u8),
+    1 << UploadPhase::Start as u8,
+];
 
 /// Size of a readable object (SDO upload preconditions).
 fn readable_size<O: ObjectDictionary + ?Sized>(mux: Multiplexer, od: &O) -> Result<u32, AbortCode> {

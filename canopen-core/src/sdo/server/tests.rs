@@ -650,6 +650,10 @@ fn stalled_sub_block_is_acknowledged_after_a_quarter_of_the_timeout() {
     // the client resends "OP" as segment 1 of the next sub-block, last
     let r = s.handle_request(t(30), &[0x81, 0x4F, 0x50, 0, 0, 0, 0, 0], &mut od);
     assert_eq!(r.frame, Some([0xA2, 0x01, 0x04, 0, 0, 0, 0, 0]));
+    // waiting for the end frame (SDO-41): no early acknowledge, the SDO timeout from that segment
+    assert_eq!(s.state(), ServerState::BlockDownloadEnd);
+    assert_eq!(s.poll_timeout(), Some(t(130)));
+    assert_eq!(s.handle_timeout(t(129), &mut od), Response::NONE);
     let r = s.handle_request(t(31), &[0xD5, 0x80, 0x60, 0, 0, 0, 0, 0], &mut od);
     assert_eq!(r.frame, Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
     assert_eq!(od.domain(), b"ABCDEFGHIJKLMNOP");
@@ -763,4 +767,146 @@ fn zero_timeout_gives_no_deadline_in_block_transfers() {
     t.ex([0xA2, 0x00, 0x7F, 0, 0, 0, 0, 0], None); // go back to the start: the sub-block again
     while t.s.poll_transmit(Instant::from_millis(3), &mut t.od).is_some() {}
     assert_eq!(t.s.poll_timeout(), Some(Instant::from_millis(3)));
+}
+
+/// The unused bytes of the last segment (the end frame's n) and the CRC of a block upload of every size from
+/// 0 to 16 bytes, with and without CRC, in sub-blocks whose size the client changes after each
+/// acknowledge (2, then 3, then 1, ...): n = 7 × segments − size, 7 for an empty data set, which is one
+/// segment (SDO-37, SDO-40, SDO-46, SDO-47, SDO-48, SDO-49, SDO-51).
+#[test]
+#[cfg(feature = "sdo-block")]
+fn block_upload_end_frame_n_and_crc_for_every_size() {
+    let data: [u8; 16] = core::array::from_fn(|i| 0x30 + i as u8);
+    for crc_on in [false, true] {
+        for size in 0..=16usize {
+            let mut t = Bench::new();
+            t.od.set_domain(&data[..size]);
+            let cc = u8::from(crc_on) << 2;
+            t.ex(
+                [0xA0 | cc, 0x00, 0x20, 0x00, 0x02, 0x00, 0, 0],
+                Some([0xC2 | cc, 0x00, 0x20, 0x00, size as u8, 0, 0, 0]),
+            );
+            t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+            let mut got = std::vec::Vec::new();
+            let mut blksizes = [3u8, 1, 2].into_iter().cycle();
+            let end = loop {
+                let mut sent = 0u8;
+                let mut last = false;
+                while let Some(r) = t.s.poll_transmit(T0, &mut t.od) {
+                    let f = r.frame.unwrap();
+                    sent += 1;
+                    assert_eq!(f[0] & 0x7F, sent, "size {size}: seqno");
+                    assert!(!last, "size {size}: a segment after c = 1");
+                    last = f[0] & 0x80 != 0;
+                    got.extend_from_slice(&f[1..]);
+                }
+                assert!(sent >= 1, "size {size}: an empty sub-block (SDO-51)");
+                let r = t.s.handle_request(T0, &[0xA2, sent, blksizes.next().unwrap(), 0, 0, 0, 0, 0], &mut t.od);
+                if last {
+                    break r.frame.unwrap();
+                }
+                assert_eq!(r.frame, None, "size {size}");
+            };
+            let segments = size.div_ceil(7).max(1);
+            let n = 7 * segments - size;
+            let mut crc = Crc16::new();
+            if crc_on {
+                crc.update(&data[..size]);
+            }
+            let [c0, c1] = crc.get().to_le_bytes();
+            assert_eq!(end, [0xC1 | ((n as u8) << 2), c0, c1, 0, 0, 0, 0, 0], "size {size}, crc {crc_on}");
+            assert_eq!(&got[..size], &data[..size], "size {size}");
+            assert_eq!(got.len(), 7 * segments, "size {size}");
+            let r = t.ex([0xA1, 0, 0, 0, 0, 0, 0, 0], None);
+            assert_eq!(r.event, Some(SdoEvent::Uploaded { index: 0x2000, sub: 0 }));
+        }
+    }
+}
+
+/// Block download of 0, 7 and 14 bytes: the end frame's n covers a last segment with no data at all (an
+/// empty data set is one segment, n = 7) or with all 7 bytes (n = 0), with and without CRC (SDO-37, SDO-41,
+/// SDO-48, SDO-49, SDO-51).
+#[test]
+#[cfg(feature = "sdo-block")]
+fn block_download_last_segment_n_edges() {
+    let data: [u8; 14] = core::array::from_fn(|i| 0x61 + i as u8);
+    for crc_on in [false, true] {
+        for size in [0usize, 7, 14] {
+            let mut t = Bench::with_block_size(4);
+            t.od.set_domain(b"old");
+            let cc = u8::from(crc_on) << 2;
+            t.ex([0xC2 | cc, 0x00, 0x20, 0x00, size as u8, 0, 0, 0], Some([0xA0 | cc, 0x00, 0x20, 0x00, 4, 0, 0, 0]));
+            let segments = size.div_ceil(7).max(1);
+            for i in 0..segments {
+                let mut seg = [0xEEu8; 8];
+                seg[0] = (i as u8 + 1) | if i + 1 == segments { 0x80 } else { 0 };
+                let part = &data[(7 * i).min(size)..(7 * i + 7).min(size)];
+                seg[1..1 + part.len()].copy_from_slice(part);
+                let want = (i + 1 == segments).then_some([0xA2, segments as u8, 4, 0, 0, 0, 0, 0]);
+                t.ex(seg, want);
+            }
+            let n = (7 * segments - size) as u8;
+            let mut crc = Crc16::new();
+            crc.update(&data[..size]);
+            let [c0, c1] = if crc_on { crc.get().to_le_bytes() } else { [0x5A, 0xA5] };
+            let r = t.ex([0xC1 | (n << 2), c0, c1, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+            assert_eq!(r.event, Some(SdoEvent::Written { index: 0x2000, sub: 0 }));
+            assert_eq!(t.od.domain(), &data[..size], "size {size}, crc {crc_on}");
+        }
+    }
+}
+
+/// An abort from the client in the middle of an upload sub-block (SDO-33, SDO-46): not answered, the rest of
+/// the sub-block is not sent, the server is idle and has no deadline.
+#[test]
+#[cfg(feature = "sdo-block")]
+fn client_abort_in_the_middle_of_an_upload_sub_block() {
+    let mut t = Bench::new();
+    t.od.set_domain(b"ABCDEFGHIJKLMNOPQRSTU");
+    t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 21, 0, 0, 0]));
+    t.ex([0xA3, 0, 0, 0, 0, 0, 0, 0], None);
+    assert_eq!(t.s.poll_transmit(T0, &mut t.od).unwrap().frame.unwrap()[0], 0x01);
+    let r = t.ex([0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x04, 0x05], None);
+    assert_eq!(r.event, Some(SdoEvent::AbortReceived { index: 0x2000, sub: 0, code: 0x0504_0000 }));
+    assert!(t.s.is_idle() && !t.s.wants_transmit() && t.s.poll_timeout().is_none());
+    assert!(t.s.poll_transmit(T0, &mut t.od).is_none());
+}
+
+/// SDO-09 in a block upload: start (A3h) is valid only before the first sub-block, an acknowledge (A2h) only
+/// once a sub-block is going out or was sent, the end response (A1h) only after the end frame; any other of
+/// the three is 0504 0001h for the transfer's object, and the server is idle after it.
+#[test]
+#[cfg(feature = "sdo-block")]
+fn block_upload_requests_out_of_phase() {
+    // (requests to reach the phase, then the requests that are out of place there)
+    let to_start: &[[u8; 8]] = &[];
+    let to_sending: &[[u8; 8]] = &[[0xA3, 0, 0, 0, 0, 0, 0, 0]];
+    type Case<'a> = (&'a [[u8; 8]], bool, &'a [u8]);
+    let cases: [Case; 4] = [
+        (to_start, false, &[0xA2, 0xA1]),
+        (to_sending, false, &[0xA3, 0xA1]),
+        (to_sending, true, &[0xA3, 0xA1]), // the sub-block handed out (Sent), and its time-out started
+        (&[[0xA3, 0, 0, 0, 0, 0, 0, 0], [0xA2, 0x02, 0x7F, 0, 0, 0, 0, 0]], false, &[0xA3, 0xA2]),
+    ];
+    for (to_phase, drain, bad) in cases {
+        for &b0 in bad {
+            let mut t = Bench::new();
+            t.od.set_domain(b"123456789");
+            t.ex([0xA4, 0x00, 0x20, 0x00, 0x7F, 0x00, 0, 0], Some([0xC6, 0x00, 0x20, 0x00, 0x09, 0, 0, 0]));
+            for &req in to_phase {
+                if req[0] == 0xA2 {
+                    while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+                }
+                t.s.handle_request(T0, &req, &mut t.od);
+            }
+            if drain {
+                while t.s.poll_transmit(T0, &mut t.od).is_some() {}
+                assert_eq!(t.s.handle_timeout(T0, &mut t.od), Response::NONE);
+                assert_eq!(t.s.state(), ServerState::BlockUploadAck);
+            }
+            let r = t.ex([b0, 0x01, 0x7F, 0, 0, 0, 0, 0], abort_of(0x2000, 0, AbortCode::InvalidCommandSpecifier));
+            assert!(matches!(r.event, Some(SdoEvent::Aborted { .. })), "{b0:02X}");
+            assert!(t.s.is_idle(), "{b0:02X}");
+        }
+    }
 }
