@@ -12,7 +12,8 @@
 # object (Δ.bss / 60) is printed for the zerocopy layout: the values themselves, the tables stay in flash.
 #
 # Usage: scripts/od-cost.sh [--check] [--ratchet]
-#   --check    exit 1 when a zerocopy figure is over its target (VAR <= 16 B, ARRAY <= 24 B, e35 <= 10,700 B)
+#   --check    exit 1 when a zerocopy figure is over its target (VAR <= 16 B, ARRAY <= 24 B, e35 <= 8,000 B: issue
+#              41's second targets, all met)
 #   --ratchet  exit 1 when the e35 application grew more than 2 % over its line in scripts/od-cost.baseline
 #              in any layout (scripts/ratchet.py; a figure that went down prints the one-line update). The
 #              per-object slopes are left to --check: LTO's inlining moves them by about a byte either way.
@@ -94,7 +95,7 @@ declare -A E35
 for c in 0 1; do E35[$c]=$(($(build "file:$gen" $c) - $(build one $c))); done
 E35[2]=$(($(build "file:$genz" 2) - $(build one 2)))
 printf '  %-36s %18s %18s %18s  %s\n' "e35.eds app ($(grep -c '#\[od(' "$gen") fields), whole" "${E35[0]}" "${E35[1]}" \
-  "${E35[2]}" "$(verdict $((E35[2] * 100)) 10700)"
+  "${E35[2]}" "$(verdict $((E35[2] * 100)) 8000)"
 (cd "$ROOT/ci/od-cost" && cargo build --release --locked --quiet --target thumbv7em-none-eabihf) # leave base built
 if [ "$ratchet" = 1 ]; then
   printf 'e35.code %s\ne35.compact %s\ne35.zerocopy %s\n' "${E35[0]}" "${E35[1]}" "${E35[2]}" |
