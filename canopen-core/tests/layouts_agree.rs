@@ -200,8 +200,8 @@ macro_rules! regular_records {
             seven_e: u32,
             #[od(index = 0x2006, sub = 6, access = "ro", default = 12)]
             seven_f: u32,
-            #[od(index = 0x2006, sub = 7, access = "rw", default = 13)]
-            seven_g: u32,
+            #[od(index = 0x2006, sub = 7, access = "rw", min = -3, max = 3, default = 2)]
+            seven_g: i32,
             #[od(index = 0x2003, sub = 1..=3, access = "rw", pdo = "both", default = 0x1122)]
             table: [u16; 3],
             #[od(index = 0x2008, access = "wo", pdo = "rpdo")]
@@ -478,7 +478,14 @@ fn sub_indices_are_stored_only_when_irregular() {
     // one, 2004h sub 2 (other limits) has its own; the limited shapes come first.
     let shape = |pos: usize| <OffsetRegularRecords as OdData>::ROWS[pos].shape;
     assert_eq!((shape(2), shape(5), shape(6)), (0, 0, 1));
-    assert_eq!(<OffsetRegularRecords as OdData>::LIMITS, &[0, 8]);
+    // 2006h sub 7 has 2004h sub 2's limits but another access and no PDO mapping: a shape of its own, whose
+    // limit values are the ones already stored.
+    assert_eq!((shape(6), shape(14)), (1, 2));
+    assert_eq!(<OffsetRegularRecords as OdData>::LIMITS, &[0, 8, 8]);
+    assert_eq!(<OffsetRegularRecords as OdData>::LIMIT_VALUES.len(), 16);
+    assert_eq!(d.write(0x2006, 7, &4i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
+    assert_eq!(d.write(0x2006, 7, &(-4i32).to_le_bytes()), Err(AbortCode::ValueTooLow));
+    assert_eq!(d.write(0x2006, 7, &(-3i32).to_le_bytes()), Ok(()));
     assert_eq!(d.write(0x2004, 2, &4i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));
     assert_eq!(d.write(0x2004, 1, &4i32.to_le_bytes()), Ok(()));
     assert_eq!(d.write(0x2004, 1, &11i32.to_le_bytes()), Err(AbortCode::ValueTooHigh));

@@ -358,9 +358,16 @@ pub(crate) fn data_impl(
     let shapes: Vec<&Ts> = order.iter().map(|&i| &found[i].shape).collect();
     let mut limit_values: Vec<u8> = Vec::new();
     let mut limits: Vec<u16> = Vec::new();
+    // Shapes that differ only in access or flags often share their limit values: such values are stored
+    // once (any run of bytes already there that equals them will do).
     for v in order.iter().filter_map(|&i| found[i].limits.as_ref()) {
-        limits.push(limit_values.len() as u16);
-        limit_values.extend(v);
+        match limit_values.windows(v.len()).position(|w| w == v.as_slice()) {
+            Some(at) => limits.push(at as u16),
+            None => {
+                limits.push(limit_values.len() as u16);
+                limit_values.extend(v);
+            }
+        }
     }
     if shapes.len() > 256 {
         return quote!(::core::compile_error!(
