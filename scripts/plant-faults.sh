@@ -45,7 +45,7 @@ FAULTS=(
   'sdo-no-streams-begun-write-not-undone @@ sdo_node @@ od.abort_write(mux.index, mux.sub);\n                    return Err(AbortCode::UnsupportedAccess); @@ return Err(AbortCode::UnsupportedAccess);'
   'store02-saving-one-group-drops-the-other @@ store_restore @@ w.item(index, sub, &buf[..n])?; @@ let _ = (index, sub, n);'
   'emcy-inhibit-ignored @@ pdo_sync_emcy @@ self.next_allowed == Deadline::NONE || self.next_allowed.passed(now) @@ true'
-  'od11-table-low-limit-inclusive @@ od_all_types @@ (code == AbortCode::ValueTooLow && value < l) @@ (code == AbortCode::ValueTooLow && value <= l)'
+  'od11-table-low-limit-inclusive @@ od_all_types @@ if value < bound(from) { @@ if value <= bound(from) {'
   'pdo-offset-slot-two-bytes-as-one @@ od_all_types @@ 1 => copy_in::<2>(bytes, at, data), @@ 1 => copy_in::<1>(bytes, at, data),'
   'nmt04-table-default-not-unzigzagged @@ od_all_types @@ v = (v >> 1) ^ (v & 1).wrapping_neg(); @@ v >>= 1;'
   'od04-record-rows-run-into-the-next-object @@ od_all_types @@ _ => i < end, @@ _ => i <= end,'

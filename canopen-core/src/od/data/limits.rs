@@ -125,14 +125,15 @@ fn within<D: OdData + ?Sized>(pos: u16, dt: DataType, data: &[u8]) -> Result<(),
         return check_len(data, size);
     };
     let value = order_key(dt, data)?;
-    let mut from = usize::from(at);
-    for code in [AbortCode::ValueTooLow, AbortCode::ValueTooHigh] {
-        if let Some(Ok(l)) = D::LIMIT_VALUES.get(from..from + size).map(|b| order_key(dt, b)) {
-            if (code == AbortCode::ValueTooLow && value < l) || (code == AbortCode::ValueTooHigh && value > l) {
-                return Err(code);
-            }
-        }
-        from += size;
+    let from = usize::from(at);
+    // A limit without a key (none stored, a NaN) compares equal: no limit.
+    let bound =
+        |from: usize| D::LIMIT_VALUES.get(from..from + size).and_then(|b| order_key(dt, b).ok()).unwrap_or(value);
+    if value < bound(from) {
+        return Err(AbortCode::ValueTooLow);
+    }
+    if value > bound(from + size) {
+        return Err(AbortCode::ValueTooHigh);
     }
     Ok(())
 }
