@@ -110,7 +110,9 @@ fuzz_target!(|data: &[u8]| {
     for rec in data.get(1..).unwrap_or(&[]).chunks(9) {
         let Some((&op, frame)) = rec.split_first() else { continue };
         match op % 12 {
-            n @ 0..=8 => check(server.handle_request(now, frame.get(..usize::from(n)).unwrap_or(frame), &mut od), false),
+            n @ 0..=8 => {
+                check(server.handle_request(now, frame.get(..usize::from(n)).unwrap_or(frame), &mut od), false)
+            }
             9 => check(server.poll_transmit(now, &mut od).unwrap_or(Response::NONE), true),
             10 => {
                 now += Duration::from_millis(u64::from(frame.first().copied().unwrap_or(0)));
