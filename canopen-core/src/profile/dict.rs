@@ -579,13 +579,27 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         self.set(f, sub, v, rules)
     }
 
-    fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
-        let f = find_or_optional!(
-            index,
-            sub,
-            if rules { self.optional.write(index, sub, data) } else { self.optional.load(index, sub, data) }
-        );
-        self.write_found(f, sub, data, rules)
+    /// The one write path (SDO's `write` and `write_expedited`, stored values' `load_value`): the entry's
+    /// bytes are `data`'s first `len`, or as many as the entry has when `len` is `None` (an expedited
+    /// download without the size indicated, SDO-13; `data` then holds 4 bytes).
+    fn write_checked(
+        &mut self,
+        index: u16,
+        sub: u8,
+        data: &[u8],
+        len: Option<usize>,
+        rules: bool,
+    ) -> Result<(), AbortCode> {
+        let f = find_or_optional!(index, sub, {
+            let data = data.get(..len.unwrap_or(data.len())).unwrap_or(data);
+            if rules {
+                self.optional.write(index, sub, data)
+            } else {
+                self.optional.load(index, sub, data)
+            }
+        });
+        let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
+        self.write_found(f, sub, bytes, rules)
     }
     /// Writes a stored value without the SDO change rules (store/restore after a reset: the record was
     /// consistent when it was saved; PDO mappings are resolved again when the node applies them).
@@ -599,7 +613,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// assert_eq!(od.params.rpdo_comm[0].inhibit_100us, 10);
     /// ```
     pub fn load_value(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, false)
+        self.write_checked(index, sub, data, Some(data.len()), false)
     }
 }
 
@@ -660,7 +674,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     }
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, true)
+        self.write_checked(index, sub, data, Some(data.len()), true)
     }
 
     /// One table walk; every entry here is readable.
@@ -678,13 +692,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// One table walk; the writable entries are all numeric (1..=4 bytes), so `len` not indicated means
     /// the entry's size (SDO-13).
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        let f = find_or_optional!(
-            index,
-            sub,
-            self.optional.write(index, sub, data.get(..len.unwrap_or(4)).unwrap_or(data))
-        );
-        let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
-        self.write_found(f, sub, bytes, true)
+        self.write_checked(index, sub, data, len, true)
     }
 
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
