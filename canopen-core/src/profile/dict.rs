@@ -312,18 +312,18 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         }
     }
 
-    fn pdo_comm(&self, f: &Found) -> Option<&PdoComm> {
+    fn pdo_comm(&self, f: Found) -> Option<&PdoComm> {
         let p = &self.params;
         if f.tx() { p.tpdo_comm.as_ref() } else { p.rpdo_comm.as_ref() }.get(f.k())
     }
 
-    fn pdo_map(&self, f: &Found) -> Option<&PdoMapParams> {
+    fn pdo_map(&self, f: Found) -> Option<&PdoMapParams> {
         let p = &self.params;
         if f.tx() { p.tpdo_map.as_ref() } else { p.rpdo_map.as_ref() }.get(f.k())
     }
 
     /// The current value of a numeric entry found by `find` (0 for a string slot).
-    fn value(&self, f: &Found, sub: u8) -> Result<u32, AbortCode> {
+    fn value(&self, f: Found, sub: u8) -> Result<u32, AbortCode> {
         let p = &self.params;
         let c = &self.config;
         let id = &c.identity;
@@ -372,7 +372,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     /// Writes a numeric entry found by `find`; `rules` applies the change rules of the module docs (SDO),
     /// without them the value is only range-checked by its type (loading stored values after a reset).
-    fn set(&mut self, f: &Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
+    fn set(&mut self, f: Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let p = &mut self.params;
         let cob = |cur: u32, active: fn(CobIdEntry) -> bool| -> Result<u32, AbortCode> {
             if rules {
@@ -441,22 +441,22 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     }
 
     /// A PDO communication record's entry, or (feature `pdo-dynamic-mapping`) a mapping record's.
-    fn set_pdo(&mut self, f: &Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
+    fn set_pdo(&mut self, f: Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let p = &mut self.params;
-        let (comm, map) = if f.tx() {
-            (p.tpdo_comm.as_mut().get_mut(f.k()), p.tpdo_map.as_mut().get_mut(f.k()))
-        } else {
-            (p.rpdo_comm.as_mut().get_mut(f.k()), p.rpdo_map.as_mut().get_mut(f.k()))
-        };
-        let (Some(comm), Some(map)) = (comm, map) else {
+        let comm = if f.tx() { p.tpdo_comm.as_mut() } else { p.rpdo_comm.as_mut() };
+        let Some(comm) = comm.get_mut(f.k()) else {
             return Err(AbortCode::ObjectDoesNotExist);
         };
         let valid = comm.is_valid();
         #[cfg(not(feature = "pdo-dynamic-mapping"))]
-        let _ = (map, sub); // a fixed mapping is const: `write_found` refuses it before this
+        let _ = sub; // a fixed mapping is const: `write_found` refuses it before this
         match f.slot {
             #[cfg(feature = "pdo-dynamic-mapping")]
             Slot::MapCount | Slot::MapEntry => {
+                let map = if f.tx() { p.tpdo_map.as_mut() } else { p.rpdo_map.as_mut() };
+                let Some(map) = map.get_mut(f.k()) else {
+                    return Err(AbortCode::ObjectDoesNotExist);
+                };
                 // Only the highest count of the PDO's default (`PdoDefault::max_mapped`), not a copy of it.
                 let defaults = if f.tx() { self.config.tpdo } else { self.config.rpdo };
                 let max = defaults.get(f.k()).unwrap_or(&PdoDefault::UNUSED).max_mapped;
@@ -568,7 +568,7 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
 
 impl<Z: ProfileSizes> CommProfile<Z> {
     /// Writes the entry `find` found: access (0601 0002h), exact length (0607 0012h/0013h), then `set`.
-    fn write_found(&mut self, f: &Found, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
+    fn write_found(&mut self, f: Found, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
         if !f.ty.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
@@ -579,13 +579,27 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         self.set(f, sub, v, rules)
     }
 
-    fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
-        let f = find_or_optional!(
-            index,
-            sub,
-            if rules { self.optional.write(index, sub, data) } else { self.optional.load(index, sub, data) }
-        );
-        self.write_found(&f, sub, data, rules)
+    /// The one write path (SDO's `write` and `write_expedited`, stored values' `load_value`): the entry's
+    /// bytes are `data`'s first `len`, or as many as the entry has when `len` is `None` (an expedited
+    /// download without the size indicated, SDO-13; `data` then holds 4 bytes).
+    fn write_checked(
+        &mut self,
+        index: u16,
+        sub: u8,
+        data: &[u8],
+        len: Option<usize>,
+        rules: bool,
+    ) -> Result<(), AbortCode> {
+        let f = find_or_optional!(index, sub, {
+            let data = data.get(..len.unwrap_or(data.len())).unwrap_or(data);
+            if rules {
+                self.optional.write(index, sub, data)
+            } else {
+                self.optional.load(index, sub, data)
+            }
+        });
+        let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
+        self.write_found(f, sub, bytes, rules)
     }
     /// Writes a stored value without the SDO change rules (store/restore after a reset: the record was
     /// consistent when it was saved; PDO mappings are resolved again when the node applies them).
@@ -599,7 +613,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// assert_eq!(od.params.rpdo_comm[0].inhibit_100us, 10);
     /// ```
     pub fn load_value(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, false)
+        self.write_checked(index, sub, data, Some(data.len()), false)
     }
 }
 
@@ -655,12 +669,12 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
         if let Some(text) = self.text(f.slot) {
             return Ok(copy_at(text.as_bytes(), offset, buf));
         }
-        let v = self.value(&f, sub)?.to_le_bytes();
+        let v = self.value(f, sub)?.to_le_bytes();
         Ok(copy_at(v.get(..f.ty.size()).unwrap_or(&v), offset, buf))
     }
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, true)
+        self.write_checked(index, sub, data, Some(data.len()), true)
     }
 
     /// One table walk; every entry here is readable.
@@ -670,7 +684,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
             return Ok(text_expedited(text, buf));
         }
         // The bytes above the entry's size are 0 (the value is zero-extended).
-        *buf = self.value(&f, sub)?.to_le_bytes();
+        *buf = self.value(f, sub)?.to_le_bytes();
         let n = f.ty.size();
         Ok((n, n))
     }
@@ -678,13 +692,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// One table walk; the writable entries are all numeric (1..=4 bytes), so `len` not indicated means
     /// the entry's size (SDO-13).
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        let f = find_or_optional!(
-            index,
-            sub,
-            self.optional.write(index, sub, data.get(..len.unwrap_or(4)).unwrap_or(data))
-        );
-        let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
-        self.write_found(&f, sub, bytes, true)
+        self.write_checked(index, sub, data, len, true)
     }
 
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {

@@ -4,15 +4,17 @@
 //! `match` on the slot number, so an object costs a few bytes of table instead of an arm in each of
 //! `meta`, `value` and `set`.
 //!
-//! The table is [`ROWS`] (6 bytes a row): each object's runs of sub-indices, tagged with its index, one
-//! object's rows together. A device that leaves an object out (a Cargo feature) puts
-//! `#[cfg(feature = "...")]` on its rows and nothing else changes here (its `desc` arm in dict.rs goes too:
-//! the test `meta_agrees_with_desc` checks the table against the EDS descriptions of every index and
-//! sub-index).
+//! The table is described by [`DESC`] (6 bytes a row, read at compile time only): each object's runs of
+//! sub-indices, tagged with its index, one object's rows together. A device that leaves an object out (a
+//! Cargo feature) puts `#[cfg(feature = "...")]` on its rows and nothing else changes here (its `desc` arm
+//! in dict.rs goes too: the test `meta_agrees_with_desc` checks the table against the EDS descriptions of
+//! every index and sub-index). The flash holds what is built from it at compile time: [`FIXED_VAR`], the
+//! type and slot of each VAR of 1000h–101Fh by index (2 bytes each), and [`ROWS`], the rows of every other
+//! object (a VAR's row would be a second copy of its entry).
 //!
-//! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): one scan of the rows ([`walk`]); the PDO ranges 1400h–1BFFh read their template's rows (PDO-02: PDO
-//! `k` at base + k). A VAR of 1000h–101Fh is found without the scan by the expedited upload ([`find`],
-//! [`FIXED_VAR`], computed from the rows at compile time).
+//! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): a VAR of 1000h–101Fh by index,
+//! anything else by one scan of the rows ([`walk`]); the PDO ranges 1400h–1BFFh read their template's rows
+//! (PDO-02: PDO `k` at base + k). The expedited upload finds sub 00h of such a VAR inline ([`find`]).
 
 #[cfg(feature = "error-history")]
 use crate::emcy::HISTORY;
@@ -159,7 +161,8 @@ const fn count(index: u16) -> Row {
 /// Every object of the profile, one object's rows together (a count row first), in increasing index
 /// order. The PDO records are templates: 1400h holds the communication record of every PDO (an RPDO has
 /// subs 00h–05h), 1800h adds the TPDO's sub 06h right after it, 1600h is the mapping record of both.
-const ROWS: &[Row] = &[
+/// Read at compile time only: the device's flash holds [`FIXED_VAR`] and [`ROWS`], built from it.
+const DESC: &[Row] = &[
     var(0x1000, Ty::U32Ro, Slot::DeviceType),   // DEV-01
     var(0x1001, Ty::U8Ro, Slot::ErrorRegister), // ERR-01
     #[cfg(feature = "error-history")]
@@ -220,12 +223,12 @@ const ROWS: &[Row] = &[
 /// final row of an object, a TPDO's 1800h row after 1400h's, for its highest sub-index).
 const _: () = {
     let mut i = 1;
-    while i < ROWS.len() {
-        let (prev, cur) = (ROWS[i - 1], ROWS[i]);
+    while i < DESC.len() {
+        let (prev, cur) = (DESC[i - 1], DESC[i]);
         if prev.index != cur.index {
             let mut j = 0;
             while j < i {
-                assert!(ROWS[j].index != cur.index, "the rows of one object are together");
+                assert!(DESC[j].index != cur.index, "the rows of one object are together");
                 j += 1;
             }
         }
@@ -236,16 +239,52 @@ const _: () = {
     }
 };
 
-/// 1000h–101Fh: the entry of an object that is one VAR (a single row of sub 00h alone), found without a
-/// walk: the device type, error register and the other VARs the SDO paths read most.
-const FIXED_VAR: [Option<(Ty, Slot)>; 32] = {
-    let mut t = [None; 32];
+/// Whether row `i` of [`DESC`] is the whole of a VAR of 1000h–101Fh (a row of sub 00h alone): such an
+/// object is in [`FIXED_VAR`], not in [`ROWS`].
+const fn is_fixed_var(i: usize) -> bool {
+    let r = DESC[i];
+    let alone = (i == 0 || DESC[i - 1].index != r.index) && (i + 1 == DESC.len() || DESC[i + 1].index != r.index);
+    alone && r.index >= 0x1000 && r.index <= 0x101F && r.first == 0 && r.last == 0
+}
+
+/// 1000h–101Fh: the entry of an object that is one VAR, found without a scan (the device type, error
+/// register and the other VARs the SDO paths read most); [`NOT_VAR`] where there is none.
+const FIXED_VAR: [(Ty, Slot); 32] = {
+    let mut t = [(Ty::U8Const, NOT_VAR); 32];
     let mut i = 0;
-    while i < ROWS.len() {
-        let r = ROWS[i];
-        let alone = (i == 0 || ROWS[i - 1].index != r.index) && (i + 1 == ROWS.len() || ROWS[i + 1].index != r.index);
-        if alone && r.index >= 0x1000 && r.index <= 0x101F && r.first == 0 && r.last == 0 {
-            t[(r.index - 0x1000) as usize] = Some((r.ty, r.slot));
+    while i < DESC.len() {
+        if is_fixed_var(i) {
+            let r = DESC[i];
+            assert!(!matches!(r.slot, NOT_VAR), "a VAR's slot is not NOT_VAR");
+            t[(r.index - 0x1000) as usize] = (r.ty, r.slot);
+        }
+        i += 1;
+    }
+    t
+};
+
+/// The slot of [`FIXED_VAR`] where 1000h–101Fh has no VAR: a count is never a VAR's.
+const NOT_VAR: Slot = Slot::Count;
+
+/// How many rows [`ROWS`] has.
+const ROW_COUNT: usize = {
+    let (mut n, mut i) = (0, 0);
+    while i < DESC.len() {
+        n += !is_fixed_var(i) as usize;
+        i += 1;
+    }
+    n
+};
+
+/// The rows [`walk`] scans: those of [`DESC`] but the VARs of [`FIXED_VAR`] (the ARRAYs and RECORDs of
+/// 1000h–101Fh, 1029h, the PDO templates and 1F80h).
+const ROWS: [Row; ROW_COUNT] = {
+    let mut t = [DESC[0]; ROW_COUNT];
+    let (mut n, mut i) = (0, 0);
+    while i < DESC.len() {
+        if !is_fixed_var(i) {
+            t[n] = DESC[i];
+            n += 1;
         }
         i += 1;
     }
@@ -310,25 +349,33 @@ impl Found {
 }
 
 /// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
-/// Inline: a VAR of 1000h–101Fh is an array read and a compare at the caller, the rest one call.
+/// Inline: sub 00h of a VAR of 1000h–101Fh is an array read and two compares at the caller, the rest
+/// (other sub-indices of such a VAR too) one call of [`walk`].
 #[inline]
 pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
-    if let 0x1000..=0x101F = index {
-        if let Some((ty, slot)) = FIXED_VAR[usize::from(index & 0x1F)] {
-            return if sub == 0 { Ok(Found { ty, slot, n: 0 }) } else { Err(AbortCode::SubIndexDoesNotExist) };
+    if index & !0x1F == 0x1000 && sub == 0 {
+        let (ty, slot) = FIXED_VAR[usize::from(index & 0x1F)];
+        if slot != NOT_VAR {
+            return Ok(Found { ty, slot, n: 0 });
         }
     }
     walk(index, sub, c)
 }
 
-/// [`find`] by one scan of [`ROWS`] (all of them: a loop that stops after the object's rows cost 44 B of
-/// flash in the node, for a path no SDO service depends on for speed): the rows tagged with the object's
-/// index (PDO-02: PDO `k` of a range at base + k reads its template's rows; a TPDO's communication record
-/// 1400h's and 1800h's). An object
-/// without rows does not exist (0602 0000h), a sub-index outside its rows neither (0609 0011h); a count
-/// (sub 00h) is the highest sub-index, the `last` of the object's final row.
+/// [`find`]: a VAR of 1000h–101Fh from [`FIXED_VAR`] (sub 00h alone), any other object by one scan of
+/// [`ROWS`] (all of them: a loop that stops after the object's rows cost 44 B of flash in the node, for a
+/// path no SDO service depends on for speed): the rows tagged with the object's index (PDO-02: PDO `k` of a
+/// range at base + k reads its template's rows; a TPDO's communication record 1400h's and 1800h's). An
+/// object without rows does not exist (0602 0000h), a sub-index outside its rows neither (0609 0011h); a
+/// count (sub 00h) is the highest sub-index, the `last` of the object's final row.
 #[inline(never)]
 pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
+    if index & !0x1F == 0x1000 {
+        let (ty, slot) = FIXED_VAR[usize::from(index & 0x1F)];
+        if slot != NOT_VAR {
+            return if sub == 0 { Ok(Found { ty, slot, n: 0 }) } else { Err(AbortCode::SubIndexDoesNotExist) };
+        }
+    }
     let (key, alt, k) = match index {
         0x1400..=0x1BFF => {
             let (k, tx) = (index & 0x1FF, index >= 0x1800);
