@@ -35,7 +35,7 @@ pub enum SyncAction {
     None,
     /// Sample and send now.
     Send,
-    /// Sample into the RTR buffer (type FCh).
+    /// Sample into the RTR buffer (type FCh, in a build with the feature `pdo-rtr`).
     Sample,
 }
 
@@ -204,7 +204,9 @@ impl Tpdo {
         match self.ttype {
             n @ 1..=240 => self.cyclic(n, counter),
             0 if core::mem::take(&mut self.pending) => SyncAction::Send,
-            252 => SyncAction::Sample,
+            // Sampled for a remote request: never in a build without `pdo-rtr`, where nothing would read it
+            // (and type FCh is refused, PDO-18).
+            252 if super::RTR => SyncAction::Sample,
             _ => SyncAction::None,
         }
     }
@@ -361,6 +363,15 @@ mod tests {
     }
 
     extern crate std;
+
+    /// PDO-21: type FCh is sampled at every SYNC for the next remote request; a build without `pdo-rtr`
+    /// (which refuses type FCh, PDO-18) samples nothing, whatever the parameters say.
+    #[test]
+    fn rtr_type_samples_only_with_rtr() {
+        let mut t = tpdo(252, 0);
+        let expect = if crate::pdo::RTR { SyncAction::Sample } else { SyncAction::None };
+        assert_eq!((t.on_sync(None), t.on_sync(Some(3))), (expect, expect));
+    }
 
     /// Type 0 sends once after the SYNC that follows an event.
     #[test]
