@@ -171,11 +171,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Writes `data`, a frame of RPDO `k` at least as long as its mapping, into the mapped objects (the
     /// leading bytes, PDO-39) and reports it: the one path of an event-driven RPDO's frame and of a
     /// synchronous one's at the SYNC. A [`direct`](ResolvedMap::direct) mapping goes to the application
-    /// dictionary alone, byte-aligned, where the build has the bit-granular path ([`DIRECT_PATH`]); any other
-    /// through the merged view.
+    /// dictionary alone, byte-aligned; any other through the merged view.
     fn apply_rpdo(&mut self, k: usize, data: &[u8]) {
         let Some(r) = self.rpdos.as_ref().get(k) else { return };
-        if DIRECT_PATH && r.map.direct() {
+        if r.map.direct() {
             r.map.unpack_bytes(&mut self.app, data);
         } else {
             r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, data);
@@ -362,30 +361,17 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 }
 
 /// Samples the objects of `map` into a payload (PDO-32): through the application dictionary alone when the
-/// mapping is [`direct`](ResolvedMap::direct) (no routing per entry) and the build has [`DIRECT_PATH`], else
-/// through the merged view, which alone carries the bit-granular path (one instance of it, not one per
-/// dictionary type).
+/// mapping is [`direct`](ResolvedMap::direct) (no routing per entry), else through the merged view, which
+/// alone carries the bit-granular path (one instance of it, not one per dictionary type).
 fn sample<A: ObjectDictionary, Z: NodeSizes>(
     map: &ResolvedMap,
     comm: &mut CommProfile<Z>,
     app: &mut A,
 ) -> ([u8; 8], u8) {
     let mut data = [0u8; 8];
-    let len = if DIRECT_PATH && map.direct() {
-        map.pack_bytes(app, &mut data)
-    } else {
-        map.pack(&Merged { comm, app }, &mut data)
-    };
+    let len = if map.direct() { map.pack_bytes(app, &mut data) } else { map.pack(&Merged { comm, app }, &mut data) };
     (data, len as u8)
 }
-
-/// Whether the node moves a [`direct`](ResolvedMap::direct) mapping's data through the application dictionary
-/// alone: only in a build with the feature `pdo-bit-mapping`, where the merged view's path is the
-/// bit-granular one (a `u64` assembled with shifts) and the direct path keeps whole-byte mappings off it.
-/// Without the feature the merged view's path is byte-aligned too: the direct path would save one index
-/// compare per entry (the routing) for a second copy of each loop, about 150 B of Cortex-M flash (the
-/// minimal firmware, footprint.sh), so the build has one path.
-const DIRECT_PATH: bool = cfg!(feature = "pdo-bit-mapping");
 
 /// RPDO `k` (0-based) as the 1-based number the RPDO EMCYs carry in their first manufacturer byte (8210h,
 /// 8220h, 8230h, 8250h): 255 for RPDO 255 and every one above (CiA 301 allows 512; a byte holds no more).

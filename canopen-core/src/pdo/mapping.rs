@@ -144,11 +144,14 @@ impl ResolvedMap {
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
             }
-            // Not direct: an entry of part of a byte or part of an object, or a communication-profile object.
-            m.indirect |= e.bits % 8 != 0
-                || (!e.is_dummy()
-                    && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
-                        || (0x1000..=0x1FFF).contains(&e.handle.index)));
+            // Not direct: an entry of part of a byte or part of an object, or a communication-profile object
+            // (no mapping is direct without the bit-granular path, see `direct`).
+            if BIT_MAPPING {
+                m.indirect |= e.bits % 8 != 0
+                    || (!e.is_dummy()
+                        && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
+                            || (0x1000..=0x1FFF).contains(&e.handle.index)));
+            }
             *slot = e;
         }
         m.count = raw.len() as u8;
@@ -166,19 +169,25 @@ impl ResolvedMap {
         self.count == 0
     }
 
-    /// Whether every entry is a whole object of whole bytes and none maps a communication-profile object
-    /// (1000h–1FFFh): the node then moves the data with the application dictionary alone and the byte-aligned
-    /// path only (`pack_bytes`, `unpack_bytes`), without the merged view's routing.
+    /// Whether the node moves this mapping's data with the application dictionary alone and the byte-aligned
+    /// path only (`pack_bytes`, `unpack_bytes`), without the merged view's routing: every entry is a whole
+    /// object of whole bytes and none maps a communication-profile object (1000h–1FFFh).
+    ///
+    /// Only in a build with the feature `pdo-bit-mapping`, where the merged view's path is the bit-granular one
+    /// (a `u64` assembled with shifts) and the direct path keeps whole-byte mappings off it. Without the
+    /// feature the merged view's path is byte-aligned too: a direct path would save one index compare per
+    /// entry (the routing) for a second copy of the node's sampling and unpacking loops, about 150 B of
+    /// Cortex-M flash (the minimal firmware, footprint.sh), so no mapping is direct there.
     ///
     /// ```
     /// # use canopen_core::Sizes;
     /// use canopen_core::{profile::{CommProfile, NodeConfig}, od::PdoDir, pdo::mapping::ResolvedMap};
     /// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
-    /// assert!(ResolvedMap::EMPTY.direct());
+    /// assert_eq!(ResolvedMap::EMPTY.direct(), cfg!(feature = "pdo-bit-mapping"));
     /// assert!(!ResolvedMap::resolve(&od, &[0x1001_0008], PdoDir::Tpdo).unwrap().direct()); // 1001h: profile
     /// ```
     pub const fn direct(&self) -> bool {
-        !self.indirect
+        BIT_MAPPING && !self.indirect
     }
 
     /// Total mapped bits.
