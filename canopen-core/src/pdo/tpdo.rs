@@ -215,17 +215,15 @@ impl Tpdo {
     /// PDO-26).
     fn cyclic(&mut self, n: u8, counter: Option<u8>) -> SyncAction {
         if !self.started {
-            match (self.sync_start, counter) {
-                (s, Some(c)) if s != 0 => {
-                    if c != s {
-                        return SyncAction::None;
-                    }
-                    self.started = true;
-                    self.sync_count = 0;
-                    return SyncAction::Send;
+            // The SYNC start value (only with a counter, PDO-26): the SYNC whose counter equals it is the n-th
+            // of the count (it sends), any before it counts nothing.
+            if let (s @ 1.., Some(c)) = (self.sync_start, counter.filter(|_| crate::sync::COUNTER)) {
+                if c != s {
+                    return SyncAction::None;
                 }
-                _ => self.started = true,
+                self.sync_count = n - 1;
             }
+            self.started = true;
         }
         self.sync_count += 1;
         if self.sync_count < n {
