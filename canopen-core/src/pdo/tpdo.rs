@@ -215,15 +215,17 @@ impl Tpdo {
     /// PDO-26).
     fn cyclic(&mut self, n: u8, counter: Option<u8>) -> SyncAction {
         if !self.started {
-            // The SYNC start value (only with a counter, PDO-26): the SYNC whose counter equals it is the n-th
-            // of the count (it sends), any before it counts nothing.
-            if let (s @ 1.., Some(c)) = (self.sync_start, counter.filter(|_| crate::sync::COUNTER)) {
-                if c != s {
-                    return SyncAction::None;
+            match (self.sync_start, counter) {
+                (s, Some(c)) if crate::sync::COUNTER && s != 0 => {
+                    if c != s {
+                        return SyncAction::None;
+                    }
+                    self.started = true;
+                    self.sync_count = 0;
+                    return SyncAction::Send;
                 }
-                self.sync_count = n - 1;
+                _ => self.started = true,
             }
-            self.started = true;
         }
         self.sync_count += 1;
         if self.sync_count < n {
