@@ -298,7 +298,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let mut sent = 0;
         for k in 0..Z::TPDO {
             let t = &self.tpdos[k];
-            if !t.is_valid() || t.transmission_type() < 254 {
+            if t.transmission_type() < 254 {
+                // not event-driven, or not valid (FDh in effect)
                 continue;
             }
             if t.last() != Some(sample(&t.map, &mut self.comm, &mut self.app)) && self.trigger_tpdo(k) {

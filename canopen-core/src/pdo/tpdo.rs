@@ -50,6 +50,7 @@ pub enum SyncAction {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Tpdo {
     cob: CobIdEntry,
+    /// The transmission type in effect: FDh for a TPDO that is not valid (see [`Tpdo::transmission_type`]).
     ttype: u8,
     /// Inhibit time, 100 µs (the 1800h sub 03h value: 2 bytes kept instead of an 8-byte `Duration`).
     inhibit_100us: u16,
@@ -78,7 +79,9 @@ impl Tpdo {
     pub const fn new(comm: &PdoComm, map: ResolvedMap) -> Self {
         Tpdo {
             cob: comm.cob(),
-            ttype: comm.transmission_type,
+            // Not valid: FDh, the type that never sends on a SYNC, an event or a timer, so that those paths
+            // need no validity test of their own (a remote request tests it, `rtr_allowed`).
+            ttype: if comm.is_valid() { comm.transmission_type } else { 253 },
             inhibit_100us: comm.inhibit_100us,
             event_timer_ms: comm.event_timer_ms,
             sync_start: comm.sync_start,
@@ -138,7 +141,7 @@ impl Tpdo {
     #[cfg(feature = "mpdo")]
     pub fn mpdo_ready(&self, now: Instant, mode: super::mpdo::AddressMode) -> Result<(), super::mpdo::MpdoRefused> {
         use super::mpdo::MpdoRefused;
-        if !self.is_valid() || !self.event_driven() || self.mpdo != Some(mode) {
+        if !self.event_driven() || self.mpdo != Some(mode) {
             return Err(MpdoRefused::NotMpdo);
         }
         if self.inhibited(now) {
@@ -168,7 +171,16 @@ impl Tpdo {
         super::RTR && self.is_valid() && !self.cob.bit30() && !self.is_mpdo()
     }
 
-    /// The transmission type.
+    /// The transmission type in effect: the configured one, or FDh (RTR-only, PDO-22) for a TPDO that is
+    /// not valid, which sends nothing on a SYNC, an application event or a timer.
+    ///
+    /// ```
+    /// use canopen_core::pdo::{tpdo::Tpdo, PdoComm, mapping::ResolvedMap};
+    /// let t = Tpdo::new(&PdoComm { cob_id: 0x181, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY);
+    /// assert_eq!(t.transmission_type(), 254);
+    /// let t = Tpdo::new(&PdoComm { cob_id: 0x8000_0181, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY);
+    /// assert_eq!((t.is_valid(), t.transmission_type(), t.rtr_allowed()), (false, 253, false));
+    /// ```
     pub const fn transmission_type(&self) -> u8 {
         self.ttype
     }
@@ -186,7 +198,7 @@ impl Tpdo {
         self.inhibit = Deadline::NONE;
         self.last = None;
         self.timer = Deadline::NONE;
-        self.is_valid() && self.event_driven() && !self.is_mpdo()
+        self.event_driven() && !self.is_mpdo()
     }
 
     /// Leaving Operational: no timers.
@@ -198,7 +210,7 @@ impl Tpdo {
 
     /// A SYNC with `counter` (`None` when the SYNC counter is off).
     pub fn on_sync(&mut self, counter: Option<u8>) -> SyncAction {
-        if !self.is_valid() || self.is_mpdo() {
+        if self.is_mpdo() {
             return SyncAction::None;
         }
         match self.ttype {
@@ -238,7 +250,7 @@ impl Tpdo {
     /// An application event at `now` (PDO-19, PDO-23): returns whether to send now. Type 00h sends at the
     /// next SYNC; FEh/FFh now unless the inhibit time runs (then when it ends); RTR-only types ignore it.
     pub fn trigger(&mut self, now: Instant) -> bool {
-        if !self.is_valid() || self.is_mpdo() {
+        if self.is_mpdo() {
             return false;
         }
         match self.ttype {
@@ -323,7 +335,7 @@ impl Tpdo {
     /// Time passed: returns whether to send now (a held-back event at the end of the inhibit time, or the
     /// event timer, which itself waits for the inhibit time).
     pub fn handle_timeout(&mut self, now: Instant) -> bool {
-        if !self.is_valid() || !self.event_driven() || self.is_mpdo() {
+        if !self.event_driven() || self.is_mpdo() {
             return false;
         }
         if self.timer.passed(now) {
