@@ -124,9 +124,20 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// Samples TPDO `k` and queues it.
+    #[inline]
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
+        self.sample_tpdo(now, k, true);
+    }
+
+    /// Samples TPDO `k` and queues it (`send`), or keeps the sample for the next remote request (type FCh at a
+    /// SYNC, PDO-21): one path for both, so that the SYNC does not inline a second sampling.
+    fn sample_tpdo(&mut self, now: Instant, k: usize, send: bool) {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         let (data, len) = sample(&t.map, &mut self.comm, &mut self.app);
+        if !send {
+            t.sampled((data, len));
+            return;
+        }
         t.sent(now, (data, len));
         let id = t.can_id();
         self.transmit(CanFrame::from_parts(id, data, len));
@@ -256,13 +267,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             }
         }
         for k in 0..Z::TPDO {
-            match self.tpdos[k].on_sync(counter) {
-                SyncAction::None => {}
-                SyncAction::Send => self.send_tpdo(now, k),
-                SyncAction::Sample => {
-                    let t = &mut self.tpdos[k];
-                    t.sampled(sample(&t.map, &mut self.comm, &mut self.app));
-                }
+            let action = self.tpdos[k].on_sync(counter);
+            if action != SyncAction::None {
+                // Sample (type FCh) only with remote requests in the build (`Tpdo::on_sync`).
+                self.sample_tpdo(now, k, !crate::pdo::RTR || action == SyncAction::Send);
             }
         }
     }
