@@ -39,10 +39,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return;
         };
         let od = Merged { comm: &mut self.comm, app: &mut self.app };
-        let resolved = ResolvedMap::resolve(&od, map.active(), dir).unwrap_or_else(|_| {
-            comm.cob_id |= CobIdEntry::BIT31;
-            ResolvedMap::EMPTY
-        });
+        let mut resolved = ResolvedMap::EMPTY;
+        if resolved.resolve_in(&od, map.active(), dir).is_err() {
+            comm.cob_id |= CobIdEntry::BIT31; // the map is left empty
+        }
         if tx {
             if let Some(t) = self.tpdos.as_mut().get_mut(k) {
                 let new = Tpdo::new(&comm, resolved);
