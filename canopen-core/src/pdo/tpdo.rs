@@ -285,13 +285,14 @@ impl Tpdo {
         self.inhibit != Deadline::NONE && !self.inhibit.passed(now)
     }
 
-    /// The TPDO was sent at `now` with `payload`: the inhibit time and the event timer start; an
-    /// event-driven TPDO keeps the payload for [`last`](Self::last).
+    /// The TPDO was sent at `now` with `payload`: an event-driven TPDO starts its inhibit time and event
+    /// timer and keeps the payload for [`last`](Self::last).
     pub fn sent(&mut self, now: Instant, payload: ([u8; 8], u8)) {
-        self.start_inhibit(now);
         if self.event_driven() {
             // Only FEh/FFh hold an event back (type 00h keeps its event for the next SYNC, the other types
-            // never have one), and only they run the event timer (start/stop clear it for the others).
+            // never have one), so only they look at the inhibit time (PDO-24), and only they run the event
+            // timer (start/stop clear both for the others).
+            self.start_inhibit(now);
             self.pending = false;
             self.last = Some(payload);
             let timer = self.event_timer_ms;
@@ -327,8 +328,9 @@ impl Tpdo {
 
     /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
     pub(crate) fn deadline(&self) -> Deadline {
-        // A held-back event waits for the end of the inhibit time (one `min` either way).
-        let held = if self.pending && self.event_driven() { self.inhibit } else { Deadline::NONE };
+        // A held-back event waits for the end of the inhibit time (one `min` either way). Only an event-driven
+        // TPDO starts an inhibit time (`sent`): a type-00h TPDO's event (pending until the SYNC) has none.
+        let held = if self.pending { self.inhibit } else { Deadline::NONE };
         self.timer.min(held)
     }
 
@@ -393,6 +395,26 @@ mod tests {
         assert!(!t.trigger(Instant::ZERO));
         assert_eq!(t.on_sync(None), SyncAction::Send);
         assert_eq!(t.on_sync(None), SyncAction::None);
+    }
+
+    /// PDO-19, PDO-24: the inhibit time holds back event-driven transmissions only; a type-00h TPDO sends at
+    /// every SYNC after an event however soon, and neither it nor a cyclic one ever has a deadline.
+    #[test]
+    fn inhibit_is_for_event_driven_types_only() {
+        let comm =
+            |ttype| PdoComm { cob_id: 0x181, transmission_type: ttype, inhibit_100us: 200, ..PdoComm::default() };
+        let mut t = Tpdo::new(&comm(0), ResolvedMap::EMPTY);
+        for ms in [0, 1, 2] {
+            assert!(!t.trigger(Instant::from_millis(ms)));
+            assert_eq!(t.poll_timeout(), None);
+            assert_eq!(t.on_sync(None), SyncAction::Send);
+            t.sent(Instant::from_millis(ms), ([0; 8], 0));
+            assert_eq!(t.poll_timeout(), None);
+        }
+        let mut t = Tpdo::new(&comm(1), ResolvedMap::EMPTY);
+        assert_eq!(t.on_sync(None), SyncAction::Send);
+        t.sent(Instant::ZERO, ([0; 8], 0));
+        assert_eq!((t.poll_timeout(), t.on_sync(None)), (None, SyncAction::Send));
     }
 
     /// The inhibit time holds an event back, it is not lost.
