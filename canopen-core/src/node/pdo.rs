@@ -39,10 +39,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return;
         };
         let od = Merged { comm: &mut self.comm, app: &mut self.app };
-        let resolved = ResolvedMap::resolve(&od, map.active(), dir).unwrap_or_else(|_| {
-            comm.cob_id |= CobIdEntry::BIT31;
-            ResolvedMap::EMPTY
-        });
+        let mut resolved = ResolvedMap::EMPTY;
+        if resolved.resolve_in(&od, map.active(), dir).is_err() {
+            comm.cob_id |= CobIdEntry::BIT31; // the map is left empty
+        }
         if tx {
             if let Some(t) = self.tpdos.as_mut().get_mut(k) {
                 let new = Tpdo::new(&comm, resolved);
@@ -124,9 +124,20 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// Samples TPDO `k` and queues it.
+    #[inline]
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
+        self.sample_tpdo(now, k, true);
+    }
+
+    /// Samples TPDO `k` and queues it (`send`), or keeps the sample for the next remote request (type FCh at a
+    /// SYNC, PDO-21): one path for both, so that the SYNC does not inline a second sampling.
+    fn sample_tpdo(&mut self, now: Instant, k: usize, send: bool) {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         let (data, len) = sample(&t.map, &mut self.comm, &mut self.app);
+        if !send {
+            t.sampled((data, len));
+            return;
+        }
         t.sent(now, (data, len));
         let id = t.can_id();
         self.transmit(CanFrame::from_parts(id, data, len));
@@ -256,13 +267,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             }
         }
         for k in 0..Z::TPDO {
-            match self.tpdos[k].on_sync(counter) {
-                SyncAction::None => {}
-                SyncAction::Send => self.send_tpdo(now, k),
-                SyncAction::Sample => {
-                    let t = &mut self.tpdos[k];
-                    t.sampled(sample(&t.map, &mut self.comm, &mut self.app));
-                }
+            let action = self.tpdos[k].on_sync(counter);
+            if action != SyncAction::None {
+                // Sample (type FCh) only with remote requests in the build (`Tpdo::on_sync`).
+                self.sample_tpdo(now, k, !crate::pdo::RTR || action == SyncAction::Send);
             }
         }
     }
@@ -298,7 +306,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let mut sent = 0;
         for k in 0..Z::TPDO {
             let t = &self.tpdos[k];
-            if !t.is_valid() || t.transmission_type() < 254 {
+            if t.transmission_type() < 254 {
+                // not event-driven, or not valid (FDh in effect)
                 continue;
             }
             if t.last() != Some(sample(&t.map, &mut self.comm, &mut self.app)) && self.trigger_tpdo(k) {

@@ -609,8 +609,9 @@ impl PdoHandle {
             PdoDir::Tpdo => info.pdo.tpdo() && info.access.readable(),
             PdoDir::Rpdo => info.pdo.rpdo() && info.access.writable(),
         };
-        let size = info.data_type.size().filter(|&s| s <= 8).ok_or(AbortCode::NotMappable)?;
-        if !ok {
+        // 1 to 8 bytes: the inline table load, one unsigned compare (0, no fixed size, wraps to the top).
+        let size = info.data_type.fixed_size();
+        if !ok || size.wrapping_sub(1) >= 8 {
             return Err(AbortCode::NotMappable);
         }
         Ok(PdoHandle { index, sub, size: size as u8, slot })

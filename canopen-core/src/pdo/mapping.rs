@@ -104,6 +104,9 @@ fn checked_len(handle: PdoHandle, bits: u8) -> Result<Mapped, AbortCode> {
 /// assert_eq!((m.len(), m.bytes()), (0, 0));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+// Aligned to 4, so that clearing one (`resolve_in`) is the firmware's `__aeabi_memclr4`: at its natural
+// alignment of 2 it linked the 208-byte unaligned `__aeabi_memclr` (footprint.sh, +188 B).
+#[repr(align(4))]
 pub struct ResolvedMap {
     entries: [Mapped; MAX_ENTRIES],
     count: u8,
@@ -129,31 +132,58 @@ impl ResolvedMap {
     /// assert_eq!((m.len(), m.bits(), m.bytes()), (2, 16, 2));
     /// assert_eq!(ResolvedMap::resolve(&od, &[0x1001_0008; 9], PdoDir::Tpdo), Err(AbortCode::PdoLengthExceeded));
     /// ```
-    // Out of line: a configuration path (the node's `configure_pdo`), inlined into it 16 B more of the minimal
-    // firmware's flash.
-    #[inline(never)]
+    #[inline]
     pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: &[u32], dir: PdoDir) -> Result<Self, AbortCode> {
+        let mut m = Self::EMPTY;
+        m.resolve_in(od, raw, dir)?;
+        Ok(m)
+    }
+
+    /// [`resolve`](Self::resolve) into this map, which becomes the resolved entries `raw`, or
+    /// [`EMPTY`](Self::EMPTY) when they do not resolve (the error says why): no `Result` carrying a 68-byte
+    /// map, which the node's `configure_pdo` copied twice on its way into the PDO.
+    // Out of line: a configuration path (the node's `configure_pdo` and the mapping checks of an SDO write).
+    #[inline(never)]
+    pub(crate) fn resolve_in<D: ObjectDictionary + ?Sized>(
+        &mut self,
+        od: &D,
+        raw: &[u32],
+        dir: PdoDir,
+    ) -> Result<(), AbortCode> {
+        *self = Self::EMPTY;
+        let r = self.fill(od, raw, dir);
+        if r.is_err() {
+            *self = Self::EMPTY; // one exit for every refusal
+        }
+        r
+    }
+
+    /// The body of [`resolve_in`](Self::resolve_in), into an [`EMPTY`](Self::EMPTY) map.
+    #[inline(always)]
+    fn fill<D: ObjectDictionary + ?Sized>(&mut self, od: &D, raw: &[u32], dir: PdoDir) -> Result<(), AbortCode> {
         if raw.len() > MAX_ENTRIES {
             return Err(AbortCode::PdoLengthExceeded);
         }
-        let mut m = Self::EMPTY;
         let mut total = 0u16;
-        for (slot, &r) in m.entries.iter_mut().zip(raw) {
+        for (slot, &r) in self.entries.iter_mut().zip(raw) {
             let e = resolve(od, r, dir)?;
             total += u16::from(e.bits);
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
             }
-            // Not direct: an entry of part of a byte or part of an object, or a communication-profile object.
-            m.indirect |= e.bits % 8 != 0
-                || (!e.is_dummy()
-                    && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
-                        || (0x1000..=0x1FFF).contains(&e.handle.index)));
+            // Not direct: an entry of part of a byte or part of an object, or a communication-profile object
+            // (no mapping is direct without the bit-granular path, see `direct`).
+            if BIT_MAPPING {
+                self.indirect |= e.bits % 8 != 0
+                    || (!e.is_dummy()
+                        && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
+                            || (0x1000..=0x1FFF).contains(&e.handle.index)));
+            }
             *slot = e;
         }
-        m.count = raw.len() as u8;
-        m.bits = total as u8;
-        Ok(m)
+        self.count = raw.len() as u8;
+        self.bits = total as u8;
+        Ok(())
     }
 
     /// Number of entries.
@@ -166,19 +196,25 @@ impl ResolvedMap {
         self.count == 0
     }
 
-    /// Whether every entry is a whole object of whole bytes and none maps a communication-profile object
-    /// (1000h–1FFFh): the node then moves the data with the application dictionary alone and the byte-aligned
-    /// path only (`pack_bytes`, `unpack_bytes`), without the merged view's routing.
+    /// Whether the node moves this mapping's data with the application dictionary alone and the byte-aligned
+    /// path only (`pack_bytes`, `unpack_bytes`), without the merged view's routing: every entry is a whole
+    /// object of whole bytes and none maps a communication-profile object (1000h–1FFFh).
+    ///
+    /// Only in a build with the feature `pdo-bit-mapping`, where the merged view's path is the bit-granular one
+    /// (a `u64` assembled with shifts) and the direct path keeps whole-byte mappings off it. Without the
+    /// feature the merged view's path is byte-aligned too: a direct path would save one index compare per
+    /// entry (the routing) for a second copy of the node's sampling and unpacking loops, about 150 B of
+    /// Cortex-M flash (the minimal firmware, footprint.sh), so no mapping is direct there.
     ///
     /// ```
     /// # use canopen_core::Sizes;
     /// use canopen_core::{profile::{CommProfile, NodeConfig}, od::PdoDir, pdo::mapping::ResolvedMap};
     /// let od: CommProfile<Sizes<0, 16, 16, 0, 0>> = CommProfile::new(NodeConfig::DEFAULT);
-    /// assert!(ResolvedMap::EMPTY.direct());
+    /// assert_eq!(ResolvedMap::EMPTY.direct(), cfg!(feature = "pdo-bit-mapping"));
     /// assert!(!ResolvedMap::resolve(&od, &[0x1001_0008], PdoDir::Tpdo).unwrap().direct()); // 1001h: profile
     /// ```
     pub const fn direct(&self) -> bool {
-        !self.indirect
+        BIT_MAPPING && !self.indirect
     }
 
     /// Total mapped bits.

@@ -35,7 +35,7 @@ pub enum SyncAction {
     None,
     /// Sample and send now.
     Send,
-    /// Sample into the RTR buffer (type FCh).
+    /// Sample into the RTR buffer (type FCh, in a build with the feature `pdo-rtr`).
     Sample,
 }
 
@@ -50,6 +50,7 @@ pub enum SyncAction {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Tpdo {
     cob: CobIdEntry,
+    /// The transmission type in effect: FDh for a TPDO that is not valid (see [`Tpdo::transmission_type`]).
     ttype: u8,
     /// Inhibit time, 100 µs (the 1800h sub 03h value: 2 bytes kept instead of an 8-byte `Duration`).
     inhibit_100us: u16,
@@ -78,7 +79,9 @@ impl Tpdo {
     pub const fn new(comm: &PdoComm, map: ResolvedMap) -> Self {
         Tpdo {
             cob: comm.cob(),
-            ttype: comm.transmission_type,
+            // Not valid: FDh, the type that never sends on a SYNC, an event or a timer, so that those paths
+            // need no validity test of their own (a remote request tests it, `rtr_allowed`).
+            ttype: if comm.is_valid() { comm.transmission_type } else { 253 },
             inhibit_100us: comm.inhibit_100us,
             event_timer_ms: comm.event_timer_ms,
             sync_start: comm.sync_start,
@@ -138,7 +141,7 @@ impl Tpdo {
     #[cfg(feature = "mpdo")]
     pub fn mpdo_ready(&self, now: Instant, mode: super::mpdo::AddressMode) -> Result<(), super::mpdo::MpdoRefused> {
         use super::mpdo::MpdoRefused;
-        if !self.is_valid() || !self.event_driven() || self.mpdo != Some(mode) {
+        if !self.event_driven() || self.mpdo != Some(mode) {
             return Err(MpdoRefused::NotMpdo);
         }
         if self.inhibited(now) {
@@ -168,7 +171,16 @@ impl Tpdo {
         super::RTR && self.is_valid() && !self.cob.bit30() && !self.is_mpdo()
     }
 
-    /// The transmission type.
+    /// The transmission type in effect: the configured one, or FDh (RTR-only, PDO-22) for a TPDO that is
+    /// not valid, which sends nothing on a SYNC, an application event or a timer.
+    ///
+    /// ```
+    /// use canopen_core::pdo::{tpdo::Tpdo, PdoComm, mapping::ResolvedMap};
+    /// let t = Tpdo::new(&PdoComm { cob_id: 0x181, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY);
+    /// assert_eq!(t.transmission_type(), 254);
+    /// let t = Tpdo::new(&PdoComm { cob_id: 0x8000_0181, transmission_type: 254, ..PdoComm::default() }, ResolvedMap::EMPTY);
+    /// assert_eq!((t.is_valid(), t.transmission_type(), t.rtr_allowed()), (false, 253, false));
+    /// ```
     pub const fn transmission_type(&self) -> u8 {
         self.ttype
     }
@@ -186,7 +198,7 @@ impl Tpdo {
         self.inhibit = Deadline::NONE;
         self.last = None;
         self.timer = Deadline::NONE;
-        self.is_valid() && self.event_driven() && !self.is_mpdo()
+        self.event_driven() && !self.is_mpdo()
     }
 
     /// Leaving Operational: no timers.
@@ -198,13 +210,15 @@ impl Tpdo {
 
     /// A SYNC with `counter` (`None` when the SYNC counter is off).
     pub fn on_sync(&mut self, counter: Option<u8>) -> SyncAction {
-        if !self.is_valid() || self.is_mpdo() {
+        if self.is_mpdo() {
             return SyncAction::None;
         }
         match self.ttype {
             n @ 1..=240 => self.cyclic(n, counter),
             0 if core::mem::take(&mut self.pending) => SyncAction::Send,
-            252 => SyncAction::Sample,
+            // Sampled for a remote request: never in a build without `pdo-rtr`, where nothing would read it
+            // (and type FCh is refused, PDO-18).
+            252 if super::RTR => SyncAction::Sample,
             _ => SyncAction::None,
         }
     }
@@ -214,7 +228,7 @@ impl Tpdo {
     fn cyclic(&mut self, n: u8, counter: Option<u8>) -> SyncAction {
         if !self.started {
             match (self.sync_start, counter) {
-                (s, Some(c)) if s != 0 => {
+                (s, Some(c)) if crate::sync::COUNTER && s != 0 => {
                     if c != s {
                         return SyncAction::None;
                     }
@@ -236,7 +250,7 @@ impl Tpdo {
     /// An application event at `now` (PDO-19, PDO-23): returns whether to send now. Type 00h sends at the
     /// next SYNC; FEh/FFh now unless the inhibit time runs (then when it ends); RTR-only types ignore it.
     pub fn trigger(&mut self, now: Instant) -> bool {
-        if !self.is_valid() || self.is_mpdo() {
+        if self.is_mpdo() {
             return false;
         }
         match self.ttype {
@@ -271,13 +285,14 @@ impl Tpdo {
         self.inhibit != Deadline::NONE && !self.inhibit.passed(now)
     }
 
-    /// The TPDO was sent at `now` with `payload`: the inhibit time and the event timer start; an
-    /// event-driven TPDO keeps the payload for [`last`](Self::last).
+    /// The TPDO was sent at `now` with `payload`: an event-driven TPDO starts its inhibit time and event
+    /// timer and keeps the payload for [`last`](Self::last).
     pub fn sent(&mut self, now: Instant, payload: ([u8; 8], u8)) {
-        self.start_inhibit(now);
         if self.event_driven() {
             // Only FEh/FFh hold an event back (type 00h keeps its event for the next SYNC, the other types
-            // never have one), and only they run the event timer (start/stop clear it for the others).
+            // never have one), so only they look at the inhibit time (PDO-24), and only they run the event
+            // timer (start/stop clear both for the others).
+            self.start_inhibit(now);
             self.pending = false;
             self.last = Some(payload);
             let timer = self.event_timer_ms;
@@ -313,15 +328,16 @@ impl Tpdo {
 
     /// [`poll_timeout`](Self::poll_timeout) as a [`Deadline`], for the node's minimum over its services.
     pub(crate) fn deadline(&self) -> Deadline {
-        // A held-back event waits for the end of the inhibit time (one `min` either way).
-        let held = if self.pending && self.event_driven() { self.inhibit } else { Deadline::NONE };
+        // A held-back event waits for the end of the inhibit time (one `min` either way). Only an event-driven
+        // TPDO starts an inhibit time (`sent`): a type-00h TPDO's event (pending until the SYNC) has none.
+        let held = if self.pending { self.inhibit } else { Deadline::NONE };
         self.timer.min(held)
     }
 
     /// Time passed: returns whether to send now (a held-back event at the end of the inhibit time, or the
     /// event timer, which itself waits for the inhibit time).
     pub fn handle_timeout(&mut self, now: Instant) -> bool {
-        if !self.is_valid() || !self.event_driven() || self.is_mpdo() {
+        if !self.event_driven() || self.is_mpdo() {
             return false;
         }
         if self.timer.passed(now) {
@@ -362,6 +378,15 @@ mod tests {
 
     extern crate std;
 
+    /// PDO-21: type FCh is sampled at every SYNC for the next remote request; a build without `pdo-rtr`
+    /// (which refuses type FCh, PDO-18) samples nothing, whatever the parameters say.
+    #[test]
+    fn rtr_type_samples_only_with_rtr() {
+        let mut t = tpdo(252, 0);
+        let expect = if crate::pdo::RTR { SyncAction::Sample } else { SyncAction::None };
+        assert_eq!((t.on_sync(None), t.on_sync(Some(3))), (expect, expect));
+    }
+
     /// Type 0 sends once after the SYNC that follows an event.
     #[test]
     fn acyclic_sync() {
@@ -370,6 +395,26 @@ mod tests {
         assert!(!t.trigger(Instant::ZERO));
         assert_eq!(t.on_sync(None), SyncAction::Send);
         assert_eq!(t.on_sync(None), SyncAction::None);
+    }
+
+    /// PDO-19, PDO-24: the inhibit time holds back event-driven transmissions only; a type-00h TPDO sends at
+    /// every SYNC after an event however soon, and neither it nor a cyclic one ever has a deadline.
+    #[test]
+    fn inhibit_is_for_event_driven_types_only() {
+        let comm =
+            |ttype| PdoComm { cob_id: 0x181, transmission_type: ttype, inhibit_100us: 200, ..PdoComm::default() };
+        let mut t = Tpdo::new(&comm(0), ResolvedMap::EMPTY);
+        for ms in [0, 1, 2] {
+            assert!(!t.trigger(Instant::from_millis(ms)));
+            assert_eq!(t.poll_timeout(), None);
+            assert_eq!(t.on_sync(None), SyncAction::Send);
+            t.sent(Instant::from_millis(ms), ([0; 8], 0));
+            assert_eq!(t.poll_timeout(), None);
+        }
+        let mut t = Tpdo::new(&comm(1), ResolvedMap::EMPTY);
+        assert_eq!(t.on_sync(None), SyncAction::Send);
+        t.sent(Instant::ZERO, ([0; 8], 0));
+        assert_eq!((t.poll_timeout(), t.on_sync(None)), (None, SyncAction::Send));
     }
 
     /// The inhibit time holds an event back, it is not lost.
