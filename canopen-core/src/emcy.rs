@@ -265,11 +265,7 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
 
     /// Keeps only the most recent pending EMCY (NMT-22: after Stopped, the most recent one is sent).
     pub fn keep_most_recent(&mut self) {
-        if let Some(&last) = self.pending.back() {
-            self.lost = self.lost.saturating_add(self.pending.len() as u32 - 1);
-            self.pending.clear();
-            let _ = self.pending.push_back(last);
-        }
+        self.lost = self.lost.saturating_add(self.pending.keep_newest() as u32);
     }
 
     /// Drops every pending EMCY (there is no EMCY object: 1014h bit 31 set).

@@ -180,6 +180,26 @@ impl<T: Copy, S: Slots<T>> Queue<T, S> {
         i % S::LEN
     }
 
+    /// Drops every item but the newest and returns how many went: the head moves past them, nothing is
+    /// copied.
+    ///
+    /// ```
+    /// use canopen_core::queue::Queue;
+    /// let mut q: Queue<u8, [u8; 4]> = Queue::new([0; 4]);
+    /// for i in 1..=3 {
+    ///     q.push_back(i).unwrap();
+    /// }
+    /// assert_eq!(q.keep_newest(), 2);
+    /// assert_eq!((q.pop_front(), q.pop_front()), (Some(3), None));
+    /// assert_eq!(q.keep_newest(), 0); // empty: nothing to drop
+    /// ```
+    pub fn keep_newest(&mut self) -> usize {
+        let dropped = self.len.saturating_sub(1);
+        self.head = Self::wrap(usize::from(self.head) + usize::from(dropped)) as u16;
+        self.len -= dropped;
+        usize::from(dropped)
+    }
+
     /// Empties the queue.
     ///
     /// ```
@@ -252,5 +272,28 @@ mod tests {
         check::<2>();
         check::<3>();
         check::<4>();
+    }
+
+    /// `keep_newest` at every fill level and head position of a 4-slot queue: only the newest item stays,
+    /// the count of the others is returned, and the queue goes on in order after it.
+    #[test]
+    fn keep_newest_keeps_only_the_back() {
+        for start in 0..4u32 {
+            for n in 0..=4u32 {
+                let mut q: Queue<u32, [u32; 4]> = Queue::new([0; 4]);
+                for i in 0..start {
+                    assert_eq!(q.push_back(i), Ok(()));
+                    assert_eq!(q.pop_front(), Some(i));
+                }
+                for i in 0..n {
+                    assert_eq!(q.push_back(10 + i), Ok(()));
+                }
+                let newest = q.back().copied();
+                assert_eq!(q.keep_newest(), n.saturating_sub(1) as usize);
+                assert_eq!((q.len(), q.front().copied(), q.back().copied()), (n.min(1) as usize, newest, newest));
+                assert_eq!(q.push_back(99), Ok(()));
+                assert_eq!((q.pop_front(), q.pop_front()), if n == 0 { (Some(99), None) } else { (newest, Some(99)) });
+            }
+        }
     }
 }
