@@ -294,12 +294,11 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
         self.pending.clear();
     }
 
+    /// Queues an EMCY; a full queue drops its oldest, counted in [`lost`](Self::lost).
     fn queue(&mut self, e: Emergency) {
-        if self.pending.is_full() {
-            self.pending.pop_front();
+        if self.pending.force_push_back(e) {
             self.lost = self.lost.saturating_add(1);
         }
-        let _ = self.pending.push_back(e);
     }
 }
 
