@@ -164,37 +164,49 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
     /// errors are active than the set holds, the EMCY and the history entry are still produced; the
     /// register keeps the bits of the errors it tracks.
     pub fn raise_with(&mut self, code: u16, bits: u8, manufacturer: [u8; 5]) -> bool {
-        if code == codes::NO_ERROR || self.is_active(code) {
-            return false;
-        }
-        let _ = self.active.push(Active { code, bits: bits | register::GENERIC });
-        if HIST > 0 {
-            if self.history.is_full() {
-                self.history.pop();
-            }
-            let info = u32::from(u16::from_le_bytes([manufacturer[0], manufacturer[1]])) << 16;
-            // Vec::insert(0, ..) would be a ptr::copy, i.e. the only users of memmove in a firmware with
-            // insert_sorted (1.5 KB of compiler_builtins); one slot more, and the new entry carried through
-            // the (at most HIST) entries instead: no index, so no bounds check and no panic path.
-            if self.history.push(0).is_ok() {
-                let mut carry = info | u32::from(code);
-                for slot in self.history.iter_mut() {
-                    core::mem::swap(slot, &mut carry);
-                }
-            }
-        }
-        self.queue(Emergency { code, register: self.register(), manufacturer });
-        true
+        self.change(code, Some(bits), manufacturer)
     }
 
     /// Clears `code`: an EMCY 0000h with the remaining register follows (EMCY-07: "error reset" when it was the
     /// last). Returns `false` when the code was not active.
     pub fn clear(&mut self, code: u16) -> bool {
-        let Some(i) = self.active.iter().position(|a| a.code == code) else {
-            return false;
+        self.change(code, None, [0; 5])
+    }
+
+    /// Raises `code` with register bits `raise` ([`raise_with`](Self::raise_with)), or clears it (`None`,
+    /// [`clear`](Self::clear), `manufacturer` all 0): one search of the active set and one queued EMCY with
+    /// the register after the change, where each had its own. Out of line, shared by both.
+    #[inline(never)]
+    fn change(&mut self, code: u16, raise: Option<u8>, manufacturer: [u8; 5]) -> bool {
+        let found = self.active.iter().position(|a| a.code == code);
+        let emcy_code = match (raise, found) {
+            (Some(bits), None) if code != codes::NO_ERROR => {
+                let _ = self.active.push(Active { code, bits: bits | register::GENERIC });
+                if HIST > 0 {
+                    if self.history.is_full() {
+                        self.history.pop();
+                    }
+                    let info = u32::from(u16::from_le_bytes([manufacturer[0], manufacturer[1]])) << 16;
+                    // Vec::insert(0, ..) would be a ptr::copy, i.e. the only users of memmove in a firmware
+                    // with insert_sorted (1.5 KB of compiler_builtins); one slot more, and the new entry
+                    // carried through the (at most HIST) entries instead: no index, so no bounds check and
+                    // no panic path.
+                    if self.history.push(0).is_ok() {
+                        let mut carry = info | u32::from(code);
+                        for slot in self.history.iter_mut() {
+                            core::mem::swap(slot, &mut carry);
+                        }
+                    }
+                }
+                code
+            }
+            (None, Some(i)) => {
+                self.active.swap_remove(i);
+                codes::NO_ERROR
+            }
+            _ => return false, // raised already (EMCY-05) or 0000h; or not active
         };
-        self.active.swap_remove(i);
-        self.queue(Emergency { code: codes::NO_ERROR, register: self.register(), manufacturer: [0; 5] });
+        self.queue(Emergency { code: emcy_code, register: self.register(), manufacturer });
         true
     }
 
@@ -253,11 +265,7 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
 
     /// Keeps only the most recent pending EMCY (NMT-22: after Stopped, the most recent one is sent).
     pub fn keep_most_recent(&mut self) {
-        if let Some(&last) = self.pending.back() {
-            self.lost = self.lost.saturating_add(self.pending.len() as u32 - 1);
-            self.pending.clear();
-            let _ = self.pending.push_back(last);
-        }
+        self.lost = self.lost.saturating_add(self.pending.keep_newest() as u32);
     }
 
     /// Drops every pending EMCY (there is no EMCY object: 1014h bit 31 set).
@@ -286,12 +294,11 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
         self.pending.clear();
     }
 
+    /// Queues an EMCY; a full queue drops its oldest, counted in [`lost`](Self::lost).
     fn queue(&mut self, e: Emergency) {
-        if self.pending.is_full() {
-            self.pending.pop_front();
+        if self.pending.force_push_back(e) {
             self.lost = self.lost.saturating_add(1);
         }
-        let _ = self.pending.push_back(e);
     }
 }
 

@@ -672,13 +672,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// [`sdo_response`](Self::sdo_response) for the paths that are not one request frame (a time-out, the
     /// block-upload segments), out of line. Neither path completes a download (their events are aborts), so
     /// every event goes to [`sdo_event`](Self::sdo_event): no copy of the inline path's case for application
-    /// writes. The frame goes out on the default server's tx COB-ID, the callers' server. Both paths run
+    /// writes. The frame goes out on the default server's tx COB-ID, the callers' server, through the
+    /// out-of-line [`send`](Self::send): its parts in registers, no frame built here. Both paths run
     /// during a transfer only, which began on a frame received on a valid channel, and new parameters end a
     /// transfer (`SdoServer::set_params`): the channel is valid, no second validity test (as in `handle_sdo`).
     #[inline(never)]
     fn sdo_response_out_of_line(&mut self, now: Instant, response: Response) {
         if let Some(data) = response.frame {
-            self.transmit(CanFrame::from_parts(self.sdo.params().cob_tx.can_id(), data, 8));
+            self.send(self.sdo.params().cob_tx.can_id(), data, 8);
         }
         if let Some(event) = response.event {
             self.sdo_event(now, event);

@@ -180,6 +180,54 @@ impl<T: Copy, S: Slots<T>> Queue<T, S> {
         i % S::LEN
     }
 
+    /// Appends `item`; when the queue is full the oldest item gives up its slot (the head moves on) and
+    /// `true` says one was dropped. Nothing is copied out.
+    ///
+    /// ```
+    /// use canopen_core::queue::Queue;
+    /// let mut q: Queue<u8, [u8; 2]> = Queue::new([0; 2]);
+    /// assert!(!q.force_push_back(1));
+    /// assert!(!q.force_push_back(2));
+    /// assert!(q.force_push_back(3)); // full: 1 is dropped
+    /// assert_eq!((q.pop_front(), q.pop_front(), q.pop_front()), (Some(2), Some(3), None));
+    /// ```
+    pub fn force_push_back(&mut self, item: T) -> bool {
+        if S::LEN == 0 {
+            return true; // no slot: the item itself is dropped
+        }
+        let full = self.is_full();
+        // Full, head + len is the head itself: the oldest slot becomes the newest.
+        if let Some(slot) = self.slots.as_mut().get_mut(Self::wrap(usize::from(self.head) + usize::from(self.len))) {
+            *slot = item;
+        }
+        if full {
+            self.head = Self::wrap(usize::from(self.head) + 1) as u16;
+        } else {
+            self.len += 1;
+        }
+        full
+    }
+
+    /// Drops every item but the newest and returns how many went: the head moves past them, nothing is
+    /// copied.
+    ///
+    /// ```
+    /// use canopen_core::queue::Queue;
+    /// let mut q: Queue<u8, [u8; 4]> = Queue::new([0; 4]);
+    /// for i in 1..=3 {
+    ///     q.push_back(i).unwrap();
+    /// }
+    /// assert_eq!(q.keep_newest(), 2);
+    /// assert_eq!((q.pop_front(), q.pop_front()), (Some(3), None));
+    /// assert_eq!(q.keep_newest(), 0); // empty: nothing to drop
+    /// ```
+    pub fn keep_newest(&mut self) -> usize {
+        let dropped = self.len.saturating_sub(1);
+        self.head = Self::wrap(usize::from(self.head) + usize::from(dropped)) as u16;
+        self.len -= dropped;
+        usize::from(dropped)
+    }
+
     /// Empties the queue.
     ///
     /// ```
@@ -252,5 +300,69 @@ mod tests {
         check::<2>();
         check::<3>();
         check::<4>();
+    }
+
+    /// `force_push_back` against `VecDeque` (pop the oldest when full, then push) over every sequence of 8
+    /// pushes, forced pushes and pops on capacities 1..=4.
+    #[test]
+    fn force_push_back_drops_the_oldest() {
+        fn check<const N: usize>() {
+            for mut ops in 0u32..3u32.pow(8) {
+                let mut q: Queue<u32, [u32; N]> = Queue::new([0; N]);
+                let mut model = VecDeque::new();
+                for step in 0..8u32 {
+                    match ops % 3 {
+                        0 => assert_eq!(q.pop_front(), model.pop_front()),
+                        1 => {
+                            let expect = if model.len() < N { Ok(()) } else { Err(step) };
+                            if expect.is_ok() {
+                                model.push_back(step);
+                            }
+                            assert_eq!(q.push_back(step), expect);
+                        }
+                        _ => {
+                            let full = model.len() == N;
+                            if full {
+                                model.pop_front();
+                            }
+                            model.push_back(step);
+                            assert_eq!(q.force_push_back(step), full);
+                        }
+                    }
+                    ops /= 3;
+                    assert_eq!((q.len(), q.front(), q.back()), (model.len(), model.front(), model.back()));
+                }
+            }
+        }
+        check::<1>();
+        check::<2>();
+        check::<3>();
+        check::<4>();
+        let mut empty: Queue<u32, [u32; 0]> = Queue::new([]);
+        assert!(empty.force_push_back(1));
+        assert_eq!(empty.pop_front(), None);
+    }
+
+    /// `keep_newest` at every fill level and head position of a 4-slot queue: only the newest item stays,
+    /// the count of the others is returned, and the queue goes on in order after it.
+    #[test]
+    fn keep_newest_keeps_only_the_back() {
+        for start in 0..4u32 {
+            for n in 0..=4u32 {
+                let mut q: Queue<u32, [u32; 4]> = Queue::new([0; 4]);
+                for i in 0..start {
+                    assert_eq!(q.push_back(i), Ok(()));
+                    assert_eq!(q.pop_front(), Some(i));
+                }
+                for i in 0..n {
+                    assert_eq!(q.push_back(10 + i), Ok(()));
+                }
+                let newest = q.back().copied();
+                assert_eq!(q.keep_newest(), n.saturating_sub(1) as usize);
+                assert_eq!((q.len(), q.front().copied(), q.back().copied()), (n.min(1) as usize, newest, newest));
+                assert_eq!(q.push_back(99), Ok(()));
+                assert_eq!((q.pop_front(), q.pop_front()), if n == 0 { (Some(99), None) } else { (newest, Some(99)) });
+            }
+        }
     }
 }

@@ -225,6 +225,24 @@ fn block_transfer_compiled_out() {
     assert!(t.s.is_idle());
 }
 
+/// SDO-09: a segment of the other direction is out of state: an upload segment request (60h) during a
+/// segmented download and a download segment (00h) during a segmented upload are each aborted with
+/// 0504 0001h for the transfer's object, which ends; the toggle of either does not matter.
+#[test]
+fn segment_of_the_other_direction_is_out_of_state() {
+    let invalid = AbortCode::InvalidCommandSpecifier;
+    for t_bit in [0x00, 0x10] {
+        let mut t = Bench::new();
+        t.ex([0x21, 0x00, 0x20, 0x00, 9, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+        t.ex([0x60 | t_bit, 0, 0, 0, 0, 0, 0, 0], abort_of(0x2000, 0, invalid));
+        assert!(t.s.is_idle());
+        assert_eq!(t.od.aborted_writes, 1); // the streamed write is abandoned
+        t.ex([0x40, 0x04, 0x20, 0x00, 0, 0, 0, 0], Some([0x41, 0x04, 0x20, 0x00, 64, 0, 0, 0]));
+        t.ex([t_bit, 1, 2, 3, 4, 5, 6, 7], abort_of(0x2004, 0, invalid));
+        assert!(t.s.is_idle());
+    }
+}
+
 /// The segmented upload of 1009h "N10 - WT1209-V1.00-8MB\0" (23 bytes, SDO-25..SDO-28), then the same upload with
 /// the second segment request repeating t = 0 (60h instead of 70h): abort 0503 0000h (SDO-30).
 #[test]
