@@ -82,12 +82,12 @@
 //! (`canopen_core::od::data`). Same answers on every SDO path (`canopen-core/tests/derived_access.rs`,
 //! `tests/od_all_types.rs` with the test feature `od-compact-tests`). Flash per object
 //! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 11.3 B instead of 45.7 B,
-//! ARRAY of 4 x UNSIGNED16 28.3 B instead of 202.2 B, RECORD of three 41.6 B instead of 150.3 B, python
-//! canopen's e35.eds application 20,796 B instead of 39,696 B. The price: two jump tables per access
+//! ARRAY of 4 x UNSIGNED16 28.2 B instead of 202.2 B, RECORD of three 41.6 B instead of 150.2 B, python
+//! canopen's e35.eds application 20,724 B instead of 39,672 B. The price: two jump tables per access
 //! instead of one, so more instructions per frame (x86-64 callgrind, `scripts/bench-node.sh` with the
 //! bench built with the test feature `od-compact-tests`, which makes its dictionaries compact: expedited
-//! download 331 instead of 291, segmented upload 350.2 instead of 244.5, RPDO to 4 objects 659.5 instead
-//! of 367.5, SYNC to 4 TPDOs 513.3 instead of 218.1 per bus frame), which is why it is not the default.
+//! download 330 instead of 291, segmented upload 350 instead of 245.3, RPDO to 4 objects 659.5 instead
+//! of 367.5, SYNC to 4 TPDOs 508.5 instead of 213.3 per bus frame), which is why it is not the default.
 //!
 //! `#[od(compact, zerocopy)]` (issue 41): the same tables, and no per-field code at all: each row holds its
 //! field's `offset_of!`, and the core reaches every value through the struct's bytes, which zerocopy proves
@@ -97,11 +97,11 @@
 //! derive says what stands in the way. `eds-to-rust --layout zerocopy` writes such a struct (fields ordered
 //! by alignment, the tail padded). Construct it with `zerocopy::FromZeros::new_zeroed()` (one `memset`): the
 //! node applies the defaults at boot (NMT-04). Flash per further object (`scripts/od-cost.sh`, the node a
-//! static as in a firmware): UNSIGNED32 VAR 7.0 B (match arms 45.7, `compact` 11.3), ARRAY of 4 x UNSIGNED16
-//! 10.4 B (202.2, 28.3), RECORD of three 19.5 B (150.3, 41.6), RAM the values alone; python canopen's e35.eds
-//! application 7,972 B (39,696, 20,796; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
-//! expedited download 288 (default layout 291), RPDO to 4 objects 351.5 (367.5), SYNC to 4 TPDOs 220.5 per
-//! bus frame (218.1): PDO handles hold the value's offset and size class, one jump table per value.
+//! static as in a firmware): UNSIGNED32 VAR 7.0 B (match arms 45.8, `compact` 11.3), ARRAY of 4 x UNSIGNED16
+//! 10.3 B (202.2, 28.2), RECORD of three 19.4 B (150.2, 41.6), RAM the values alone; python canopen's e35.eds
+//! application 7,924 B (39,672, 20,724; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! expedited download 288 (default layout 291), RPDO to 4 objects 351.5 (367.5), SYNC to 4 TPDOs 215.7 per
+//! bus frame (213.3): PDO handles hold the value's offset and size class, one jump table per value.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
 //! `f32`, `f64`, `I24`, `I40`, `I48`, `I56`, `U24`, `U40`, `U48`, `U56`, `TimeOfDay`, `TimeDifference`,
