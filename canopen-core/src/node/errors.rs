@@ -182,3 +182,30 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::node::{NoApplication, Node};
+    use crate::od::ObjectDictionary;
+    use crate::profile::NodeConfig;
+    use crate::{CanFrame, Instant, NodeId};
+
+    /// EMCY-12, ERR-06, ERR-07: an application error's five manufacturer bytes go out unchanged after the
+    /// error register, and its 1003h entry carries the first two in bits 31-16 above the code; the clearing
+    /// EMCY 0000h carries none (EMCY-07).
+    #[test]
+    fn manufacturer_bytes_in_the_emcy_and_the_history_emcy_12_err_07() {
+        let mut n: Node<NoApplication> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, NoApplication);
+        n.handle_timeout(Instant::ZERO);
+        while n.poll_transmit().is_some() {}
+        assert!(n.raise_error(0xFF01, [0x11, 0x22, 0x33, 0x44, 0x55]));
+        assert_eq!(n.poll_transmit(), CanFrame::new(0x83, &[0x01, 0xFF, 0x81, 0x11, 0x22, 0x33, 0x44, 0x55]));
+        if cfg!(feature = "error-history") {
+            let mut entry = [0u8; 4];
+            assert_eq!(n.dictionary().read(0x1003, 1, 0, &mut entry), Ok(4));
+            assert_eq!(u32::from_le_bytes(entry), 0x2211_FF01);
+        }
+        assert!(n.clear_error(0xFF01));
+        assert_eq!(n.poll_transmit(), CanFrame::new(0x83, &[0; 8]));
+    }
+}
