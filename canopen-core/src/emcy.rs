@@ -164,20 +164,29 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
     /// errors are active than the set holds, the EMCY and the history entry are still produced; the
     /// register keeps the bits of the errors it tracks.
     pub fn raise_with(&mut self, code: u16, bits: u8, manufacturer: [u8; 5]) -> bool {
-        self.change(code, Some(bits), manufacturer)
+        let [a, b, c, d, e] = manufacturer;
+        self.change(code, Some(bits), u32::from_le_bytes([a, b, c, d]), e)
+    }
+
+    /// [`raise`](Self::raise) with manufacturer bytes 0-3 in `low` (little-endian) and byte 4 in `high`: the
+    /// bytes in registers, for the node's out-of-line `raise_error`.
+    pub(crate) fn raise_in_registers(&mut self, code: u16, low: u32, high: u8) -> bool {
+        self.change(code, Some(register::bits_for(code)), low, high)
     }
 
     /// Clears `code`: an EMCY 0000h with the remaining register follows (EMCY-07: "error reset" when it was the
     /// last). Returns `false` when the code was not active.
     pub fn clear(&mut self, code: u16) -> bool {
-        self.change(code, None, [0; 5])
+        self.change(code, None, 0, 0)
     }
 
     /// Raises `code` with register bits `raise` ([`raise_with`](Self::raise_with)), or clears it (`None`,
-    /// [`clear`](Self::clear), `manufacturer` all 0): one search of the active set and one queued EMCY with
-    /// the register after the change, where each had its own. Out of line, shared by both.
+    /// [`clear`](Self::clear), the manufacturer bytes all 0): one search of the active set and one queued EMCY
+    /// with the register after the change, where each had its own. Out of line, shared by both; the
+    /// manufacturer bytes 0-3 in `low` (little-endian) and byte 4 in `high`, in registers rather than an
+    /// array on the caller's stack.
     #[inline(never)]
-    fn change(&mut self, code: u16, raise: Option<u8>, manufacturer: [u8; 5]) -> bool {
+    fn change(&mut self, code: u16, raise: Option<u8>, low: u32, high: u8) -> bool {
         let found = self.active.iter().position(|a| a.code == code);
         let emcy_code = match (raise, found) {
             (Some(bits), None) if code != codes::NO_ERROR => {
@@ -186,7 +195,8 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
                     if self.history.is_full() {
                         self.history.pop();
                     }
-                    let info = u32::from(u16::from_le_bytes([manufacturer[0], manufacturer[1]])) << 16;
+                    // Manufacturer bytes 0-1 in bits 31-16 (ERR-07).
+                    let info = low << 16;
                     // Vec::insert(0, ..) would be a ptr::copy, i.e. the only users of memmove in a firmware
                     // with insert_sorted (1.5 KB of compiler_builtins); one slot more, and the new entry
                     // carried through the (at most HIST) entries instead: no index, so no bounds check and
@@ -206,7 +216,8 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
             }
             _ => return false, // raised already (EMCY-05) or 0000h; or not active
         };
-        self.queue(Emergency { code: emcy_code, register: self.register(), manufacturer });
+        let [a, b, c, d] = low.to_le_bytes();
+        self.queue(Emergency { code: emcy_code, register: self.register(), manufacturer: [a, b, c, d, high] });
         true
     }
 

@@ -65,8 +65,8 @@ impl Guarding {
     ) -> (GuardReply, Option<LifeGuardingEvent>) {
         let reply = GuardReply { toggle: self.toggle, state };
         self.toggle = !self.toggle;
-        let life_ms = u64::from(guard_time_ms) * u64::from(life_time_factor);
-        self.deadline.set((life_ms != 0).then(|| now + Duration::from_millis(life_ms)));
+        let life_ms = u32::from(guard_time_ms) * u32::from(life_time_factor);
+        self.deadline.set((life_ms != 0).then(|| now + Duration::from_millis_u32(life_ms)));
         let resolved = core::mem::replace(&mut self.timed_out, false);
         (reply, resolved.then_some(LifeGuardingEvent::Resolved))
     }
@@ -74,12 +74,12 @@ impl Guarding {
     /// Applies new 100Ch/100Dh values written at `now`: 0 in either stops life guarding; otherwise a running
     /// life guard gets the new node life time from now.
     pub fn set_life_time(&mut self, now: Instant, guard_time_ms: u16, life_time_factor: u8) {
-        let life_ms = u64::from(guard_time_ms) * u64::from(life_time_factor);
+        let life_ms = u32::from(guard_time_ms) * u32::from(life_time_factor);
         if life_ms == 0 {
             self.deadline = Deadline::NONE;
             self.timed_out = false;
         } else if self.deadline.get().is_some() {
-            self.deadline.set(Some(now + Duration::from_millis(life_ms)));
+            self.deadline.set(Some(now + Duration::from_millis_u32(life_ms)));
         }
     }
 

@@ -141,7 +141,10 @@ pub struct ConsumerSlot {
     entry: ConsumerEntry,
     monitor: Monitor,
     /// While [`Monitor::Alive`]: when the next heartbeat is due (beside the enum, not in it, so a slot is
-    /// 16 bytes rather than 24).
+    /// 16 bytes rather than 24). [`Deadline::NONE`] in every other state (a slot leaves `Alive` only by
+    /// [`HeartbeatConsumer::handle_timeout`], which clears it, or by becoming a new waiting slot), so the
+    /// time-out search needs no test of the state. The earliest deadline keeps its test: without it LLVM
+    /// unrolls the fold over the slots (footprint.sh node +284 B).
     deadline: Deadline,
 }
 
@@ -354,11 +357,7 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
     /// Reports the first entry whose consumer time has elapsed at `now` (HB-11: one missed period is a
     /// time-out); call again until it returns `None`.
     pub fn handle_timeout(&mut self, now: Instant) -> Option<ConsumerEvent> {
-        let slot = self
-            .slots
-            .as_mut()
-            .iter_mut()
-            .find(|s| matches!(s.monitor, Monitor::Alive { .. }) && s.deadline.passed(now))?;
+        let slot = self.slots.as_mut().iter_mut().find(|s| s.deadline.passed(now))?; // only an `Alive` slot has a deadline
         if let Monitor::Alive { state } = slot.monitor {
             slot.monitor = Monitor::TimedOut { state };
             slot.deadline = Deadline::NONE;

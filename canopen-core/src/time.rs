@@ -125,6 +125,14 @@ impl Duration {
         Self::from_micros(ms.saturating_mul(1_000))
     }
 
+    /// `ms` milliseconds of a 16- or 32-bit object (1017h, 1016h, 100Ch × 100Dh, an LSS switch delay): exact,
+    /// at most 4,294,967,295,000 µs, so one 32 × 32-bit multiply with no saturation or clamp (what
+    /// [`from_millis`](Self::from_millis) needs for any `u64`).
+    #[cfg_attr(not(feature = "guarding"), allow(dead_code))] // life guarding is its only user so far
+    pub(crate) const fn from_millis_u32(ms: u32) -> Self {
+        Duration(ms as u64 * 1_000)
+    }
+
     /// `n` × 100 µs (the unit of inhibit times, 1015h and 18xxh sub 3).
     ///
     /// ```
