@@ -466,6 +466,23 @@ fn block_download_go_back_n_after_a_lost_segment() {
     assert_eq!(t.s.state(), ServerState::BlockDownloadEnd);
 }
 
+/// SDO-29: a block download initiate during a streamed segmented download drops that transfer first
+/// (`abort_write` for its object, 2000h:00), then answers for its own object (1000h:00): 0601 0002h with
+/// block transfer (1000h is read-only), 0504 0001h without (SDO-35 not built).
+#[test]
+fn block_initiate_during_a_stream_drops_it_for_its_own_object() {
+    let mut t = Bench::new();
+    t.ex([0x21, 0x00, 0x20, 0x00, 9, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    #[cfg(feature = "sdo-block")]
+    let code = AbortCode::WriteOfReadOnly;
+    #[cfg(not(feature = "sdo-block"))]
+    let code = AbortCode::InvalidCommandSpecifier;
+    t.ex([0xC6, 0x00, 0x10, 0x00, 4, 0, 0, 0], abort_of(0x1000, 0, code));
+    assert_eq!((t.od.aborted_writes, t.od.aborted_object), (1, Some((0x2000, 0))));
+    assert!(t.s.is_idle());
+}
+
 /// SDO-40: a CAN-level repeat of the segment the server holds (taken in order, not acknowledged yet) is
 /// ignored, also with the c bit set (01h again as 81h): the server has that sequence number. The same
 /// sequence number with other data is no repeat: with c = 1 it is an out-of-order last segment, and the
