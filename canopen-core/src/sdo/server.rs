@@ -707,7 +707,7 @@ impl SdoServer {
             return Response::NONE;
         }
         // a passed deadline means a transfer is under way: its multiplexer
-        self.abort(od, self.mux, AbortCode::SdoTimeout)
+        self.abort(od, AbortCode::SdoTimeout)
     }
 
     /// Handles one frame received on the server's rx COB-ID. `data` is the frame's data field (its length is
@@ -738,13 +738,6 @@ impl SdoServer {
         r
     }
 
-    fn mux(&self) -> Option<Multiplexer> {
-        match self.state {
-            State::Idle => None,
-            _ => Some(self.mux),
-        }
-    }
-
     /// Drops the current transfer; tells the OD when a streamed write is abandoned.
     fn reset<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) {
         match self.state {
@@ -759,10 +752,12 @@ impl SdoServer {
         self.state = State::Idle;
     }
 
-    /// Ends the transfer with an abort frame (SDO-32) and [`SdoEvent::Aborted`]. Out of line: it is reached
-    /// from a dozen error paths, none of them hot.
+    /// Ends the transfer with an abort frame (SDO-32) and [`SdoEvent::Aborted`], for the object in `mux`
+    /// (a refused initiate and a frame out of state while idle store theirs there first). Out of line: it is
+    /// reached from a dozen error paths, none of them hot, and none passes the multiplexer.
     #[inline(never)]
-    fn abort<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O, mux: Multiplexer, code: AbortCode) -> Response {
+    fn abort<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O, code: AbortCode) -> Response {
+        let mux = self.mux;
         self.reset(od);
         Response {
             frame: Some(abort_frame(mux, code.code())),
@@ -833,11 +828,20 @@ impl SdoServer {
             #[cfg(not(feature = "sdo-block"))]
             5 | 6 => return self.invalid(od),
             _ => {
-                let mux = self.mux().unwrap_or_else(mux);
-                return self.abort(od, mux, AbortCode::InvalidCommandSpecifier);
+                if self.is_idle() {
+                    self.mux = mux(); // idle: the frame's object, else the transfer's
+                }
+                return self.abort(od, AbortCode::InvalidCommandSpecifier);
             }
         };
-        initiated.unwrap_or_else(|code| self.abort(od, mux(), code))
+        initiated.unwrap_or_else(|code| {
+            // a refused initiate: its own object, once the transfer under way is dropped (the initiates
+            // above did that already; a block initiate without block transfer has not)
+            #[cfg(not(feature = "sdo-block"))]
+            self.reset(od);
+            self.mux = mux();
+            self.abort(od, code)
+        })
     }
 
     /// An abort from the client (SDO-33): the transfer ends, nothing is sent; ignored when idle. Out of line:
@@ -857,8 +861,10 @@ impl SdoServer {
     #[inline(never)]
     fn invalid<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) -> Response {
         // frames in the wrong state: the transfer's multiplexer, or 0000h:00 when idle
-        let mux = self.mux().unwrap_or_default();
-        self.abort(od, mux, AbortCode::InvalidCommandSpecifier)
+        if self.is_idle() {
+            self.mux = Multiplexer::default();
+        }
+        self.abort(od, AbortCode::InvalidCommandSpecifier)
     }
 }
 

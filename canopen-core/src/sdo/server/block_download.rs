@@ -70,13 +70,13 @@ impl SdoServer {
         let last = b[0] & 0x80 != 0;
         let seqno = b[0] & 0x7F;
         if seqno == 0 || seqno > blksize {
-            return self.abort(od, mux, AbortCode::InvalidSequenceNumber); // SDO-50
+            return self.abort(od, AbortCode::InvalidSequenceNumber); // SDO-50
         }
         let in_order = seqno == bd.expected;
         if in_order {
             if bd.held[0] != 0 {
                 if let Err(code) = bd.flush_held(mux, 7, od) {
-                    return self.abort(od, mux, code);
+                    return self.abort(od, code);
                 }
             }
             bd.held = *b;
@@ -153,7 +153,7 @@ impl SdoServer {
             bd.sink.finish(mux, bd.offset, od)
         })();
         if let Err(code) = r {
-            return self.abort(od, mux, code);
+            return self.abort(od, code);
         }
         self.state = State::Idle;
         Response {
