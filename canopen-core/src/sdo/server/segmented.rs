@@ -32,8 +32,7 @@ impl SdoServer {
                 (data, None)
             };
             if let Err(code) = od.write_expedited(mux.index, mux.sub, &data.to_le_bytes(), len) {
-                self.mux = mux;
-                return self.abort(od, code);
+                return self.refuse(od, mux, code);
             }
             return Response {
                 frame: Some(frame(0x60, mux.bits(), 0)), // SDO-17
