@@ -83,6 +83,8 @@ pub struct TestOd {
     pub stream: Option<Stream>,
     /// Count of `abort_write` calls.
     pub aborted_writes: u32,
+    /// The object of the last `abort_write` call.
+    pub aborted_object: Option<(u16, u8)>,
     /// Count of completed writes (atomic or streamed).
     pub writes: u32,
 }
@@ -104,6 +106,7 @@ impl TestOd {
             text_len: 0,
             stream: None,
             aborted_writes: 0,
+            aborted_object: None,
             writes: 0,
         }
     }
@@ -271,8 +274,9 @@ impl ObjectDictionary for TestOd {
         Ok(())
     }
 
-    fn abort_write(&mut self, _index: u16, _sub: u8) {
+    fn abort_write(&mut self, index: u16, sub: u8) {
         self.stream = None;
         self.aborted_writes += 1;
+        self.aborted_object = Some((index, sub));
     }
 }

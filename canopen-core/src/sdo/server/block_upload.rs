@@ -92,8 +92,8 @@ impl SdoServer {
         let mut segment = [0u8; 8];
         let n = match od.read(mux.index, mux.sub, off as usize, &mut segment[1..1 + want]) {
             Ok(n) if n == want => n as u32,
-            Ok(_) => return self.abort(od, mux, AbortCode::LengthMismatch),
-            Err(code) => return self.abort(od, mux, code),
+            Ok(_) => return self.abort(od, AbortCode::LengthMismatch),
+            Err(code) => return self.abort(od, code),
         };
         let end = off + n;
         // Every segment starts at a multiple of 7 (`base` moves by whole segments) and ends 7 bytes later or
@@ -175,10 +175,10 @@ impl SdoServer {
         if cs == 2 {
             let (ackseq, blksize) = (b[1], b[2]);
             if ackseq > bu.sent {
-                return self.abort(od, mux, AbortCode::InvalidSequenceNumber);
+                return self.abort(od, AbortCode::InvalidSequenceNumber);
             }
             if blksize == 0 || blksize > MAX_BLKSIZE {
-                return self.abort(od, mux, AbortCode::InvalidBlockSize);
+                return self.abort(od, AbortCode::InvalidBlockSize);
             }
             bu.base = bu.base.saturating_add(u32::from(ackseq) * 7);
             bu.sent = 0;

@@ -32,15 +32,16 @@ impl SdoServer {
                 (data, None)
             };
             if let Err(code) = od.write_expedited(mux.index, mux.sub, &data.to_le_bytes(), len) {
-                return self.abort(od, mux, code);
+                return self.refuse(od, mux, code);
             }
             return Response {
                 frame: Some(frame(0x60, mux.bits(), 0)), // SDO-17
                 event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
             };
         }
+        self.mux = mux; // the transfer's object, or the refused initiate's for the abort
         self.initiate_segmented_download(mux, size_indicated.then_some(data), od)
-            .unwrap_or_else(|code| self.abort(od, mux, code))
+            .unwrap_or_else(|code| self.abort(od, code))
     }
 
     /// Initiate download, segmented (SDO-18: the announced size is checked before any data moves).
@@ -51,7 +52,6 @@ impl SdoServer {
         od: &mut O,
     ) -> Result<Response, AbortCode> {
         let sink = self.open_sink(mux, size, od)?;
-        self.mux = mux;
         self.state = State::Download { toggle: false, offset: 0, size, sink };
         Ok(Response::send(frame(0x60, mux.bits(), 0))) // SDO-17
     }
@@ -130,7 +130,7 @@ impl SdoServer {
         let t = command & 0x10 != 0;
         let last = command & 0x01 != 0;
         if t != *toggle {
-            return self.abort(od, mux, AbortCode::ToggleNotAlternated); // SDO-30
+            return self.abort(od, AbortCode::ToggleNotAlternated); // SDO-30
         }
         let len = 7 - ((command >> 1) & 0x07);
         let end = offset.saturating_add(u32::from(len));
@@ -148,7 +148,7 @@ impl SdoServer {
             Ok(())
         })();
         if let Err(code) = r {
-            return self.abort(od, mux, code);
+            return self.abort(od, code);
         }
         let response = frame(0x20 | (command & 0x10), 0, 0); // SDO-20: t echoed
         if last {
@@ -175,14 +175,14 @@ impl SdoServer {
             return self.invalid(od);
         };
         if t != *toggle {
-            return self.abort(od, mux, AbortCode::ToggleNotAlternated); // SDO-28, SDO-30
+            return self.abort(od, AbortCode::ToggleNotAlternated); // SDO-28, SDO-30
         }
         // offset <= size (it only grows to size, then the transfer ends): no saturation needed; were it
         // broken, 7 bytes past the end would not be there and read_slot would fail (0607 0010h)
         let want = size.wrapping_sub(*offset).min(7) as usize;
         let mut response = [0u8; 8];
         if let Err(code) = od.read_slot(mux.index, mux.sub, *slot, *offset as usize, &mut response[1..1 + want]) {
-            return self.abort(od, mux, code); // 0607 0010h: fewer bytes than the size announced
+            return self.abort(od, code); // 0607 0010h: fewer bytes than the size announced
         }
         let n = want as u8;
         *offset += u32::from(n);

@@ -466,6 +466,53 @@ fn block_download_go_back_n_after_a_lost_segment() {
     assert_eq!(t.s.state(), ServerState::BlockDownloadEnd);
 }
 
+/// SDO-29: a block download initiate during a streamed segmented download drops that transfer first
+/// (`abort_write` for its object, 2000h:00), then answers for its own object (1000h:00): 0601 0002h with
+/// block transfer (1000h is read-only), 0504 0001h without (SDO-35 not built).
+#[test]
+fn block_initiate_during_a_stream_drops_it_for_its_own_object() {
+    let mut t = Bench::new();
+    t.ex([0x21, 0x00, 0x20, 0x00, 9, 0, 0, 0], Some([0x60, 0x00, 0x20, 0x00, 0, 0, 0, 0]));
+    t.ex([0x00, 1, 2, 3, 4, 5, 6, 7], Some([0x20, 0, 0, 0, 0, 0, 0, 0]));
+    #[cfg(feature = "sdo-block")]
+    let code = AbortCode::WriteOfReadOnly;
+    #[cfg(not(feature = "sdo-block"))]
+    let code = AbortCode::InvalidCommandSpecifier;
+    t.ex([0xC6, 0x00, 0x10, 0x00, 4, 0, 0, 0], abort_of(0x1000, 0, code));
+    assert_eq!((t.od.aborted_writes, t.od.aborted_object), (1, Some((0x2000, 0))));
+    assert!(t.s.is_idle());
+}
+
+/// SDO-40: a CAN-level repeat of the segment the server holds (taken in order, not acknowledged yet) is
+/// ignored, also with the c bit set (01h again as 81h): the server has that sequence number. The same
+/// sequence number with other data is no repeat: with c = 1 it is an out-of-order last segment, and the
+/// sub-block is acknowledged up to the held one without ending the transfer.
+#[test]
+#[cfg(feature = "sdo-block")]
+fn repeat_of_the_held_segment_is_ignored_c_bit_aside() {
+    let mut t = Bench::with_block_size(8);
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 8, 0, 0, 0]));
+    let first = [0x01, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47];
+    t.ex(first, None);
+    t.ex(first, None);
+    t.ex([0x81, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47], None);
+    assert_eq!(t.s.state(), ServerState::BlockDownloadSubBlock);
+    let second = [0x02, 0x48, 0x49, 0x4A, 0x4B, 0x4C, 0x4D, 0x4E];
+    t.ex(second, None);
+    t.ex(second, None);
+    t.ex([0x83, 0x4F, 0x50, 0, 0, 0, 0, 0], Some([0xA2, 0x03, 0x08, 0, 0, 0, 0, 0]));
+    let mut crc = Crc16::new();
+    crc.update(b"ABCDEFGHIJKLMNOP");
+    let [c0, c1] = crc.get().to_le_bytes();
+    t.ex([0xD5, c0, c1, 0, 0, 0, 0, 0], Some([0xA1, 0, 0, 0, 0, 0, 0, 0]));
+    assert_eq!(t.od.domain(), b"ABCDEFGHIJKLMNOP");
+    // the held sequence number with other data and c = 1: acknowledged up to 1, not the end
+    t.ex([0xC6, 0x00, 0x20, 0x00, 0x10, 0, 0, 0], Some([0xA4, 0x00, 0x20, 0x00, 8, 0, 0, 0]));
+    t.ex(first, None);
+    t.ex([0x81, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x00], Some([0xA2, 0x01, 0x08, 0, 0, 0, 0, 0]));
+    assert_eq!(t.s.state(), ServerState::BlockDownloadSubBlock);
+}
+
 /// SDO-40/SDO-41: while waiting for "end block download", a late segment (here the last segment again as
 /// number 1 of a repeated sub-block, 81h) is ignored, not read as an abort with reserved bits; the end
 /// frame still completes the transfer.
