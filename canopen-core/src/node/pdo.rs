@@ -207,8 +207,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         }
     }
 
-    /// A remote request for TPDO `k` (PDO-21, PDO-22, PDO-29).
-    pub(super) fn handle_tpdo_rtr(&mut self, now: Instant, k: usize) {
+    /// A remote request for TPDO `k` (PDO-21, PDO-22, PDO-29). `k` before `now`: see
+    /// `Node::sdo_response_out_of_line`.
+    pub(super) fn handle_tpdo_rtr(&mut self, k: usize, now: Instant) {
         if !crate::pdo::RTR || self.nmt.state() != NmtState::Operational {
             return;
         }
