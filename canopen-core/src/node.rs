@@ -748,7 +748,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     pub fn reset_node(&mut self, now: Instant) {
         self.ensure_booted(now);
         self.nmt.handle_command(crate::wire::nmt::NmtCommand::ResetNode);
-        self.reset(now, true);
+        self.reset(true, now);
     }
 
     /// Sets the SDO server's protocol time-out (SDO-31; the default is 1 s, zero disables it). A transfer
@@ -817,13 +817,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.now = self.now.max(now);
         self.comm.optional.set_now(self.now); // 1013h runs on the node's clock (nothing without the feature)
         if self.boot_pending {
-            self.reset(now, true); // clears boot_pending: one store in `reset`, not one per inlined copy of this
+            self.reset(true, now); // clears boot_pending: one store in `reset`, not one per inlined copy of this
         }
     }
 
     /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05),
-    /// each loading the stored values of its group after the defaults (NMT-06).
-    fn reset(&mut self, now: Instant, application: bool) {
+    /// each loading the stored values of its group after the defaults (NMT-06). `application` before `now`:
+    /// see [`sdo_response_out_of_line`](Self::sdo_response_out_of_line).
+    fn reset(&mut self, application: bool, now: Instant) {
         self.boot_pending = false; // the power-on boot is this reset (`ensure_booted`); later ones find it false
         self.cob_ids_may_change(); // reset communication, an LSS node-ID
         if application {
