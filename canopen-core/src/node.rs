@@ -605,7 +605,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return self.handle_sync(now, frame);
         }
         if let Some(k) = self.rpdo_for(id) {
-            return self.handle_rpdo(now, k, frame);
+            return self.handle_rpdo(k, now, frame);
         }
         if frame.is_rtr() {
             if let Some(k) = self.rtr_tpdo_for(id) {
