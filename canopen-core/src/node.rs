@@ -558,7 +558,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.lss_timeout(now);
         let response = sdo_dict!(self, |od| self.sdo.handle_timeout(now, od)); // nothing unless its deadline passed
         if response.frame.is_some() || response.event.is_some() {
-            self.sdo_response_out_of_line(now, response);
+            self.sdo_response_out_of_line(response, now);
         }
         self.extra_sdo_timeout(now);
         if self.producer.due(now) {
@@ -605,11 +605,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return self.handle_sync(now, frame);
         }
         if let Some(k) = self.rpdo_for(id) {
-            return self.handle_rpdo(now, k, frame);
+            return self.handle_rpdo(k, now, frame);
         }
         if frame.is_rtr() {
             if let Some(k) = self.rtr_tpdo_for(id) {
-                return self.handle_tpdo_rtr(now, k);
+                return self.handle_tpdo_rtr(k, now);
             }
         }
         #[cfg(feature = "time")]
@@ -676,8 +676,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// out-of-line [`send`](Self::send): its parts in registers, no frame built here. Both paths run
     /// during a transfer only, which began on a frame received on a valid channel, and new parameters end a
     /// transfer (`SdoServer::set_params`): the channel is valid, no second validity test (as in `handle_sdo`).
+    /// `now` last: on a 32-bit target a 64-bit argument takes an even register pair, so right after `self`
+    /// it leaves r1 empty and pushes the next argument to the stack at every call (footprint.sh, see the
+    /// commit); the node's other out-of-line functions put it after one word-sized argument alike.
     #[inline(never)]
-    fn sdo_response_out_of_line(&mut self, now: Instant, response: Response) {
+    fn sdo_response_out_of_line(&mut self, response: Response, now: Instant) {
         if let Some(data) = response.frame {
             self.send(self.sdo.params().cob_tx.can_id(), data, 8);
         }
@@ -728,7 +731,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         while self.sdo.wants_transmit() && self.tx.storage_len() + TX_RESERVE.min(Z::TXQ.saturating_sub(1)) < Z::TXQ {
             let now = self.now;
             let response = sdo_dict!(self, |od| self.sdo.next_segment(now, od)); // wants_transmit: there is one
-            self.sdo_response_out_of_line(now, response);
+            self.sdo_response_out_of_line(response, now);
         }
     }
 
@@ -745,7 +748,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     pub fn reset_node(&mut self, now: Instant) {
         self.ensure_booted(now);
         self.nmt.handle_command(crate::wire::nmt::NmtCommand::ResetNode);
-        self.reset(now, true);
+        self.reset(true, now);
     }
 
     /// Sets the SDO server's protocol time-out (SDO-31; the default is 1 s, zero disables it). A transfer
@@ -814,13 +817,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.now = self.now.max(now);
         self.comm.optional.set_now(self.now); // 1013h runs on the node's clock (nothing without the feature)
         if self.boot_pending {
-            self.reset(now, true); // clears boot_pending: one store in `reset`, not one per inlined copy of this
+            self.reset(true, now); // clears boot_pending: one store in `reset`, not one per inlined copy of this
         }
     }
 
     /// Reset Application (if `application`) then Reset Communication, boot-up, Pre-operational (NMT-03..05),
-    /// each loading the stored values of its group after the defaults (NMT-06).
-    fn reset(&mut self, now: Instant, application: bool) {
+    /// each loading the stored values of its group after the defaults (NMT-06). `application` before `now`:
+    /// see [`sdo_response_out_of_line`](Self::sdo_response_out_of_line).
+    fn reset(&mut self, application: bool, now: Instant) {
         self.boot_pending = false; // the power-on boot is this reset (`ensure_booted`); later ones find it false
         self.cob_ids_may_change(); // reset communication, an LSS node-ID
         if application {

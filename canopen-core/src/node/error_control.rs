@@ -36,8 +36,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         match self.nmt.handle_command(request.command) {
             Transition::None => {}
             Transition::Enter(to) => self.state_changed(from, to),
-            Transition::ResetApplication => self.reset(now, true),
-            Transition::ResetCommunication => self.reset(now, false),
+            Transition::ResetApplication => self.reset(true, now),
+            Transition::ResetCommunication => self.reset(false, now),
         }
     }
 

@@ -215,7 +215,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         if let Some(e) = out.event {
             self.push_event(Event::Lss(e));
             if self.lss.resets_communication(e) {
-                self.reset(now, false);
+                self.reset(false, now);
             }
         }
     }
