@@ -601,6 +601,13 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
         self.write_found(f, sub, bytes, rules)
     }
+    /// The SDO write of an entry, with the change rules: `data`'s first `len` bytes, or as many as the entry
+    /// has when `len` is `None` (an expedited download without the size indicated, SDO-13). What `write`
+    /// and `write_expedited` do, for the node's dictionary, which routes both through one call.
+    pub(crate) fn write_sdo(&mut self, index: u16, sub: u8, data: &[u8], len: Option<usize>) -> Result<(), AbortCode> {
+        self.write_checked(index, sub, data, len, true)
+    }
+
     /// Writes a stored value without the SDO change rules (store/restore after a reset: the record was
     /// consistent when it was saved; PDO mappings are resolved again when the node applies them).
     ///
