@@ -294,7 +294,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     #[cfg(test)]
     fn current_size(&self, index: u16) -> Option<usize> {
         let f = Self::find(index, 0).ok()?;
-        self.text(f.slot).map(str::len)
+        self.text(f.slot()).map(str::len)
     }
 
     /// The text of a VISIBLE_STRING slot (1008h–100Ah, DEV-04); `None` for the numeric ones.
@@ -327,8 +327,8 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         let p = &self.params;
         let c = &self.config;
         let id = &c.identity;
-        Ok(match f.slot {
-            Slot::Count => f.n.into(),
+        Ok(match f.slot() {
+            Slot::Count => f.n().into(),
             Slot::DeviceType => c.device_type,
             Slot::ErrorRegister => (self.errors.register() | p.error_register).into(),
             #[cfg(feature = "error-history")]
@@ -364,9 +364,10 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::ErrorBehaviour => p.error_behaviour.into(),
             Slot::NmtStartup => p.nmt_startup,
             Slot::PdoCob | Slot::PdoType | Slot::PdoInhibit | Slot::PdoEventTimer | Slot::PdoSyncStart => {
-                self.pdo_comm(f).map_or(0, |c| pdo_comm_value(c, f.slot))
+                self.pdo_comm(f).map_or(0, |c| pdo_comm_value(c, f.slot()))
             }
-            Slot::MapCount | Slot::MapEntry => self.pdo_map(f).map_or(0, |m| pdo_map_value(m, sub)),
+            // Slot::MapCount, Slot::MapEntry (the last slots a table row names).
+            _ => self.pdo_map(f).map_or(0, |m| pdo_map_value(m, sub)),
         })
     }
 
@@ -381,7 +382,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                 Ok(v)
             }
         };
-        match f.slot {
+        match f.slot() {
             #[cfg(feature = "error-history")]
             Slot::History => self.errors.write_history_count(v as u8)?,
             Slot::SyncCob => {
@@ -397,7 +398,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::LifeTimeFactor => p.life_time_factor = v as u8,
             #[cfg(feature = "store-restore")]
             Slot::Store | Slot::Restore if rules => {
-                let sig = if f.slot == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
+                let sig = if f.slot() == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
                 // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
                 return Err(if v != sig { AbortCode::CannotStore } else { STORE_GO_AHEAD });
             }
@@ -450,7 +451,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         let valid = comm.is_valid();
         #[cfg(not(feature = "pdo-dynamic-mapping"))]
         let _ = sub; // a fixed mapping is const: `write_found` refuses it before this
-        match f.slot {
+        match f.slot() {
             #[cfg(feature = "pdo-dynamic-mapping")]
             Slot::MapCount | Slot::MapEntry => {
                 let map = if f.tx() { p.tpdo_map.as_mut() } else { p.rpdo_map.as_mut() };
@@ -569,12 +570,12 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
 impl<Z: ProfileSizes> CommProfile<Z> {
     /// Writes the entry `find` found: access (0601 0002h), exact length (0607 0012h/0013h), then `set`.
     fn write_found(&mut self, f: Found, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
-        if !f.ty.writable() {
+        if !f.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
         // Every writable entry is numeric, 1..=4 bytes; the little-endian value is folded from exactly those
         // bytes (no copy call, no length check that cannot fail).
-        check_len(data, f.ty.size())?;
+        check_len(data, f.size())?;
         let v = data.iter().rev().fold(0, |v, &b| v << 8 | u32::from(b));
         self.set(f, sub, v, rules)
     }
@@ -598,7 +599,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                 self.optional.load(index, sub, data)
             }
         });
-        let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
+        let bytes = data.get(..len.unwrap_or(f.size())).unwrap_or(data);
         self.write_found(f, sub, bytes, rules)
     }
     /// The SDO write of an entry, with the change rules: `data`'s first `len` bytes, or as many as the entry
@@ -664,7 +665,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         let f = find_or_optional!(index, sub, self.optional.info(index, sub));
         let (data_type, access, pdo) = f.meta();
-        let size = self.text(f.slot).map_or(f.ty.size(), str::len);
+        let size = self.text(f.slot()).map_or(f.size(), str::len);
         Ok(SubInfo { data_type, access, pdo, size })
     }
 
@@ -673,11 +674,11 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     #[inline(never)]
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
         let f = find_or_optional!(index, sub, self.optional.read(index, sub, offset, buf));
-        if let Some(text) = self.text(f.slot) {
+        if let Some(text) = self.text(f.slot()) {
             return Ok(copy_at(text.as_bytes(), offset, buf));
         }
         let v = self.value(f, sub)?.to_le_bytes();
-        Ok(copy_at(v.get(..f.ty.size()).unwrap_or(&v), offset, buf))
+        Ok(copy_at(v.get(..f.size()).unwrap_or(&v), offset, buf))
     }
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
@@ -687,12 +688,12 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// One table walk; every entry here is readable.
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
         let f = find_or_optional!(find_fast, index, sub, self.optional.read_expedited(index, sub, buf));
-        if let Some(text) = self.text(f.slot) {
+        if let Some(text) = self.text(f.slot()) {
             return Ok(text_expedited(text, buf));
         }
         // The bytes above the entry's size are 0 (the value is zero-extended).
         *buf = self.value(f, sub)?.to_le_bytes();
-        let n = f.ty.size();
+        let n = f.size();
         Ok((n, n))
     }
 
@@ -708,7 +709,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
             self.optional.info(index, sub)?;
             return Err(AbortCode::UnsupportedAccess);
         }
-        if !Self::find(index, sub)?.ty.writable() {
+        if !Self::find(index, sub)?.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
         Err(AbortCode::UnsupportedAccess)
