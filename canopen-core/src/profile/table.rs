@@ -133,14 +133,21 @@ struct Row {
     index: u16,
     first: u8,
     last: u8,
-    ty: Ty,
-    slot: Slot,
+    /// The low half of the [`Found`] of its sub-entries (type and slot; `n` 0): one load where a type and a
+    /// slot were two and a shift.
+    found: u16,
+}
+
+impl Row {
+    const fn slot(&self) -> Slot {
+        Slot((self.found >> 8) as u8)
+    }
 }
 
 const HB: u8 = 0xFF;
 
 const fn run(index: u16, first: u8, last: u8, ty: Ty, slot: Slot) -> Row {
-    Row { index, first, last, ty, slot }
+    Row { index, first, last, found: Found::new(ty, slot, 0).0 as u16 }
 }
 
 const fn var(index: u16, ty: Ty, slot: Slot) -> Row {
@@ -241,16 +248,16 @@ const fn is_fixed_var(i: usize) -> bool {
     alone && r.index >= 0x1000 && r.index <= 0x101F && r.first == 0 && r.last == 0
 }
 
-/// 1000h–101Fh: the entry of an object that is one VAR, found without a scan (the device type, error
+/// 1000h–101Fh: the entry of an object that is one VAR (the low half of its [`Found`]), found without a scan (the device type, error
 /// register and the other VARs the SDO paths read most); [`NOT_VAR`] where there is none.
-const FIXED_VAR: [(Ty, Slot); 32] = {
-    let mut t = [(Ty::U8Const, NOT_VAR); 32];
+const FIXED_VAR: [u16; 32] = {
+    let mut t = [Found::new(Ty::U8Const, NOT_VAR, 0).0 as u16; 32];
     let mut i = 0;
     while i < DESC.len() {
         if is_fixed_var(i) {
             let r = DESC[i];
-            assert!(!matches!(r.slot, NOT_VAR), "a VAR's slot is not NOT_VAR");
-            t[(r.index - 0x1000) as usize] = (r.ty, r.slot);
+            assert!(!matches!(r.slot(), NOT_VAR), "a VAR's slot is not NOT_VAR");
+            t[(r.index - 0x1000) as usize] = r.found;
         }
         i += 1;
     }
@@ -367,9 +374,9 @@ impl Found {
 #[inline]
 pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     if index & !0x1F == 0x1000 && sub == 0 {
-        let (ty, slot) = FIXED_VAR[usize::from(index & 0x1F)];
-        if slot != NOT_VAR {
-            return Ok(Found::new(ty, slot, 0));
+        let f = Found(FIXED_VAR[usize::from(index & 0x1F)].into());
+        if f.slot() != NOT_VAR {
+            return Ok(f);
         }
     }
     walk(index, sub, c)
@@ -384,9 +391,9 @@ pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
 #[inline(never)]
 pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     if index & !0x1F == 0x1000 {
-        let (ty, slot) = FIXED_VAR[usize::from(index & 0x1F)];
-        if slot != NOT_VAR {
-            return if sub == 0 { Ok(Found::new(ty, slot, 0)) } else { Err(AbortCode::SubIndexDoesNotExist) };
+        let f = Found(FIXED_VAR[usize::from(index & 0x1F)].into());
+        if f.slot() != NOT_VAR {
+            return if sub == 0 { Ok(f) } else { Err(AbortCode::SubIndexDoesNotExist) };
         }
     }
     let (key, alt, k) = match index {
@@ -413,8 +420,8 @@ pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     }
     let highest = highest.ok_or(AbortCode::ObjectDoesNotExist)?;
     let r = found.ok_or(AbortCode::SubIndexDoesNotExist)?;
-    let n = if matches!(r.slot, Slot::Count) { highest.into() } else { k };
-    Ok(Found::new(r.ty, r.slot, n))
+    let n = if r.slot() == Slot::Count { highest.into() } else { k };
+    Ok(Found(u32::from(r.found) | u32::from(n) << 16))
 }
 
 #[cfg(test)]
