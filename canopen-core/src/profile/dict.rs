@@ -31,7 +31,7 @@ use super::table::{self, Counts, Found, Slot};
 use super::{optional, CommParams, NodeConfig, ProfileSizes};
 use crate::cob::{is_restricted, CobIdEntry};
 use crate::emcy::NodeErrors;
-use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, SubInfo};
+use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
 #[cfg(test)]
 use crate::od::{Access, DataType, PdoMapping};
 #[cfg(feature = "pdo-dynamic-mapping")]
@@ -703,6 +703,22 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
         self.write_checked(index, sub, data, len, true)
     }
 
+    /// One table walk, no [`SubInfo`]: of the table's entries only 1001h is mappable (TPDO, ERR-01; its
+    /// [`Found::meta`](table::Found::meta)), an UNSIGNED8 that is read; every other entry is 0604 0041h,
+    /// as `PdoHandle::check` answers for its description (`meta_agrees_with_desc` and the test
+    /// `pdo_resolve_agrees_with_info` check the two against each other).
+    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
+        let f = find_or_optional!(index, sub, {
+            let info = self.optional.info(index, sub)?;
+            PdoHandle::check(index, sub, &info, dir, PdoHandle::NO_SLOT)
+        });
+        if f.slot() == Slot::ErrorRegister && dir == PdoDir::Tpdo {
+            Ok(PdoHandle { index, sub, size: 1, slot: PdoHandle::NO_SLOT })
+        } else {
+            Err(AbortCode::NotMappable)
+        }
+    }
+
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
         let _ = size;
         if optional::serves(index) {
@@ -863,6 +879,28 @@ mod tests {
             .filter_map(|n| od.object(n))
             .any(|o| (0..=255u8).filter_map(|s| od.entry(o.index, s)).any(large));
         assert_eq!(CommProfile::<Z>::SEGMENTED_UPLOADS, any);
+    }
+
+    /// PDO-36 (0602 0000h, 0609 0011h, 0604 0041h): the profile's own `pdo_resolve` answers every index and
+    /// sub-index in both directions as the provided method (`info`, then `PdoHandle::check`) does.
+    fn check_pdo_resolve<Z: ProfileSizes>() {
+        let od: CommProfile<Z> = CommProfile::new(CFG);
+        for index in (0x1000..=0x1BFF).chain(0x1F00..=0x1FFF) {
+            for sub in 0..=255u8 {
+                for dir in [PdoDir::Tpdo, PdoDir::Rpdo] {
+                    let provided =
+                        od.info(index, sub).and_then(|i| PdoHandle::check(index, sub, &i, dir, PdoHandle::NO_SLOT));
+                    assert_eq!(od.pdo_resolve(index, sub, dir), provided, "{index:04X}h sub {sub} {dir:?}");
+                }
+            }
+        }
+        assert!(od.pdo_resolve(0x1001, 0, PdoDir::Tpdo).is_ok());
+    }
+
+    #[test]
+    fn pdo_resolve_agrees_with_info() {
+        check_pdo_resolve::<Sizes<4, 16, 16, 4, 4>>();
+        check_pdo_resolve::<Sizes<0, 16, 16, 2, 3>>();
     }
 
     #[test]
