@@ -551,7 +551,10 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
             if v > u32::from(max) {
                 return Err(AbortCode::ValueTooHigh);
             }
-            if rules && map.entries.iter().take(v as usize).any(|&e| e & 0xFF == 0) {
+            // The first `v` entries (at most MAX_ENTRIES, checked above) as a slice: `take(v)` kept a second
+            // counter and its own exit in the loop.
+            let mapped = map.entries.get(..v as usize).unwrap_or(&[]);
+            if rules && mapped.iter().any(|&e| e & 0xFF == 0) {
                 return Err(AbortCode::PdoLengthExceeded); // an empty entry inside the count
             }
             map.count = v as u8;
