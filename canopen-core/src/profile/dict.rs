@@ -677,11 +677,16 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     #[inline(never)]
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
         let f = find_or_optional!(index, sub, self.optional.read(index, sub, offset, buf));
-        if let Some(text) = self.text(f.slot()) {
-            return Ok(copy_at(text.as_bytes(), offset, buf));
-        }
-        let v = self.value(f, sub)?.to_le_bytes();
-        Ok(copy_at(v.get(..f.size()).unwrap_or(&v), offset, buf))
+        // A string's bytes or the value's (one copy for both).
+        let v;
+        let bytes = match self.text(f.slot()) {
+            Some(text) => text.as_bytes(),
+            None => {
+                v = self.value(f, sub)?.to_le_bytes();
+                v.get(..f.size()).unwrap_or(&v)
+            }
+        };
+        Ok(copy_at(bytes, offset, buf))
     }
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
