@@ -727,6 +727,16 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
         }
     }
 
+    /// No entry of the table is RPDO-mappable (see `pdo_resolve`, which gives no handle for one in an RPDO):
+    /// a handle here is an optional object's (1013h, feature `high-res-time`), written as `write` does;
+    /// any other is 0604 0041h.
+    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+        if optional::serves(handle.index) {
+            return self.optional.write(handle.index, handle.sub, data);
+        }
+        Err(AbortCode::NotMappable)
+    }
+
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
         let _ = size;
         if optional::serves(index) {
@@ -903,6 +913,24 @@ mod tests {
             }
         }
         assert!(od.pdo_resolve(0x1001, 0, PdoDir::Tpdo).is_ok());
+    }
+
+    /// PDO-36: no entry of the profile's table can be mapped into an RPDO (`pdo_resolve` refuses them all,
+    /// above), so `pdo_write` refuses a handle of one (0604 0041h) and changes nothing; an optional object's
+    /// handle (1013h, RPDO-mappable with `high-res-time`) is written as `write` writes it.
+    #[test]
+    fn pdo_write_serves_only_rpdo_mappable_objects() {
+        let mut od: CommProfile<Sizes<1, 16, 16, 1, 1>> = CommProfile::new(CFG);
+        let before = od.clone();
+        let h = PdoHandle { index: 0x1017, sub: 0, size: 2, slot: PdoHandle::NO_SLOT };
+        assert_eq!(od.pdo_write(&h, &[5, 0]), Err(AbortCode::NotMappable));
+        assert_eq!(od, before);
+        if let Ok(h) = od.pdo_resolve(0x1013, 0, PdoDir::Rpdo) {
+            let mut by_sdo = od.clone();
+            by_sdo.write(0x1013, 0, &[1, 2, 3, 4]).unwrap();
+            od.pdo_write(&h, &[1, 2, 3, 4]).unwrap();
+            assert_eq!(od, by_sdo);
+        }
     }
 
     #[test]
