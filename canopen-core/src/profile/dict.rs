@@ -772,6 +772,8 @@ mod tests {
         Ok(heapless::Vec::from_slice(&b[..n]).unwrap_or_default())
     }
 
+    /// The configuration as read by SDO: DEV-01 (1000h), DEV-03 (1018h, each of sub 01h-04h apart), DEV-04
+    /// (1008h-100Ah), the counts (OD-04) and the OD-16 abort codes.
     #[test]
     fn reads_the_configuration() {
         let od: CommProfile<Sizes<3, 16, 16, 0, 0>> = CommProfile::new(CFG);
@@ -787,7 +789,10 @@ mod tests {
         assert_eq!(read(&od, 0x1016, 0).unwrap()[..], [3]);
         assert_eq!(read(&od, 0x1018, 0).unwrap()[..], [4]);
         assert_eq!(read(&od, 0x1018, 1).unwrap()[..], [0xB6, 0x02, 0, 0]);
+        assert_eq!(read(&od, 0x1018, 2).unwrap()[..], [2, 0, 0, 0]);
+        assert_eq!(read(&od, 0x1018, 3).unwrap()[..], [2, 0, 1, 0]);
         assert_eq!(read(&od, 0x1018, 4).unwrap()[..], [77, 0, 0, 0]);
+        assert_eq!(od.read_expedited(0x1018, 3, &mut [0; 4]), Ok((4, 4)));
         assert_eq!(read(&od, 0x1018, 5), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1016, 4), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1000, 1), Err(AbortCode::SubIndexDoesNotExist));
