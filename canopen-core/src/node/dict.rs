@@ -14,7 +14,7 @@
 use crate::od::{AbortCode, Merged, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
 #[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::mapping::ResolvedMap;
-use crate::profile::{CommProfile, ProfileSizes};
+use crate::profile::{CommProfile, ProfileSizes, SIZE_NOT_INDICATED};
 use crate::storage::{Groups, Storage, StorageError};
 #[cfg(feature = "store-restore")]
 use crate::{profile::STORE_GO_AHEAD, storage::abort_of};
@@ -45,8 +45,8 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
 
     /// Every SDO write to the communication profile (`write`, `write_expedited`): one call of the
     /// profile's write path, then what needs both halves or the storage. The entry's bytes are `data`'s
-    /// first `len`, or as many as the entry has when `len` is `None` (an expedited download without the
-    /// size indicated, SDO-13). Out of line, so that `write_expedited` stays small enough to be inlined
+    /// first `len`, or as many as the entry has when `len` is [`SIZE_NOT_INDICATED`] (an expedited download
+    /// without the size indicated, SDO-13). Out of line, so that `write_expedited` stays small enough to be inlined
     /// into the SDO server for the application's downloads (bench-node.sh expedited_download).
     /// - A mapping record (PDO-36/37): undone when its entries do not resolve; the record as it was is
     ///   kept aside (one copy of the struct) and put back, so nothing changes.
@@ -54,7 +54,7 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
     ///   and signature as for any write (0602 0000h, 0609 0011h, 0601 0002h, 0607 0012h/0013h,
     ///   0800 0020h) and answers a right signature with [`STORE_GO_AHEAD`]; then the record is written.
     #[inline(never)]
-    fn comm_write(&mut self, index: u16, sub: u8, data: &[u8], len: Option<usize>) -> Result<(), AbortCode> {
+    fn comm_write(&mut self, index: u16, sub: u8, data: &[u8], len: usize) -> Result<(), AbortCode> {
         #[cfg(feature = "pdo-dynamic-mapping")]
         let (dir, k) = (if index < 0x1A00 { PdoDir::Rpdo } else { PdoDir::Tpdo }, usize::from(index & 0x1FF));
         #[cfg(feature = "pdo-dynamic-mapping")]
@@ -144,7 +144,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     }
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
         if crate::od::is_comm_for::<A>(index) {
-            self.comm_write(index, sub, data, Some(data.len()))
+            self.comm_write(index, sub, data, data.len())
         } else {
             self.od.app.write(index, sub, data)
         }
@@ -177,7 +177,7 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
         // The communication profile through the one write path above (store/restore and mappings
         // intercepted), the application with its single lookup.
         if crate::od::is_comm_for::<A>(index) {
-            self.comm_write(index, sub, data, len)
+            self.comm_write(index, sub, data, len.unwrap_or(SIZE_NOT_INDICATED))
         } else {
             self.od.app.write_expedited(index, sub, data, len)
         }

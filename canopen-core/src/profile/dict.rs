@@ -79,6 +79,10 @@ macro_rules! find_or_optional {
 #[cfg(feature = "store-restore")]
 pub(crate) const STORE_GO_AHEAD: AbortCode = AbortCode::HardwareError;
 
+/// The length of [`CommProfile`]'s write path for "the entry's own size" (an expedited download without the
+/// size indicated, SDO-13): one word where an `Option<usize>` took two at every call.
+pub(crate) const SIZE_NOT_INDICATED: usize = usize::MAX;
+
 /// Runs `f` out of line, as the unlikely path: the optional objects' fallback kept the SDO upload of the
 /// profile's own objects 4 instructions slower when it was inline (bench-node.sh expedited_upload).
 #[cfg(any(
@@ -584,31 +588,24 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     }
 
     /// The one write path (SDO's `write` and `write_expedited`, stored values' `load_value`): the entry's
-    /// bytes are `data`'s first `len`, or as many as the entry has when `len` is `None` (an expedited
-    /// download without the size indicated, SDO-13; `data` then holds 4 bytes).
-    fn write_checked(
-        &mut self,
-        index: u16,
-        sub: u8,
-        data: &[u8],
-        len: Option<usize>,
-        rules: bool,
-    ) -> Result<(), AbortCode> {
+    /// bytes are `data`'s first `len`, or as many as the entry has when `len` is [`SIZE_NOT_INDICATED`] (an
+    /// expedited download without the size indicated, SDO-13; `data` then holds 4 bytes).
+    fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], len: usize, rules: bool) -> Result<(), AbortCode> {
         let f = find_or_optional!(index, sub, {
-            let data = data.get(..len.unwrap_or(data.len())).unwrap_or(data);
+            let data = data.get(..len).unwrap_or(data);
             if rules {
                 self.optional.write(index, sub, data)
             } else {
                 self.optional.load(index, sub, data)
             }
         });
-        let bytes = data.get(..len.unwrap_or(f.size())).unwrap_or(data);
+        let bytes = data.get(..if len == SIZE_NOT_INDICATED { f.size() } else { len }).unwrap_or(data);
         self.write_found(f, sub, bytes, rules)
     }
     /// The SDO write of an entry, with the change rules: `data`'s first `len` bytes, or as many as the entry
-    /// has when `len` is `None` (an expedited download without the size indicated, SDO-13). What `write`
-    /// and `write_expedited` do, for the node's dictionary, which routes both through one call.
-    pub(crate) fn write_sdo(&mut self, index: u16, sub: u8, data: &[u8], len: Option<usize>) -> Result<(), AbortCode> {
+    /// has when `len` is [`SIZE_NOT_INDICATED`] (an expedited download without the size indicated, SDO-13).
+    /// What `write` and `write_expedited` do, for the node's dictionary, which routes both through one call.
+    pub(crate) fn write_sdo(&mut self, index: u16, sub: u8, data: &[u8], len: usize) -> Result<(), AbortCode> {
         self.write_checked(index, sub, data, len, true)
     }
 
@@ -624,7 +621,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// assert_eq!(od.params.rpdo_comm[0].inhibit_100us, 10);
     /// ```
     pub fn load_value(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, Some(data.len()), false)
+        self.write_checked(index, sub, data, data.len(), false)
     }
 }
 
@@ -690,7 +687,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     }
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, Some(data.len()), true)
+        self.write_checked(index, sub, data, data.len(), true)
     }
 
     /// One table walk; every entry here is readable.
@@ -708,7 +705,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     /// One table walk; the writable entries are all numeric (1..=4 bytes), so `len` not indicated means
     /// the entry's size (SDO-13).
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, len, true)
+        self.write_checked(index, sub, data, len.unwrap_or(SIZE_NOT_INDICATED), true)
     }
 
     /// One table walk, no [`SubInfo`]: of the table's entries only 1001h is mappable (TPDO, ERR-01; its
