@@ -328,7 +328,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     /// The current value of a numeric entry found by `find` (0 for a string slot). Inlined on the host (into
     /// `read` and `read_expedited`), where the call and the bounds check of the slot's jump table cost the
-    /// expedited upload 4 instructions per frame once the slot was a byte (bench-node.sh expedited_upload);
+    /// expedited upload 4 instructions per frame once the slot was a number (bench-node.sh expedited_upload);
     /// a bare-metal build keeps its one out-of-line copy (both inlined: hundreds of bytes of flash).
     #[cfg_attr(not(target_os = "none"), inline(always))]
     fn value(&self, f: Found, sub: u8) -> Result<u32, AbortCode> {

@@ -140,7 +140,7 @@ struct Row {
 
 impl Row {
     const fn slot(&self) -> Slot {
-        Slot((self.found >> 8) as u8)
+        Found(self.found as u32).slot()
     }
 }
 
@@ -314,10 +314,11 @@ impl Counts {
     }
 }
 
-/// One sub-entry found in the table: its [`Ty`]'s discriminant (bits 0–7), its [`Slot`] (bits 8–15) and `n`
+/// One sub-entry found in the table: its [`Ty`]'s discriminant (bits 0–7), its [`Slot`] (bits 11–15) and `n`
 /// (bits 16–31): for [`Slot::Count`] the highest sub-index, for the PDO slots the PDO number `k` (0-based),
 /// plus [`TX`] for a TPDO object (1800h/1A00h range). One `u32`, so that the `Result` of a lookup comes back
-/// in two registers: a struct of the three fields went through memory, at every caller.
+/// in two registers: a struct of the three fields went through memory, at every caller. The slot has 5 bits
+/// of its own (`ubfx` on the target, one instruction, and a range a `match` can know).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Found(u32);
 
@@ -327,12 +328,13 @@ const _: () = assert!(TX == 1 << 15, "walk sets TX as bit 15");
 
 impl Found {
     const fn new(ty: Ty, slot: Slot, n: u16) -> Found {
-        Found(ty as u32 | (slot.0 as u32) << 8 | (n as u32) << 16)
+        assert!(slot.0 < 32, "a slot fits in 5 bits");
+        Found(ty as u32 | (slot.0 as u32) << 11 | (n as u32) << 16)
     }
 
     /// Where the value lives.
     pub(super) const fn slot(self) -> Slot {
-        Slot((self.0 >> 8) as u8)
+        Slot((self.0 >> 11) as u8 & 0x1F)
     }
 
     /// The highest sub-index of a [`Slot::Count`], the PDO number and direction of a PDO slot.
