@@ -14,7 +14,7 @@
 use crate::od::{AbortCode, Merged, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
 #[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::mapping::ResolvedMap;
-use crate::profile::{CommProfile, ProfileSizes};
+use crate::profile::{CommProfile, ProfileSizes, SIZE_NOT_INDICATED};
 use crate::storage::{Groups, Storage, StorageError};
 #[cfg(feature = "store-restore")]
 use crate::{profile::STORE_GO_AHEAD, storage::abort_of};
@@ -43,19 +43,39 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         NodeDict { od: Merged { comm, app }, storage, save }
     }
 
-    /// A write of a mapping record (PDO-36/37), undone when its entries do not resolve: the record as it
-    /// was is kept aside (one copy of the struct) and put back, so nothing changes.
-    #[cfg(feature = "pdo-dynamic-mapping")]
-    fn write_mapping(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        let dir = if index < 0x1A00 { PdoDir::Rpdo } else { PdoDir::Tpdo };
-        let k = usize::from(index & 0x1FF);
-        let saved = self.map_mut(dir, k).map(|m| *m);
-        self.od.comm.write(index, sub, data)?; // a PDO this node has not: 0602 0000h, as any write
-        let checked = self.check_mapping(sub, k, dir);
-        if let (Err(_), Some(saved), Some(map)) = (checked, saved, self.map_mut(dir, k)) {
-            *map = saved;
+    /// Every SDO write to the communication profile (`write`, `write_expedited`): one call of the
+    /// profile's write path, then what needs both halves or the storage. The entry's bytes are `data`'s
+    /// first `len`, or as many as the entry has when `len` is [`SIZE_NOT_INDICATED`] (an expedited download
+    /// without the size indicated, SDO-13). Out of line, so that `write_expedited` stays small enough to be inlined
+    /// into the SDO server for the application's downloads (bench-node.sh expedited_download).
+    /// - A mapping record (PDO-36/37): undone when its entries do not resolve; the record as it was is
+    ///   kept aside (one copy of the struct) and put back, so nothing changes.
+    /// - 1010h "save" / 1011h "load" (STORE-04, STORE-08..10): the profile checks the entry, access, length
+    ///   and signature as for any write (0602 0000h, 0609 0011h, 0601 0002h, 0607 0012h/0013h,
+    ///   0800 0020h) and answers a right signature with [`STORE_GO_AHEAD`]; then the record is written.
+    #[inline(never)]
+    fn comm_write(&mut self, index: u16, sub: u8, data: &[u8], len: usize) -> Result<(), AbortCode> {
+        #[cfg(feature = "pdo-dynamic-mapping")]
+        let (dir, k) = (if index < 0x1A00 { PdoDir::Rpdo } else { PdoDir::Tpdo }, usize::from(index & 0x1FF));
+        #[cfg(feature = "pdo-dynamic-mapping")]
+        let saved = if is_mapping(index) { self.map_mut(dir, k).map(|m| *m) } else { None };
+        // A PDO this node has not: 0602 0000h, as any write.
+        let written = self.od.comm.write_sdo(index, sub, data, len);
+        #[cfg(feature = "store-restore")]
+        if matches!(index, 0x1010 | 0x1011) && written == Err(STORE_GO_AHEAD) {
+            let groups = Groups::from_sub(sub).ok_or(AbortCode::SubIndexDoesNotExist)?;
+            let (save, drop) = if index == 0x1010 { (groups, Groups::NONE) } else { (Groups::NONE, groups) };
+            return (self.save)(self.storage, save, drop, self.od.comm, self.od.app).map_err(abort_of);
         }
-        checked
+        #[cfg(feature = "pdo-dynamic-mapping")]
+        if is_mapping(index) && written.is_ok() {
+            let checked = self.check_mapping(sub, k, dir);
+            if let (Err(_), Some(saved), Some(map)) = (checked, saved, self.map_mut(dir, k)) {
+                *map = saved;
+            }
+            return checked;
+        }
+        written
     }
 
     #[cfg(feature = "pdo-dynamic-mapping")]
@@ -83,49 +103,13 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
             crate::pdo::mapping::resolve(&self.od, raw, dir).map(|_| ())
         }
     }
-
-    /// An expedited download to the communication profile: store/restore and mappings through this view's
-    /// own `info`/`write` (which intercept them), the rest with the profile's single table walk. Out of
-    /// line, so that `write_expedited` stays small enough to be inlined into the SDO server for the
-    /// application's downloads (bench-node.sh expedited_download: 577.2 -> 574.2 instructions per frame).
-    #[inline(never)]
-    fn comm_write_expedited(
-        &mut self,
-        index: u16,
-        sub: u8,
-        data: &[u8; 4],
-        len: Option<usize>,
-    ) -> Result<(), AbortCode> {
-        if intercepted(index) {
-            // Every entry of 1010h/1011h and of a mapping record is numeric: sub 00h UNSIGNED8, the others
-            // UNSIGNED32, so a size not indicated is 1 or 4 bytes (SDO-13); `write` finds and checks the entry.
-            let n = len.unwrap_or(if sub == 0 { 1 } else { 4 });
-            self.write(index, sub, data.get(..n).unwrap_or(data))
-        } else {
-            self.od.comm.write_expedited(index, sub, data, len)
-        }
-    }
-
-    /// 1010h "save" / 1011h "load" (STORE-04, STORE-08..10): the profile checks the entry, access, length
-    /// and signature as for any write (0602 0000h, 0609 0011h, 0601 0002h, 0607 0012h/0013h, 0800 0020h) and
-    /// answers a right signature with [`STORE_GO_AHEAD`]; then the record is written.
-    #[cfg(feature = "store-restore")]
-    fn store_command(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        match self.od.comm.write(index, sub, data) {
-            Err(STORE_GO_AHEAD) => {}
-            other => return other,
-        }
-        let groups = Groups::from_sub(sub).ok_or(AbortCode::SubIndexDoesNotExist)?;
-        let (save, drop) = if index == 0x1010 { (groups, Groups::NONE) } else { (Groups::NONE, groups) };
-        (self.save)(self.storage, save, drop, self.od.comm, self.od.app).map_err(abort_of)
-    }
 }
 
-/// Whether this view's `write` handles `index` itself rather than passing it on: 1010h/1011h (feature
-/// `store-restore`) and the PDO mapping records (feature `pdo-dynamic-mapping`).
-const fn intercepted(index: u16) -> bool {
-    let store = cfg!(feature = "store-restore") && matches!(index, 0x1010 | 0x1011);
-    store || cfg!(feature = "pdo-dynamic-mapping") && matches!(index, 0x1600..=0x17FF | 0x1A00..=0x1BFF)
+/// Whether `index` is a PDO mapping record, whose writes this view checks against the merged dictionary
+/// (feature `pdo-dynamic-mapping`).
+#[cfg(feature = "pdo-dynamic-mapping")]
+const fn is_mapping(index: u16) -> bool {
+    matches!(index, 0x1600..=0x17FF | 0x1A00..=0x1BFF)
 }
 
 impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for NodeDict<'_, Z, A, S> {
@@ -159,12 +143,10 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
         }
     }
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        match index {
-            #[cfg(feature = "store-restore")]
-            0x1010 | 0x1011 => self.store_command(index, sub, data),
-            #[cfg(feature = "pdo-dynamic-mapping")]
-            0x1600..=0x17FF | 0x1A00..=0x1BFF => self.write_mapping(index, sub, data),
-            _ => self.od.write(index, sub, data),
+        if crate::od::is_comm_for::<A>(index) {
+            self.comm_write(index, sub, data, data.len())
+        } else {
+            self.od.app.write(index, sub, data)
         }
     }
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
@@ -192,10 +174,10 @@ impl<Z: ProfileSizes, A: ObjectDictionary, S: Storage> ObjectDictionary for Node
     }
     #[inline]
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        // Store/restore and mappings through this view's own `info`/`write` (which intercepts them), the
-        // rest of the communication profile and the application with their single lookup.
+        // The communication profile through the one write path above (store/restore and mappings
+        // intercepted), the application with its single lookup.
         if crate::od::is_comm_for::<A>(index) {
-            self.comm_write_expedited(index, sub, data, len)
+            self.comm_write(index, sub, data, len.unwrap_or(SIZE_NOT_INDICATED))
         } else {
             self.od.app.write_expedited(index, sub, data, len)
         }

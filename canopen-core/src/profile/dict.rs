@@ -31,7 +31,7 @@ use super::table::{self, Counts, Found, Slot};
 use super::{optional, CommParams, NodeConfig, ProfileSizes};
 use crate::cob::{is_restricted, CobIdEntry};
 use crate::emcy::NodeErrors;
-use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, SubInfo};
+use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
 #[cfg(test)]
 use crate::od::{Access, DataType, PdoMapping};
 #[cfg(feature = "pdo-dynamic-mapping")]
@@ -78,6 +78,10 @@ macro_rules! find_or_optional {
 /// the profile has then checked the entry, its access, its length and the signature (STORE-04/09).
 #[cfg(feature = "store-restore")]
 pub(crate) const STORE_GO_AHEAD: AbortCode = AbortCode::HardwareError;
+
+/// The length of [`CommProfile`]'s write path for "the entry's own size" (an expedited download without the
+/// size indicated, SDO-13): one word where an `Option<usize>` took two at every call.
+pub(crate) const SIZE_NOT_INDICATED: usize = usize::MAX;
 
 /// Runs `f` out of line, as the unlikely path: the optional objects' fallback kept the SDO upload of the
 /// profile's own objects 4 instructions slower when it was inline (bench-node.sh expedited_upload).
@@ -294,7 +298,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     #[cfg(test)]
     fn current_size(&self, index: u16) -> Option<usize> {
         let f = Self::find(index, 0).ok()?;
-        self.text(f.slot).map(str::len)
+        self.text(f.slot()).map(str::len)
     }
 
     /// The text of a VISIBLE_STRING slot (1008h–100Ah, DEV-04); `None` for the numeric ones.
@@ -322,13 +326,17 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         if f.tx() { p.tpdo_map.as_ref() } else { p.rpdo_map.as_ref() }.get(f.k())
     }
 
-    /// The current value of a numeric entry found by `find` (0 for a string slot).
+    /// The current value of a numeric entry found by `find` (0 for a string slot). Inlined on the host (into
+    /// `read` and `read_expedited`), where the call and the bounds check of the slot's jump table cost the
+    /// expedited upload 4 instructions per frame once the slot was a number (bench-node.sh expedited_upload);
+    /// a bare-metal build keeps its one out-of-line copy (both inlined: hundreds of bytes of flash).
+    #[cfg_attr(not(target_os = "none"), inline(always))]
     fn value(&self, f: Found, sub: u8) -> Result<u32, AbortCode> {
         let p = &self.params;
         let c = &self.config;
         let id = &c.identity;
-        Ok(match f.slot {
-            Slot::Count => f.n.into(),
+        Ok(match f.slot() {
+            Slot::Count => f.n().into(),
             Slot::DeviceType => c.device_type,
             Slot::ErrorRegister => (self.errors.register() | p.error_register).into(),
             #[cfg(feature = "error-history")]
@@ -364,9 +372,10 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::ErrorBehaviour => p.error_behaviour.into(),
             Slot::NmtStartup => p.nmt_startup,
             Slot::PdoCob | Slot::PdoType | Slot::PdoInhibit | Slot::PdoEventTimer | Slot::PdoSyncStart => {
-                self.pdo_comm(f).map_or(0, |c| pdo_comm_value(c, f.slot))
+                self.pdo_comm(f).map_or(0, |c| pdo_comm_value(c, f.slot()))
             }
-            Slot::MapCount | Slot::MapEntry => self.pdo_map(f).map_or(0, |m| pdo_map_value(m, sub)),
+            // Slot::MapCount, Slot::MapEntry (the last slots a table row names).
+            _ => self.pdo_map(f).map_or(0, |m| pdo_map_value(m, sub)),
         })
     }
 
@@ -381,7 +390,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
                 Ok(v)
             }
         };
-        match f.slot {
+        match f.slot() {
             #[cfg(feature = "error-history")]
             Slot::History => self.errors.write_history_count(v as u8)?,
             Slot::SyncCob => {
@@ -397,7 +406,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::LifeTimeFactor => p.life_time_factor = v as u8,
             #[cfg(feature = "store-restore")]
             Slot::Store | Slot::Restore if rules => {
-                let sig = if f.slot == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
+                let sig = if f.slot() == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
                 // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
                 return Err(if v != sig { AbortCode::CannotStore } else { STORE_GO_AHEAD });
             }
@@ -450,7 +459,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
         let valid = comm.is_valid();
         #[cfg(not(feature = "pdo-dynamic-mapping"))]
         let _ = sub; // a fixed mapping is const: `write_found` refuses it before this
-        match f.slot {
+        match f.slot() {
             #[cfg(feature = "pdo-dynamic-mapping")]
             Slot::MapCount | Slot::MapEntry => {
                 let map = if f.tx() { p.tpdo_map.as_mut() } else { p.rpdo_map.as_mut() };
@@ -550,7 +559,10 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
             if v > u32::from(max) {
                 return Err(AbortCode::ValueTooHigh);
             }
-            if rules && map.entries.iter().take(v as usize).any(|&e| e & 0xFF == 0) {
+            // The first `v` entries (at most MAX_ENTRIES, checked above) as a slice: `take(v)` kept a second
+            // counter and its own exit in the loop.
+            let mapped = map.entries.get(..v as usize).unwrap_or(&[]);
+            if rules && mapped.iter().any(|&e| e & 0xFF == 0) {
                 return Err(AbortCode::PdoLengthExceeded); // an empty entry inside the count
             }
             map.count = v as u8;
@@ -569,38 +581,38 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
 impl<Z: ProfileSizes> CommProfile<Z> {
     /// Writes the entry `find` found: access (0601 0002h), exact length (0607 0012h/0013h), then `set`.
     fn write_found(&mut self, f: Found, sub: u8, data: &[u8], rules: bool) -> Result<(), AbortCode> {
-        if !f.ty.writable() {
+        if !f.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
         // Every writable entry is numeric, 1..=4 bytes; the little-endian value is folded from exactly those
         // bytes (no copy call, no length check that cannot fail).
-        check_len(data, f.ty.size())?;
+        check_len(data, f.size())?;
         let v = data.iter().rev().fold(0, |v, &b| v << 8 | u32::from(b));
         self.set(f, sub, v, rules)
     }
 
     /// The one write path (SDO's `write` and `write_expedited`, stored values' `load_value`): the entry's
-    /// bytes are `data`'s first `len`, or as many as the entry has when `len` is `None` (an expedited
-    /// download without the size indicated, SDO-13; `data` then holds 4 bytes).
-    fn write_checked(
-        &mut self,
-        index: u16,
-        sub: u8,
-        data: &[u8],
-        len: Option<usize>,
-        rules: bool,
-    ) -> Result<(), AbortCode> {
+    /// bytes are `data`'s first `len`, or as many as the entry has when `len` is [`SIZE_NOT_INDICATED`] (an
+    /// expedited download without the size indicated, SDO-13; `data` then holds 4 bytes).
+    fn write_checked(&mut self, index: u16, sub: u8, data: &[u8], len: usize, rules: bool) -> Result<(), AbortCode> {
         let f = find_or_optional!(index, sub, {
-            let data = data.get(..len.unwrap_or(data.len())).unwrap_or(data);
+            let data = data.get(..len).unwrap_or(data);
             if rules {
                 self.optional.write(index, sub, data)
             } else {
                 self.optional.load(index, sub, data)
             }
         });
-        let bytes = data.get(..len.unwrap_or(f.ty.size())).unwrap_or(data);
+        let bytes = data.get(..if len == SIZE_NOT_INDICATED { f.size() } else { len }).unwrap_or(data);
         self.write_found(f, sub, bytes, rules)
     }
+    /// The SDO write of an entry, with the change rules: `data`'s first `len` bytes, or as many as the entry
+    /// has when `len` is [`SIZE_NOT_INDICATED`] (an expedited download without the size indicated, SDO-13).
+    /// What `write` and `write_expedited` do, for the node's dictionary, which routes both through one call.
+    pub(crate) fn write_sdo(&mut self, index: u16, sub: u8, data: &[u8], len: usize) -> Result<(), AbortCode> {
+        self.write_checked(index, sub, data, len, true)
+    }
+
     /// Writes a stored value without the SDO change rules (store/restore after a reset: the record was
     /// consistent when it was saved; PDO mappings are resolved again when the node applies them).
     ///
@@ -613,7 +625,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     /// assert_eq!(od.params.rpdo_comm[0].inhibit_100us, 10);
     /// ```
     pub fn load_value(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, Some(data.len()), false)
+        self.write_checked(index, sub, data, data.len(), false)
     }
 }
 
@@ -657,7 +669,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     fn info(&self, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
         let f = find_or_optional!(index, sub, self.optional.info(index, sub));
         let (data_type, access, pdo) = f.meta();
-        let size = self.text(f.slot).map_or(f.ty.size(), str::len);
+        let size = self.text(f.slot()).map_or(f.size(), str::len);
         Ok(SubInfo { data_type, access, pdo, size })
     }
 
@@ -666,33 +678,64 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     #[inline(never)]
     fn read(&self, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
         let f = find_or_optional!(index, sub, self.optional.read(index, sub, offset, buf));
-        if let Some(text) = self.text(f.slot) {
-            return Ok(copy_at(text.as_bytes(), offset, buf));
-        }
-        let v = self.value(f, sub)?.to_le_bytes();
-        Ok(copy_at(v.get(..f.ty.size()).unwrap_or(&v), offset, buf))
+        // A string's bytes or the value's (one copy for both).
+        let v;
+        let bytes = match self.text(f.slot()) {
+            Some(text) => text.as_bytes(),
+            None => {
+                v = self.value(f, sub)?.to_le_bytes();
+                v.get(..f.size()).unwrap_or(&v)
+            }
+        };
+        Ok(copy_at(bytes, offset, buf))
     }
 
     fn write(&mut self, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, Some(data.len()), true)
+        self.write_checked(index, sub, data, data.len(), true)
     }
 
     /// One table walk; every entry here is readable.
     fn read_expedited(&self, index: u16, sub: u8, buf: &mut [u8; 4]) -> Result<(usize, usize), AbortCode> {
         let f = find_or_optional!(find_fast, index, sub, self.optional.read_expedited(index, sub, buf));
-        if let Some(text) = self.text(f.slot) {
+        if let Some(text) = self.text(f.slot()) {
             return Ok(text_expedited(text, buf));
         }
         // The bytes above the entry's size are 0 (the value is zero-extended).
         *buf = self.value(f, sub)?.to_le_bytes();
-        let n = f.ty.size();
+        let n = f.size();
         Ok((n, n))
     }
 
     /// One table walk; the writable entries are all numeric (1..=4 bytes), so `len` not indicated means
     /// the entry's size (SDO-13).
     fn write_expedited(&mut self, index: u16, sub: u8, data: &[u8; 4], len: Option<usize>) -> Result<(), AbortCode> {
-        self.write_checked(index, sub, data, len, true)
+        self.write_checked(index, sub, data, len.unwrap_or(SIZE_NOT_INDICATED), true)
+    }
+
+    /// One table walk, no [`SubInfo`]: of the table's entries only 1001h is mappable (TPDO, ERR-01; its
+    /// [`Found::meta`](table::Found::meta)), an UNSIGNED8 that is read; every other entry is 0604 0041h,
+    /// as `PdoHandle::check` answers for its description (`meta_agrees_with_desc` and the test
+    /// `pdo_resolve_agrees_with_info` check the two against each other).
+    fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
+        let f = find_or_optional!(index, sub, {
+            let info = self.optional.info(index, sub)?;
+            PdoHandle::check(index, sub, &info, dir, PdoHandle::NO_SLOT)
+        });
+        if f.slot() == Slot::ErrorRegister && dir == PdoDir::Tpdo {
+            Ok(PdoHandle { index, sub, size: 1, slot: PdoHandle::NO_SLOT })
+        } else {
+            Err(AbortCode::NotMappable)
+        }
+    }
+
+    /// No entry of the table is RPDO-mappable (see `pdo_resolve`, which gives no handle for one in an RPDO):
+    /// a handle here is an optional object's (1013h, feature `high-res-time`), written as `write` does;
+    /// any other is 0604 0041h.
+    fn pdo_write(&mut self, handle: &PdoHandle, data: &[u8]) -> Result<(), AbortCode> {
+        if optional::serves(handle.index) {
+            return self.optional.write(handle.index, handle.sub, data);
+        }
+        Err(AbortCode::NotMappable)
     }
 
     fn begin_write(&mut self, index: u16, sub: u8, size: Option<usize>) -> Result<(), AbortCode> {
@@ -701,7 +744,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
             self.optional.info(index, sub)?;
             return Err(AbortCode::UnsupportedAccess);
         }
-        if !Self::find(index, sub)?.ty.writable() {
+        if !Self::find(index, sub)?.writable() {
             return Err(AbortCode::WriteOfReadOnly);
         }
         Err(AbortCode::UnsupportedAccess)
@@ -730,6 +773,8 @@ mod tests {
         Ok(heapless::Vec::from_slice(&b[..n]).unwrap_or_default())
     }
 
+    /// The configuration as read by SDO: DEV-01 (1000h), DEV-03 (1018h, each of sub 01h-04h apart), DEV-04
+    /// (1008h-100Ah), the counts (OD-04) and the OD-16 abort codes.
     #[test]
     fn reads_the_configuration() {
         let od: CommProfile<Sizes<3, 16, 16, 0, 0>> = CommProfile::new(CFG);
@@ -745,7 +790,10 @@ mod tests {
         assert_eq!(read(&od, 0x1016, 0).unwrap()[..], [3]);
         assert_eq!(read(&od, 0x1018, 0).unwrap()[..], [4]);
         assert_eq!(read(&od, 0x1018, 1).unwrap()[..], [0xB6, 0x02, 0, 0]);
+        assert_eq!(read(&od, 0x1018, 2).unwrap()[..], [2, 0, 0, 0]);
+        assert_eq!(read(&od, 0x1018, 3).unwrap()[..], [2, 0, 1, 0]);
         assert_eq!(read(&od, 0x1018, 4).unwrap()[..], [77, 0, 0, 0]);
+        assert_eq!(od.read_expedited(0x1018, 3, &mut [0; 4]), Ok((4, 4)));
         assert_eq!(read(&od, 0x1018, 5), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1016, 4), Err(AbortCode::SubIndexDoesNotExist));
         assert_eq!(read(&od, 0x1000, 1), Err(AbortCode::SubIndexDoesNotExist));
@@ -855,6 +903,46 @@ mod tests {
             .filter_map(|n| od.object(n))
             .any(|o| (0..=255u8).filter_map(|s| od.entry(o.index, s)).any(large));
         assert_eq!(CommProfile::<Z>::SEGMENTED_UPLOADS, any);
+    }
+
+    /// PDO-36 (0602 0000h, 0609 0011h, 0604 0041h): the profile's own `pdo_resolve` answers every index and
+    /// sub-index in both directions as the provided method (`info`, then `PdoHandle::check`) does.
+    fn check_pdo_resolve<Z: ProfileSizes>() {
+        let od: CommProfile<Z> = CommProfile::new(CFG);
+        for index in (0x1000..=0x1BFF).chain(0x1F00..=0x1FFF) {
+            for sub in 0..=255u8 {
+                for dir in [PdoDir::Tpdo, PdoDir::Rpdo] {
+                    let provided =
+                        od.info(index, sub).and_then(|i| PdoHandle::check(index, sub, &i, dir, PdoHandle::NO_SLOT));
+                    assert_eq!(od.pdo_resolve(index, sub, dir), provided, "{index:04X}h sub {sub} {dir:?}");
+                }
+            }
+        }
+        assert!(od.pdo_resolve(0x1001, 0, PdoDir::Tpdo).is_ok());
+    }
+
+    /// PDO-36: no entry of the profile's table can be mapped into an RPDO (`pdo_resolve` refuses them all,
+    /// above), so `pdo_write` refuses a handle of one (0604 0041h) and changes nothing; an optional object's
+    /// handle (1013h, RPDO-mappable with `high-res-time`) is written as `write` writes it.
+    #[test]
+    fn pdo_write_serves_only_rpdo_mappable_objects() {
+        let mut od: CommProfile<Sizes<1, 16, 16, 1, 1>> = CommProfile::new(CFG);
+        let before = od.clone();
+        let h = PdoHandle { index: 0x1017, sub: 0, size: 2, slot: PdoHandle::NO_SLOT };
+        assert_eq!(od.pdo_write(&h, &[5, 0]), Err(AbortCode::NotMappable));
+        assert_eq!(od, before);
+        if let Ok(h) = od.pdo_resolve(0x1013, 0, PdoDir::Rpdo) {
+            let mut by_sdo = od.clone();
+            by_sdo.write(0x1013, 0, &[1, 2, 3, 4]).unwrap();
+            od.pdo_write(&h, &[1, 2, 3, 4]).unwrap();
+            assert_eq!(od, by_sdo);
+        }
+    }
+
+    #[test]
+    fn pdo_resolve_agrees_with_info() {
+        check_pdo_resolve::<Sizes<4, 16, 16, 4, 4>>();
+        check_pdo_resolve::<Sizes<0, 16, 16, 2, 3>>();
     }
 
     #[test]

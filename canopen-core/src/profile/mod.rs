@@ -21,6 +21,7 @@ mod table;
 
 pub use crate::heartbeat::ConsumerEntry;
 pub use crate::lss::Identity;
+pub(crate) use dict::SIZE_NOT_INDICATED;
 #[cfg(feature = "store-restore")]
 pub(crate) use dict::STORE_GO_AHEAD;
 pub use dict::{CommProfile, Unchecked};

@@ -22,57 +22,62 @@ use crate::od::{AbortCode, Access, DataType, PdoMapping};
 use crate::pdo::mapping::MAX_ENTRIES;
 
 /// Where a sub-entry's value lives; [`Slot::Count`] is the "highest sub-index supported" of its object
-/// (OD-04), computed from the table.
+/// (OD-04), computed from the table. A number rather than an enum, so that a [`Found`] is one `u32` (see
+/// there); its constants are named as the enum's variants were, and the slots of every build come first,
+/// so that a `match` on a slot in a build without the optional objects has no holes in its jump table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Slot {
-    Count,
-    DeviceType,
-    ErrorRegister,
+pub(super) struct Slot(u8);
+
+#[allow(non_upper_case_globals)] // named as enum variants: `match` arms read as they did
+impl Slot {
+    pub(super) const Count: Slot = Slot(0);
+    pub(super) const DeviceType: Slot = Slot(1);
+    pub(super) const ErrorRegister: Slot = Slot(2);
+    pub(super) const SyncCob: Slot = Slot(3);
+    pub(super) const SyncPeriod: Slot = Slot(4);
+    pub(super) const EmcyCob: Slot = Slot(5);
+    pub(super) const Consumer: Slot = Slot(6);
+    pub(super) const HeartbeatTime: Slot = Slot(7);
+    pub(super) const Identity: Slot = Slot(8);
+    pub(super) const NmtStartup: Slot = Slot(9);
+    pub(super) const PdoCob: Slot = Slot(10);
+    pub(super) const PdoType: Slot = Slot(11);
+    pub(super) const PdoInhibit: Slot = Slot(12);
+    pub(super) const PdoEventTimer: Slot = Slot(13);
+    pub(super) const PdoSyncStart: Slot = Slot(14);
+    pub(super) const MapCount: Slot = Slot(15);
+    pub(super) const MapEntry: Slot = Slot(16);
     #[cfg(feature = "error-history")]
-    History,
-    SyncCob,
-    SyncPeriod,
+    pub(super) const History: Slot = Slot(17);
     #[cfg(feature = "sync-window")]
-    SyncWindow,
+    pub(super) const SyncWindow: Slot = Slot(18);
     #[cfg(feature = "manufacturer-strings")]
-    DeviceName,
+    pub(super) const DeviceName: Slot = Slot(19);
     #[cfg(feature = "manufacturer-strings")]
-    HardwareVersion,
+    pub(super) const HardwareVersion: Slot = Slot(20);
     #[cfg(feature = "manufacturer-strings")]
-    SoftwareVersion,
+    pub(super) const SoftwareVersion: Slot = Slot(21);
     #[cfg(feature = "guarding")]
-    GuardTime,
+    pub(super) const GuardTime: Slot = Slot(22);
     #[cfg(feature = "guarding")]
-    LifeTimeFactor,
+    pub(super) const LifeTimeFactor: Slot = Slot(23);
     #[cfg(feature = "store-restore")]
-    Store,
+    pub(super) const Store: Slot = Slot(24);
     #[cfg(feature = "store-restore")]
-    Restore,
+    pub(super) const Restore: Slot = Slot(25);
     #[cfg(feature = "time")]
-    TimeCob,
-    EmcyCob,
+    pub(super) const TimeCob: Slot = Slot(26);
     #[cfg(feature = "emcy-inhibit")]
-    EmcyInhibit,
-    Consumer,
-    HeartbeatTime,
-    Identity,
+    pub(super) const EmcyInhibit: Slot = Slot(27);
     #[cfg(feature = "sync-counter")]
-    SyncOverflow,
+    pub(super) const SyncOverflow: Slot = Slot(28);
     #[cfg(feature = "error-behaviour")]
-    ErrorBehaviour,
-    NmtStartup,
-    PdoCob,
-    PdoType,
-    PdoInhibit,
-    PdoEventTimer,
-    PdoSyncStart,
-    MapCount,
-    MapEntry,
+    pub(super) const ErrorBehaviour: Slot = Slot(29);
 }
 
 /// Data type and access of a run of sub-entries (the profile uses these eight at most). The discriminant
 /// holds the encoded size (bits 0–2: 1, 2 or 4; 0 for a string), the access (bits 4–5: 0 const, 1 ro, 2 rw)
-/// and whether SDO may write it ([`WRITABLE`]), so [`Ty::size`], [`Ty::writable`] and [`Ty::parts`] are a
+/// and whether SDO may write it ([`WRITABLE`]), so [`Found::size`], [`Found::writable`] and [`Found::meta`] are a
 /// mask or a small lookup each, not a match on the eight types at every caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(u8)]
@@ -92,32 +97,21 @@ pub(super) enum Ty {
 /// The bit of a [`Ty`] discriminant that marks a type SDO may write.
 const WRITABLE: u8 = 0x80;
 
-impl Ty {
-    /// The data type and access it stands for: the data type from the size bits, the access from bits 4–5.
-    pub(super) const fn parts(self) -> (DataType, Access) {
-        let dt = match self.size() {
-            1 => DataType::Unsigned8,
-            2 => DataType::Unsigned16,
-            4 => DataType::Unsigned32,
-            _ => DataType::VisibleString,
-        };
-        let access = match (self as u8 >> 4) & 3 {
-            0 => Access::Const,
-            1 => Access::Ro,
-            _ => Access::Rw,
-        };
-        (dt, access)
-    }
-
-    /// Whether SDO may write it.
-    pub(super) const fn writable(self) -> bool {
-        self as u8 & WRITABLE != 0
-    }
-
-    /// The encoded size of a numeric entry (1, 2 or 4), 0 for a string.
-    pub(super) const fn size(self) -> usize {
-        (self as u8 & 0x07) as usize
-    }
+/// The data type and access a [`Ty`] discriminant stands for: the data type from the size bits, the access
+/// from bits 4–5.
+const fn ty_parts(bits: u8) -> (DataType, Access) {
+    let dt = match bits & 0x07 {
+        1 => DataType::Unsigned8,
+        2 => DataType::Unsigned16,
+        4 => DataType::Unsigned32,
+        _ => DataType::VisibleString,
+    };
+    let access = match (bits >> 4) & 3 {
+        0 => Access::Const,
+        1 => Access::Ro,
+        _ => Access::Rw,
+    };
+    (dt, access)
 }
 
 /// PDO-30: the mapping records are rw with dynamic mapping (feature `pdo-dynamic-mapping`), const when the
@@ -139,14 +133,21 @@ struct Row {
     index: u16,
     first: u8,
     last: u8,
-    ty: Ty,
-    slot: Slot,
+    /// The low half of the [`Found`] of its sub-entries (type and slot; `n` 0): one load where a type and a
+    /// slot were two and a shift.
+    found: u16,
+}
+
+impl Row {
+    const fn slot(&self) -> Slot {
+        Found(self.found as u32).slot()
+    }
 }
 
 const HB: u8 = 0xFF;
 
 const fn run(index: u16, first: u8, last: u8, ty: Ty, slot: Slot) -> Row {
-    Row { index, first, last, ty, slot }
+    Row { index, first, last, found: Found::new(ty, slot, 0).0 as u16 }
 }
 
 const fn var(index: u16, ty: Ty, slot: Slot) -> Row {
@@ -247,16 +248,16 @@ const fn is_fixed_var(i: usize) -> bool {
     alone && r.index >= 0x1000 && r.index <= 0x101F && r.first == 0 && r.last == 0
 }
 
-/// 1000h–101Fh: the entry of an object that is one VAR, found without a scan (the device type, error
+/// 1000h–101Fh: the entry of an object that is one VAR (the low half of its [`Found`]), found without a scan (the device type, error
 /// register and the other VARs the SDO paths read most); [`NOT_VAR`] where there is none.
-const FIXED_VAR: [(Ty, Slot); 32] = {
-    let mut t = [(Ty::U8Const, NOT_VAR); 32];
+const FIXED_VAR: [u16; 32] = {
+    let mut t = [Found::new(Ty::U8Const, NOT_VAR, 0).0 as u16; 32];
     let mut i = 0;
     while i < DESC.len() {
         if is_fixed_var(i) {
             let r = DESC[i];
-            assert!(!matches!(r.slot, NOT_VAR), "a VAR's slot is not NOT_VAR");
-            t[(r.index - 0x1000) as usize] = (r.ty, r.slot);
+            assert!(!matches!(r.slot(), NOT_VAR), "a VAR's slot is not NOT_VAR");
+            t[(r.index - 0x1000) as usize] = r.found;
         }
         i += 1;
     }
@@ -313,37 +314,58 @@ impl Counts {
     }
 }
 
-/// One sub-entry found in the table (4 bytes: returned in registers).
+/// One sub-entry found in the table: its [`Ty`]'s discriminant (bits 0–7), its [`Slot`] (bits 11–15) and `n`
+/// (bits 16–31): for [`Slot::Count`] the highest sub-index, for the PDO slots the PDO number `k` (0-based),
+/// plus [`TX`] for a TPDO object (1800h/1A00h range). One `u32`, so that the `Result` of a lookup comes back
+/// in two registers: a struct of the three fields went through memory, at every caller. The slot has 5 bits
+/// of its own (`ubfx` on the target, one instruction, and a range a `match` can know).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Found {
-    /// Data type and access.
-    pub ty: Ty,
-    /// Where the value lives.
-    pub slot: Slot,
-    /// For [`Slot::Count`]: the highest sub-index; for the PDO slots: the PDO number `k` (0-based), plus
-    /// [`TX`] for a TPDO object (1800h/1A00h range).
-    pub n: u16,
-}
+pub(super) struct Found(u32);
 
 /// The bit of [`Found::n`] that marks a TPDO object.
 const TX: u16 = 0x8000;
 const _: () = assert!(TX == 1 << 15, "walk sets TX as bit 15");
 
 impl Found {
+    const fn new(ty: Ty, slot: Slot, n: u16) -> Found {
+        assert!(slot.0 < 32, "a slot fits in 5 bits");
+        Found(ty as u32 | (slot.0 as u32) << 11 | (n as u32) << 16)
+    }
+
+    /// Where the value lives.
+    pub(super) const fn slot(self) -> Slot {
+        Slot((self.0 >> 11) as u8 & 0x1F)
+    }
+
+    /// The highest sub-index of a [`Slot::Count`], the PDO number and direction of a PDO slot.
+    pub(super) const fn n(self) -> u16 {
+        (self.0 >> 16) as u16
+    }
+
     /// A TPDO object (1800h/1A00h range).
-    pub(super) const fn tx(&self) -> bool {
-        self.n & TX != 0
+    pub(super) const fn tx(self) -> bool {
+        self.n() & TX != 0
     }
 
     /// The PDO number `k` of a PDO slot.
-    pub(super) const fn k(&self) -> usize {
-        (self.n & !TX) as usize
+    pub(super) const fn k(self) -> usize {
+        (self.n() & !TX) as usize
+    }
+
+    /// The encoded size of a numeric entry (1, 2 or 4), 0 for a string.
+    pub(super) const fn size(self) -> usize {
+        (self.0 & 0x07) as usize
+    }
+
+    /// Whether SDO may write it.
+    pub(super) const fn writable(self) -> bool {
+        self.0 as u8 & WRITABLE != 0
     }
 
     /// Data type, access and PDO mapping (only 1001h is mappable: TPDO, ERR-01).
-    pub(super) const fn meta(&self) -> (DataType, Access, PdoMapping) {
-        let (dt, access) = self.ty.parts();
-        let pdo = if matches!(self.slot, Slot::ErrorRegister) { PdoMapping::Tpdo } else { PdoMapping::No };
+    pub(super) const fn meta(self) -> (DataType, Access, PdoMapping) {
+        let (dt, access) = ty_parts(self.0 as u8);
+        let pdo = if self.slot().0 == Slot::ErrorRegister.0 { PdoMapping::Tpdo } else { PdoMapping::No };
         (dt, access, pdo)
     }
 }
@@ -354,9 +376,9 @@ impl Found {
 #[inline]
 pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     if index & !0x1F == 0x1000 && sub == 0 {
-        let (ty, slot) = FIXED_VAR[usize::from(index & 0x1F)];
-        if slot != NOT_VAR {
-            return Ok(Found { ty, slot, n: 0 });
+        let f = Found(FIXED_VAR[usize::from(index & 0x1F)].into());
+        if f.slot() != NOT_VAR {
+            return Ok(f);
         }
     }
     walk(index, sub, c)
@@ -371,9 +393,9 @@ pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
 #[inline(never)]
 pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     if index & !0x1F == 0x1000 {
-        let (ty, slot) = FIXED_VAR[usize::from(index & 0x1F)];
-        if slot != NOT_VAR {
-            return if sub == 0 { Ok(Found { ty, slot, n: 0 }) } else { Err(AbortCode::SubIndexDoesNotExist) };
+        let f = Found(FIXED_VAR[usize::from(index & 0x1F)].into());
+        if f.slot() != NOT_VAR {
+            return if sub == 0 { Ok(f) } else { Err(AbortCode::SubIndexDoesNotExist) };
         }
     }
     let (key, alt, k) = match index {
@@ -400,16 +422,17 @@ pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
     }
     let highest = highest.ok_or(AbortCode::ObjectDoesNotExist)?;
     let r = found.ok_or(AbortCode::SubIndexDoesNotExist)?;
-    let n = if matches!(r.slot, Slot::Count) { highest.into() } else { k };
-    Ok(Found { ty: r.ty, slot: r.slot, n })
+    let n = if r.slot() == Slot::Count { highest.into() } else { k };
+    Ok(Found(u32::from(r.found) | u32::from(n) << 16))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::Ty;
+    use super::{Found, Slot, Ty};
 
     /// The size and writability packed into each [`Ty`] discriminant agree with the data type and access it
-    /// stands for (OD-08: only rw entries are written by SDO; DT-05: UNSIGNEDn is n/8 bytes).
+    /// stands for, read back from a [`Found`] as the SDO paths read them (OD-08: only rw entries are written
+    /// by SDO; DT-05: UNSIGNEDn is n/8 bytes).
     #[test]
     fn ty_bits_agree_with_parts() {
         let all = [
@@ -438,12 +461,23 @@ mod tests {
             (DataType::VisibleString, Access::Const),
         ];
         for (ty, parts) in all.into_iter().zip(intended) {
-            assert_eq!(ty.parts(), parts, "{ty:?}: the name says the data type and access");
+            let f = Found::new(ty, Slot::DeviceType, 0);
+            let (dt, access, _) = f.meta();
+            assert_eq!((dt, access), parts, "{ty:?}: the name says the data type and access");
+            assert_eq!(f.size(), dt.size().unwrap_or(0), "{ty:?}");
+            assert_eq!(f.writable(), access.writable(), "{ty:?}");
         }
-        for ty in all {
-            let (dt, access) = ty.parts();
-            assert_eq!(ty.size(), dt.size().unwrap_or(0), "{ty:?}");
-            assert_eq!(ty.writable(), access.writable(), "{ty:?}");
-        }
+    }
+
+    /// A [`Found`] gives back the slot and `n` it was packed from: a PDO's number and direction (PDO-02), the
+    /// highest sub-index of a count (OD-04); only 1001h is TPDO-mappable (ERR-01).
+    #[test]
+    fn found_unpacks_its_fields() {
+        let f = Found::new(Ty::U32Rw, Slot::PdoCob, 0x8000 | 511);
+        assert_eq!((f.slot(), f.tx(), f.k(), f.size()), (Slot::PdoCob, true, 511, 4));
+        let f = Found::new(Ty::U8Const, Slot::Count, 254);
+        assert_eq!((f.slot(), f.n(), f.tx(), f.writable()), (Slot::Count, 254, false, false));
+        assert_eq!(Found::new(Ty::U8Ro, Slot::ErrorRegister, 0).meta().2, crate::od::PdoMapping::Tpdo);
+        assert_eq!(Found::new(Ty::U32Ro, Slot::DeviceType, 0).meta().2, crate::od::PdoMapping::No);
     }
 }
