@@ -19,7 +19,7 @@ FAULTS=(
   'pdo10-rpdo-inhibit-changes-while-valid @@ checklist_items @@ if rules && valid {\n                    return Err(AbortCode::InvalidValue); // PDO-10 @@ if rules && valid && f.tx() {\n                    return Err(AbortCode::InvalidValue); // PDO-10'
   'pdo10-rpdo-inhibit-not-kept @@ checklist_items @@ comm.inhibit_100us = v as u16; @@ if f.tx() { comm.inhibit_100us = v as u16; }'
   'sdo31-block-upload-time-out-from-the-take @@ sdo_node @@ if self.block_upload_sent(now) { @@ if false && self.block_upload_sent(now) {'
-  'store08-any-1011h-signature @@ store_restore @@ return Err(if v != sig { AbortCode::CannotStore } @@ return Err(if v != sig && f.slot == Slot::Store { AbortCode::CannotStore }'
+  'store08-any-1011h-signature @@ store_restore @@ return Err(if v != sig { AbortCode::CannotStore } @@ return Err(if v != sig && f.slot() == Slot::Store { AbortCode::CannotStore }'
   'store08-load-signature-byte-order @@ store_restore @@ LOAD_SIGNATURE: u32 = 0x6461_6F6C @@ LOAD_SIGNATURE: u32 = 0x6C6F_6164'
   'store09-failure-wrong-abort-code @@ store_restore @@ -> AbortCode {\n    AbortCode::HardwareError @@ -> AbortCode {\n    AbortCode::GeneralError'
   'store09-erase-failure-ignored @@ store_restore @@             st.erase(target)?;\n        }\n        let mut crc_data @@             let _ = st.erase(target);\n        }\n        let mut crc_data'
