@@ -713,7 +713,7 @@ impl<Z: ProfileSizes> ObjectDictionary for CommProfile<Z> {
     }
 
     /// One table walk, no [`SubInfo`]: of the table's entries only 1001h is mappable (TPDO, ERR-01; its
-    /// [`Found::meta`](table::Found::meta)), an UNSIGNED8 that is read; every other entry is 0604 0041h,
+    /// `Found::meta`), an UNSIGNED8 that is read; every other entry is 0604 0041h,
     /// as `PdoHandle::check` answers for its description (`meta_agrees_with_desc` and the test
     /// `pdo_resolve_agrees_with_info` check the two against each other).
     fn pdo_resolve(&self, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
