@@ -164,8 +164,8 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
     /// errors are active than the set holds, the EMCY and the history entry are still produced; the
     /// register keeps the bits of the errors it tracks.
     pub fn raise_with(&mut self, code: u16, bits: u8, manufacturer: [u8; 5]) -> bool {
-        let [a, b, c, d, e] = manufacturer;
-        self.change(code, Some(bits), u32::from_le_bytes([a, b, c, d]), e)
+        let (low, high) = manufacturer_in_registers(manufacturer);
+        self.change(code, Some(bits), low, high)
     }
 
     /// [`raise`](Self::raise) with manufacturer bytes 0-3 in `low` (little-endian) and byte 4 in `high`: the
@@ -388,6 +388,14 @@ impl EmcyProducer {
 /// default). Without it the object does not exist and EMCYs go out as soon as they are raised, as with
 /// 1015h = 0.
 pub const INHIBIT: bool = cfg!(feature = "emcy-inhibit");
+
+/// An EMCY's manufacturer bytes 0-3 as a little-endian `u32` and byte 4: how they travel to the out-of-line
+/// raise (in registers, not as an array on the caller's stack).
+#[inline]
+pub(crate) const fn manufacturer_in_registers(manufacturer: [u8; 5]) -> (u32, u8) {
+    let [a, b, c, d, e] = manufacturer;
+    (u32::from_le_bytes([a, b, c, d]), e)
+}
 
 #[cfg(test)]
 mod tests {

@@ -55,8 +55,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     // every caller built them on its stack and passed a pointer (footprint.sh node 56 B more).
     #[inline]
     pub fn raise_error(&mut self, code: u16, manufacturer: [u8; 5]) -> bool {
-        let [a, b, c, d, e] = manufacturer;
-        self.raise_error_in_registers(code, u32::from_le_bytes([a, b, c, d]), e)
+        let (low, high) = crate::emcy::manufacturer_in_registers(manufacturer);
+        self.raise_error_in_registers(code, low, high)
     }
 
     /// [`raise_error`](Self::raise_error) with manufacturer bytes 0-3 in `low` (little-endian) and byte 4 in
