@@ -39,20 +39,43 @@ if [ ${#targets[@]} -eq 0 ]; then
 fi
 [ ${#targets[@]} -gt 0 ] || { echo "no fuzz targets found"; exit 1; }
 
+# Every target is built first (one cargo at a time), then they fuzz side by side, as many at once as the machine
+# has CPUs (libFuzzer runs one process on one CPU): each still gets its full time, the step takes less.
 status=0
+runnable=()
 for t in "${targets[@]}"; do
   [ -d "seeds/$t" ] || { echo "FAIL: no checked-in corpus fuzz/seeds/$t"; status=1; continue; }
-  rm -rf "artifacts/$t"
-  mkdir -p "corpus/$t" "artifacts/$t"
   echo "== $t: build"
   cargo +nightly fuzz build -O "$t"
-  echo "== $t: ${SECONDS_PER_TARGET} s from $(find "seeds/$t" -type f | wc -l) checked-in inputs"
+  runnable+=("$t")
+done
+
+# One target's run: its libFuzzer output goes to artifacts/<t>.log, its verdict to artifacts/<t>.status.
+fuzz_one() {
+  local t=$1 start elapsed st=0
+  rm -rf "artifacts/$t"
+  mkdir -p "corpus/$t" "artifacts/$t"
   start=$(date +%s)
-  if ! cargo +nightly fuzz run -O "$t" "corpus/$t" "seeds/$t" -- \
-    -max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 2>&1 |
-    tail -n 40; then
-    status=1
-  fi
+  cargo +nightly fuzz run -O "$t" "corpus/$t" "seeds/$t" -- \
+    -max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    >"artifacts/$t.log" 2>&1 || st=1
+  elapsed=$(($(date +%s) - start))
+  echo "$st $elapsed" >"artifacts/$t.status"
+}
+
+jobs_max=$(nproc)
+for t in "${runnable[@]}"; do
+  echo "== $t: ${SECONDS_PER_TARGET} s from $(find "seeds/$t" -type f | wc -l) checked-in inputs"
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n || true; done
+  fuzz_one "$t" &
+done
+wait
+
+for t in "${runnable[@]}"; do
+  echo "== $t: libFuzzer's output (last 40 lines)"
+  tail -n 40 "artifacts/$t.log"
+  read -r st elapsed <"artifacts/$t.status" || { st=1 elapsed=0; }
+  [ "$st" -eq 0 ] || { echo "FAIL: $t: libFuzzer exited with an error"; status=1; }
   # Whatever libFuzzer left behind is kept as a seed.
   found=$(find "artifacts/$t" -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \))
   if [ -n "$found" ]; then
@@ -63,8 +86,7 @@ for t in "${targets[@]}"; do
     done
     status=1
   fi
-  elapsed=$(($(date +%s) - start))
-  if [ "$status" -eq 0 ] && [ "$elapsed" -lt "$SECONDS_PER_TARGET" ]; then
+  if [ "$st" -eq 0 ] && [ "$elapsed" -lt "$SECONDS_PER_TARGET" ]; then
     echo "FAIL: $t stopped after ${elapsed} s, before its ${SECONDS_PER_TARGET} s"
     status=1
   fi

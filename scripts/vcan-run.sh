@@ -6,15 +6,19 @@
 #     that CI's environment provides, `$SHARED/vcan/with-vcan` (SHARED defaults to ../shared beside the
 #     repository; it is not part of the repository). A VM that cannot start exits 125. The helper itself
 #     copes with CPUs the stock User-Mode Linux cannot start on (it fetches a newer one); nothing here does.
+
+# True when every interface of IFACES (comma-separated) exists on this host, so vcan_run runs here, not in a VM.
+vcan_present() {
+    local i
+    for i in ${1//,/ }; do
+        [[ -e /sys/class/net/$i ]] || return 1
+    done
+}
 vcan_run() {
     local ifaces=$1
     shift
     [[ ${1:-} == -- ]] && shift
-    local missing=0 i
-    for i in ${ifaces//,/ }; do
-        [[ -e /sys/class/net/$i ]] || missing=1
-    done
-    if [[ $missing == 0 ]]; then
+    if vcan_present "$ifaces"; then
         "$@"
     else
         local shared=${SHARED:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/../shared}
