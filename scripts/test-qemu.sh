@@ -9,7 +9,8 @@
 #   3. our own master over the same link: canopenctl --iface slcan:tcp:127.0.0.1:PORT reads 1008h and moves
 #      256 random bytes into 2105h and back by block transfer with CRC, byte-exact;
 #   4. runs the bench image under `-icount shift=0` (one instruction = 1 ns of virtual time) and prints the
-#      Cortex-M instructions per received frame of the six reference scenarios (README "Performance").
+#      Cortex-M instructions per received frame of the six reference scenarios (README "Performance"), and
+#      fails when one grew more than 2 % over its line in scripts/qemu-bench.baseline (scripts/ratchet.py).
 # Usage: scripts/test-qemu.sh   (needs qemu-system-arm; SKIP_PIP=1 skips the pip install)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -70,3 +71,9 @@ if ! timeout 300 qemu-system-arm -M mps2-an386 -nographic -monitor none -icount 
     exit 1
 fi
 cat "$OUT/bench.txt"
+# The ratchet: each scenario's figure (sync_4_tpdos per bus frame) against scripts/qemu-bench.baseline.
+awk '/instructions per received frame/ && $1 != "sync_4_tpdos" { print $1, $2 }
+     /instructions per bus frame/ { print $1, $2 }' "$OUT/bench.txt" >"$OUT/bench-figures.txt"
+[ "$(wc -l <"$OUT/bench-figures.txt")" -eq 7 ] || { echo "FAIL: expected 7 figures in the bench's table"; exit 1; }
+python3 scripts/ratchet.py scripts/qemu-bench.baseline "Cortex-M4 instructions per frame (per-bus for sync_4_tpdos)" \
+    <"$OUT/bench-figures.txt"
