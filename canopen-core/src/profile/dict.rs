@@ -945,6 +945,31 @@ mod tests {
         check_pdo_resolve::<Sizes<0, 16, 16, 2, 3>>();
     }
 
+    /// OD-16 at every index, not only 1000h–1BFFh and 1F00h–1FFFh (`check_meta`): an index of no profile
+    /// object, inside 1000h–1FFFh or outside it (a `CommProfile` asked directly), is 0602 0000h with any
+    /// sub-index, and `meta` agrees with `desc` there too.
+    #[test]
+    fn meta_agrees_with_desc_at_every_index() {
+        fn check<Z: ProfileSizes>() {
+            let od: CommProfile<Z> = CommProfile::new(CFG);
+            for index in 0..=0xFFFFu16 {
+                for sub in [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 0x40, 0x7F, 0x80, 0xFE, 0xFF] {
+                    let m = CommProfile::<Z>::meta(index, sub);
+                    assert_eq!(
+                        m,
+                        od.desc(index, sub).map(|d| (d.data_type, d.access, d.pdo)),
+                        "{index:04X}h sub {sub}"
+                    );
+                    if !(0x1000..=0x1FFF).contains(&index) {
+                        assert_eq!(m, Err(AbortCode::ObjectDoesNotExist), "{index:04X}h sub {sub}");
+                    }
+                }
+            }
+        }
+        check::<Sizes<4, 16, 16, 4, 4>>();
+        check::<Sizes<0, 16, 16, 2, 3>>();
+    }
+
     #[test]
     fn meta_agrees_with_desc() {
         check_meta::<Sizes<4, 16, 16, 4, 4>>();
