@@ -318,12 +318,14 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     fn pdo_comm(&self, f: Found) -> Option<&PdoComm> {
         let p = &self.params;
-        if f.tx() { p.tpdo_comm.as_ref() } else { p.rpdo_comm.as_ref() }.get(f.k())
+        let comm = if f.tx() { p.tpdo_comm.as_ref() } else { p.rpdo_comm.as_ref() };
+        comm.get(f.k_below(comm.len()))
     }
 
     fn pdo_map(&self, f: Found) -> Option<&PdoMapParams> {
         let p = &self.params;
-        if f.tx() { p.tpdo_map.as_ref() } else { p.rpdo_map.as_ref() }.get(f.k())
+        let map = if f.tx() { p.tpdo_map.as_ref() } else { p.rpdo_map.as_ref() };
+        map.get(f.k_below(map.len()))
     }
 
     /// The current value of a numeric entry found by `find` (0 for a string slot). Inlined on the host (into
@@ -453,7 +455,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     fn set_pdo(&mut self, f: Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let p = &mut self.params;
         let comm = if f.tx() { p.tpdo_comm.as_mut() } else { p.rpdo_comm.as_mut() };
-        let Some(comm) = comm.get_mut(f.k()) else {
+        let Some(comm) = comm.get_mut(f.k_below(comm.len())) else {
             return Err(AbortCode::ObjectDoesNotExist);
         };
         let valid = comm.is_valid();
@@ -463,7 +465,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             #[cfg(feature = "pdo-dynamic-mapping")]
             Slot::MapCount | Slot::MapEntry => {
                 let map = if f.tx() { p.tpdo_map.as_mut() } else { p.rpdo_map.as_mut() };
-                let Some(map) = map.get_mut(f.k()) else {
+                let Some(map) = map.get_mut(f.k_below(map.len())) else {
                     return Err(AbortCode::ObjectDoesNotExist);
                 };
                 // Only the highest count of the PDO's default (`PdoDefault::max_mapped`), not a copy of it.

@@ -430,6 +430,19 @@ impl Found {
         (self.n() & !TX) as usize
     }
 
+    /// [`k`](Self::k), which `walk` found below the number of PDOs `len` of its direction, clamped to `len - 1`:
+    /// for LLVM, which then knows that an index of the PDO arrays by it is in bounds (no `None` branch; a
+    /// `len` of 0 leaves it as it is).
+    pub(super) const fn k_below(self, len: usize) -> usize {
+        let k = self.k();
+        let last = len.wrapping_sub(1);
+        if k < last {
+            k
+        } else {
+            last
+        }
+    }
+
     /// The encoded size of a numeric entry (1, 2 or 4), 0 for a string.
     pub(super) const fn size(self) -> usize {
         (self.0 & 0x07) as usize
@@ -558,6 +571,7 @@ mod tests {
     fn found_unpacks_its_fields() {
         let f = Found::new(Ty::U32Rw, Slot::PdoCob, 0x8000 | 511);
         assert_eq!((f.slot(), f.tx(), f.k(), f.size()), (Slot::PdoCob, true, 511, 4));
+        assert_eq!((f.k_below(512), f.k_below(4), f.k_below(0)), (511, 3, 511));
         let f = Found::new(Ty::U8Const, Slot::Count, 254);
         assert_eq!((f.slot(), f.n(), f.tx(), f.writable()), (Slot::Count, 254, false, false));
         assert_eq!(Found::new(Ty::U8Ro, Slot::ErrorRegister, 0).meta().2, crate::od::PdoMapping::Tpdo);
