@@ -27,14 +27,13 @@
 
 mod describe;
 
-use super::table::{self, Counts, Found, Slot};
-use super::{optional, CommParams, NodeConfig, ProfileSizes};
+use super::table::{self, in_bounds, Counts, Found, Slot};
+use super::{optional, CommParams, ConsumerEntry, NodeConfig, ProfileSizes};
 use crate::cob::{is_restricted, CobIdEntry};
 use crate::emcy::NodeErrors;
 use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
 #[cfg(test)]
 use crate::od::{Access, DataType, PdoMapping};
-#[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::mapping::MAX_ENTRIES;
 #[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::PdoDefault;
@@ -360,7 +359,11 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::EmcyCob => p.emcy_cob_id,
             #[cfg(feature = "emcy-inhibit")]
             Slot::EmcyInhibit => p.emcy_inhibit_100us.into(),
-            Slot::Consumer => p.consumer(sub).map_or(0, |e| e.raw()),
+            Slot::Consumer => {
+                let all = p.heartbeat_consumers.as_ref();
+                let raw = all.get(in_bounds(usize::from(sub).wrapping_sub(1), all.len())).copied();
+                raw.map_or(0, |raw| ConsumerEntry::from_raw(raw).raw())
+            }
             Slot::HeartbeatTime => p.heartbeat_time_ms.into(),
             Slot::Identity => match sub {
                 1 => id.vendor_id,
@@ -537,7 +540,7 @@ fn pdo_comm_value(c: &PdoComm, slot: Slot) -> u32 {
 fn pdo_map_value(m: &PdoMapParams, sub: u8) -> u32 {
     match usize::from(sub).checked_sub(1) {
         None => m.count.into(),
-        Some(i) => m.entries.get(i).copied().unwrap_or(0),
+        Some(i) => m.entries.get(in_bounds(i, MAX_ENTRIES)).copied().unwrap_or(0),
     }
 }
 
@@ -573,7 +576,7 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
             if rules && map.count != 0 {
                 return Err(AbortCode::UnsupportedAccess);
             }
-            let slot = map.entries.get_mut(s - 1).ok_or(AbortCode::SubIndexDoesNotExist)?;
+            let slot = map.entries.get_mut(in_bounds(s - 1, MAX_ENTRIES)).ok_or(AbortCode::SubIndexDoesNotExist)?;
             *slot = v;
         }
     }
