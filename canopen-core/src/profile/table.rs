@@ -512,19 +512,21 @@ pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
             (key, key, 0)
         }
     };
-    // The runs of an object go up from sub 00h: each starts after the previous one's last sub-index.
-    let (mut found, mut highest, mut first) = (None, None, 0);
+    // The runs of an object go up from sub 00h: each starts after the previous one's last sub-index, so
+    // after the scan `first` is the highest sub-index + 1 (0: no rows, no object).
+    let (mut found, mut first) = (None, 0);
     for r in ROWS.iter().filter(|r| r.key == key || r.key == alt) {
         let last = if r.last == HB { c.hb() } else { r.last };
         if u32::from(sub) >= first && sub <= last {
             found = Some(r);
         }
-        highest = Some(last);
         first = u32::from(last) + 1;
     }
-    let highest = highest.ok_or(AbortCode::ObjectDoesNotExist)?;
+    if first == 0 {
+        return Err(AbortCode::ObjectDoesNotExist);
+    }
     let r = found.filter(|r| r.found != HOLE).ok_or(AbortCode::SubIndexDoesNotExist)?;
-    let n = if r.slot() == Slot::Count { highest.into() } else { k };
+    let n = if r.slot() == Slot::Count { (first - 1) as u16 } else { k };
     Ok(Found(u32::from(r.found) | u32::from(n) << 16))
 }
 
