@@ -430,7 +430,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::EmcyCob => p.emcy_cob_id = cob(p.emcy_cob_id, |e| !e.bit31())?,
             #[cfg(feature = "emcy-inhibit")]
             Slot::EmcyInhibit => p.emcy_inhibit_100us = v as u16,
-            Slot::Consumer => p.set_consumer(sub, v)?,
+            Slot::Consumer => p.set_consumer_at(in_bounds(usize::from(sub).wrapping_sub(1), Z::HB), v)?,
             Slot::HeartbeatTime => p.heartbeat_time_ms = v as u16,
             #[cfg(feature = "sync-counter")]
             Slot::SyncOverflow => {
