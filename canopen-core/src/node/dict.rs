@@ -63,7 +63,7 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
         let written = self.od.comm.write_sdo(index, sub, data, len);
         #[cfg(feature = "store-restore")]
         if matches!(index, 0x1010 | 0x1011) && written == Err(STORE_GO_AHEAD) {
-            let groups = Groups::from_sub(sub).ok_or(AbortCode::SubIndexDoesNotExist)?;
+            let groups = Groups::from_sub(sub).unwrap_or(Groups::NONE);
             let (save, drop) = if index == 0x1010 { (groups, Groups::NONE) } else { (Groups::NONE, groups) };
             return (self.save)(self.storage, save, drop, self.od.comm, self.od.app).map_err(abort_of);
         }

@@ -27,14 +27,13 @@
 
 mod describe;
 
-use super::table::{self, Counts, Found, Slot};
-use super::{optional, CommParams, NodeConfig, ProfileSizes};
+use super::table::{self, in_bounds, Counts, Found, Slot};
+use super::{optional, CommParams, ConsumerEntry, NodeConfig, ProfileSizes};
 use crate::cob::{is_restricted, CobIdEntry};
 use crate::emcy::NodeErrors;
 use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
 #[cfg(test)]
 use crate::od::{Access, DataType, PdoMapping};
-#[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::mapping::MAX_ENTRIES;
 #[cfg(feature = "pdo-dynamic-mapping")]
 use crate::pdo::PdoDefault;
@@ -318,12 +317,14 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     fn pdo_comm(&self, f: Found) -> Option<&PdoComm> {
         let p = &self.params;
-        if f.tx() { p.tpdo_comm.as_ref() } else { p.rpdo_comm.as_ref() }.get(f.k())
+        let comm = if f.tx() { p.tpdo_comm.as_ref() } else { p.rpdo_comm.as_ref() };
+        comm.get(f.k_below(comm.len()))
     }
 
     fn pdo_map(&self, f: Found) -> Option<&PdoMapParams> {
         let p = &self.params;
-        if f.tx() { p.tpdo_map.as_ref() } else { p.rpdo_map.as_ref() }.get(f.k())
+        let map = if f.tx() { p.tpdo_map.as_ref() } else { p.rpdo_map.as_ref() };
+        map.get(f.k_below(map.len()))
     }
 
     /// The current value of a numeric entry found by `find` (0 for a string slot). Inlined on the host (into
@@ -340,7 +341,15 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::DeviceType => c.device_type,
             Slot::ErrorRegister => (self.errors.register() | p.error_register).into(),
             #[cfg(feature = "error-history")]
-            Slot::History => self.errors.read_history(sub)?,
+            Slot::History => {
+                // ErrorState::read_history without its test for a sub-index above the depth (walk's rows end
+                // there): the count at sub 00h, an empty entry 0800 0024h (ERR-05, ERR-08).
+                let h = self.errors.history();
+                match usize::from(sub).checked_sub(1) {
+                    None => h.len() as u32,
+                    Some(i) => h.get(i).copied().ok_or(AbortCode::NoDataAvailable)?,
+                }
+            }
             Slot::SyncCob => p.sync.cob_id.raw(),
             Slot::SyncPeriod => p.sync.period_us,
             #[cfg(feature = "sync-window")]
@@ -358,7 +367,11 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::EmcyCob => p.emcy_cob_id,
             #[cfg(feature = "emcy-inhibit")]
             Slot::EmcyInhibit => p.emcy_inhibit_100us.into(),
-            Slot::Consumer => p.consumer(sub).map_or(0, |e| e.raw()),
+            Slot::Consumer => {
+                let all = p.heartbeat_consumers.as_ref();
+                let raw = all.get(in_bounds(usize::from(sub).wrapping_sub(1), all.len())).copied();
+                raw.map_or(0, |raw| ConsumerEntry::from_raw(raw).raw())
+            }
             Slot::HeartbeatTime => p.heartbeat_time_ms.into(),
             Slot::Identity => match sub {
                 1 => id.vendor_id,
@@ -417,7 +430,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::EmcyCob => p.emcy_cob_id = cob(p.emcy_cob_id, |e| !e.bit31())?,
             #[cfg(feature = "emcy-inhibit")]
             Slot::EmcyInhibit => p.emcy_inhibit_100us = v as u16,
-            Slot::Consumer => p.set_consumer(sub, v)?,
+            Slot::Consumer => p.set_consumer_at(in_bounds(usize::from(sub).wrapping_sub(1), Z::HB), v)?,
             Slot::HeartbeatTime => p.heartbeat_time_ms = v as u16,
             #[cfg(feature = "sync-counter")]
             Slot::SyncOverflow => {
@@ -453,7 +466,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
     fn set_pdo(&mut self, f: Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let p = &mut self.params;
         let comm = if f.tx() { p.tpdo_comm.as_mut() } else { p.rpdo_comm.as_mut() };
-        let Some(comm) = comm.get_mut(f.k()) else {
+        let Some(comm) = comm.get_mut(f.k_below(comm.len())) else {
             return Err(AbortCode::ObjectDoesNotExist);
         };
         let valid = comm.is_valid();
@@ -463,7 +476,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             #[cfg(feature = "pdo-dynamic-mapping")]
             Slot::MapCount | Slot::MapEntry => {
                 let map = if f.tx() { p.tpdo_map.as_mut() } else { p.rpdo_map.as_mut() };
-                let Some(map) = map.get_mut(f.k()) else {
+                let Some(map) = map.get_mut(f.k_below(map.len())) else {
                     return Err(AbortCode::ObjectDoesNotExist);
                 };
                 // Only the highest count of the PDO's default (`PdoDefault::max_mapped`), not a copy of it.
@@ -535,7 +548,7 @@ fn pdo_comm_value(c: &PdoComm, slot: Slot) -> u32 {
 fn pdo_map_value(m: &PdoMapParams, sub: u8) -> u32 {
     match usize::from(sub).checked_sub(1) {
         None => m.count.into(),
-        Some(i) => m.entries.get(i).copied().unwrap_or(0),
+        Some(i) => m.entries.get(in_bounds(i, MAX_ENTRIES)).copied().unwrap_or(0),
     }
 }
 
@@ -571,7 +584,7 @@ fn set_map(comm: &PdoComm, map: &mut PdoMapParams, sub: u8, v: u32, rules: bool,
             if rules && map.count != 0 {
                 return Err(AbortCode::UnsupportedAccess);
             }
-            let slot = map.entries.get_mut(s - 1).ok_or(AbortCode::SubIndexDoesNotExist)?;
+            let slot = map.entries.get_mut(in_bounds(s - 1, MAX_ENTRIES)).ok_or(AbortCode::SubIndexDoesNotExist)?;
             *slot = v;
         }
     }
@@ -943,6 +956,31 @@ mod tests {
     fn pdo_resolve_agrees_with_info() {
         check_pdo_resolve::<Sizes<4, 16, 16, 4, 4>>();
         check_pdo_resolve::<Sizes<0, 16, 16, 2, 3>>();
+    }
+
+    /// OD-16 at every index, not only 1000h–1BFFh and 1F00h–1FFFh (`check_meta`): an index of no profile
+    /// object, inside 1000h–1FFFh or outside it (a `CommProfile` asked directly), is 0602 0000h with any
+    /// sub-index, and `meta` agrees with `desc` there too.
+    #[test]
+    fn meta_agrees_with_desc_at_every_index() {
+        fn check<Z: ProfileSizes>() {
+            let od: CommProfile<Z> = CommProfile::new(CFG);
+            for index in 0..=0xFFFFu16 {
+                for sub in [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 0x40, 0x7F, 0x80, 0xFE, 0xFF] {
+                    let m = CommProfile::<Z>::meta(index, sub);
+                    assert_eq!(
+                        m,
+                        od.desc(index, sub).map(|d| (d.data_type, d.access, d.pdo)),
+                        "{index:04X}h sub {sub}"
+                    );
+                    if !(0x1000..=0x1FFF).contains(&index) {
+                        assert_eq!(m, Err(AbortCode::ObjectDoesNotExist), "{index:04X}h sub {sub}");
+                    }
+                }
+            }
+        }
+        check::<Sizes<4, 16, 16, 4, 4>>();
+        check::<Sizes<0, 16, 16, 2, 3>>();
     }
 
     #[test]

@@ -295,6 +295,12 @@ impl<Z: ProfileSizes> CommParams<Z> {
     /// ```
     pub fn set_consumer(&mut self, sub: u8, raw: u32) -> Result<(), AbortCode> {
         let i = usize::from(sub).checked_sub(1).filter(|&i| i < Z::HB).ok_or(AbortCode::SubIndexDoesNotExist)?;
+        self.set_consumer_at(i, raw)
+    }
+
+    /// [`set_consumer`](Self::set_consumer) of entry `i` (0-based, below `Z::HB`: the profile's dictionary,
+    /// whose table has only those sub-indices, calls it without the sub-index test).
+    pub(crate) fn set_consumer_at(&mut self, i: usize, raw: u32) -> Result<(), AbortCode> {
         let new = ConsumerEntry::from_raw(raw);
         if new.is_active() {
             let duplicate = self.heartbeat_consumers.as_ref().iter().enumerate().any(|(j, &other)| {
@@ -306,7 +312,9 @@ impl<Z: ProfileSizes> CommParams<Z> {
                 return Err(AbortCode::ParameterIncompatibility);
             }
         }
-        self.heartbeat_consumers[i] = raw;
+        if let Some(entry) = self.heartbeat_consumers.as_mut().get_mut(i) {
+            *entry = raw;
+        }
         Ok(())
     }
 }

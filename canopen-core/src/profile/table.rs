@@ -4,13 +4,16 @@
 //! `match` on the slot number, so an object costs a few bytes of table instead of an arm in each of
 //! `meta`, `value` and `set`.
 //!
-//! The table is described by [`DESC`] (6 bytes a row, read at compile time only): each object's runs of
-//! sub-indices, tagged with its index, one object's rows together. A device that leaves an object out (a
-//! Cargo feature) puts `#[cfg(feature = "...")]` on its rows and nothing else changes here (its `desc` arm
-//! in dict.rs goes too: the test `meta_agrees_with_desc` checks the table against the EDS descriptions of
-//! every index and sub-index). The flash holds what is built from it at compile time: [`FIXED_VAR`], the
-//! type and slot of each VAR of 1000h–101Fh by index (2 bytes each), and [`ROWS`], the rows of every other
-//! object (a VAR's row would be a second copy of its entry).
+//! The table is described by [`DESC`] (read at compile time only): each object's runs of sub-indices,
+//! tagged with its index, one object's rows together. A device that leaves an object out (a Cargo feature)
+//! puts `#[cfg(feature = "...")]` on its rows and nothing else changes here (its `desc` arm in dict.rs goes
+//! too: the test `meta_agrees_with_desc` checks the table against the EDS descriptions of every index and
+//! sub-index). The flash holds what is built from it at compile time: [`FIXED_VAR`], the type and slot of
+//! each VAR of 1000h up to the highest VAR of 1000h–101Fh by index (2 bytes each), and [`ROWS`], the rows of
+//! every other object (a VAR's row would be a second copy of its entry), 4 bytes each: the object as a
+//! one-byte key ([`key_of`]), the last sub-index of the run (it starts after the previous row's) and its
+//! type and slot. 6 bytes a row with the index and the first sub-index; the one gap, 1400h sub 04h, is a
+//! row of its own.
 //!
 //! Lookup (OD-16: unknown index 0602 0000h, unknown sub-index 0609 0011h): a VAR of 1000h–101Fh by index,
 //! anything else by one scan of the rows ([`walk`]); the PDO ranges 1400h–1BFFh read their template's rows
@@ -127,14 +130,31 @@ const MAP_ENTRY: Ty = Ty::U32Const;
 
 /// Sub-indices `first..=last` of object `index`: type, access and value slot. `last == HB` stands for the
 /// node's number of heartbeat consumers (1016h). An object's rows are together, its count row (sub 00h)
-/// first, its highest sub-index last.
+/// first, its highest sub-index last. The description the flash's [`Row`]s are built from.
 #[derive(Debug, Clone, Copy)]
-struct Row {
+struct Run {
     index: u16,
     first: u8,
     last: u8,
-    /// The low half of the [`Found`] of its sub-entries (type and slot; `n` 0): one load where a type and a
-    /// slot were two and a shift.
+    /// The low half of the [`Found`] of its sub-entries (type and slot; `n` 0).
+    found: u16,
+}
+
+impl Run {
+    const fn slot(&self) -> Slot {
+        Found(self.found as u32).slot()
+    }
+}
+
+/// One row of [`ROWS`] (4 bytes): the sub-indices from the previous row's `last + 1` (00h for an object's
+/// first row) to `last`, of the object [`key_of`] gives `key` for. A gap between two runs of an object is a
+/// row of its own, [`HOLE`].
+#[derive(Debug, Clone, Copy)]
+struct Row {
+    key: u8,
+    last: u8,
+    /// The low half of the [`Found`] of its sub-entries (type and slot; `n` 0), [`HOLE`] for sub-indices
+    /// that do not exist: one load where a type and a slot were two and a shift.
     found: u16,
 }
 
@@ -144,18 +164,46 @@ impl Row {
     }
 }
 
-const HB: u8 = 0xFF;
+/// The `found` of a [`Row`] of sub-indices that do not exist (a count's type is never a string).
+const HOLE: u16 = 0;
+const _: () = assert!(Found::new(Ty::U8Const, Slot::Count, 0).0 as u16 != HOLE);
 
-const fn run(index: u16, first: u8, last: u8, ty: Ty, slot: Slot) -> Row {
-    Row { index, first, last, found: Found::new(ty, slot, 0).0 as u16 }
+/// The one-byte key of an object of [`ROWS`]: 1000h–103Fh their low byte, the PDO templates 1400h, 1600h,
+/// 1800h and 1F80h bits 4–11 (40h, 60h, 80h, F8h); `None` for any other index (no rows).
+const fn key_of(index: u16) -> Option<u8> {
+    match index {
+        0x1000..=0x103F => Some(index as u8),
+        0x1400 | 0x1600 | 0x1800 | 0x1F80 => Some((index >> 4) as u8),
+        _ => None,
+    }
 }
 
-const fn var(index: u16, ty: Ty, slot: Slot) -> Row {
+const HB: u8 = 0xFF;
+
+const fn run(index: u16, first: u8, last: u8, ty: Ty, slot: Slot) -> Run {
+    Run { index, first, last, found: Found::new(ty, slot, 0).0 as u16 }
+}
+
+const fn var(index: u16, ty: Ty, slot: Slot) -> Run {
     run(index, 0, 0, ty, slot)
 }
 
+/// The keys of the PDO templates' rows: a mapping record's (1600h), a communication record's (1400h; a TPDO's
+/// 1800h row is keyed by its index bits 4–11, as `walk` computes it).
+const MAP: u8 = key(0x1600);
+const COMM: u8 = key(0x1400);
+const _: () = assert!(key(0x1800) == (0x1800u16 >> 4) as u8 && key(0x1400) == (0x1400u16 >> 4) as u8);
+
+/// [`key_of`] an index that has one.
+const fn key(index: u16) -> u8 {
+    match key_of(index) {
+        Some(k) => k,
+        None => panic!("an object of the table has a key"),
+    }
+}
+
 /// Sub 00h of an ARRAY/RECORD: the highest sub-index, the `last` of the object's final row.
-const fn count(index: u16) -> Row {
+const fn count(index: u16) -> Run {
     var(index, Ty::U8Const, Slot::Count)
 }
 
@@ -163,7 +211,7 @@ const fn count(index: u16) -> Row {
 /// order. The PDO records are templates: 1400h holds the communication record of every PDO (an RPDO has
 /// subs 00h–05h), 1800h adds the TPDO's sub 06h right after it, 1600h is the mapping record of both.
 /// Read at compile time only: the device's flash holds [`FIXED_VAR`] and [`ROWS`], built from it.
-const DESC: &[Row] = &[
+const DESC: &[Run] = &[
     var(0x1000, Ty::U32Ro, Slot::DeviceType),   // DEV-01
     var(0x1001, Ty::U8Ro, Slot::ErrorRegister), // ERR-01
     #[cfg(feature = "error-history")]
@@ -219,23 +267,28 @@ const DESC: &[Row] = &[
     var(0x1F80, Ty::U32Rw, Slot::NmtStartup),                     // NMT-27
 ];
 
-/// The rows of one object are together, in increasing sub-index order without overlap, and 1800h's row
-/// follows 1400h's (checked at compile time: [`walk`] takes the one row that holds a sub-index, and the
-/// final row of an object, a TPDO's 1800h row after 1400h's, for its highest sub-index).
+/// The rows of one object are together, in increasing sub-index order without overlap from sub 00h, and
+/// 1800h's row follows 1400h's (checked at compile time: [`walk`] takes the first row of an object that
+/// reaches a sub-index, and the final row of an object, a TPDO's 1800h row after 1400h's, for its highest
+/// sub-index). Every object has a key of its own ([`key_of`]).
 const _: () = {
-    let mut i = 1;
+    let mut i = 0;
     while i < DESC.len() {
-        let (prev, cur) = (DESC[i - 1], DESC[i]);
-        if prev.index != cur.index {
+        let cur = DESC[i];
+        assert!(key_of(cur.index).is_some(), "an object of the table has a key");
+        let same = i > 0 && (DESC[i - 1].index == cur.index || (DESC[i - 1].index == 0x1400 && cur.index == 0x1800));
+        if !same {
+            assert!(cur.first == 0, "an object's rows start at sub 00h");
             let mut j = 0;
             while j < i {
                 assert!(DESC[j].index != cur.index, "the rows of one object are together");
                 j += 1;
             }
+        } else {
+            let prev = DESC[i - 1];
+            assert!(prev.last != HB && cur.first > prev.last, "an object's rows go up without overlap");
         }
-        let same = prev.index == cur.index || (prev.index == 0x1400 && cur.index == 0x1800);
-        assert!(!same || (prev.last != HB && cur.first > prev.last), "an object's rows go up without overlap");
-        assert!(cur.index != 0x1800 || prev.index == 0x1400, "1800h's row follows 1400h's");
+        assert!(cur.index != 0x1800 || DESC[i - 1].index == 0x1400, "1800h's row follows 1400h's");
         i += 1;
     }
 };
@@ -248,10 +301,29 @@ const fn is_fixed_var(i: usize) -> bool {
     alone && r.index >= 0x1000 && r.index <= 0x101F && r.first == 0 && r.last == 0
 }
 
-/// 1000h–101Fh: the entry of an object that is one VAR (the low half of its [`Found`]), found without a scan (the device type, error
-/// register and the other VARs the SDO paths read most); [`NOT_VAR`] where there is none.
-const FIXED_VAR: [u16; 32] = {
-    let mut t = [Found::new(Ty::U8Const, NOT_VAR, 0).0 as u16; 32];
+/// Whether row `i` of [`DESC`] starts above the sub-index after its object's previous row: [`ROWS`] has a
+/// [`HOLE`] row before it (1400h sub 04h).
+const fn has_gap(i: usize) -> bool {
+    i > 0 && !is_fixed_var(i) && DESC[i].first != 0 && DESC[i].first > DESC[i - 1].last + 1
+}
+
+/// How many entries [`FIXED_VAR`] has: up to the highest VAR of 1000h–101Fh this build has.
+const FIXED_LEN: usize = {
+    let (mut n, mut i) = (0, 0);
+    while i < DESC.len() {
+        if is_fixed_var(i) && (DESC[i].index - 0x1000) as usize >= n {
+            n = (DESC[i].index - 0x1000) as usize + 1;
+        }
+        i += 1;
+    }
+    n
+};
+
+/// 1000h up to the highest VAR of 1000h–101Fh: the entry of an object that is one VAR (the low half of its
+/// [`Found`]), found without a scan (the device type, error register and the other VARs the SDO paths read
+/// most); [`NOT_VAR`] where there is none.
+const FIXED_VAR: [u16; FIXED_LEN] = {
+    let mut t = [Found::new(Ty::U8Const, NOT_VAR, 0).0 as u16; FIXED_LEN];
     let mut i = 0;
     while i < DESC.len() {
         if is_fixed_var(i) {
@@ -271,20 +343,26 @@ const NOT_VAR: Slot = Slot::Count;
 const ROW_COUNT: usize = {
     let (mut n, mut i) = (0, 0);
     while i < DESC.len() {
-        n += !is_fixed_var(i) as usize;
+        n += !is_fixed_var(i) as usize + has_gap(i) as usize;
         i += 1;
     }
     n
 };
 
 /// The rows [`walk`] scans: those of [`DESC`] but the VARs of [`FIXED_VAR`] (the ARRAYs and RECORDs of
-/// 1000h–101Fh, 1029h, the PDO templates and 1F80h).
+/// 1000h–101Fh, 1029h, the PDO templates and 1F80h), with a [`HOLE`] row for each gap.
 const ROWS: [Row; ROW_COUNT] = {
-    let mut t = [DESC[0]; ROW_COUNT];
+    let mut t = [Row { key: 0, last: 0, found: HOLE }; ROW_COUNT];
     let (mut n, mut i) = (0, 0);
     while i < DESC.len() {
+        let r = DESC[i];
+        let key = key(r.index);
+        if has_gap(i) {
+            t[n] = Row { key, last: r.first - 1, found: HOLE };
+            n += 1;
+        }
         if !is_fixed_var(i) {
-            t[n] = DESC[i];
+            t[n] = Row { key, last: r.last, found: r.found };
             n += 1;
         }
         i += 1;
@@ -352,6 +430,12 @@ impl Found {
         (self.n() & !TX) as usize
     }
 
+    /// [`k`](Self::k), which `walk` found below the number of PDOs `len` of its direction, as [`in_bounds`]
+    /// gives it.
+    pub(super) const fn k_below(self, len: usize) -> usize {
+        in_bounds(self.k(), len)
+    }
+
     /// The encoded size of a numeric entry (1, 2 or 4), 0 for a string.
     pub(super) const fn size(self) -> usize {
         (self.0 & 0x07) as usize
@@ -370,13 +454,26 @@ impl Found {
     }
 }
 
+/// `i`, an index below `len` that [`walk`] already checked (a PDO's number, a sub-index of 1016h or of a
+/// mapping record, minus 1), clamped to `len - 1` (`len` 0 leaves it as it is): for LLVM, which then knows
+/// that an array of `len` indexed by it is in bounds and drops the `None` branch of the `get` (footprint.sh
+/// node: 100 B in all).
+pub(super) const fn in_bounds(i: usize, len: usize) -> usize {
+    let last = len.wrapping_sub(1);
+    if i < last {
+        i
+    } else {
+        last
+    }
+}
+
 /// The sub-entry `(index, sub)` of the communication profile, or the OD-16 abort code.
 /// Inline: sub 00h of a VAR of 1000h–101Fh is an array read and two compares at the caller, the rest
 /// (other sub-indices of such a VAR too) one call of [`walk`].
 #[inline]
 pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
-    if index & !0x1F == 0x1000 && sub == 0 {
-        let f = Found(FIXED_VAR[usize::from(index & 0x1F)].into());
+    if let (Some(&f), 0) = (FIXED_VAR.get(usize::from(index.wrapping_sub(0x1000))), sub) {
+        let f = Found(f.into());
         if f.slot() != NOT_VAR {
             return Ok(f);
         }
@@ -386,14 +483,15 @@ pub(super) fn find(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
 
 /// [`find`]: a VAR of 1000h–101Fh from [`FIXED_VAR`] (sub 00h alone), any other object by one scan of
 /// [`ROWS`] (all of them: a loop that stops after the object's rows cost 44 B of flash in the node, for a
-/// path no SDO service depends on for speed): the rows tagged with the object's index (PDO-02: PDO `k` of a
-/// range at base + k reads its template's rows; a TPDO's communication record 1400h's and 1800h's). An
-/// object without rows does not exist (0602 0000h), a sub-index outside its rows neither (0609 0011h); a
-/// count (sub 00h) is the highest sub-index, the `last` of the object's final row.
+/// path no SDO service depends on for speed): the rows with the object's key (PDO-02: PDO `k` of a range at
+/// base + k reads its template's rows; a TPDO's communication record 1400h's and 1800h's). An object without
+/// rows does not exist (0602 0000h), a sub-index above its last row neither (0609 0011h), nor one of a
+/// [`HOLE`]; the row of a sub-index is the object's first that reaches it; a count (sub 00h) is the highest
+/// sub-index, the `last` of the object's final row.
 #[inline(never)]
 pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
-    if index & !0x1F == 0x1000 {
-        let f = Found(FIXED_VAR[usize::from(index & 0x1F)].into());
+    if let Some(&f) = FIXED_VAR.get(usize::from(index.wrapping_sub(0x1000))) {
+        let f = Found(f.into());
         if f.slot() != NOT_VAR {
             return if sub == 0 { Ok(f) } else { Err(AbortCode::SubIndexDoesNotExist) };
         }
@@ -405,24 +503,30 @@ pub(super) fn walk(index: u16, sub: u8, c: Counts) -> Result<Found, AbortCode> {
                 return Err(AbortCode::ObjectDoesNotExist);
             }
             // A mapping record reads 1600h's rows, a communication record 1400h's (and a TPDO's 1800h's).
-            let (key, alt) = if index & 0x200 != 0 { (0x1600, 0x1600) } else { (index & 0xFE00, 0x1400) };
+            let (key, alt) = if index & 0x200 != 0 { (MAP, MAP) } else { (((index & 0xFE00) >> 4) as u8, COMM) };
             (key, alt, k | u16::from(tx) << 15)
         }
         0x1016 if c.hb() == 0 => return Err(AbortCode::ObjectDoesNotExist),
-        _ => (index, index, 0),
+        _ => {
+            let key = key_of(index).ok_or(AbortCode::ObjectDoesNotExist)?;
+            (key, key, 0)
+        }
     };
-    // The runs of an object do not overlap: at most one holds `sub`.
-    let (mut found, mut highest) = (None, None);
-    for r in ROWS.iter().filter(|r| r.index == key || r.index == alt) {
+    // The runs of an object go up from sub 00h: each starts after the previous one's last sub-index, so
+    // after the scan `first` is the highest sub-index + 1 (0: no rows, no object).
+    let (mut found, mut first) = (None, 0);
+    for r in ROWS.iter().filter(|r| r.key == key || r.key == alt) {
         let last = if r.last == HB { c.hb() } else { r.last };
-        if sub >= r.first && sub <= last {
+        if u32::from(sub) >= first && sub <= last {
             found = Some(r);
         }
-        highest = Some(last);
+        first = u32::from(last) + 1;
     }
-    let highest = highest.ok_or(AbortCode::ObjectDoesNotExist)?;
-    let r = found.ok_or(AbortCode::SubIndexDoesNotExist)?;
-    let n = if r.slot() == Slot::Count { highest.into() } else { k };
+    if first == 0 {
+        return Err(AbortCode::ObjectDoesNotExist);
+    }
+    let r = found.filter(|r| r.found != HOLE).ok_or(AbortCode::SubIndexDoesNotExist)?;
+    let n = if r.slot() == Slot::Count { (first - 1) as u16 } else { k };
     Ok(Found(u32::from(r.found) | u32::from(n) << 16))
 }
 
@@ -475,6 +579,7 @@ mod tests {
     fn found_unpacks_its_fields() {
         let f = Found::new(Ty::U32Rw, Slot::PdoCob, 0x8000 | 511);
         assert_eq!((f.slot(), f.tx(), f.k(), f.size()), (Slot::PdoCob, true, 511, 4));
+        assert_eq!((f.k_below(512), f.k_below(4), f.k_below(0)), (511, 3, 511));
         let f = Found::new(Ty::U8Const, Slot::Count, 254);
         assert_eq!((f.slot(), f.n(), f.tx(), f.writable()), (Slot::Count, 254, false, false));
         assert_eq!(Found::new(Ty::U8Ro, Slot::ErrorRegister, 0).meta().2, crate::od::PdoMapping::Tpdo);
