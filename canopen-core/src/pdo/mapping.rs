@@ -71,29 +71,40 @@ impl Mapped {
 /// assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
 /// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().is_dummy());
 /// ```
+#[inline]
 pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
+    let mut m = Mapped::NONE;
+    resolve_into(od, raw, dir, &mut m)?;
+    Ok(m)
+}
+
+/// [`resolve`] into `slot` (left as it is, or partly written, on a refusal): no `Result` carrying the entry,
+/// which the map's resolution copied field by field into its place.
+fn resolve_into<D: ObjectDictionary + ?Sized>(
+    od: &D,
+    raw: u32,
+    dir: PdoDir,
+    slot: &mut Mapped,
+) -> Result<(), AbortCode> {
     let e = MappingEntry::from_raw(raw);
     if e.bits == 0 || e.bits > 64 {
         return Err(AbortCode::NotMappable);
     }
-    let handle = match e.dummy_bits() {
+    slot.bits = e.bits;
+    slot.handle = match e.dummy_bits() {
         None => od.pdo_resolve(e.index, e.sub, dir)?,
         Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits && (BIT_MAPPING || e.bits % 8 == 0) => {
-            let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
-            return Ok(Mapped { handle, bits: e.bits });
+            slot.handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
+            return Ok(());
         }
         Some(_) => return Err(AbortCode::NotMappable),
     };
-    checked_len(handle, e.bits)
-}
-
-/// The object must hold at least `bits` bits (PDO-36); without `pdo-bit-mapping`, exactly `bits`.
-fn checked_len(handle: PdoHandle, bits: u8) -> Result<Mapped, AbortCode> {
-    let object_bits = u16::from(handle.size) * 8;
-    if handle.size == 0 || u16::from(bits) > object_bits || (!BIT_MAPPING && u16::from(bits) != object_bits) {
+    // The object must hold at least `bits` bits (PDO-36); without `pdo-bit-mapping`, exactly `bits`.
+    let (size, bits) = (u16::from(slot.handle.size), u16::from(e.bits));
+    if size == 0 || bits > size * 8 || (!BIT_MAPPING && bits != size * 8) {
         return Err(AbortCode::NotMappable);
     }
-    Ok(Mapped { handle, bits })
+    Ok(())
 }
 
 /// A PDO's resolved mapping.
@@ -166,7 +177,8 @@ impl ResolvedMap {
         }
         let mut total = 0u16;
         for (slot, &r) in self.entries.iter_mut().zip(raw) {
-            let e = resolve(od, r, dir)?;
+            resolve_into(od, r, dir, slot)?;
+            let e = *slot;
             total += u16::from(e.bits);
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
@@ -179,7 +191,6 @@ impl ResolvedMap {
                         && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
                             || (0x1000..=0x1FFF).contains(&e.handle.index)));
             }
-            *slot = e;
         }
         self.count = raw.len() as u8;
         self.bits = total as u8;
