@@ -238,8 +238,11 @@ impl ResolvedMap {
         (self.bits as usize).div_ceil(8)
     }
 
+    /// The entries in use. The count is at most [`MAX_ENTRIES`] (`fill`); above it this would be all of them
+    /// (the same start, only the length differs: one select, no second exit, an empty slice, compiled into
+    /// each loop over them).
     fn entries(&self) -> &[Mapped] {
-        self.entries.get(..self.len()).unwrap_or(&[])
+        self.entries.get(..self.len()).unwrap_or(&self.entries)
     }
 
     /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
