@@ -313,18 +313,12 @@ impl Sync {
 
     /// Interprets a frame received on the SYNC CAN-ID at `now` (SYNC-04, SYNC-14).
     pub fn consume(&mut self, now: Instant, data: &[u8]) -> SyncInput {
-        let expect_counter = self.counter_overflow() >= 2;
-        match (expect_counter, data) {
-            (false, []) => {
-                self.last_sync = Deadline::at(now);
-                SyncInput::Sync { counter: None }
-            }
-            (true, [c]) => {
-                self.last_sync = Deadline::at(now);
-                SyncInput::Sync { counter: Some(*c) }
-            }
-            _ => SyncInput::WrongLength,
+        // DLC 1 with the counter, 0 without (one compare): the counter is the byte there is, if any.
+        if data.len() != usize::from(self.counter_overflow() >= 2) {
+            return SyncInput::WrongLength;
         }
+        self.last_sync = Deadline::at(now);
+        SyncInput::Sync { counter: data.first().copied() }
     }
 
     /// Whether `now` is inside the synchronous window that began with the last SYNC (SYNC-08/09); always true

@@ -383,7 +383,8 @@ fn sample<A: ObjectDictionary, Z: NodeSizes>(
     app: &mut A,
 ) -> ([u8; 8], u8) {
     let mut data = [0u8; 8];
-    let len = if map.direct() { map.pack_bytes(app, &mut data) } else { map.pack(&Merged { comm, app }, &mut data) };
+    let len =
+        if map.direct() { map.pack_bytes(app, &mut data) } else { map.pack(&mut Merged { comm, app }, &mut data) };
     (data, len as u8)
 }
 

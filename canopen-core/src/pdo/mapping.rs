@@ -71,29 +71,40 @@ impl Mapped {
 /// assert_eq!(resolve(&od, 0x5000_0008, PdoDir::Tpdo), Err(AbortCode::ObjectDoesNotExist));
 /// assert!(resolve(&od, 0x0005_0008, PdoDir::Rpdo).unwrap().is_dummy());
 /// ```
+#[inline]
 pub fn resolve<D: ObjectDictionary + ?Sized>(od: &D, raw: u32, dir: PdoDir) -> Result<Mapped, AbortCode> {
+    let mut m = Mapped::NONE;
+    resolve_into(od, raw, dir, &mut m)?;
+    Ok(m)
+}
+
+/// [`resolve`] into `slot` (left as it is, or partly written, on a refusal): no `Result` carrying the entry,
+/// which the map's resolution copied field by field into its place.
+fn resolve_into<D: ObjectDictionary + ?Sized>(
+    od: &D,
+    raw: u32,
+    dir: PdoDir,
+    slot: &mut Mapped,
+) -> Result<(), AbortCode> {
     let e = MappingEntry::from_raw(raw);
     if e.bits == 0 || e.bits > 64 {
         return Err(AbortCode::NotMappable);
     }
-    let handle = match e.dummy_bits() {
+    slot.bits = e.bits;
+    slot.handle = match e.dummy_bits() {
         None => od.pdo_resolve(e.index, e.sub, dir)?,
         Some(bits) if dir == PdoDir::Rpdo && e.bits <= bits && (BIT_MAPPING || e.bits % 8 == 0) => {
-            let handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
-            return Ok(Mapped { handle, bits: e.bits });
+            slot.handle = PdoHandle { index: e.index, sub: e.sub, size: 0, slot: PdoHandle::NO_SLOT };
+            return Ok(());
         }
         Some(_) => return Err(AbortCode::NotMappable),
     };
-    checked_len(handle, e.bits)
-}
-
-/// The object must hold at least `bits` bits (PDO-36); without `pdo-bit-mapping`, exactly `bits`.
-fn checked_len(handle: PdoHandle, bits: u8) -> Result<Mapped, AbortCode> {
-    let object_bits = u16::from(handle.size) * 8;
-    if handle.size == 0 || u16::from(bits) > object_bits || (!BIT_MAPPING && u16::from(bits) != object_bits) {
+    // The object must hold at least `bits` bits (PDO-36); without `pdo-bit-mapping`, exactly `bits`.
+    let (size, bits) = (u16::from(slot.handle.size), u16::from(e.bits));
+    if size == 0 || bits > size * 8 || (!BIT_MAPPING && bits != size * 8) {
         return Err(AbortCode::NotMappable);
     }
-    Ok(Mapped { handle, bits })
+    Ok(())
 }
 
 /// A PDO's resolved mapping.
@@ -166,7 +177,8 @@ impl ResolvedMap {
         }
         let mut total = 0u16;
         for (slot, &r) in self.entries.iter_mut().zip(raw) {
-            let e = resolve(od, r, dir)?;
+            resolve_into(od, r, dir, slot)?;
+            let e = *slot;
             total += u16::from(e.bits);
             if total > 64 {
                 return Err(AbortCode::PdoLengthExceeded);
@@ -179,7 +191,6 @@ impl ResolvedMap {
                         && (u16::from(e.handle.size) * 8 != u16::from(e.bits)
                             || (0x1000..=0x1FFF).contains(&e.handle.index)));
             }
-            *slot = e;
         }
         self.count = raw.len() as u8;
         self.bits = total as u8;
@@ -227,8 +238,11 @@ impl ResolvedMap {
         (self.bits as usize).div_ceil(8)
     }
 
+    /// The entries in use. The count is at most [`MAX_ENTRIES`] (`fill`); above it this would be all of them
+    /// (the same start, only the length differs: one select, no second exit, an empty slice, compiled into
+    /// each loop over them).
     fn entries(&self) -> &[Mapped] {
-        self.entries.get(..self.len()).unwrap_or(&[])
+        self.entries.get(..self.len()).unwrap_or(&self.entries)
     }
 
     /// Samples the mapped objects into a frame payload; returns its length (PDO-32). An object that cannot be
@@ -238,12 +252,12 @@ impl ResolvedMap {
     /// With the feature `pdo-bit-mapping` every mapping takes the bit-granular path here, which moves whole
     /// bytes as well (a whole object's `bits` are all its bytes): one path for the merged view, where the
     /// node routes every mapping that is not [`direct`](Self::direct), instead of two.
-    pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &D, out: &mut [u8; 8]) -> usize {
+    pub fn pack<D: ObjectDictionary + ?Sized>(&self, od: &mut D, out: &mut [u8; 8]) -> usize {
+        *out = [0; 8];
         if BIT_MAPPING {
-            *out = self.pack_bits(od).to_le_bytes();
+            self.move_bits(od, out, false);
             return self.bytes();
         }
-        *out = [0; 8];
         self.pack_bytes(od, out)
     }
 
@@ -260,20 +274,6 @@ impl ResolvedMap {
         self.bytes()
     }
 
-    /// [`pack`](Self::pack) for a mapping with entries that are not whole objects of whole bytes.
-    #[inline(never)]
-    fn pack_bits<D: ObjectDictionary + ?Sized>(&self, od: &D) -> u64 {
-        let mut acc = Bits::default();
-        for e in self.entries() {
-            let mut v = [0u8; 8];
-            if let Some(buf) = v.get_mut(..usize::from(e.handle.size)).filter(|b| !b.is_empty()) {
-                let _ = od.pdo_read(&e.handle, buf);
-            }
-            acc.push(u64::from_le_bytes(v), e.bits);
-        }
-        acc.value
-    }
-
     /// Writes a received payload (at least [`bytes`](Self::bytes) long) into the mapped objects; returns
     /// how many writes the dictionary refused (limits, hooks). With the feature `pdo-bit-mapping`, every
     /// mapping through the bit-granular path, as [`pack`](Self::pack).
@@ -281,14 +281,36 @@ impl ResolvedMap {
         if !BIT_MAPPING {
             return self.unpack_bytes(od, data);
         }
+        let mut payload = [0u8; 8];
+        let n = data.len().min(8);
+        payload[..n].copy_from_slice(&data[..n]);
+        self.move_bits(od, &mut payload, true)
+    }
+
+    /// The bit-granular path of both directions, one function for [`pack`](Self::pack) (`write` false: the
+    /// objects sampled into `payload`, which is zero) and [`unpack`](Self::unpack) (`write`: `payload`'s
+    /// entries written into the objects; returns how many writes were refused): each entry is read into or
+    /// taken out of a little-endian `u64` with one shift pair ([`Bits`]). One loop instead of a sampling
+    /// and an unpacking loop of their own; the direction is one test per entry, on a path that no whole-byte
+    /// mapping of the application takes (those are [`direct`](Self::direct)).
+    #[inline(never)]
+    fn move_bits<D: ObjectDictionary + ?Sized>(&self, od: &mut D, payload: &mut [u8; 8], write: bool) -> usize {
         let mut refused = 0;
-        let mut frame = Bits::from_payload(data);
+        let mut frame = Bits { value: u64::from_le_bytes(*payload), off: 0 };
         for e in self.entries() {
-            let v = frame.pop(e.bits).to_le_bytes();
-            if let Some(src) = v.get(..usize::from(e.handle.size)).filter(|s| !s.is_empty()) {
-                refused += usize::from(od.pdo_write(&e.handle, src).is_err());
+            let mut v = if write { frame.pop(e.bits) } else { 0 }.to_le_bytes();
+            if let Some(buf) = v.get_mut(..usize::from(e.handle.size)).filter(|b| !b.is_empty()) {
+                if write {
+                    refused += usize::from(od.pdo_write(&e.handle, buf).is_err());
+                } else {
+                    let _ = od.pdo_read(&e.handle, buf);
+                }
+            }
+            if !write {
+                frame.push(u64::from_le_bytes(v), e.bits);
             }
         }
+        *payload = frame.value.to_le_bytes();
         refused
     }
 
@@ -318,6 +340,7 @@ struct Bits {
 }
 
 impl Bits {
+    #[cfg(test)]
     fn from_payload(data: &[u8]) -> Self {
         let mut buf = [0u8; 8];
         let n = data.len().min(8);
@@ -411,7 +434,7 @@ mod tests {
     }
 
     /// Resolves `entries` as a TPDO mapping of `od` and packs it: the map, the 8 data bytes and the length.
-    fn pack(od: &Od, entries: &[u32]) -> (ResolvedMap, [u8; 8], usize) {
+    fn pack(od: &mut Od, entries: &[u32]) -> (ResolvedMap, [u8; 8], usize) {
         let m = ResolvedMap::resolve(od, entries, PdoDir::Tpdo).unwrap();
         let mut out = [0u8; 8];
         let n = m.pack(od, &mut out);
@@ -420,8 +443,8 @@ mod tests {
 
     #[test]
     fn aligned_round_trip() {
-        let od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
-        let (m, out, n) = pack(&od, &[0x2000_0108, 0x2000_0210, 0x2000_0320]);
+        let mut od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
+        let (m, out, n) = pack(&mut od, &[0x2000_0108, 0x2000_0210, 0x2000_0320]);
         assert_eq!(n, 7);
         assert_eq!(out[..7], [0x11, 0x33, 0x22, 0x77, 0x66, 0x55, 0x44]);
         let mut rx = Od::default();
@@ -434,10 +457,10 @@ mod tests {
     /// the refusal count of the byte-aligned path the node takes for a direct mapping.
     #[test]
     fn general_path_matches_bytes_path() {
-        let od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
+        let mut od = Od { a: 0x11, b: 0x2233, c: 0x4455_6677, d: true };
         let m = ResolvedMap::resolve(&od, &[0x2000_0108, 0x2000_0210, 0x2000_0320], PdoDir::Tpdo).unwrap();
         let (mut general, mut bytes) = ([0xAAu8; 8], [0u8; 8]);
-        assert_eq!((m.pack(&od, &mut general), m.pack_bytes(&od, &mut bytes)), (7, 7));
+        assert_eq!((m.pack(&mut od, &mut general), m.pack_bytes(&od, &mut bytes)), (7, 7));
         assert_eq!(general, bytes);
         let rxm =
             ResolvedMap::resolve(&od, &[0x2000_0108, 0x0005_0008, 0x2000_0210, 0x2000_0408], PdoDir::Rpdo).unwrap();
@@ -452,8 +475,8 @@ mod tests {
     #[test]
     #[cfg(feature = "pdo-bit-mapping")]
     fn bit_granularity() {
-        let od = Od { a: 0xFA, b: 0xBEEF, c: 0, d: true };
-        let (_, out, n) = pack(&od, &[0x2000_0401, 0x2000_0104, 0x2000_0210]);
+        let mut od = Od { a: 0xFA, b: 0xBEEF, c: 0, d: true };
+        let (_, out, n) = pack(&mut od, &[0x2000_0401, 0x2000_0104, 0x2000_0210]);
         assert_eq!(n, 3);
         // bit 0 = 1, bits 1..5 = 0xA, bits 5..21 = 0xBEEF
         let expect = 1u64 | (0xA << 1) | (0xBEEF << 5);
@@ -471,12 +494,12 @@ mod tests {
     #[test]
     #[cfg(not(feature = "pdo-bit-mapping"))]
     fn whole_objects_only() {
-        let od = Od { a: 0x11, b: 0x2233, c: 0, d: true };
+        let mut od = Od { a: 0x11, b: 0x2233, c: 0, d: true };
         for raw in [0x2000_0401, 0x2000_0104, 0x2000_0208, 0x2000_0220] {
             assert_eq!(resolve(&od, raw, PdoDir::Tpdo), Err(AbortCode::NotMappable), "{raw:08X}h");
         }
         assert_eq!(resolve(&od, 0x0005_0004, PdoDir::Rpdo), Err(AbortCode::NotMappable));
-        let (_, out, n) = pack(&od, &[0x2000_0108, 0x2000_0408, 0x2000_0210]);
+        let (_, out, n) = pack(&mut od, &[0x2000_0108, 0x2000_0408, 0x2000_0210]);
         assert_eq!(out[..n], [0x11, 0x01, 0x33, 0x22]);
         let rxm = ResolvedMap::resolve(&od, &[0x2000_0108, 0x0005_0008, 0x2000_0210], PdoDir::Rpdo).unwrap();
         let mut rx = Od::default();

@@ -100,7 +100,8 @@ impl PdoMapParams {
         if is_mpdo_count(self.count) {
             return &[]; // a constant `false` without the feature: the build without MPDO is unchanged
         }
-        self.entries.get(..usize::from(self.count)).unwrap_or(&self.entries)
+        // All of them for a count above MAX_ENTRIES (the same as the count clamped: one compare, no second exit).
+        &self.entries[..usize::from(self.count).min(mapping::MAX_ENTRIES)]
     }
 }
 
