@@ -467,6 +467,11 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// node.transmitted(&boot_up.unwrap());
     /// assert_eq!(node.peek_transmit(), None);
     /// ```
+    ///
+    /// Out of line on bare metal with LSS, whose hold test (CiA 305's silence around a bit-rate switch)
+    /// makes it more than a queue read: inlined in the driver's service loop it was 64 B more of the node
+    /// firmware's flash (footprint.sh). Without LSS it is the read alone, inline.
+    #[cfg_attr(all(target_os = "none", feature = "lss"), inline(never))]
     pub fn peek_transmit(&self) -> Option<CanFrame> {
         // The queue first: empty is the common answer, and the hold is then not computed.
         let frame = self.tx.front()?;
