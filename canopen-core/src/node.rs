@@ -468,10 +468,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// assert_eq!(node.peek_transmit(), None);
     /// ```
     ///
-    /// Out of line on bare metal with LSS, whose hold test (CiA 305's silence around a bit-rate switch)
-    /// makes it more than a queue read: inlined in the driver's service loop it was 64 B more of the node
-    /// firmware's flash (footprint.sh). Without LSS it is the read alone, inline.
-    #[cfg_attr(all(target_os = "none", feature = "lss"), inline(never))]
+    /// Inline everywhere: out of line on bare metal (with LSS, whose hold test makes it more than a queue
+    /// read) the node firmware was 84 B smaller, but every frame took about 10 more Cortex-M4 instructions per
+    /// peek (test-qemu.sh: expedited upload 503 -> 523, RPDO 427 -> 437 per frame).
     pub fn peek_transmit(&self) -> Option<CanFrame> {
         // The queue first: empty is the common answer, and the hold is then not computed.
         let frame = self.tx.front()?;
@@ -651,8 +650,9 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Out of line on bare metal with block transfer: inlined, the server's whole request dispatch sat in
     /// the driver's service loop, where it shares the registers with the loop's state and LLVM hoisted part
     /// of it out of the loop; out of line, the firmware's node is 276 B smaller (footprint.sh, the driver's
-    /// task 7,372 -> 4,430 B, handle_sdo 2,006 B). Not on the host (a call more per SDO frame in
-    /// `bench-node.sh`), nor without block transfer (the minimal device: 12 B more).
+    /// task 7,372 -> 4,430 B, handle_sdo 2,006 B), for about 10 more Cortex-M4 instructions per SDO frame
+    /// (test-qemu.sh: expedited upload 493 -> 503, block download 417 -> 426). Not on the host (a call more
+    /// per SDO frame in `bench-node.sh`), nor without block transfer (the minimal device: 12 B more).
     #[cfg_attr(all(target_os = "none", feature = "sdo-block"), inline(never))]
     fn handle_sdo(&mut self, now: Instant, frame: &CanFrame) {
         if frame.is_rtr() || !self.nmt.state().allows(Service::Sdo) {

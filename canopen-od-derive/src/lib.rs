@@ -81,13 +81,14 @@
 //! type (`&self` and `&mut self`); `ObjectDictionary` forwards to the core's one generic path
 //! (`canopen_core::od::data`). Same answers on every SDO path (`canopen-core/tests/derived_access.rs`,
 //! `tests/od_all_types.rs` with the test feature `od-compact-tests`). Flash per object
-//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 11.3 B instead of 46.0 B,
-//! ARRAY of 4 x UNSIGNED16 28.8 B instead of 202.8 B, RECORD of three 41.5 B instead of 151.5 B, python
-//! canopen's e35.eds application 20,532 B instead of 39,520 B. The price: two jump tables per access
+//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 11.1 B instead of 45.7 B,
+//! ARRAY of 4 x UNSIGNED16 26.9 B instead of 201.8 B, RECORD of three 42.6 B instead of 151.0 B, python
+//! canopen's e35.eds application 20,396 B instead of 39,308 B. The price: two jump tables per access
 //! instead of one, so more instructions per frame (x86-64 callgrind, `scripts/bench-node.sh` with the
 //! bench built with the test feature `od-compact-tests`, which makes its dictionaries compact: expedited
 //! download 332 instead of 292, segmented upload 350.3 instead of 245.3, RPDO to 4 objects 648.5 instead
-//! of 356.5, SYNC to 4 TPDOs 508.5 instead of 213.3 per bus frame), which is why it is not the default.
+//! of 354.5, SYNC to 4 TPDOs 508.5 instead of 209.3 per bus frame; the compact figures measured before the
+//! fourth flash diet), which is why it is not the default.
 //!
 //! `#[od(compact, zerocopy)]` (issue 41): the same tables, and no per-field code at all: each row holds its
 //! field's `offset_of!`, and the core reaches every value through the struct's bytes, which zerocopy proves
@@ -97,11 +98,11 @@
 //! derive says what stands in the way. `eds-to-rust --layout zerocopy` writes such a struct (fields ordered
 //! by alignment, the tail padded). Construct it with `zerocopy::FromZeros::new_zeroed()` (one `memset`): the
 //! node applies the defaults at boot (NMT-04). Flash per further object (`scripts/od-cost.sh`, the node a
-//! static as in a firmware): UNSIGNED32 VAR 7.0 B (match arms 46.0, `compact` 11.3), ARRAY of 4 x UNSIGNED16
-//! 9.4 B (202.8, 28.8), RECORD of three 19.0 B (151.5, 41.5), RAM the values alone; python canopen's e35.eds
-//! application 7,826 B (39,520, 20,532; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
-//! expedited download 287 (default layout 292), RPDO to 4 objects 340.5 (356.5), SYNC to 4 TPDOs 215.7 per
-//! bus frame (213.3): PDO handles hold the value's offset and size class, one jump table per value.
+//! static as in a firmware): UNSIGNED32 VAR 7.1 B (match arms 45.7, `compact` 11.1), ARRAY of 4 x UNSIGNED16
+//! 9.1 B (201.8, 26.9), RECORD of three 18.3 B (151.0, 42.6), RAM the values alone; python canopen's e35.eds
+//! application 7,532 B (39,308, 20,396; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! expedited download 287 (default layout 292), RPDO to 4 objects 338.5 (354.5), SYNC to 4 TPDOs 212.5 per
+//! bus frame (209.3): PDO handles hold the value's offset and size class, one jump table per value.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
 //! `f32`, `f64`, `I24`, `I40`, `I48`, `I56`, `U24`, `U40`, `U48`, `U56`, `TimeOfDay`, `TimeDifference`,
