@@ -281,10 +281,7 @@ impl ResolvedMap {
         if !BIT_MAPPING {
             return self.unpack_bytes(od, data);
         }
-        let mut payload = [0u8; 8];
-        let n = data.len().min(8);
-        payload[..n].copy_from_slice(&data[..n]);
-        self.move_bits(od, &mut payload, true)
+        self.move_bits(od, &mut padded(data), true)
     }
 
     /// The bit-granular path of both directions, one function for [`pack`](Self::pack) (`write` false: the
@@ -342,10 +339,7 @@ struct Bits {
 impl Bits {
     #[cfg(test)]
     fn from_payload(data: &[u8]) -> Self {
-        let mut buf = [0u8; 8];
-        let n = data.len().min(8);
-        buf[..n].copy_from_slice(&data[..n]);
-        Bits { value: u64::from_le_bytes(buf), off: 0 }
+        Bits { value: u64::from_le_bytes(padded(data)), off: 0 }
     }
 
     // An entry has 1..=64 bits and the entries total at most 64 (ResolvedMap::resolve): an entry of `bits`
@@ -368,6 +362,15 @@ impl Bits {
         self.off += u32::from(bits);
         v
     }
+}
+
+/// The first 8 bytes of a received payload, zeros after a shorter one (no entry reads past the payload's
+/// length: ResolvedMap::unpack is given at least `bytes()`).
+fn padded(data: &[u8]) -> [u8; 8] {
+    let mut buf = [0u8; 8];
+    let n = data.len().min(8);
+    buf[..n].copy_from_slice(&data[..n]);
+    buf
 }
 
 /// `x` shifted left by `l`, then right by `r` (each 0..=63): the one pair of 64-bit shifts (a dozen

@@ -28,7 +28,7 @@
 mod describe;
 
 use super::table::{self, in_bounds, Counts, Found, Slot};
-use super::{optional, CommParams, ConsumerEntry, NodeConfig, ProfileSizes};
+use super::{optional, CommParams, NodeConfig, ProfileSizes};
 use crate::cob::{is_restricted, CobIdEntry};
 use crate::emcy::NodeErrors;
 use crate::od::{check_len, copy_at, AbortCode, ObjectDictionary, PdoDir, PdoHandle, SubInfo};
@@ -341,15 +341,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::DeviceType => c.device_type,
             Slot::ErrorRegister => (self.errors.register() | p.error_register).into(),
             #[cfg(feature = "error-history")]
-            Slot::History => {
-                // ErrorState::read_history without its test for a sub-index above the depth (walk's rows end
-                // there): the count at sub 00h, an empty entry 0800 0024h (ERR-05, ERR-08).
-                let h = self.errors.history();
-                match usize::from(sub).checked_sub(1) {
-                    None => h.len() as u32,
-                    Some(i) => h.get(i).copied().ok_or(AbortCode::NoDataAvailable)?,
-                }
-            }
+            Slot::History => self.errors.read_history(sub)?,
             Slot::SyncCob => p.sync.cob_id.raw(),
             Slot::SyncPeriod => p.sync.period_us,
             #[cfg(feature = "sync-window")]
@@ -367,11 +359,7 @@ impl<Z: ProfileSizes> CommProfile<Z> {
             Slot::EmcyCob => p.emcy_cob_id,
             #[cfg(feature = "emcy-inhibit")]
             Slot::EmcyInhibit => p.emcy_inhibit_100us.into(),
-            Slot::Consumer => {
-                let all = p.heartbeat_consumers.as_ref();
-                let raw = all.get(in_bounds(usize::from(sub).wrapping_sub(1), all.len())).copied();
-                raw.map_or(0, |raw| ConsumerEntry::from_raw(raw).raw())
-            }
+            Slot::Consumer => p.consumer(sub).map_or(0, |e| e.raw()),
             Slot::HeartbeatTime => p.heartbeat_time_ms.into(),
             Slot::Identity => match sub {
                 1 => id.vendor_id,
