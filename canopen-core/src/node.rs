@@ -347,7 +347,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             nmt: Nmt::new(),
             boot_pending: true,
             producer: HeartbeatProducer::new(),
-            consumer: HeartbeatConsumer::new(),
+            consumer: HeartbeatConsumer::new_in_place(),
             #[cfg(feature = "guarding")]
             guarding: Guarding::new(),
             #[cfg(feature = "lss")]
