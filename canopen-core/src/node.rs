@@ -881,8 +881,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.sdo.set_params(SdoServerParams::default_server(self.node_id));
         self.reset_extra_sdo(); // SDO-54: 1201h+ invalid again
         let p = &self.comm.params;
-        self.sync.reconfigure(now, p.sync); // the out-of-line parameter copy, then a restart (SYNC-07, SYNC-11)
-        self.sync.start(now);
+        self.sync.take_params(now, p.sync, true); // the parameters, then a restart (SYNC-07, SYNC-11)
         self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
         self.sync_length_error = false;
         // Every RPDO, then every TPDO: one loop over both.
