@@ -850,7 +850,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             let _ = storage::load(&mut self.storage, Groups::APP, &mut self.app);
             self.push_event(Event::ResetApplication);
         }
-        let configured = self.lss_reset_communication(now); // CiA 305: a pending node-ID becomes active
+        let configured = self.lss_reset_communication(); // CiA 305: a pending node-ID becomes active
         self.comm.reset_communication();
         self.comm.errors.reset();
         self.tx_overrun_raised = false;
@@ -859,12 +859,12 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let _ = storage::load(&mut self.storage, Groups::COMM, &mut Unchecked(&mut self.comm));
         self.apply_comm_params(now);
         self.push_event(Event::ResetCommunication);
+        // HB-04: the boot-up below counts as the first heartbeat; without a node-ID the producer is off.
+        self.producer.start(now, if configured { self.comm.params.heartbeat_time_ms } else { 0 });
         if !configured {
             return; // CiA 305: no node-ID, stay in Initialisation serving LSS only
         }
-        // NMT-23: boot-up; HB-04: it counts as the first heartbeat.
-        self.send_error_control(Heartbeat(StateCode::BootUp).emit());
-        self.producer.start(now, self.comm.params.heartbeat_time_ms);
+        self.send_error_control(Heartbeat(StateCode::BootUp).emit()); // NMT-23: boot-up
         self.nmt.boot_completed();
         self.state_changed(NmtState::Initialising, NmtState::PreOperational);
         if self.comm.params.nmt_startup & 0x04 == 0 {
@@ -947,7 +947,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         true
     }
 
-    fn lss_reset_communication(&mut self, _now: Instant) -> bool {
+    fn lss_reset_communication(&mut self) -> bool {
         true
     }
 }
