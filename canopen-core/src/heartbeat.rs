@@ -263,6 +263,12 @@ impl<Z: ConsumerSizes> HeartbeatConsumer<Z> {
         HeartbeatConsumer { slots: Z::NO_CONSUMERS }
     }
 
+    /// [`new`](Self::new) built slot by slot: the node's construction stores the slots in place, where the
+    /// `const` array was a `.rodata` copy (16 B a slot) copied twice on its way into a `static` node.
+    pub(crate) fn new_in_place() -> Self {
+        HeartbeatConsumer { slots: Z::Consumers::from_fn(|_| ConsumerSlot::OFF) }
+    }
+
     /// Loads every entry from the raw 1016h values (after reset communication).
     pub fn configure(&mut self, raw: &Z::ConsumerTimes) {
         for (slot, &r) in self.slots.as_mut().iter_mut().zip(raw.as_ref()) {

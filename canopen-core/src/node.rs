@@ -347,7 +347,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             nmt: Nmt::new(),
             boot_pending: true,
             producer: HeartbeatProducer::new(),
-            consumer: HeartbeatConsumer::new(),
+            consumer: HeartbeatConsumer::new_in_place(),
             #[cfg(feature = "guarding")]
             guarding: Guarding::new(),
             #[cfg(feature = "lss")]
@@ -850,7 +850,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             let _ = storage::load(&mut self.storage, Groups::APP, &mut self.app);
             self.push_event(Event::ResetApplication);
         }
-        let configured = self.lss_reset_communication(now); // CiA 305: a pending node-ID becomes active
+        let configured = self.lss_reset_communication(); // CiA 305: a pending node-ID becomes active
         self.comm.reset_communication();
         self.comm.errors.reset();
         self.tx_overrun_raised = false;
@@ -859,12 +859,12 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let _ = storage::load(&mut self.storage, Groups::COMM, &mut Unchecked(&mut self.comm));
         self.apply_comm_params(now);
         self.push_event(Event::ResetCommunication);
+        // HB-04: the boot-up below counts as the first heartbeat; without a node-ID the producer is off.
+        self.producer.start(now, if configured { self.comm.params.heartbeat_time_ms } else { 0 });
         if !configured {
             return; // CiA 305: no node-ID, stay in Initialisation serving LSS only
         }
-        // NMT-23: boot-up; HB-04: it counts as the first heartbeat.
-        self.send_error_control(Heartbeat(StateCode::BootUp).emit());
-        self.producer.start(now, self.comm.params.heartbeat_time_ms);
+        self.send_error_control(Heartbeat(StateCode::BootUp).emit()); // NMT-23: boot-up
         self.nmt.boot_completed();
         self.state_changed(NmtState::Initialising, NmtState::PreOperational);
         if self.comm.params.nmt_startup & 0x04 == 0 {
@@ -881,8 +881,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.sdo.set_params(SdoServerParams::default_server(self.node_id));
         self.reset_extra_sdo(); // SDO-54: 1201h+ invalid again
         let p = &self.comm.params;
-        self.sync.reconfigure(now, p.sync); // the out-of-line parameter copy, then a restart (SYNC-07, SYNC-11)
-        self.sync.start(now);
+        self.sync.take_params(now, p.sync, true); // the parameters, then a restart (SYNC-07, SYNC-11)
         self.emcy.set_inhibit_100us(p.emcy_inhibit_100us);
         self.sync_length_error = false;
         // Every RPDO, then every TPDO: one loop over both.
@@ -948,7 +947,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         true
     }
 
-    fn lss_reset_communication(&mut self, _now: Instant) -> bool {
+    fn lss_reset_communication(&mut self) -> bool {
         true
     }
 }

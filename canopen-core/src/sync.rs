@@ -197,12 +197,23 @@ impl Sync {
     /// s.reconfigure(Instant::ZERO, SyncParams { cob_id: CobIdEntry::from_raw(0x4000_0080), period_us: 1000, ..SyncParams::DEFAULT });
     /// assert_eq!(s.poll_timeout(), Some(Instant::from_millis(1)));
     /// ```
+    #[inline]
+    pub fn reconfigure(&mut self, now: Instant, params: SyncParams) {
+        self.take_params(now, params, false);
+    }
+
+    /// [`reconfigure`](Self::reconfigure), and with `restart` also [`start`](Self::start) (reset
+    /// communication: the node's boot path has no second, inline copy of the scheduling).
     // Out of line: a configuration change, not a per-frame path (8 B of the minimal firmware's flash).
     #[inline(never)]
-    pub fn reconfigure(&mut self, now: Instant, params: SyncParams) {
+    pub(crate) fn take_params(&mut self, now: Instant, params: SyncParams, restart: bool) {
         let params = params.supported();
         let old = self.params;
         self.params = params;
+        if restart {
+            self.start(now);
+            return;
+        }
         if old.counter_overflow != params.counter_overflow {
             self.counter = 1;
         }

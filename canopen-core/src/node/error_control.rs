@@ -36,8 +36,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         match self.nmt.handle_command(request.command) {
             Transition::None => {}
             Transition::Enter(to) => self.state_changed(from, to),
-            Transition::ResetApplication => self.reset(true, now),
-            Transition::ResetCommunication => self.reset(false, now),
+            // One call for both resets (NMT-04/NMT-05): reset node also runs Reset Application.
+            t => self.reset(t == Transition::ResetApplication, now),
         }
     }
 

@@ -228,17 +228,14 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     }
 
     /// Reset communication: the pending node-ID becomes active. Returns false when the node has no
-    /// node-ID: it then stays in Initialisation with its heartbeat producer off.
-    pub(super) fn lss_reset_communication(&mut self, now: Instant) -> bool {
+    /// node-ID: it then stays in Initialisation with its heartbeat producer off (`Node::reset`).
+    pub(super) fn lss_reset_communication(&mut self) -> bool {
         match self.lss.apply_pending() {
             Some(id) => {
                 self.node_id = id;
                 true
             }
-            None => {
-                self.producer.start(now, 0);
-                false
-            }
+            None => false,
         }
     }
 
