@@ -41,13 +41,12 @@ pub(super) struct BlockDownload {
 impl SdoServer {
     pub(super) fn block_download_initiate<O: ObjectDictionary + ?Sized>(
         &mut self,
-        mux: Multiplexer,
         crc: bool,
         size: Option<u32>,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
+        let mux = self.mux; // the frame's (`begin`)
         let sink = self.open_sink(mux, size, od)?;
-        self.mux = mux;
         self.state = State::BlockDownload(BlockDownload {
             sink,
             offset: 0,

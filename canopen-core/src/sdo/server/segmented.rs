@@ -32,14 +32,13 @@ impl SdoServer {
                 (data, None)
             };
             if let Err(code) = od.write_expedited(mux.index, mux.sub, &data.to_le_bytes(), len) {
-                return self.refuse(od, mux, code);
+                return self.abort(od, code);
             }
             return Response {
                 frame: Some(frame(0x60, mux.bits(), 0)), // SDO-17
                 event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
             };
         }
-        self.mux = mux; // the transfer's object, or the refused initiate's for the abort
         self.initiate_segmented_download(mux, size_indicated.then_some(data), od)
             .unwrap_or_else(|code| self.abort(od, code))
     }
@@ -93,11 +92,8 @@ impl SdoServer {
     /// Initiate upload (ccs 2, SDO-23..SDO-25): expedited when the object has 1..=4 bytes, else segmented
     /// with the size indicated.
     #[inline]
-    pub(super) fn initiate_upload<O: ObjectDictionary + ?Sized>(
-        &mut self,
-        mux: Multiplexer,
-        od: &mut O,
-    ) -> Result<Response, AbortCode> {
+    pub(super) fn initiate_upload<O: ObjectDictionary + ?Sized>(&mut self, od: &mut O) -> Result<Response, AbortCode> {
+        let mux = self.mux; // the frame's (`begin`)
         let mut d = [0u8; 4];
         let (size, n) = od.read_expedited(mux.index, mux.sub, &mut d)?;
         let size = u32::try_from(size).map_err(|_| AbortCode::OutOfMemory)?;
@@ -114,7 +110,6 @@ impl SdoServer {
             // has another size: refused, and no segmented-upload path is built for it.
             return Err(AbortCode::GeneralError);
         }
-        self.mux = mux;
         let slot = od.slot(mux.index, mux.sub); // one lookup here, none per segment
         self.state = State::Upload { toggle: false, offset: 0, size, slot };
         Ok(Response::send(frame(0x41, mux.bits(), size))) // e = 0, s = 1: the size (SDO-25)
