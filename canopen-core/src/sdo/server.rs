@@ -402,10 +402,42 @@ impl Sink {
         }
     }
 
-    /// Commits `total` bytes: the scratch with one atomic [`ObjectDictionary::write`], a stream with `end_write`.
-    /// `total` is what `write` took, so at most the scratch's 8 bytes (`write` refused more).
+    /// [`write`](Self::write) at `*offset`, which then moves past the bytes: 0607 0012h when they would pass
+    /// the announced `size` (SDO-18) or the 32-bit offset. The one copy for the segmented download's segments
+    /// and the block download's held segment (out of line on a bare-metal target).
     #[inline]
-    fn finish<O: ObjectDictionary + ?Sized>(&self, mux: Multiplexer, total: u32, od: &mut O) -> Result<(), AbortCode> {
+    fn take<O: ObjectDictionary + ?Sized>(
+        &mut self,
+        mux: Multiplexer,
+        offset: &mut u32,
+        size: Option<u32>,
+        data: &[u8; 7],
+        len: usize,
+        od: &mut O,
+    ) -> Result<(), AbortCode> {
+        let end = offset.saturating_add(len as u32);
+        if size.is_some_and(|s| end > s) || end == u32::MAX {
+            return Err(AbortCode::LengthTooHigh);
+        }
+        self.write(mux, *offset, data, len, od)?;
+        *offset = end;
+        Ok(())
+    }
+
+    /// Commits `total` bytes: 0607 0013h when short of the announced `size` (SDO-18; past it was refused by
+    /// [`take`](Self::take)), else the scratch with one atomic [`ObjectDictionary::write`], a stream with
+    /// `end_write`. `total` is what `write` took, so at most the scratch's 8 bytes (`write` refused more).
+    #[inline]
+    fn finish<O: ObjectDictionary + ?Sized>(
+        &self,
+        mux: Multiplexer,
+        total: u32,
+        size: Option<u32>,
+        od: &mut O,
+    ) -> Result<(), AbortCode> {
+        if size.is_some_and(|s| total < s) {
+            return Err(AbortCode::LengthTooLow);
+        }
         match self {
             Sink::Scratch(buf) => od.write(mux.index, mux.sub, &buf[..(total as usize).min(buf.len())]),
             Sink::Stream if O::STREAMS => od.end_write(mux.index, mux.sub, total as usize),

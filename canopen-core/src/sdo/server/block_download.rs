@@ -146,10 +146,7 @@ impl SdoServer {
                 return Err(AbortCode::CrcError); // SDO-50
             }
             // short of the announced size: 0607 0013h (past it, 0607 0012h, was refused in flush_held)
-            if bd.size.is_some_and(|s| bd.offset < s) {
-                return Err(AbortCode::LengthTooLow);
-            }
-            bd.sink.finish(mux, bd.offset, od)
+            bd.sink.finish(mux, bd.offset, bd.size, od)
         })();
         if let Err(code) = r {
             return self.abort(od, code);
@@ -213,16 +210,11 @@ impl BlockDownload {
         od: &mut O,
     ) -> Result<(), AbortCode> {
         let len = len.min(7);
-        let end = self.offset.saturating_add(len as u32);
-        if self.size.is_some_and(|s| end > s) || end == u32::MAX {
-            return Err(AbortCode::LengthTooHigh);
-        }
         let [_, data @ ..] = &self.held;
-        self.sink.write(mux, self.offset, data, len, od)?;
+        self.sink.take(mux, &mut self.offset, self.size, data, len, od)?;
         if self.crc_on {
             self.crc.update(&data[..len]);
         }
-        self.offset = end;
         self.held[0] = 0;
         Ok(())
     }

@@ -128,17 +128,10 @@ impl SdoServer {
             return self.abort(od, AbortCode::ToggleNotAlternated); // SDO-30
         }
         let len = 7 - ((command >> 1) & 0x07);
-        let end = offset.saturating_add(u32::from(len));
         let r = (|| {
-            if size.is_some_and(|s| end > s) || end == u32::MAX {
-                return Err(AbortCode::LengthTooHigh);
-            }
-            sink.write(mux, *offset, data, usize::from(len), od)?;
+            sink.take(mux, offset, *size, data, usize::from(len), od)?;
             if last {
-                if size.is_some_and(|s| end < s) {
-                    return Err(AbortCode::LengthTooLow);
-                }
-                sink.finish(mux, end, od)?;
+                sink.finish(mux, *offset, *size, od)?;
             }
             Ok(())
         })();
@@ -153,7 +146,6 @@ impl SdoServer {
                 event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
             };
         }
-        *offset = end;
         *toggle = !*toggle;
         Response::send(response)
     }
