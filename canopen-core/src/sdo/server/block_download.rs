@@ -46,18 +46,7 @@ impl SdoServer {
         od: &mut O,
     ) -> Result<Response, AbortCode> {
         let mux = self.mux; // the frame's (`begin`)
-        let sink = self.open_sink(mux, size, od)?;
-        self.state = State::BlockDownload(BlockDownload {
-            sink,
-            offset: 0,
-            size,
-            crc: Crc16::new(),
-            crc_on: crc,
-            expected: 1,
-            held: [0; 8],
-            ending: false,
-            acked: 0,
-        });
+        self.open_download(mux, size, Some(crc), od)?;
         // scs 5, ss 0, sc = cc (INTEROP), blksize in byte 4 (SDO-36)
         Ok(Response::send(frame(0xA0 | (u8::from(crc) << 2), mux.bits(), u32::from(self.block_size))))
     }
@@ -178,6 +167,22 @@ pub(super) const fn is_late_segment(b0: u8, blksize: u8) -> bool {
 }
 
 impl BlockDownload {
+    /// A block download into `sink` of the announced `size`, with the CRC when `crc_on`, waiting for the
+    /// first segment of the first sub-block (`SdoServer::open_download` makes it the state).
+    pub(super) const fn new(sink: Sink, size: Option<u32>, crc_on: bool) -> Self {
+        BlockDownload {
+            sink,
+            offset: 0,
+            size,
+            crc: Crc16::new(),
+            crc_on,
+            expected: 1,
+            held: [0; 8],
+            ending: false,
+            acked: 0,
+        }
+    }
+
     /// Whether `b` is a byte-exact repeat of the initiate request that opened this transfer (a CAN-level
     /// duplicate: C0h–C6h reads as a segment with c = 1 and seqno 64..70), received before any segment.
     /// Taken as a segment, it would be out of order with c = 1 and the server would acknowledge it with
