@@ -828,7 +828,7 @@ impl SdoServer {
             }
             2 => {
                 self.begin(b, od);
-                self.initiate_upload(od)
+                return self.initiate_upload(od);
             }
             3 => return self.upload_segment(command & 0x10 != 0, od),
             4 => {

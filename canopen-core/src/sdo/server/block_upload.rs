@@ -128,7 +128,7 @@ impl SdoServer {
         }
         let size = readable_size(mux, od)?;
         if pst > 0 && size <= u32::from(pst) {
-            return self.initiate_upload(od); // SDO-43: protocol switch
+            return Ok(self.initiate_upload(od)); // SDO-43: protocol switch
         }
         self.state = State::BlockUpload(BlockUpload {
             size,
