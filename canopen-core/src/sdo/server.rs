@@ -848,7 +848,7 @@ impl SdoServer {
             6 if command & 0x01 == 0 => {
                 self.begin(b, od);
                 let size = (command & 0x02 != 0).then(data);
-                self.block_download_initiate(command & 0x04 != 0, size, od)
+                return self.open_download(size, Some(command & 0x04 != 0), od);
             }
             #[cfg(feature = "sdo-block")]
             6 => return self.block_download_end((command >> 2) & 0x07, u16::from_le_bytes([b[1], b[2]]), od),

@@ -39,18 +39,6 @@ pub(super) struct BlockDownload {
 }
 
 impl SdoServer {
-    pub(super) fn block_download_initiate<O: ObjectDictionary + ?Sized>(
-        &mut self,
-        crc: bool,
-        size: Option<u32>,
-        od: &mut O,
-    ) -> Result<Response, AbortCode> {
-        let mux = self.mux; // the frame's (`begin`)
-        self.open_download(mux, size, Some(crc), od)?;
-        // scs 5, ss 0, sc = cc (INTEROP), blksize in byte 4 (SDO-36)
-        Ok(Response::send(frame(0xA0 | (u8::from(crc) << 2), mux.bits(), u32::from(self.block_size))))
-    }
-
     #[inline]
     pub(super) fn block_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
         let (blksize, mux) = (self.block_size, self.mux);

@@ -39,47 +39,51 @@ impl SdoServer {
                 event: Some(SdoEvent::Written { index: mux.index, sub: mux.sub }),
             };
         }
-        self.initiate_segmented_download(mux, size_indicated.then_some(data), od)
-            .unwrap_or_else(|code| self.abort(od, code))
+        let size = size_indicated.then_some(data);
+        // With block transfer through the one builder of both download initiates (node -80 B); without,
+        // that builder inline here was 40 B larger than the state built after `open_sink` (minimal).
+        #[cfg(feature = "sdo-block")]
+        return self.open_download(size, None, od);
+        #[cfg(not(feature = "sdo-block"))]
+        self.initiate_segmented_download(mux, size, od).unwrap_or_else(|code| self.abort(od, code))
     }
 
     /// Initiate download, segmented (SDO-18: the announced size is checked before any data moves).
+    #[cfg(not(feature = "sdo-block"))]
     fn initiate_segmented_download<O: ObjectDictionary + ?Sized>(
         &mut self,
         mux: Multiplexer,
         size: Option<u32>,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
-        // With block transfer through the state's one builder for both initiates (node -80 B); without, the
-        // builder inline here is 40 B larger than the state built after `open_sink` (minimal).
-        #[cfg(feature = "sdo-block")]
-        self.open_download(mux, size, None, od)?;
-        #[cfg(not(feature = "sdo-block"))]
-        {
-            let sink = self.open_sink(mux, size, od)?;
-            self.state = State::Download { toggle: false, offset: 0, size, sink };
-        }
+        let sink = self.open_sink(mux, size, od)?;
+        self.state = State::Download { toggle: false, offset: 0, size, sink };
         Ok(Response::send(frame(0x60, mux.bits(), 0))) // SDO-17
     }
 
-    /// Opens a segmented download of `mux` with the announced `size` (a block download with `block`, its
-    /// CRC flag): its sink ([`open_sink`](Self::open_sink)), then the server's state, built here for both
-    /// initiates, not moved out of a `Result` at each (node -80 B).
+    /// Opens a segmented download of the server's object with the announced `size` (a block download with
+    /// `block`, its CRC flag) and answers it: its sink ([`open_sink`](Self::open_sink)), the server's state
+    /// and the response, or the abort that refuses it, built here for both initiates (not moved out of a
+    /// `Result` at each).
     #[cfg(feature = "sdo-block")]
     pub(super) fn open_download<O: ObjectDictionary + ?Sized>(
         &mut self,
-        mux: Multiplexer,
         size: Option<u32>,
         block: Option<bool>,
         od: &mut O,
-    ) -> Result<(), AbortCode> {
-        let sink = self.open_sink(mux, size, od)?;
+    ) -> Response {
+        let mux = self.mux; // the frame's (`begin`)
+        let sink = match self.open_sink(mux, size, od) {
+            Ok(sink) => sink,
+            Err(code) => return self.abort(od, code),
+        };
         if let Some(crc) = block {
             self.state = State::BlockDownload(super::block_download::BlockDownload::new(sink, size, crc));
-            return Ok(());
+            // scs 5, ss 0, sc = cc (INTEROP), blksize in byte 4 (SDO-36)
+            return Response::send(frame(0xA0 | (u8::from(crc) << 2), mux.bits(), u32::from(self.block_size)));
         }
         self.state = State::Download { toggle: false, offset: 0, size, sink };
-        Ok(())
+        Response::send(frame(0x60, mux.bits(), 0)) // SDO-17
     }
 
     /// Where a segmented or block download of `mux` with the announced `size` goes, once the entry was found
