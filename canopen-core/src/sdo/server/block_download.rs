@@ -39,30 +39,6 @@ pub(super) struct BlockDownload {
 }
 
 impl SdoServer {
-    pub(super) fn block_download_initiate<O: ObjectDictionary + ?Sized>(
-        &mut self,
-        mux: Multiplexer,
-        crc: bool,
-        size: Option<u32>,
-        od: &mut O,
-    ) -> Result<Response, AbortCode> {
-        let sink = self.open_sink(mux, size, od)?;
-        self.mux = mux;
-        self.state = State::BlockDownload(BlockDownload {
-            sink,
-            offset: 0,
-            size,
-            crc: Crc16::new(),
-            crc_on: crc,
-            expected: 1,
-            held: [0; 8],
-            ending: false,
-            acked: 0,
-        });
-        // scs 5, ss 0, sc = cc (INTEROP), blksize in byte 4 (SDO-36)
-        Ok(Response::send(frame(0xA0 | (u8::from(crc) << 2), mux.bits(), u32::from(self.block_size))))
-    }
-
     #[inline]
     pub(super) fn block_segment<O: ObjectDictionary + ?Sized>(&mut self, b: &[u8; 8], od: &mut O) -> Response {
         let (blksize, mux) = (self.block_size, self.mux);
@@ -147,10 +123,7 @@ impl SdoServer {
                 return Err(AbortCode::CrcError); // SDO-50
             }
             // short of the announced size: 0607 0013h (past it, 0607 0012h, was refused in flush_held)
-            if bd.size.is_some_and(|s| bd.offset < s) {
-                return Err(AbortCode::LengthTooLow);
-            }
-            bd.sink.finish(mux, bd.offset, od)
+            bd.sink.finish(mux, bd.offset, bd.size, od)
         })();
         if let Err(code) = r {
             return self.abort(od, code);
@@ -182,6 +155,22 @@ pub(super) const fn is_late_segment(b0: u8, blksize: u8) -> bool {
 }
 
 impl BlockDownload {
+    /// A block download into `sink` of the announced `size`, with the CRC when `crc_on`, waiting for the
+    /// first segment of the first sub-block (`SdoServer::open_download` makes it the state).
+    pub(super) const fn new(sink: Sink, size: Option<u32>, crc_on: bool) -> Self {
+        BlockDownload {
+            sink,
+            offset: 0,
+            size,
+            crc: Crc16::new(),
+            crc_on,
+            expected: 1,
+            held: [0; 8],
+            ending: false,
+            acked: 0,
+        }
+    }
+
     /// Whether `b` is a byte-exact repeat of the initiate request that opened this transfer (a CAN-level
     /// duplicate: C0h–C6h reads as a segment with c = 1 and seqno 64..70), received before any segment.
     /// Taken as a segment, it would be out of order with c = 1 and the server would acknowledge it with
@@ -214,16 +203,11 @@ impl BlockDownload {
         od: &mut O,
     ) -> Result<(), AbortCode> {
         let len = len.min(7);
-        let end = self.offset.saturating_add(len as u32);
-        if self.size.is_some_and(|s| end > s) || end == u32::MAX {
-            return Err(AbortCode::LengthTooHigh);
-        }
         let [_, data @ ..] = &self.held;
-        self.sink.write(mux, self.offset, data, len, od)?;
+        self.sink.take(mux, &mut self.offset, self.size, data, len, od)?;
         if self.crc_on {
             self.crc.update(&data[..len]);
         }
-        self.offset = end;
         self.held[0] = 0;
         Ok(())
     }

@@ -117,20 +117,19 @@ impl SdoServer {
 
     pub(super) fn block_upload_initiate<O: ObjectDictionary + ?Sized>(
         &mut self,
-        mux: Multiplexer,
         crc: bool,
         blksize: u8,
         pst: u8,
         od: &mut O,
     ) -> Result<Response, AbortCode> {
+        let mux = self.mux; // the frame's (`begin`)
         if blksize == 0 || blksize > MAX_BLKSIZE {
             return Err(AbortCode::InvalidBlockSize);
         }
         let size = readable_size(mux, od)?;
         if pst > 0 && size <= u32::from(pst) {
-            return self.initiate_upload(mux, od); // SDO-43: protocol switch
+            return Ok(self.initiate_upload(od)); // SDO-43: protocol switch
         }
-        self.mux = mux;
         self.state = State::BlockUpload(BlockUpload {
             size,
             base: 0,
