@@ -635,7 +635,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return;
         };
         match function {
-            FunctionCode::Nmt if node == 0 && !frame.is_rtr() => self.handle_node_control(now, frame),
+            FunctionCode::Nmt if node == 0 => self.handle_node_control(now, frame),
             FunctionCode::NmtErrorControl if node != 0 => self.handle_error_control(now, node, frame),
             #[cfg(not(feature = "emcy-consumer"))]
             FunctionCode::SyncEmcy if node != 0 => self.handle_emcy(node, frame),

@@ -25,7 +25,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// minimal firmware's flash).
     #[inline(never)]
     pub(super) fn handle_node_control(&mut self, now: Instant, frame: &CanFrame) {
-        // CAN-07: a malformed node-control frame is ignored.
+        // CAN-07: a malformed node-control frame is ignored; an RTR too (its data is empty), so the frame
+        // dispatch does not test for one.
         let Ok(request) = NodeControl::parse(frame.data()) else {
             return;
         };
