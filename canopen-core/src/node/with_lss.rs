@@ -205,9 +205,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// was 12 B more of the node firmware's flash).
     #[inline(never)]
     pub(super) fn handle_lss(&mut self, now: Instant, frame: &CanFrame) {
-        if frame.is_rtr() {
-            return;
-        }
+        // An RTR has no data: `serve` ignores it with every other frame that is not 8 bytes (CAN-07).
         let out = self.lss.serve(now, frame.data());
         if out.cs != 0 {
             self.send(LSS_SLAVE_ID, frame_u32(out.cs, out.value), 8);
