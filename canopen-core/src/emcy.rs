@@ -358,7 +358,10 @@ impl EmcyProducer {
 
     /// Whether an EMCY may go out at `now`.
     pub fn may_send(&self, now: Instant) -> bool {
-        !INHIBIT || self.next_allowed == Deadline::NONE || self.next_allowed.passed(now)
+        // No inhibit time running (`Deadline::NONE`, u64::MAX µs) or its end passed, in one comparison: one
+        // more than NONE wraps to 0, which every instant has passed, and `now + 1` does not overflow
+        // (instants are below 2^63 µs).
+        !INHIBIT || self.next_allowed.instant().as_micros().wrapping_add(1) <= now.as_micros() + 1
     }
 
     /// An EMCY went out at `now`.
