@@ -919,10 +919,17 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// Queues a frame; a full queue drops it, counts it and raises EMCY 8110h (CAN overrun, EEC-10) as soon
     /// as there is room again. The error stays active until the application clears it.
+    ///
+    /// Out of line on bare metal, as LTO had it there: with the full test first the smaller body was
+    /// otherwise inlined into its callers (footprint.sh node +180 B, minimal +112 B).
+    #[cfg_attr(target_os = "none", inline(never))]
     fn transmit(&mut self, frame: CanFrame) {
-        if self.tx.push_back(frame).is_err() {
+        // The full test first, as in push_event (no test of the returned frame's niche).
+        if self.tx.is_full() {
             self.tx_dropped = self.tx_dropped.saturating_add(1);
             self.tx_overrun = true;
+        } else {
+            let _ = self.tx.push_back(frame);
         }
     }
 
