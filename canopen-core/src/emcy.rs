@@ -192,20 +192,17 @@ impl<const ACTIVE: usize, const HIST: usize, const QUEUE: usize> ErrorState<ACTI
             (Some(bits), None) if code != codes::NO_ERROR => {
                 let _ = self.active.push(Active { code, bits: bits | register::GENERIC });
                 if HIST > 0 {
-                    if self.history.is_full() {
-                        self.history.pop();
-                    }
                     // Manufacturer bytes 0-1 in bits 31-16 (ERR-07).
                     let info = low << 16;
                     // Vec::insert(0, ..) would be a ptr::copy, i.e. the only users of memmove in a firmware
-                    // with insert_sorted (1.5 KB of compiler_builtins); one slot more, and the new entry
-                    // carried through the (at most HIST) entries instead: no index, so no bounds check and
-                    // no panic path.
-                    if self.history.push(0).is_ok() {
-                        let mut carry = info | u32::from(code);
-                        for slot in self.history.iter_mut() {
-                            core::mem::swap(slot, &mut carry);
-                        }
+                    // with insert_sorted (1.5 KB of compiler_builtins); one slot more (unless the history is
+                    // full), and the new entry carried through the (at most HIST) entries instead: no index,
+                    // so no bounds check and no panic path. In a full history the oldest entry is what is
+                    // left in `carry` at the end: dropped, with no pop first.
+                    let _ = self.history.push(0);
+                    let mut carry = info | u32::from(code);
+                    for slot in self.history.iter_mut() {
+                        core::mem::swap(slot, &mut carry);
                     }
                 }
                 code
@@ -358,7 +355,10 @@ impl EmcyProducer {
 
     /// Whether an EMCY may go out at `now`.
     pub fn may_send(&self, now: Instant) -> bool {
-        !INHIBIT || self.next_allowed == Deadline::NONE || self.next_allowed.passed(now)
+        // No inhibit time running (`Deadline::NONE`, u64::MAX µs) or its end passed, in one comparison: one
+        // more than NONE wraps to 0, which every instant has passed, and `now + 1` does not overflow
+        // (instants are below 2^63 µs).
+        !INHIBIT || self.next_allowed.instant().as_micros().wrapping_add(1) <= now.as_micros() + 1
     }
 
     /// An EMCY went out at `now`.

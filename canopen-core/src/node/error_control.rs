@@ -25,7 +25,8 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// minimal firmware's flash).
     #[inline(never)]
     pub(super) fn handle_node_control(&mut self, now: Instant, frame: &CanFrame) {
-        // CAN-07: a malformed node-control frame is ignored.
+        // CAN-07: a malformed node-control frame is ignored; an RTR too (its data is empty), so the frame
+        // dispatch does not test for one.
         let Ok(request) = NodeControl::parse(frame.data()) else {
             return;
         };
@@ -172,5 +173,28 @@ mod tests {
         n.set_heartbeat_time(t, 100);
         n.handle_frame(t, &CanFrame::new_rtr(0x705, 1).unwrap());
         assert_eq!(drain(&mut n), []);
+    }
+
+    /// A full event queue drops the new event and counts it (`Node::events_dropped`), keeping the older
+    /// ones in order: 20 node-control transitions (NMT-09, NMT-11) with nobody polling the 16 events.
+    #[test]
+    fn a_full_event_queue_drops_and_counts_the_newest_nmt_09_nmt_11() {
+        use crate::event::Event;
+        use crate::nmt::NmtState::{Operational, PreOperational};
+        let mut n: Node<NoApplication> = Node::new(NodeId::new(5).unwrap(), NodeConfig::DEFAULT, NoApplication);
+        n.handle_timeout(Instant::ZERO);
+        drain(&mut n);
+        while n.poll_event().is_some() {}
+        for i in 0..20 {
+            let cs = if i % 2 == 0 { 0x01 } else { 0x80 }; // start, enter pre-operational
+            n.handle_frame(Instant::ZERO, &CanFrame::new(0x000, &[cs, 5]).unwrap());
+        }
+        assert_eq!(n.events_dropped(), 4);
+        let events: Vec<Event> = core::iter::from_fn(|| n.poll_event()).collect();
+        assert_eq!(events.len(), 16);
+        for (i, e) in events.iter().enumerate() {
+            let (from, to) = if i % 2 == 0 { (PreOperational, Operational) } else { (Operational, PreOperational) };
+            assert_eq!(*e, Event::StateChanged { from, to });
+        }
     }
 }

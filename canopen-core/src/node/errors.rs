@@ -218,4 +218,24 @@ mod tests {
         assert!(n.clear_error(0xFF01));
         assert_eq!(n.poll_transmit(), CanFrame::new(0x83, &[0; 8]));
     }
+
+    /// EMCY-06, EMCY-11, CAN-07: a remote frame on another node's EMCY CAN-ID is no EMCY (it has no data):
+    /// no event, whatever its DLC, and no answer; the same CAN-ID with 8 data bytes is reported
+    /// (EMCY-11).
+    #[test]
+    fn remote_frames_on_an_emcy_id_are_no_emcy_emcy_06() {
+        let mut n: Node<NoApplication> = Node::new(NodeId::new(3).unwrap(), NodeConfig::DEFAULT, NoApplication);
+        n.handle_timeout(Instant::ZERO);
+        while n.poll_transmit().is_some() {}
+        while n.poll_event().is_some() {}
+        for dlc in [0, 1, 8] {
+            n.handle_frame(Instant::ZERO, &CanFrame::new_rtr(0x85, dlc).unwrap());
+        }
+        assert_eq!((n.poll_transmit(), n.poll_event()), (None, None));
+        // (With the `emcy-consumer` feature only a valid 1028h entry's CAN-ID is consumed: none by default.)
+        if !cfg!(feature = "emcy-consumer") {
+            n.handle_frame(Instant::ZERO, &CanFrame::new(0x85, &[0x00, 0x10, 0x01, 0, 0, 0, 0, 0]).unwrap());
+            assert!(matches!(n.poll_event(), Some(crate::event::Event::Emergency { node: 5, .. })));
+        }
+    }
 }

@@ -205,9 +205,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// was 12 B more of the node firmware's flash).
     #[inline(never)]
     pub(super) fn handle_lss(&mut self, now: Instant, frame: &CanFrame) {
-        if frame.is_rtr() {
-            return;
-        }
+        // An RTR has no data: `serve` ignores it with every other frame that is not 8 bytes (CAN-07).
         let out = self.lss.serve(now, frame.data());
         if out.cs != 0 {
             self.send(LSS_SLAVE_ID, frame_u32(out.cs, out.value), 8);
@@ -241,5 +239,39 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     fn lss_transmit(&mut self, r: LssResponse) {
         self.send(LSS_SLAVE_ID, r.emit(), 8);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::node::{NoApplication, Node};
+    use crate::profile::NodeConfig;
+    use crate::{CanFrame, Instant};
+
+    /// CAN-07: a remote frame on 7E5h is no LSS request (it has no data), whatever its DLC and the LSS
+    /// state: no answer, no event, no state change; the same requests as data frames are answered.
+    #[test]
+    fn lss_remote_frames_are_ignored_can_07() {
+        let mut n: Node<NoApplication> = Node::new_unconfigured(NodeConfig::DEFAULT, NoApplication);
+        let t = Instant::ZERO;
+        n.handle_timeout(t);
+        assert_eq!(n.poll_transmit(), None);
+        while n.poll_event().is_some() {}
+        for dlc in [0, 1, 8] {
+            n.handle_frame(t, &CanFrame::new_rtr(0x7E5, dlc).unwrap());
+        }
+        assert_eq!((n.poll_transmit(), n.poll_event()), (None, None));
+        // Identify non-configured remote slave (4Ch) as a data frame: answered 50h.
+        n.handle_frame(t, &CanFrame::new(0x7E5, &[0x4C, 0, 0, 0, 0, 0, 0, 0]).unwrap());
+        assert_eq!(n.poll_transmit(), CanFrame::new(0x7E4, &[0x50, 0, 0, 0, 0, 0, 0, 0]));
+        // In LSS configuration too, an RTR is ignored.
+        n.handle_frame(t, &CanFrame::new(0x7E5, &[0x04, 1, 0, 0, 0, 0, 0, 0]).unwrap());
+        while n.poll_event().is_some() {}
+        for dlc in [0, 2, 8] {
+            n.handle_frame(t, &CanFrame::new_rtr(0x7E5, dlc).unwrap());
+        }
+        assert_eq!((n.poll_transmit(), n.poll_event()), (None, None));
+        assert_eq!(n.lss().mode(), crate::wire::lss::LssMode::Configuration);
     }
 }
