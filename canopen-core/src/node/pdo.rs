@@ -166,7 +166,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let length_error = match outcome {
             RxOutcome::TooShort => Some(codes::PDO_LENGTH),
             RxOutcome::Apply { exceeded } => {
-                self.apply_rpdo(k, frame.data());
+                self.apply_rpdo(k, &frame.padded());
                 exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
             }
             RxOutcome::Buffered { exceeded } => {
@@ -183,16 +183,18 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.rpdo_length_state(k, length_error);
     }
 
-    /// Writes `data`, a frame of RPDO `k` at least as long as its mapping, into the mapped objects (the
-    /// leading bytes, PDO-39) and reports it: the one path of an event-driven RPDO's frame and of a
-    /// synchronous one's at the SYNC. A [`direct`](ResolvedMap::direct) mapping goes to the application
-    /// dictionary alone, byte-aligned; any other through the merged view.
-    fn apply_rpdo(&mut self, k: usize, data: &[u8]) {
+    /// Writes `data`, the padded data of a frame of RPDO `k` at least as long as its mapping, into the mapped
+    /// objects (the leading bytes, PDO-39) and reports it: the one path of an event-driven RPDO's frame and
+    /// of a synchronous one's at the SYNC. A [`direct`](ResolvedMap::direct) mapping goes to the application
+    /// dictionary alone, byte-aligned; any other through the merged view. The 8 padded bytes, not the
+    /// frame's length: no entry reads past [`bytes`](ResolvedMap::bytes), and the bit-granular path needs
+    /// no copy of a slice into a zeroed payload.
+    fn apply_rpdo(&mut self, k: usize, data: &[u8; 8]) {
         let Some(r) = self.rpdos.as_ref().get(k) else { return };
         if r.map.direct() {
             r.map.unpack_bytes(&mut self.app, data);
         } else {
-            r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, data);
+            r.map.unpack_padded(&mut Merged { comm: &mut self.comm, app: &mut self.app }, *data);
         }
         self.push_event(Event::RpdoReceived { pdo: k as u16 });
     }
