@@ -166,7 +166,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let length_error = match outcome {
             RxOutcome::TooShort => Some(codes::PDO_LENGTH),
             RxOutcome::Apply { exceeded } => {
-                self.apply_rpdo(k, &frame.padded());
+                self.apply_rpdo(k, frame.padded_ref());
                 exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
             }
             RxOutcome::Buffered { exceeded } => {
