@@ -126,12 +126,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Samples TPDO `k` and queues it.
     #[inline]
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
-        self.sample_tpdo(now, k, true);
+        self.sample_tpdo(k, true, now);
     }
 
     /// Samples TPDO `k` and queues it (`send`), or keeps the sample for the next remote request (type FCh at a
-    /// SYNC, PDO-21): one path for both, so that the SYNC does not inline a second sampling.
-    fn sample_tpdo(&mut self, now: Instant, k: usize, send: bool) {
+    /// SYNC, PDO-21): one path for both, so that the SYNC does not inline a second sampling. `now` last: `k`
+    /// and `send` in r1 and r2, the 64-bit `now` in one stacked pair (see `Node::sdo_response_out_of_line`).
+    fn sample_tpdo(&mut self, k: usize, send: bool, now: Instant) {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         let (data, len) = sample(&t.map, &mut self.comm, &mut self.app);
         if !send {
@@ -277,7 +278,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             let action = self.tpdos[k].on_sync(counter);
             if action != SyncAction::None {
                 // Sample (type FCh) only with remote requests in the build (`Tpdo::on_sync`).
-                self.sample_tpdo(now, k, !crate::pdo::RTR || action == SyncAction::Send);
+                self.sample_tpdo(k, !crate::pdo::RTR || action == SyncAction::Send, now);
             }
         }
     }
