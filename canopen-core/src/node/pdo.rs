@@ -146,10 +146,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// A frame for RPDO `k` (PDO-04: Operational only; PDO-38/39 lengths; PDO-40 window). Out of line: inlined
     /// into the driver's task (`handle_frame`) it was 48 B (node) and 72 B (minimal) more of the firmware's
-    /// flash, and on x86-64 11 instructions more per RPDO frame (`scripts/bench-node.sh`). `k` before `now`:
-    /// see `Node::sdo_response_out_of_line`.
+    /// flash, and on x86-64 11 instructions more per RPDO frame (`scripts/bench-node.sh`). `k` and
+    /// `frame` before `now` (in r1 and r2, `now` stacked): see `Node::sdo_response_out_of_line`.
     #[inline(never)]
-    pub(super) fn handle_rpdo(&mut self, k: usize, now: Instant, frame: &CanFrame) {
+    pub(super) fn handle_rpdo(&mut self, k: usize, frame: &CanFrame, now: Instant) {
         if frame.is_rtr() || self.nmt.state() != NmtState::Operational {
             return;
         }
