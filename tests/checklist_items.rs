@@ -525,6 +525,28 @@ fn rpdo_shorter_than_mapping_by_any_amount_pdo_39() {
     assert_eq!((a.byte, a.word, a.long), (0x11, 0x0122, 0x7766_5544));
 }
 
+/// PDO-39 and PDO-32 for a frame longer than its mapping: only the leading bytes are applied, for a
+/// bit-granular mapping (2000h as 4 bits, 2003h as 12 bits: 2 bytes) as for a whole-byte one (2000h: 1 byte),
+/// applied at once (FFh) or at the next SYNC (00h), whatever the bytes after the mapping hold.
+#[test]
+fn rpdo_longer_than_mapping_applies_leading_bytes_pdo_39() {
+    for ttype in [255, 0] {
+        for (mapping, byte, long) in [(&[0x2000_0004, 0x2003_000C][..], 0x5, 0xC3A), (&[0x2000_0008][..], 0xA5, 0)] {
+            let rpdo = [PdoDefault { transmission_type: ttype, mapping, ..PdoDefault::EVENT }];
+            let rpdo: &'static [PdoDefault] = Vec::leak(rpdo.to_vec());
+            let mut bus = Bus::booted(vec![node(5, NodeConfig { rpdo, ..NodeConfig::DEFAULT })]);
+            bus.inject(frame("000 [2] 01 05"));
+            bus.inject(frame("205 [8] A5 C3 FF FF FF FF FF FF"));
+            if ttype == 0 {
+                bus.inject(frame("080 [0]"));
+            }
+            let a = bus.stations[0].app();
+            assert_eq!((a.byte, a.long), (byte, long), "type {ttype:02X}h, mapping {mapping:08X?}");
+            assert_eq!(bus.frames_on(0x085).last().map(|f| f.1[..3].to_vec()), Some(vec![0x20, 0x82, 0x11]));
+        }
+    }
+}
+
 /// SYNC-09/PDO-40 at the boundary: with a 1 ms window (1007h), a synchronous RPDO received exactly 1000 µs
 /// after the SYNC is inside the window (applied at the next SYNC); one received 1001 µs after is outside
 /// (discarded, the next SYNC applies nothing).

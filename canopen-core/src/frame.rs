@@ -191,6 +191,13 @@ impl CanFrame {
         self.data
     }
 
+    /// [`padded`](Self::padded) in place: a reference to the frame's 8 data bytes, for a callee that reads
+    /// them where they are (the node's RPDO path) instead of a copy on the caller's stack.
+    #[inline]
+    pub(crate) const fn padded_ref(&self) -> &[u8; 8] {
+        &self.data
+    }
+
     /// Converts a driver's frame; `None` for a 29-bit frame (CAN-01: the stack ignores them).
     ///
     /// ```

@@ -615,7 +615,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             return self.handle_sync(now, frame);
         }
         if let Some(k) = self.rpdo_for(id) {
-            return self.handle_rpdo(k, now, frame);
+            return self.handle_rpdo(k, frame, now);
         }
         if frame.is_rtr() {
             if let Some(k) = self.rtr_tpdo_for(id) {

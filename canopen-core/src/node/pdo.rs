@@ -126,12 +126,13 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
     /// Samples TPDO `k` and queues it.
     #[inline]
     pub(super) fn send_tpdo(&mut self, now: Instant, k: usize) {
-        self.sample_tpdo(now, k, true);
+        self.sample_tpdo(k, true, now);
     }
 
     /// Samples TPDO `k` and queues it (`send`), or keeps the sample for the next remote request (type FCh at a
-    /// SYNC, PDO-21): one path for both, so that the SYNC does not inline a second sampling.
-    fn sample_tpdo(&mut self, now: Instant, k: usize, send: bool) {
+    /// SYNC, PDO-21): one path for both, so that the SYNC does not inline a second sampling. `now` last: `k`
+    /// and `send` in r1 and r2, the 64-bit `now` in one stacked pair (see `Node::sdo_response_out_of_line`).
+    fn sample_tpdo(&mut self, k: usize, send: bool, now: Instant) {
         let Some(t) = self.tpdos.as_mut().get_mut(k) else { return };
         let (data, len) = sample(&t.map, &mut self.comm, &mut self.app);
         if !send {
@@ -145,10 +146,10 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
 
     /// A frame for RPDO `k` (PDO-04: Operational only; PDO-38/39 lengths; PDO-40 window). Out of line: inlined
     /// into the driver's task (`handle_frame`) it was 48 B (node) and 72 B (minimal) more of the firmware's
-    /// flash, and on x86-64 11 instructions more per RPDO frame (`scripts/bench-node.sh`). `k` before `now`:
-    /// see `Node::sdo_response_out_of_line`.
+    /// flash, and on x86-64 11 instructions more per RPDO frame (`scripts/bench-node.sh`). `k` and
+    /// `frame` before `now` (in r1 and r2, `now` stacked): see `Node::sdo_response_out_of_line`.
     #[inline(never)]
-    pub(super) fn handle_rpdo(&mut self, k: usize, now: Instant, frame: &CanFrame) {
+    pub(super) fn handle_rpdo(&mut self, k: usize, frame: &CanFrame, now: Instant) {
         if frame.is_rtr() || self.nmt.state() != NmtState::Operational {
             return;
         }
@@ -166,7 +167,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         let length_error = match outcome {
             RxOutcome::TooShort => Some(codes::PDO_LENGTH),
             RxOutcome::Apply { exceeded } => {
-                self.apply_rpdo(k, frame.data());
+                self.apply_rpdo(k, frame.padded_ref());
                 exceeded.then_some(codes::PDO_LENGTH_EXCEEDED)
             }
             RxOutcome::Buffered { exceeded } => {
@@ -183,16 +184,18 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
         self.rpdo_length_state(k, length_error);
     }
 
-    /// Writes `data`, a frame of RPDO `k` at least as long as its mapping, into the mapped objects (the
-    /// leading bytes, PDO-39) and reports it: the one path of an event-driven RPDO's frame and of a
-    /// synchronous one's at the SYNC. A [`direct`](ResolvedMap::direct) mapping goes to the application
-    /// dictionary alone, byte-aligned; any other through the merged view.
-    fn apply_rpdo(&mut self, k: usize, data: &[u8]) {
+    /// Writes `data`, the padded data of a frame of RPDO `k` at least as long as its mapping, into the mapped
+    /// objects (the leading bytes, PDO-39) and reports it: the one path of an event-driven RPDO's frame and
+    /// of a synchronous one's at the SYNC. A [`direct`](ResolvedMap::direct) mapping goes to the application
+    /// dictionary alone, byte-aligned; any other through the merged view. The 8 padded bytes, not the
+    /// frame's length: no entry reads past [`bytes`](ResolvedMap::bytes), and the bit-granular path needs
+    /// no copy of a slice into a zeroed payload.
+    fn apply_rpdo(&mut self, k: usize, data: &[u8; 8]) {
         let Some(r) = self.rpdos.as_ref().get(k) else { return };
         if r.map.direct() {
             r.map.unpack_bytes(&mut self.app, data);
         } else {
-            r.map.unpack(&mut Merged { comm: &mut self.comm, app: &mut self.app }, data);
+            r.map.unpack_padded(&mut Merged { comm: &mut self.comm, app: &mut self.app }, *data);
         }
         self.push_event(Event::RpdoReceived { pdo: k as u16 });
     }
@@ -275,7 +278,7 @@ impl<A: ObjectDictionary, Z: NodeSizes, S: Storage> Node<A, Z, S> {
             let action = self.tpdos[k].on_sync(counter);
             if action != SyncAction::None {
                 // Sample (type FCh) only with remote requests in the build (`Tpdo::on_sync`).
-                self.sample_tpdo(now, k, !crate::pdo::RTR || action == SyncAction::Send);
+                self.sample_tpdo(k, !crate::pdo::RTR || action == SyncAction::Send, now);
             }
         }
     }

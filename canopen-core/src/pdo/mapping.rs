@@ -281,7 +281,18 @@ impl ResolvedMap {
         if !BIT_MAPPING {
             return self.unpack_bytes(od, data);
         }
-        self.move_bits(od, &mut padded(data), true)
+        self.unpack_padded(od, padded(data))
+    }
+
+    /// [`unpack`](Self::unpack) of a payload already padded to 8 bytes (a received frame's
+    /// [`padded`](crate::CanFrame::padded) data, at least [`bytes`](Self::bytes) of them received): the node's
+    /// one path for a frame and for a synchronous RPDO's data at the SYNC, with no copy of a slice of the
+    /// frame's length.
+    pub(crate) fn unpack_padded<D: ObjectDictionary + ?Sized>(&self, od: &mut D, mut data: [u8; 8]) -> usize {
+        if !BIT_MAPPING {
+            return self.unpack_bytes(od, &data);
+        }
+        self.move_bits(od, &mut data, true)
     }
 
     /// The bit-granular path of both directions, one function for [`pack`](Self::pack) (`write` false: the
