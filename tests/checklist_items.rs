@@ -525,11 +525,11 @@ fn rpdo_shorter_than_mapping_by_any_amount_pdo_39() {
     assert_eq!((a.byte, a.word, a.long), (0x11, 0x0122, 0x7766_5544));
 }
 
-/// PDO-39 and PDO-32 for a frame longer than its mapping: only the leading bytes are applied, for a
+/// PDO-38 and PDO-32 for a frame longer than its mapping: only the leading bytes are applied, for a
 /// bit-granular mapping (2000h as 4 bits, 2003h as 12 bits: 2 bytes) as for a whole-byte one (2000h: 1 byte),
 /// applied at once (FFh) or at the next SYNC (00h), whatever the bytes after the mapping hold.
 #[test]
-fn rpdo_longer_than_mapping_applies_leading_bytes_pdo_39() {
+fn rpdo_longer_than_mapping_applies_leading_bytes_pdo_38() {
     for ttype in [255, 0] {
         for (mapping, byte, long) in [(&[0x2000_0004, 0x2003_000C][..], 0x5, 0xC3A), (&[0x2000_0008][..], 0xA5, 0)] {
             let rpdo = [PdoDefault { transmission_type: ttype, mapping, ..PdoDefault::EVENT }];
