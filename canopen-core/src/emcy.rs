@@ -356,9 +356,10 @@ impl EmcyProducer {
     /// Whether an EMCY may go out at `now`.
     pub fn may_send(&self, now: Instant) -> bool {
         // No inhibit time running (`Deadline::NONE`, u64::MAX µs) or its end passed, in one comparison: one
-        // more than NONE wraps to 0, which every instant has passed, and `now + 1` does not overflow
-        // (instants are below 2^63 µs).
-        !INHIBIT || self.next_allowed.instant().as_micros().wrapping_add(1) <= now.as_micros() + 1
+        // more than NONE wraps to 0, which every instant has passed, and `now + 1` does not overflow for an
+        // instant below 2^63 µs (`Instant`'s bound; beyond it the sum wraps, as `Instant` promises, and
+        // never panics).
+        !INHIBIT || self.next_allowed.instant().as_micros().wrapping_add(1) <= now.as_micros().wrapping_add(1)
     }
 
     /// An EMCY went out at `now`.
@@ -400,6 +401,25 @@ pub(crate) const fn manufacturer_in_registers(manufacturer: [u8; 5]) -> (u32, u8
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// EMCY-09: the inhibit time's test in one comparison holds at the ends of the clock: no inhibit time
+    /// lets an EMCY go at once, a running one holds it until its end, and an instant beyond `Instant`'s
+    /// 2^63 µs bound (up to u64::MAX) is answered without a panic.
+    #[test]
+    fn may_send_at_the_ends_of_the_clock_emcy_09() {
+        let mut p = EmcyProducer::new();
+        let last = Instant::from_micros((1 << 63) - 1);
+        assert!(p.may_send(Instant::ZERO) && p.may_send(last));
+        let _ = p.may_send(Instant::from_micros(u64::MAX)); // beyond the bound: any answer, no panic
+        if !INHIBIT {
+            return;
+        }
+        p.set_inhibit_100us(10); // 1 ms
+        p.sent(Instant::from_micros(5_000));
+        assert!(!p.may_send(Instant::from_micros(5_999)));
+        assert!(p.may_send(Instant::from_micros(6_000)) && p.may_send(last));
+        let _ = p.may_send(Instant::from_micros(u64::MAX));
+    }
 
     /// Errors 1000h then 8130h raised and cleared (EMCY 00 10 01, 30 81 11, 00 00 11, 00 00 00), ERR-06/07:
     /// the emergency state machine and the history.
