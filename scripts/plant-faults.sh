@@ -44,7 +44,7 @@ FAULTS=(
   'pdo29-table-takes-the-last-of-equal-can-ids @@ pdo_sync_emcy @@ let i = table.partition_point(|e| e.0 < id); @@ let i = table.partition_point(|e| e.0 <= id).saturating_sub(1);'
   'sdo-no-streams-begun-write-not-undone @@ sdo_node @@ od.abort_write(mux.index, mux.sub);\n                    return Err(AbortCode::UnsupportedAccess); @@ return Err(AbortCode::UnsupportedAccess);'
   'store02-saving-one-group-drops-the-other @@ store_restore @@ w.item(index, sub, &buf[..n])?; @@ let _ = (index, sub, n);'
-  'emcy-inhibit-ignored @@ pdo_sync_emcy @@ self.next_allowed == Deadline::NONE || self.next_allowed.passed(now) @@ true'
+  'emcy-inhibit-ignored @@ pdo_sync_emcy @@ self.next_allowed.instant().as_micros().wrapping_add(1) <= now.as_micros().wrapping_add(1) @@ true'
   'od11-table-low-limit-inclusive @@ od_all_types @@ if value < bound(from) { @@ if value <= bound(from) {'
   'pdo-offset-slot-two-bytes-as-one @@ od_all_types @@ 1 => copy_in::<2>(bytes, at, data), @@ 1 => copy_in::<1>(bytes, at, data),'
   'nmt04-table-default-not-unzigzagged @@ od_all_types @@ v = (v >> 1) ^ (v & 1).wrapping_neg(); @@ v >>= 1;'
