@@ -2,12 +2,14 @@
 # Plants hand-chosen faults in canopen-core one at a time and checks that the test suite catches each
 # (issue 21, item 4). A cheap stand-in for cargo-mutants on a 2-core machine: each fault is one literal text
 # replacement in one source file, found by its text (not its path, so moving modules does not break it), then
-#   cargo test -p canopen-core --lib --tests   (unit and integration tests; doctests left out: slow, and
-#                                               they check examples, not behaviour)
+#   cargo test -p canopen-core --lib            (its unit tests; doctests left out: slow, and they check
+#                                               examples, not behaviour)
+#   cargo test -p canopen-core --test <each>    (its integration tests)
 #   cargo test --test <each root test named for the fault>
-# run; a failing test "kills" the fault, both passing means it "survived". A fault that does not build kills
-# nothing (it proves no test): it is reported NOT BUILT, as a fault whose text is not found is NOT PLANTED, and
-# its text needs updating. The file is restored after each fault (and on exit or Ctrl-C).
+# run, each only if the one before passed; a failing test "kills" the fault, all passing means it "survived".
+# A fault that does not build kills nothing (it proves no test): it is reported NOT BUILT, as a fault whose
+# text is not found is NOT PLANTED, and its text needs updating. The file is restored after each fault (and
+# on exit or Ctrl-C).
 #
 # Usage: scripts/plant-faults.sh [name...]   (no name: every fault). Prints a table; exits 1 if any
 # survived, could not be planted or did not build. Results also go to target/plant-faults.txt.
@@ -79,6 +81,25 @@ restore() {
 trap 'restore; exit 130' INT TERM
 trap 'restore; rm -rf "$saved"' EXIT
 
+# canopen-core's integration tests, named one by one for `cargo test --test` (`--test '*'` fails on a target
+# whose required features are off): those `cargo test -p canopen-core --tests` builds, the ones whose required
+# features the default features turn on.
+core_tests=()
+for t in $(cargo metadata --no-deps --format-version 1 | python3 -c '
+import json, sys
+pkg = next(p for p in json.load(sys.stdin)["packages"] if p["name"] == "canopen-core")
+features, on, todo = pkg["features"], set(), ["default"]
+while todo:
+    f = todo.pop()
+    if f in features and f not in on:
+        on.add(f)
+        todo += features[f]
+for t in pkg["targets"]:
+    if t["kind"] == ["test"] and set(t.get("required-features", [])) <= on:
+        print(t["name"])
+'); do core_tests+=(--test "$t"); done
+[ ${#core_tests[@]} -gt 0 ] || { echo "plant-faults: no integration tests of canopen-core found"; exit 1; }
+
 killed=0 survived=0 broken=0
 for f in "${FAULTS[@]}"; do
   name=$(field "$f" 1) test=$(field "$f" 2) find=$(field "$f" 3) repl=$(field "$f" 4)
@@ -108,8 +129,11 @@ EOF
   log=target/plant-faults-$name.log
   root_tests=()
   for t in ${test//,/ }; do root_tests+=(--test "$t"); done
-  # A fault that makes a test hang is killed by the time limit.
-  if timeout 600 cargo test -q -p canopen-core --lib --tests >"$log" 2>&1 &&
+  # A fault that makes a test hang is killed by the time limit. The unit tests first, alone: `--lib --tests`
+  # builds every integration test before it runs the first test, and the unit tests kill about half of the
+  # faults; the same tests run, in the same order, and a fault survives only if all of them pass.
+  if timeout 600 cargo test -q -p canopen-core --lib >"$log" 2>&1 &&
+    timeout 600 cargo test -q -p canopen-core "${core_tests[@]}" >>"$log" 2>&1 &&
     timeout 600 cargo test -q "${root_tests[@]}" >>"$log" 2>&1; then
     verdict=SURVIVED
     survived=$((survived + 1))

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Interop and SocketCAN tests on real vcan interfaces (vcan0, vcan1): here if they exist, else inside two
-# with-vcan VMs side by side (scripts/vcan-run.sh; 1-3 and 6 in one, 4 and 5 in the other):
+# with-vcan VMs side by side (scripts/vcan-run.sh; the optimised 2 and 3 in the release lane, 1 and 4-6 in the
+# debug lane):
 #   1. canopen-socketcan's own tests on vcan0/vcan1 (send/receive, RTR, 29-bit ignored, error frames,
 #      missing interface, interface down/up recovery of both runners, tokio wake);
 #   2. tests/vcan_node.rs: OUR SDO client moves 64 KiB through the example node's DOMAIN (segmented, block
@@ -38,33 +39,39 @@ cargo build --example node --features pdo-mapping-64
 cp target/debug/examples/node target/debug/examples/node-mapping-64
 cargo build --examples
 cargo test --no-run -p canopen-socketcan --test vcan
-# The load test measures the node as it is deployed: optimised (a debug build cannot keep up with a flood plus
-# four 1 ms TPDOs on the VM's one CPU, and then only proves the debug build is slow).
-cargo test --release --no-run --test vcan_node
-# canopen-master's vcan tests time 1 MiB transfers: optimised too.
-cargo test --release --no-run --test vcan_master
 cargo test --no-run -p canopenctl --test cli
 cargo test --no-run --test vcan_master_python
+# The optimised builds (the release lane's vcan_node and vcan_master) come after the lanes' scripts below: in
+# the VMs the debug lane, which needs only the debug builds above, already runs while they compile.
+release_builds() {
+    # The load test measures the node as it is deployed: optimised (a debug build cannot keep up with a flood
+    # plus four 1 ms TPDOs on the VM's one CPU, and then only proves the debug build is slow).
+    # canopen-master's vcan tests time 1 MiB transfers: optimised too. Both in one build, so the two test
+    # binaries compile side by side.
+    cargo test --release --no-run --test vcan_node --test vcan_master
+}
 
-# Two lanes, each a script that needs vcan0/vcan1. In the with-vcan VM (one CPU each, and the host is idle
-# while they run) they run side by side in two VMs, which do not see each other's interfaces: the section takes
-# the longer lane's time instead of the sum (the lanes are about 115 s and 150 s in CI). On a host's own vcan
-# interfaces they share the bus and the example node's ID, so there they run one after the other.
-cat > target/interop-lane-rust.sh <<'INNER'
+# Two lanes, each a script that needs vcan0/vcan1. In the with-vcan VM (one CPU each) they run side by side in
+# two VMs, which do not see each other's interfaces: the section takes the longer lane's time instead of the
+# sum. The debug lane needs only the debug builds, so its VM starts first and the host compiles the release
+# lane's optimised builds (about 150 s in CI, the release profile's dependencies included, which the bench
+# section reuses) beside it; the release lane's VM starts when they are built, so the release lane holds only
+# what needs them (about 50 s in CI, the debug lane about 180 s). On a host's own vcan interfaces the lanes
+# share the bus and the example node's ID, so there they run one after the other, after the builds.
+cat > target/interop-lane-release.sh <<'INNER'
 set -euo pipefail
-export CANOPEN_REQUIRE_VCAN=1 # python (vcan_master_python's LocalNodes): fail, not skip, without vcan
-echo "== canopen-socketcan on vcan0/vcan1"
-cargo test -q -p canopen-socketcan --test vcan -- --include-ignored
 echo "== our SDO client + load test on the example node"
 cargo test --release -q --test vcan_node -- --include-ignored --nocapture --test-threads 1
 echo "== canopen-master: ten nodes at once, a stopped node's time-out, 1 MiB block transfers timed, vcan1 down/up"
 cargo test --release -q --test vcan_master -- --include-ignored --nocapture --test-threads 1
+INNER
+cat > target/interop-lane-debug.sh <<'INNER'
+set -euo pipefail
+export CANOPEN_REQUIRE_VCAN=1 # python (also vcan_master_python's LocalNodes): fail, not skip, without vcan
+echo "== canopen-socketcan on vcan0/vcan1"
+cargo test -q -p canopen-socketcan --test vcan -- --include-ignored
 echo "== canopen-master against python canopen's LocalNode (ten nodes, typed values, aborts, block fallback)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q --test vcan_master_python -- --include-ignored
-INNER
-cat > target/interop-lane-masters.sh <<'INNER'
-set -euo pipefail
-export CANOPEN_REQUIRE_VCAN=1 # python: fail, not skip, without vcan
 echo "== canopenctl against the example node (SDO, NMT, monitor, DOMAIN files, program download, LSS, bench)"
 NODE_BIN=$PWD/target/debug/examples/node cargo test -q -p canopenctl --test cli -- --include-ignored --test-threads 1
 echo "== python canopen as the master"
@@ -87,9 +94,10 @@ verdict() {
     fi
 }
 
-lanes=(rust masters)
+lanes=(release debug)
 declare -A status
 if vcan_present vcan0,vcan1; then
+    release_builds
     for lane in "${lanes[@]}"; do
         echo "== lane $lane on this host's vcan0/vcan1"
         status[$lane]=0
@@ -101,10 +109,14 @@ else
     # A time-out (CI's `timeout` sends TERM to this script) or Ctrl-C takes the lanes' VMs down with it.
     kill_tree() { local c; for c in $(pgrep -P "$1"); do kill_tree "$c"; done; kill "$1" 2>/dev/null || true; }
     trap 'for p in "${pid[@]}"; do kill_tree "$p"; done; exit 143' TERM INT
-    for lane in "${lanes[@]}"; do
-        vcan_run vcan0,vcan1 -- bash "target/interop-lane-$lane.sh" >"target/interop-lane-$lane.log" 2>&1 &
-        pid[$lane]=$!
-    done
+    start_lane() {
+        vcan_run vcan0,vcan1 -- bash "target/interop-lane-$1.sh" >"target/interop-lane-$1.log" 2>&1 &
+        pid[$1]=$!
+    }
+    start_lane debug
+    # A failed build fails the script, and takes the debug lane's VM down with it.
+    release_builds || { rc=$?; kill_tree "${pid[debug]}"; exit "$rc"; }
+    start_lane release
     for lane in "${lanes[@]}"; do
         status[$lane]=0
         wait "${pid[$lane]}" || status[$lane]=$?
