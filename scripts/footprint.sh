@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Flash and RAM of the stack on a Cortex-M4F (DESIGN.md "Performance", footprint): builds the firmware
 # example (examples/firmware, STM32F446RE, embassy) with the footprint profile (opt-level "s", LTO,
-# panic = "abort", codegen-units = 1) in two builds, since a Cargo feature holds for a whole build:
+# panic = "abort", codegen-units = 1) in separate builds, since a Cargo feature holds for a whole build:
 #   node      every canopen-core feature but the optional objects and `crc-table` (see --optional): the full
 #             reference set, with the block CRC from the 32-byte nibble table;
 #   minimal   canopen-core without its optional features (issue 13's minimal device: NMT, heartbeat, SDO
 #             expedited + segmented, 4 RPDO + 4 TPDO with a fixed mapping, SYNC, EMCY; none of the optional
 #             objects 1003h, 1007h, 1008h-100Ah, 1010h/1011h, 1015h, 1019h, 1029h),
 #             `--no-default-features --features minimal`;
+#   node-data node with its application dictionary as data (the firmware's feature `od-data`: `#[od(compact,
+#             zerocopy)]`, issue 41 goal 3), so the fixed cost of the core's generic path (od::data) over the
+#             derive's match arms is held: its flash is ratcheted, and its difference to node printed;
 # and the CAN-echo baseline. It prints text/data/bss of each and each device's difference to the baseline,
 # which is the stack's own cost:
 #   flash = Δ(text + data)     (Berkeley `size`: text = .vector_table + .text + .rodata)
@@ -53,6 +56,8 @@ done
 T=target/thumbv7em-none-eabihf/release
 cargo build --release --bins --quiet
 cp "$T/node" "$T/node+store"
+cargo build --release --no-default-features --features od-data --bin node --quiet
+cp "$T/node" "$T/node-data"
 cargo build --release --no-default-features --features full --bin node --quiet
 cargo build --release --no-default-features --features minimal --bin minimal --quiet
 
@@ -63,7 +68,7 @@ pools() { nm -S -t d -C "$1" | awk '$3 ~ /^[bBdD]$/ && $4 ~ /::POOL$/ { n += $2 
 
 printf '%-10s %8s %8s %8s | %8s %8s %12s %12s\n' binary text data bss flash ram task-storage ram-w/o-tasks
 declare -A F R P
-for b in baseline node minimal node+store; do
+for b in baseline node minimal node+store node-data; do
   read -r text data bss < <(berkeley "$T/$b")
   F[$b]=$((text + data)) R[$b]=$((data + bss)) P[$b]=$(pools "$T/$b")
   printf '%-10s %8d %8d %8d | %8d %8d %12d %12d\n' "$b" "$text" "$data" "$bss" "${F[$b]}" "${R[$b]}" "${P[$b]}" \
@@ -95,6 +100,12 @@ echo "node+store: the firmware as shipped, stack's own flash (node+store - basel
 echo "node+store: 1010h/1011h and the LSS configuration in flash (canopen-embassy FlashStorage, the firmware's" \
   "default feature store) add $((F[node+store] - F[node])) bytes of flash and" \
   "$(((R[node+store] - P[node+store]) - (R[node] - P[node]))) bytes of RAM to node"
+# The node with its dictionary as data: ratcheted whole, and its difference to node (the generic path's
+# fixed cost less the match arms it replaces, for the node's 7 objects) printed.
+FIG[node-data.flash]=$((F[node-data] - F[baseline]))
+echo
+echo "node-data: node with its dictionary as data (#[od(compact, zerocopy)]), stack's own flash (node-data - baseline):" \
+  "${FIG[node-data.flash]} bytes, $((F[node-data] - F[node])) bytes more than node"
 echo
 echo "node binary, RAM by static (bytes):"
 nm -S -t d -C --size-sort "$T/node" | awk '$3 ~ /^[bBdD]$/ && $2 >= 16 { s = $2; $1 = $2 = $3 = ""; sub(/^ +/, ""); printf "  %6d  %s\n", s, $0 }' | sort -rn

@@ -389,6 +389,16 @@ fn find<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
     find_member::<D>(index, sub, first, end, count_ro)
 }
 
+/// [`find`] out of line: the one copy that the paths off a frame's way share (SDO `info`, segmented
+/// `read`/`write`, the streamed-write refusals, PDO mapping, `slot`), where each inlined its own search
+/// (node-data's `info`, `read`, `write`, `streamed` and `resolve_into` carried one each). The expedited
+/// SDO paths keep theirs inline, a frame's instructions unchanged (through this one the zerocopy bench's
+/// expedited download took 340 instructions instead of 284, for 444 B less in node-data).
+#[inline(never)]
+fn find_shared<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<At, AbortCode> {
+    find::<D>(index, sub)
+}
+
 /// [`find`] among the members of the RECORD `index` whose first row is `first`: rows `first..end` with a
 /// key per object, the rows whose key is `index` with a key per row.
 #[inline(never)]
@@ -491,10 +501,11 @@ fn write_value<D: OdData + ?Sized>(
     }
 }
 
-/// A row that SDO may write: 0601 0002h for a read-only one and for sub 00h of an ARRAY or RECORD.
+/// A row that SDO may write, as [`find`] or [`find_shared`] found it: 0601 0002h for a read-only one and
+/// for sub 00h of an ARRAY or RECORD.
 #[inline]
-fn writable<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<(u16, Row, u8), AbortCode> {
-    match find::<D>(index, sub)? {
+fn writable(found: Result<At, AbortCode>) -> Result<(u16, Row, u8), AbortCode> {
+    match found? {
         At::Value(pos, row, elem) if row.writable() => Ok((pos, row, elem)),
         _ => Err(AbortCode::WriteOfReadOnly),
     }
@@ -528,7 +539,7 @@ fn read_count(highest: u8, offset: usize, buf: &mut [u8]) -> usize {
 /// assert_eq!(data::info(&app, 0x2002, 0), Err(AbortCode::ObjectDoesNotExist));
 /// ```
 pub fn info<D: OdData + ?Sized>(d: &D, index: u16, sub: u8) -> Result<SubInfo, AbortCode> {
-    Ok(match find::<D>(index, sub)? {
+    Ok(match find_shared::<D>(index, sub)? {
         At::Count(_, ro) => count_info(ro),
         At::Value(_, row, elem) => {
             SubInfo { data_type: row.data_type, access: row.access(), pdo: row.pdo(), size: size(d, &row, elem) }
@@ -552,7 +563,7 @@ pub fn info<D: OdData + ?Sized>(d: &D, index: u16, sub: u8) -> Result<SubInfo, A
 /// assert_eq!(buf[0], 9);
 /// ```
 pub fn read<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, offset: usize, buf: &mut [u8]) -> Result<usize, AbortCode> {
-    match find::<D>(index, sub)? {
+    match find_shared::<D>(index, sub)? {
         At::Count(highest, _) => Ok(read_count(highest, offset, buf)),
         At::Value(_, row, _) if !row.readable() => Err(AbortCode::ReadOfWriteOnly),
         At::Value(_, row, elem) => read_value(d, &row, elem, offset, buf),
@@ -575,7 +586,7 @@ pub fn read<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, offset: usize, buf: 
 /// assert_eq!(app.x, 5);
 /// ```
 pub fn write<D: OdData + ?Sized>(d: &mut D, index: u16, sub: u8, data: &[u8]) -> Result<(), AbortCode> {
-    let (pos, row, elem) = writable::<D>(index, sub)?;
+    let (pos, row, elem) = writable(find_shared::<D>(index, sub))?;
     write_value(d, pos, &row, elem, sub, data, true)
 }
 
@@ -636,7 +647,7 @@ pub fn write_expedited<D: OdData + ?Sized>(
     data: &[u8; 4],
     len: Option<usize>,
 ) -> Result<(), AbortCode> {
-    let (pos, row, elem) = writable::<D>(index, sub)?;
+    let (pos, row, elem) = writable(find::<D>(index, sub))?;
     match row.data_type.fixed_size() {
         0 => write_special_whole(d, &row, elem, sub, data.get(..len.unwrap_or(4)).unwrap_or(data)),
         n => write_value(d, pos, &row, elem, sub, data.get(..len.unwrap_or(n.min(4))).unwrap_or(data), true),
@@ -664,7 +675,7 @@ fn write_special_whole<D: OdData + ?Sized>(
 /// A streamed write's target: writable, and a string or DOMAIN (0601 0000h for a fixed-size value,
 /// which is written whole).
 fn streamed<D: OdData + ?Sized>(index: u16, sub: u8) -> Result<(Row, u8), AbortCode> {
-    let (_, row, elem) = writable::<D>(index, sub)?;
+    let (_, row, elem) = writable(find_shared::<D>(index, sub))?;
     match row.data_type.fixed_size() {
         0 => Ok((row, elem)),
         _ => Err(AbortCode::UnsupportedAccess),
@@ -817,7 +828,7 @@ fn next_default(dt: DataType, defaults: &[u8], at: &mut usize) -> [u8; 8] {
 /// ```
 pub fn slot<D: OdData + ?Sized>(d: &D, index: u16, sub: u8) -> u16 {
     let _ = d;
-    match find::<D>(index, sub) {
+    match find_shared::<D>(index, sub) {
         Ok(At::Value(pos, ..)) => pos,
         _ => PdoHandle::NO_SLOT,
     }
@@ -887,7 +898,7 @@ pub fn read_slot<D: OdData + ?Sized>(
 /// assert_eq!(data::pdo_resolve(&app, 0x2000, 0, PdoDir::Rpdo), Err(AbortCode::NotMappable));
 /// ```
 pub fn pdo_resolve<D: OdData + ?Sized>(d: &D, index: u16, sub: u8, dir: PdoDir) -> Result<PdoHandle, AbortCode> {
-    let (pos, row, elem) = match find::<D>(index, sub)? {
+    let (pos, row, elem) = match find_shared::<D>(index, sub)? {
         At::Value(pos, row, elem) => (pos, row, elem),
         At::Count(_, ro) => return PdoHandle::check(index, sub, &count_info(ro), dir, PdoHandle::NO_SLOT),
     };

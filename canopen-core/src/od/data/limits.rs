@@ -8,7 +8,7 @@
 //! limits of every type a dictionary has (issue 41: the compare per type was a copy of the same function for
 //! each type a dictionary checks, some 100 bytes of flash each, and REAL32 needed the float compare).
 
-use super::OdData;
+use super::{OdData, Shape};
 use crate::od::{check_len, AbortCode, DataType};
 
 /// The order key of the `dt` value encoded little-endian in `data` (exactly its size): 0609 0030h for a
@@ -24,6 +24,14 @@ use crate::od::{check_len, AbortCode, DataType};
 /// ```
 #[inline(never)]
 pub fn order_key(dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
+    key_in(ALL_CLASSES, dt, data)
+}
+
+/// [`order_key`] of a dictionary whose limited types are of the [`classes`] in `classes` alone: the arms of
+/// the others compile away (a firmware whose only limits are an INTEGER16's links no REAL or TIME key). The
+/// class of `dt` must be among them: [`within`] passes only the types of the shapes that have limits.
+#[inline(always)]
+fn key_in(classes: u8, dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
     let size = dt.fixed_size();
     if size == 0 {
         return Err(AbortCode::ObjectDoesNotExist);
@@ -32,9 +40,10 @@ pub fn order_key(dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
     let raw = data.iter().rev().fold(0u64, |acc, &b| acc << 8 | u64::from(b));
     // The value moved to the top of the `u64`: its sign bit is bit 63 whatever its size.
     let top = raw << (64 - 8 * size);
+    let has = |c: u8| classes & 1 << c != 0;
     Ok(match class(dt) {
-        SIGNED => top ^ 1 << 63,
-        REAL => {
+        SIGNED if has(SIGNED) => top ^ 1 << 63,
+        REAL if has(REAL) => {
             let infinity = if size == 4 { 0x7F80_0000 << 32 } else { 0x7FF0_0000_0000_0000 };
             let magnitude = top & !(1 << 63);
             match (magnitude > infinity, top >> 63 != 0 && magnitude != 0) {
@@ -43,8 +52,8 @@ pub fn order_key(dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
                 (false, false) => magnitude | 1 << 63, // positive, and -0 as +0
             }
         }
-        TIME => (raw >> 32 & 0xFFFF) << 32 | (raw & 0x0FFF_FFFF),
-        BOOLEAN if raw > 1 => return Err(AbortCode::InvalidValue),
+        TIME if has(TIME) => (raw >> 32 & 0xFFFF) << 32 | (raw & 0x0FFF_FFFF),
+        BOOLEAN if has(BOOLEAN) && raw > 1 => return Err(AbortCode::InvalidValue),
         _ => raw,
     })
 }
@@ -54,6 +63,37 @@ pub fn order_key(dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
 /// [`OdData::DEFAULTS`](super::OdData::DEFAULTS) holds a default.
 pub(super) const fn class(dt: DataType) -> u8 {
     CLASS[dt as usize & 0x1F]
+}
+
+/// Every class, for [`order_key`].
+const ALL_CLASSES: u8 = 1 << BOOLEAN | 1 << SIGNED | 1 << REAL | 1 << TIME;
+
+/// The classes (bit `c` for [`class`] `c`) of the first `limited` of `shapes`: the shapes that have limits
+/// ([`OdData::LIMITS`]), so the types [`within`] computes keys of.
+///
+/// ```
+/// use canopen_core::od::{data::{limits::classes, Row, Shape}, Access, DataType, PdoMapping};
+/// let var = |dt| Shape::of(Row::var(0, dt, Access::Rw, PdoMapping::No));
+/// let shapes = [var(DataType::Integer16), var(DataType::Unsigned8), var(DataType::Real32)];
+/// assert_eq!(classes(&shapes, 0), 0);
+/// assert_eq!(classes(&shapes, 2), classes(&shapes[..1], 1) | classes(&shapes[1..], 1));
+/// assert_ne!(classes(&shapes, 3), classes(&shapes, 2)); // the REAL32 shape's class, once it has limits
+/// ```
+pub const fn classes(shapes: &[Shape], limited: usize) -> u8 {
+    let mut bits = 0;
+    let mut i = 0;
+    while i < limited && i < shapes.len() {
+        bits |= 1 << class(shapes[i].data_type);
+        i += 1;
+    }
+    bits
+}
+
+/// [`order_key`] for `D`'s limited types alone ([`key_in`]): one copy per dictionary type, out of line
+/// ([`within`] takes three keys).
+#[inline(never)]
+fn key_of<D: OdData + ?Sized>(dt: DataType, data: &[u8]) -> Result<u64, AbortCode> {
+    key_in(const { classes(D::SHAPES, D::LIMITS.len()) }, dt, data)
 }
 
 /// [`class`] by type code.
@@ -124,11 +164,11 @@ fn within<D: OdData + ?Sized>(pos: u16, dt: DataType, data: &[u8]) -> Result<(),
     let Some(&at) = D::LIMITS.get(shape) else {
         return check_len(data, size);
     };
-    let value = order_key(dt, data)?;
+    let value = key_of::<D>(dt, data)?;
     let from = usize::from(at);
     // A limit without a key (none stored, a NaN) compares equal: no limit.
     let bound =
-        |from: usize| D::LIMIT_VALUES.get(from..from + size).and_then(|b| order_key(dt, b).ok()).unwrap_or(value);
+        |from: usize| D::LIMIT_VALUES.get(from..from + size).and_then(|b| key_of::<D>(dt, b).ok()).unwrap_or(value);
     if value < bound(from) {
         return Err(AbortCode::ValueTooLow);
     }

@@ -65,7 +65,14 @@ bind_interrupts!(struct Irqs {
 
 /// The application's object dictionary: the process values live here, the node serves them by SDO and PDO
 /// (the `pdo =` keys say what may be mapped).
+///
+/// With the feature `od-data` the derive emits it as data served by the core's one generic path
+/// (`#[od(compact, zerocopy)]`: tables of rows, each value reached by its offset in the struct's bytes), so
+/// `scripts/footprint.sh` measures that path's fixed cost as `node-data`. The fields are in an order without
+/// padding for that (`#[repr(C)]`, zerocopy's `IntoBytes`); the default build's layout does not depend on it.
 #[derive(ObjectDictionary)]
+#[cfg_attr(feature = "od-data", derive(zerocopy::IntoBytes, zerocopy::FromBytes, zerocopy::Immutable))]
+#[cfg_attr(feature = "od-data", od(compact, zerocopy), repr(C))]
 struct Device {
     /// 6000h: digital inputs, 8 bits per sub-index.
     #[od(index = 0x6000, sub = 1..=1, access = "ro", pdo = "tpdo", name = "Read input 8-bit")]
@@ -79,12 +86,12 @@ struct Device {
     /// 2002h: LED blink period in 10 ms ticks (0 = the LED follows 6200h:01 bit 0).
     #[od(index = 0x2002, access = "rw", pdo = "rpdo", default = 0, name = "Blink period")]
     blink_ticks: u16,
-    /// 2100h: seconds since power-on, kept by the process task.
-    #[od(index = 0x2100, access = "ro", pdo = "tpdo", name = "Uptime")]
-    uptime_s: u32,
     /// 2101h: button presses since power-on.
     #[od(index = 0x2101, access = "ro", pdo = "tpdo", name = "Button presses")]
     presses: u16,
+    /// 2100h: seconds since power-on, kept by the process task.
+    #[od(index = 0x2100, access = "ro", pdo = "tpdo", name = "Uptime")]
+    uptime_s: u32,
     /// 2102h: milliseconds after midnight of the last TIME message received (TIME consumer).
     #[od(index = 0x2102, access = "ro", pdo = "tpdo", name = "Time of day ms")]
     time_ms: u32,
