@@ -218,6 +218,11 @@ impl CobIdEntry {
         self.0
     }
 
+    /// The raw UNSIGNED32, to store a new value in place (the profile's one COB-ID write, `profile::dict`).
+    pub(crate) fn raw_mut(&mut self) -> &mut u32 {
+        &mut self.0
+    }
+
     /// Bit 31.
     pub const fn bit31(self) -> bool {
         self.0 & Self::BIT31 != 0

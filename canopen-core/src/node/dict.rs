@@ -96,12 +96,14 @@ impl<'a, Z: ProfileSizes, A: ObjectDictionary, S: Storage> NodeDict<'a, Z, A, S>
                 return Err(AbortCode::ParameterIncompatibility);
             }
         }
-        if sub == 0 {
-            ResolvedMap::resolve(&self.od, map.active(), dir).map(|_| ())
-        } else {
-            let raw = map.entries.get(usize::from(sub) - 1).copied().unwrap_or(0);
-            crate::pdo::mapping::resolve(&self.od, raw, dir).map(|_| ())
-        }
+        // Sub 00h: every entry of the new count; an entry: that one alone, through the same resolution (one
+        // entry resolves to the answer `mapping::resolve` gives: it refuses more than 64 bits itself, so the
+        // sum's 0604 0042h cannot come up), one call instead of two.
+        let raw = match usize::from(sub).checked_sub(1) {
+            None => map.active(),
+            Some(i) => map.entries.get(i..=i).unwrap_or(&[0]),
+        };
+        ResolvedMap::resolve(&self.od, raw, dir).map(|_| ())
     }
 }
 

@@ -382,71 +382,87 @@ impl<Z: ProfileSizes> CommProfile<Z> {
 
     /// Writes a numeric entry found by `find`; `rules` applies the change rules of the module docs (SDO),
     /// without them the value is only range-checked by its type (loading stored values after a reset).
+    ///
+    /// The COB-IDs 1005h, 1012h and 1014h end in one check of the change rules (COB-15/16) and one store:
+    /// which bits make each one active is data (`flip`, `active`: the COB is active when its bits `active`,
+    /// XOR-ed with `flip`, are not all 0), not a closure inlined per object.
     fn set(&mut self, f: Found, sub: u8, v: u32, rules: bool) -> Result<(), AbortCode> {
         let p = &mut self.params;
-        let cob = |cur: u32, active: fn(CobIdEntry) -> bool| -> Result<u32, AbortCode> {
-            if rules {
-                CobIdEntry::from_raw(cur).check_change(v, active).map(CobIdEntry::raw)
-            } else {
-                Ok(v)
+        let (cob, flip, active): (&mut u32, u32, u32) = 'cob: {
+            match f.slot() {
+                #[cfg(feature = "error-history")]
+                Slot::History => self.errors.write_history_count(v as u8)?,
+                Slot::SyncCob => {
+                    crate::sync::check_producible(v)?; // SYNC-03: also a stored value, the build cannot produce
+                    if crate::sync::PRODUCER {
+                        break 'cob (p.sync.cob_id.raw_mut(), 0, CobIdEntry::BIT30);
+                        // active while producing (bit 30)
+                    }
+                    // Never active in a build that cannot produce SYNC (bit 30 refused above): only the format
+                    // rules, here, where they fold to a mask test (the minimal device, with 1014h alone in the
+                    // shared check: 16 B less than through it).
+                    if rules {
+                        CobIdEntry::from_raw(v).check_change(v, |_| false)?;
+                    }
+                    p.sync.cob_id = CobIdEntry::from_raw(v);
+                }
+                Slot::SyncPeriod => p.sync.period_us = v,
+                #[cfg(feature = "sync-window")]
+                Slot::SyncWindow => p.sync.window_us = v,
+                #[cfg(feature = "guarding")]
+                Slot::GuardTime => p.guard_time_ms = v as u16,
+                #[cfg(feature = "guarding")]
+                Slot::LifeTimeFactor => p.life_time_factor = v as u8,
+                #[cfg(feature = "store-restore")]
+                Slot::Store | Slot::Restore if rules => {
+                    let sig = if f.slot() == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
+                    // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
+                    return Err(if v != sig { AbortCode::CannotStore } else { STORE_GO_AHEAD });
+                }
+                #[cfg(feature = "store-restore")]
+                Slot::Store | Slot::Restore => {}
+                #[cfg(feature = "time")]
+                // TIME-01/02: active while consuming or producing.
+                Slot::TimeCob => break 'cob (&mut p.time_cob_id, 0, CobIdEntry::BIT31 | CobIdEntry::BIT30),
+                // EMCY-02: active while bit 31 (invalid) is 0.
+                Slot::EmcyCob => break 'cob (&mut p.emcy_cob_id, CobIdEntry::BIT31, CobIdEntry::BIT31),
+                #[cfg(feature = "emcy-inhibit")]
+                Slot::EmcyInhibit => p.emcy_inhibit_100us = v as u16,
+                Slot::Consumer => p.set_consumer_at(in_bounds(usize::from(sub).wrapping_sub(1), Z::HB), v)?,
+                Slot::HeartbeatTime => p.heartbeat_time_ms = v as u16,
+                #[cfg(feature = "sync-counter")]
+                Slot::SyncOverflow => {
+                    if rules && p.sync.period_us != 0 {
+                        return Err(AbortCode::CannotStoreDeviceState); // SYNC-12
+                    }
+                    if v == 1 || v > 240 {
+                        return Err(AbortCode::InvalidValue); // SYNC-10
+                    }
+                    p.sync.counter_overflow = v as u8;
+                }
+                #[cfg(feature = "error-behaviour")]
+                Slot::ErrorBehaviour => {
+                    if (3..=0x7F).contains(&v) {
+                        return Err(AbortCode::InvalidValue); // ERR-11: reserved
+                    }
+                    p.error_behaviour = v as u8;
+                }
+                Slot::NmtStartup => p.nmt_startup = v,
+                Slot::PdoCob
+                | Slot::PdoType
+                | Slot::PdoInhibit
+                | Slot::PdoEventTimer
+                | Slot::PdoSyncStart
+                | Slot::MapCount
+                | Slot::MapEntry => return self.set_pdo(f, sub, v, rules),
+                _ => return Err(AbortCode::WriteOfReadOnly),
             }
+            return Ok(());
         };
-        match f.slot() {
-            #[cfg(feature = "error-history")]
-            Slot::History => self.errors.write_history_count(v as u8)?,
-            Slot::SyncCob => {
-                crate::sync::check_producible(v)?; // SYNC-03: also a stored value, the build cannot produce
-                p.sync.cob_id = CobIdEntry::from_raw(cob(p.sync.cob_id.raw(), |e| e.bit30())?);
-            }
-            Slot::SyncPeriod => p.sync.period_us = v,
-            #[cfg(feature = "sync-window")]
-            Slot::SyncWindow => p.sync.window_us = v,
-            #[cfg(feature = "guarding")]
-            Slot::GuardTime => p.guard_time_ms = v as u16,
-            #[cfg(feature = "guarding")]
-            Slot::LifeTimeFactor => p.life_time_factor = v as u8,
-            #[cfg(feature = "store-restore")]
-            Slot::Store | Slot::Restore if rules => {
-                let sig = if f.slot() == Slot::Store { SAVE_SIGNATURE } else { LOAD_SIGNATURE };
-                // STORE-04/09: a wrong signature is 0800 0020h; the node performs the real save/restore.
-                return Err(if v != sig { AbortCode::CannotStore } else { STORE_GO_AHEAD });
-            }
-            #[cfg(feature = "store-restore")]
-            Slot::Store | Slot::Restore => {}
-            #[cfg(feature = "time")]
-            Slot::TimeCob => p.time_cob_id = cob(p.time_cob_id, |e| e.bit31() || e.bit30())?,
-            Slot::EmcyCob => p.emcy_cob_id = cob(p.emcy_cob_id, |e| !e.bit31())?,
-            #[cfg(feature = "emcy-inhibit")]
-            Slot::EmcyInhibit => p.emcy_inhibit_100us = v as u16,
-            Slot::Consumer => p.set_consumer_at(in_bounds(usize::from(sub).wrapping_sub(1), Z::HB), v)?,
-            Slot::HeartbeatTime => p.heartbeat_time_ms = v as u16,
-            #[cfg(feature = "sync-counter")]
-            Slot::SyncOverflow => {
-                if rules && p.sync.period_us != 0 {
-                    return Err(AbortCode::CannotStoreDeviceState); // SYNC-12
-                }
-                if v == 1 || v > 240 {
-                    return Err(AbortCode::InvalidValue); // SYNC-10
-                }
-                p.sync.counter_overflow = v as u8;
-            }
-            #[cfg(feature = "error-behaviour")]
-            Slot::ErrorBehaviour => {
-                if (3..=0x7F).contains(&v) {
-                    return Err(AbortCode::InvalidValue); // ERR-11: reserved
-                }
-                p.error_behaviour = v as u8;
-            }
-            Slot::NmtStartup => p.nmt_startup = v,
-            Slot::PdoCob
-            | Slot::PdoType
-            | Slot::PdoInhibit
-            | Slot::PdoEventTimer
-            | Slot::PdoSyncStart
-            | Slot::MapCount
-            | Slot::MapEntry => return self.set_pdo(f, sub, v, rules),
-            _ => return Err(AbortCode::WriteOfReadOnly),
+        if rules {
+            CobIdEntry::from_raw(*cob).check_change(v, |e| (e.raw() ^ flip) & active != 0)?;
         }
+        *cob = v;
         Ok(())
     }
 
