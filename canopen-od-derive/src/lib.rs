@@ -113,7 +113,8 @@
 //! Generated (no heap, no `unsafe`, nothing in `.data`/`.bss`):
 //! - `App::OD_ENTRIES: &[EntryDesc]` sorted by (index, sub) and `App::OD_OBJECTS: &[ObjectDesc]`
 //!   (const, in `.rodata`), `App::OD_MAX_VALUE_SIZE` (largest non-DOMAIN value, to size an SDO buffer);
-//! - `impl ObjectDictionary for App`: a binary search of the 4-byte keys `OD_KEYS` gives a position, a `match` on the
+//! - `impl ObjectDictionary for App`: a binary search of the 4-byte keys `OD_KEYS` gives a position (on bare
+//!   metal, a dictionary of 2 to 12 entries is scanned instead, `scan_key`: less flash), a `match` on the
 //!   position reaches the field; PDO handles keep the position, so `pdo_read`/`pdo_write` do not search;
 //!   one copy of the search per dictionary, and no write code for a read-only entry (`ro`/`const`: every
 //!   write path, PDO handles included, answers 0601 0002h); `STREAMS` is whether a string or DOMAIN is
@@ -759,7 +760,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 size: match #core::od::DataType::#dt.size() { ::core::option::Option::Some(n) => n, ::core::option::Option::None => 0 },
             }
         }
-    });
+    }).collect::<Vec<_>>();
     let object_descs = objects.iter().map(|o| {
         let first = rows.iter().position(|r| r.index == o.index).unwrap_or(0) as u16;
         let subs = rows.iter().filter(|r| r.index == o.index).count() as u16;
@@ -1054,7 +1055,39 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
             },
         )
     };
-    let keys = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub));
+    let keys: Vec<u32> = rows.iter().map(|r| (u32::from(r.index) << 8) | u32::from(r.sub)).collect();
+    // On bare metal a dictionary of 2 to 12 entries is scanned (`scan_key`), each key beside its SubInfo in
+    // one row table (no second bounds test): less flash than the binary search and its neighbour tests (the
+    // firmware node, 9 entries: 64 B less). Out of line, or LLVM inlined the scan into every access (+272 B
+    // there). One entry is one comparison either way; a larger dictionary, and every host build (whose
+    // instructions per frame bench-node.sh counts), keep the binary search.
+    let (search_cfg, scan_fns) = if (2..=12).contains(&n_entries) {
+        (
+            quote!(#[cfg(not(target_os = "none"))]),
+            quote! {
+                /// Each entry's key `index << 8 | sub` beside its `__OD_INFO` row, for the scan.
+                #[cfg(target_os = "none")]
+                const __OD_ROWS: &'static [(u32, #core::od::SubInfo)] = &[#((#keys, #infos)),*];
+                /// The scan of the rows: one copy per dictionary, shared by every access.
+                #[cfg(target_os = "none")]
+                #[inline(never)]
+                fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
+                    #core::od::scan_key(Self::__OD_ROWS, index, sub)
+                }
+                /// The `__OD_ROWS` info at `pos`.
+                #[cfg(target_os = "none")]
+                #[inline]
+                fn __od_info(pos: usize) -> ::core::option::Option<&'static #core::od::SubInfo> {
+                    match Self::__OD_ROWS.get(pos) {
+                        ::core::option::Option::Some((_, e)) => ::core::option::Option::Some(e),
+                        ::core::option::Option::None => ::core::option::Option::None,
+                    }
+                }
+            },
+        )
+    } else {
+        (quote!(), quote!())
+    };
     Ok(output(quote! {
             #[automatically_derived]
             impl #ident {
@@ -1093,11 +1126,19 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 #var_map_fn
                 /// The binary search of the 4-byte keys and the entry's `__OD_INFO` row: one copy per
                 /// dictionary (not inlined), shared by every access.
+                #search_cfg
                 fn __od_pos(&self, index: u16, sub: u8) -> ::core::result::Result<(usize, &'static #core::od::SubInfo), __AbortCode> {
                     let pos = #core::od::lookup_key(Self::OD_KEYS, index, sub)?;
                     let e = Self::__OD_INFO.get(pos).ok_or(__AbortCode::ObjectDoesNotExist)?;
                     ::core::result::Result::Ok((pos, e))
                 }
+                /// The `__OD_INFO` row at `pos`.
+                #search_cfg
+                #[inline]
+                fn __od_info(pos: usize) -> ::core::option::Option<&'static #core::od::SubInfo> {
+                    Self::__OD_INFO.get(pos)
+                }
+                #scan_fns
                 #[inline]
                 fn __od_writable(&self, index: u16, sub: u8) -> ::core::result::Result<usize, __AbortCode> {
                     let (pos, e) = self.__od_pos(index, sub)?;
@@ -1204,7 +1245,7 @@ fn expand(input: &DeriveInput) -> syn::Result<Ts> {
                 #[inline]
                 fn read_slot(&self, index: u16, sub: u8, slot: u16, offset: usize, buf: &mut [u8]) -> ::core::result::Result<(), __AbortCode> {
                     let pos = usize::from(slot);
-                    match Self::__OD_INFO.get(pos) {
+                    match Self::__od_info(pos) {
                         ::core::option::Option::Some(e) if e.access.readable() => #core::od::filled(self.__od_read(pos, offset, buf)?, buf.len()),
                         ::core::option::Option::Some(_) => ::core::result::Result::Err(__AbortCode::ReadOfWriteOnly),
                         ::core::option::Option::None => #core::od::filled(self.read(index, sub, offset, buf)?, buf.len()),

@@ -30,7 +30,7 @@ pub(crate) use merged::is_program;
 pub(crate) use merged::{is_comm, is_comm_for};
 pub use merged::{merge_nth, merged_position, Merged};
 pub use string::{OctetString, UnicodeString, VisibleString};
-pub use table::{count_entry, is_sorted, lookup, lookup_key, EntryDesc, ObjectDesc, OdDescribe, Value};
+pub use table::{count_entry, is_sorted, lookup, lookup_key, scan_key, EntryDesc, ObjectDesc, OdDescribe, Value};
 pub use value::{
     check_len, check_limits, check_range, copy_at, OdValue, TimeDifference, TimeOfDay, I24, I40, I48, I56, U24, U40,
     U48, U56,

@@ -8,7 +8,8 @@
 //! Lookup is a binary search over the `(index, sub)` keys (a compact `u32` array, [`lookup_key`]) of a table sorted at compile time
 //! (`O(log n)`, about 7 probes for 100 entries, no hashing, no RAM); the position it returns is then used by
 //! a `match` (a jump table) to reach the field, and PDO handles keep that position so process data never
-//! searches again.
+//! searches again. On bare metal, the derive's default layout scans a dictionary of 2 to 12 entries instead
+//! ([`scan_key`]: less flash for a firmware's few objects).
 
 use super::{AbortCode, Access, DataType, ObjectCode, PdoMapping};
 
@@ -246,6 +247,37 @@ pub fn lookup_key(keys: &[u32], index: u16, sub: u8) -> Result<usize, AbortCode>
     }
 }
 
+/// The row of `(index, sub)` among rows of a key `index << 8 | sub` (as [`EntryDesc::key`]) each, and its
+/// position, by a scan of every row: the same answers as [`lookup_key`] (0602 0000h when no row has
+/// `index`, 0609 0011h when the index exists without `sub`, OD-16; a row of the same index makes a miss
+/// the latter). The derive macro's default layout searches this way on bare metal (`target_os = "none"`)
+/// when a dictionary has 2 to 12 entries, each key beside its entry's [`SubInfo`](super::SubInfo): a
+/// short scan is less flash than a binary search and its two neighbour tests (64 B less in the reference
+/// firmware), and the position found reaches its row without a second bounds test. A larger dictionary
+/// keeps the binary search (its lookup does not grow with it, issue 41).
+///
+/// ```
+/// use canopen_core::od::{scan_key, AbortCode};
+/// const ROWS: &[(u32, char)] = &[(0x2000_00, 'a'), (0x2002_00, 'b'), (0x2002_01, 'c')];
+/// assert_eq!(scan_key(ROWS, 0x2002, 1), Ok((2, &'c')));
+/// assert_eq!(scan_key(ROWS, 0x2002, 2), Err(AbortCode::SubIndexDoesNotExist));
+/// assert_eq!(scan_key(ROWS, 0x2001, 0), Err(AbortCode::ObjectDoesNotExist));
+/// ```
+#[inline]
+pub fn scan_key<T>(rows: &[(u32, T)], index: u16, sub: u8) -> Result<(usize, &T), AbortCode> {
+    let key = (u32::from(index) << 8) | u32::from(sub);
+    let mut missing = AbortCode::ObjectDoesNotExist;
+    for (pos, (k, row)) in rows.iter().enumerate() {
+        if *k == key {
+            return Ok((pos, row));
+        }
+        if k >> 8 == u32::from(index) {
+            missing = AbortCode::SubIndexDoesNotExist;
+        }
+    }
+    Err(missing)
+}
+
 /// Whether `table` is strictly sorted by key (no duplicate `(index, sub)`); the derive macro asserts it at
 /// compile time.
 ///
@@ -263,4 +295,44 @@ pub const fn is_sorted(table: &[EntryDesc]) -> bool {
         i += 1;
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `scan_key` gives `lookup_key`'s answer for every (index, sub) around tables of 0 to 30 rows: the
+    /// position, 0602 0000h for an unknown index, 0609 0011h for an unknown sub-index of a known one (OD-16),
+    /// at the ends and in between.
+    #[test]
+    fn the_scan_answers_as_the_key_search_od_16() {
+        // Indices 2000h, 2002h, ... each with one to three sub-indices, every other one without sub 0.
+        let mut all = [0u32; 40];
+        let mut len = 0;
+        for i in 0..20u32 {
+            for s in 0..=(i % 3) {
+                if len < all.len() {
+                    all[len] = ((0x2000 + 2 * i) << 8) | (s + (i % 2));
+                    len += 1;
+                }
+            }
+        }
+        let mut rows = [(0u32, 0u32); 40];
+        for (row, &k) in rows.iter_mut().zip(&all) {
+            *row = (k, !k);
+        }
+        for n in 0..=30 {
+            let (keys, rows) = (&all[..n], &rows[..n]);
+            for index in 0x1FFF..=0x2028u16 {
+                for sub in 0..=4u8 {
+                    let want = lookup_key(keys, index, sub);
+                    let got = scan_key(rows, index, sub);
+                    assert_eq!(got.map(|(p, _)| p), want, "{n} rows, {index:04X}h sub {sub}");
+                    if let Ok((p, row)) = got {
+                        assert_eq!(*row, !keys[p]);
+                    }
+                }
+            }
+        }
+    }
 }
