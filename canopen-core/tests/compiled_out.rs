@@ -122,8 +122,8 @@ fn without_sync_producer() {
     assert!(drain(&mut node).0.is_empty());
     let upload = sdo(&mut node, [0x40, 0x05, 0x10, 0, 0, 0, 0, 0]);
     assert_eq!(upload, [CanFrame::new(0x585, &[0x43, 0x05, 0x10, 0, 0x80, 0, 0, 0]).unwrap()]);
-    let gen = sdo(&mut node, [0x23, 0x05, 0x10, 0, 0x80, 0, 0, 0x40]);
-    assert_eq!(gen, [abort(0x1005, 0x0609_0030)]);
+    let generate = sdo(&mut node, [0x23, 0x05, 0x10, 0, 0x80, 0, 0, 0x40]);
+    assert_eq!(generate, [abort(0x1005, 0x0609_0030)]);
     let consumer = sdo(&mut node, [0x23, 0x05, 0x10, 0, 0x81, 0, 0, 0]);
     assert_eq!(consumer, [CanFrame::new(0x585, &[0x60, 0x05, 0x10, 0, 0, 0, 0, 0]).unwrap()]);
 }

@@ -68,8 +68,8 @@ pub(super) const fn class(dt: DataType) -> u8 {
 /// Every class, for [`order_key`].
 const ALL_CLASSES: u8 = 1 << BOOLEAN | 1 << SIGNED | 1 << REAL | 1 << TIME;
 
-/// The classes (bit `c` for [`class`] `c`) of the first `limited` of `shapes`: the shapes that have limits
-/// ([`OdData::LIMITS`]), so the types [`within`] computes keys of.
+/// The classes (bit `c` for `class` `c`) of the first `limited` of `shapes`: the shapes that have limits
+/// ([`OdData::LIMITS`]), so the types `within` computes keys of.
 ///
 /// ```
 /// use canopen_core::od::{data::{limits::classes, Row, Shape}, Access, DataType, PdoMapping};
