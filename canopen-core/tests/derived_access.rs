@@ -210,3 +210,60 @@ macro_rules! access_tests {
 access_tests!(match_arms, Rules);
 access_tests!(compact, Compact);
 access_tests!(offsets, Offsets);
+
+/// Defines a dictionary without a writable string or DOMAIN (a read-only string, fixed-size values):
+/// `STREAMS` is false, and the streamed-write calls refuse every entry as the rows say.
+macro_rules! no_streams {
+    ($name:ident $(, $attr:meta)*) => {
+        #[derive(ObjectDictionary, Default)]
+        $(#[$attr])*
+        struct $name {
+            #[od(index = 0x2000, access = "ro", default = "abc")]
+            name: canopen_core::od::VisibleString<4>,
+            #[od(index = 0x2001, access = "rw", default = 3)]
+            rw: u32,
+            #[od(index = 0x2002, sub = 1..=2, access = "rw")]
+            array: [u8; 2],
+        }
+    };
+}
+no_streams!(NoStreamsArms);
+no_streams!(NoStreamsCompact, od(compact));
+
+/// OD-16, ABORT-10: a dictionary without a writable string or DOMAIN takes no streamed write: `begin_write`,
+/// `write_chunk` and `end_write` answer 0602 0000h (no object), 0609 0011h (no sub-index), 0601 0002h (a
+/// read-only string, sub 00h) or 0601 0000h (a fixed-size value), and `abort_write` changes nothing.
+fn streamed_writes_refused<A: ObjectDictionary + Default>() {
+    assert!(!A::STREAMS);
+    let mut od = A::default();
+    od.restore_defaults();
+    let cases = [
+        (0x2003, 0, AbortCode::ObjectDoesNotExist),
+        (0x2002, 3, AbortCode::SubIndexDoesNotExist),
+        (0x2000, 0, AbortCode::WriteOfReadOnly),
+        (0x2002, 0, AbortCode::WriteOfReadOnly),
+        (0x2001, 0, AbortCode::UnsupportedAccess),
+        (0x2002, 1, AbortCode::UnsupportedAccess),
+    ];
+    for (index, sub, code) in cases {
+        assert_eq!(od.begin_write(index, sub, Some(1)), Err(code), "{index:04X}:{sub}");
+        assert_eq!(od.write_chunk(index, sub, 0, &[1]), Err(code), "{index:04X}:{sub}");
+        assert_eq!(od.end_write(index, sub, 1), Err(code), "{index:04X}:{sub}");
+        od.abort_write(index, sub);
+    }
+    let mut buf = [0u8; 4];
+    assert_eq!(od.read(0x2000, 0, 0, &mut buf), Ok(3));
+    assert_eq!(&buf[..3], b"abc");
+    assert_eq!(od.read(0x2001, 0, 0, &mut buf), Ok(4));
+    assert_eq!(buf, [3, 0, 0, 0]);
+}
+
+#[test]
+fn streamed_writes_refused_match_arms() {
+    streamed_writes_refused::<NoStreamsArms>();
+}
+
+#[test]
+fn streamed_writes_refused_compact() {
+    streamed_writes_refused::<NoStreamsCompact>();
+}

@@ -757,6 +757,11 @@ pub fn end_write<D: OdData + ?Sized>(d: &mut D, index: u16, sub: u8, total: usiz
 /// assert_eq!(app.name.as_str(), "old");
 /// ```
 pub fn abort_write<D: OdData + ?Sized>(d: &mut D, index: u16, sub: u8) {
+    // Without a writable string or DOMAIN row `streamed` never answers `Ok`: nothing to look up (the node's
+    // SDO server calls this after a refused stream; footprint.sh node-data links `streamed` once less).
+    if !const { streams(D::SHAPES) } {
+        return;
+    }
     if let Ok((row, elem)) = streamed::<D>(index, sub) {
         d.special_abort(row.field, elem);
     }

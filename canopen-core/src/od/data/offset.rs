@@ -4,7 +4,7 @@
 //! (PDO-11/PDO-12), so a mapped object is one dispatch and one copy with no row at all. Limits and hooks
 //! (OD-11) still go through the row.
 
-use super::{limits, OdData, Row};
+use super::{limits, OdData, Row, Shape};
 use crate::od::{AbortCode, PdoHandle};
 
 /// [`OdData::bytes`] of a `#[od(compact, zerocopy)]` dictionary: the struct's bytes, which zerocopy's
@@ -67,8 +67,9 @@ pub(super) fn read_at<D: OdData + ?Sized>(
         1 => read_n::<1>(bytes, row, elem, offset, buf),
         2 => read_n::<2>(bytes, row, elem, offset, buf),
         4 => read_n::<4>(bytes, row, elem, offset, buf),
-        8 => read_n::<8>(bytes, row, elem, offset, buf),
-        // A struct with a byte view holds plain numbers only: 1, 2, 4 or 8 bytes.
+        8 if const { has_size(D::SHAPES, 8) } => read_n::<8>(bytes, row, elem, offset, buf),
+        // A struct with a byte view holds plain numbers only: 1, 2, 4 or 8 bytes (and 8 only when a shape
+        // has 8: a row's size is its shape's).
         _ => return Some(Err(AbortCode::ObjectDoesNotExist)),
     }))
 }
@@ -104,6 +105,19 @@ fn read_part(src: &[u8], offset: usize, buf: &mut [u8]) -> usize {
     crate::od::copy_at(le, offset, buf)
 }
 
+/// Whether one of `shapes` is of a type of `n` bytes: a dictionary without 64-bit values links no 8-byte
+/// arm in [`read_at`] and [`store`] (a row's size is its shape's, so the arm could never be taken).
+const fn has_size(shapes: &[Shape], n: usize) -> bool {
+    let mut i = 0;
+    while i < shapes.len() {
+        if shapes[i].data_type.fixed_size() == n {
+            return true;
+        }
+        i += 1;
+    }
+    false
+}
+
 /// Where the value of `row`/`elem` starts in [`OdData::bytes`]: the row's offset and the element's.
 #[inline(always)]
 fn at(row: &Row, elem: u8, size: usize) -> usize {
@@ -119,13 +133,14 @@ fn value<const N: usize>(bytes: &[u8], at: usize) -> Option<&[u8; N]> {
 /// Stores `data` (little-endian, `size` bytes: 1, 2, 4 or 8) at `at` in native byte order, one arm per size
 /// ([`copy_in`]): a write by row and a write through an offset PDO handle alike.
 #[inline(always)]
-fn store(bytes: &mut [u8], at: usize, size: usize, data: &[u8]) -> Result<(), AbortCode> {
+fn store<D: OdData + ?Sized>(bytes: &mut [u8], at: usize, size: usize, data: &[u8]) -> Result<(), AbortCode> {
     match size {
         1 => copy_in::<1>(bytes, at, data),
         2 => copy_in::<2>(bytes, at, data),
         4 => copy_in::<4>(bytes, at, data),
-        8 => copy_in::<8>(bytes, at, data),
-        // A struct with a byte view holds plain numbers only.
+        8 if const { has_size(D::SHAPES, 8) } => copy_in::<8>(bytes, at, data),
+        // A struct with a byte view holds plain numbers only (8 bytes only when a shape has them, see
+        // [`read_at`]).
         _ => Err(AbortCode::ObjectDoesNotExist),
     }
 }
@@ -150,7 +165,7 @@ pub(super) fn write_at<D: OdData + ?Sized>(
         if hooks {
             limits::check(d, pos, row.data_type, sub, data)?;
         }
-        store(d.bytes_mut(), at(row, elem, size), size, data)?;
+        store::<D>(d.bytes_mut(), at(row, elem, size), size, data)?;
         if hooks {
             d.on_write(pos, sub);
         }
