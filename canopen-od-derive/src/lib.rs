@@ -81,9 +81,9 @@
 //! type (`&self` and `&mut self`); `ObjectDictionary` forwards to the core's one generic path
 //! (`canopen_core::od::data`). Same answers on every SDO path (`canopen-core/tests/derived_access.rs`,
 //! `tests/od_all_types.rs` with the test feature `od-compact-tests`). Flash per object
-//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 11.1 B instead of 45.7 B,
+//! (`scripts/od-cost.sh`, thumbv7em, opt "s", LTO): UNSIGNED32 VAR with a default 11.0 B instead of 45.7 B,
 //! ARRAY of 4 x UNSIGNED16 26.8 B instead of 201.6 B, RECORD of three 41.5 B instead of 149.9 B, python
-//! canopen's e35.eds application 20,414 B instead of 39,262 B. The price: two jump tables per access
+//! canopen's e35.eds application 19,868 B instead of 39,258 B. The price: two jump tables per access
 //! instead of one, so more instructions per frame (x86-64 callgrind, `scripts/bench-node.sh` with the
 //! bench built with the test feature `od-compact-tests`, which makes its dictionaries compact: expedited
 //! download 332 instead of 292, segmented upload 350.3 instead of 245.3, RPDO to 4 objects 648.5 instead
@@ -98,10 +98,10 @@
 //! derive says what stands in the way. `eds-to-rust --layout zerocopy` writes such a struct (fields ordered
 //! by alignment, the tail padded). Construct it with `zerocopy::FromZeros::new_zeroed()` (one `memset`): the
 //! node applies the defaults at boot (NMT-04). Flash per further object (`scripts/od-cost.sh`, the node a
-//! static as in a firmware): UNSIGNED32 VAR 6.8 B (match arms 45.7, `compact` 11.1), ARRAY of 4 x UNSIGNED16
-//! 9.2 B (201.6, 26.8), RECORD of three 17.7 B (149.9, 41.5), RAM the values alone; python canopen's e35.eds
-//! application 7,558 B (39,262, 20,414; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
-//! expedited download 288 (default layout 292), RPDO to 4 objects 337.5 (353.5), SYNC to 4 TPDOs 212.5 per
+//! static as in a firmware): UNSIGNED32 VAR 6.8 B (match arms 45.7, `compact` 11.0), ARRAY of 4 x UNSIGNED16
+//! 9.1 B (201.6, 26.8), RECORD of three 17.6 B (149.9, 41.5), RAM the values alone; python canopen's e35.eds
+//! application 6,668 B (39,258, 19,868; CANopenNode's layout ~11,400 B). Instructions per frame (`scripts/bench-node.sh`, x86-64):
+//! expedited download 284 (default layout 292), RPDO to 4 objects 337.5 (353.5), SYNC to 4 TPDOs 212.5 per
 //! bus frame (209.3): PDO handles hold the value's offset and size class, one jump table per value.
 //!
 //! Field types are recognised by name: `bool`, `i8`, `i16`, `i32`, `i64`, `u8`, `u16`, `u32`, `u64`,
