@@ -107,7 +107,6 @@ else
     echo "== lanes ${lanes[*]} side by side, each in its own with-vcan VM (vcan0/vcan1); their output follows, lane by lane"
     declare -A pid
     # A time-out (CI's `timeout` sends TERM to this script) or Ctrl-C takes the lanes' VMs down with it.
-    kill_tree() { local c; for c in $(pgrep -P "$1"); do kill_tree "$c"; done; kill "$1" 2>/dev/null || true; }
     trap 'for p in "${pid[@]}"; do kill_tree "$p"; done; exit 143' TERM INT
     start_lane() {
         vcan_run vcan0,vcan1 -- bash "target/interop-lane-$1.sh" >"target/interop-lane-$1.log" 2>&1 &

@@ -30,3 +30,10 @@ vcan_run() {
         "$shared/vcan/with-vcan" --ifaces "$ifaces" -- "$@"
     fi
 }
+# Stops process PID and every process below it: a `vcan_run ... &` started in the background (the VM helper and
+# its User-Mode Linux processes), when a step beside it fails or the caller is interrupted.
+kill_tree() {
+    local c
+    for c in $(pgrep -P "$1"); do kill_tree "$c"; done
+    kill "$1" 2>/dev/null || true
+}
